@@ -1,0 +1,127 @@
+//! The `meshbool` binary end to end: outputs, exit codes and error messages.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn data(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../data")
+        .join(name)
+}
+
+fn meshbool(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_meshbool"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("meshbool-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+#[test]
+fn info_json_reports_terrain_counts() {
+    let out = meshbool(&[
+        "info",
+        "--json",
+        data("kirra_terrain.obj").to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["triangles"], 11200);
+    assert_eq!(v["vertices"], 5881);
+    assert_eq!(v["boundary_edges"], 560);
+    assert_eq!(v["non_manifold_edges"], 0);
+    assert_eq!(v["inconsistent_edges"], 46);
+    assert_eq!(v["degenerate_triangles"], 0);
+    assert_eq!(v["components"], 1);
+    assert_eq!(v["closed"], false);
+    assert!(v["area"].as_f64().unwrap() > 0.0);
+    assert_eq!(v["bbox"]["max"][2], 23.516);
+}
+
+#[test]
+fn info_json_several_files_is_an_array() {
+    let out = meshbool(&[
+        "info",
+        "--json",
+        data("kirra_cylinder.obj").to_str().unwrap(),
+        data("kirra_cup.stl").to_str().unwrap(),
+    ]);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v[0]["closed"], true);
+    assert_eq!(v[1]["boundary_edges"], 6);
+}
+
+#[test]
+fn convert_round_trip_keeps_measures() {
+    let ply = tmp("t.ply");
+    let out = meshbool(&[
+        "convert",
+        data("kap_terrain.obj").to_str().unwrap(),
+        ply.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let dxf = tmp("t.dxf");
+    assert!(
+        meshbool(&["convert", ply.to_str().unwrap(), dxf.to_str().unwrap()])
+            .status
+            .success()
+    );
+    let info = |p: &PathBuf| -> serde_json::Value {
+        serde_json::from_slice(&meshbool(&["info", "--json", p.to_str().unwrap()]).stdout).unwrap()
+    };
+    let (a, b) = (info(&data("kap_terrain.obj")), info(&dxf));
+    for k in [
+        "triangles",
+        "vertices",
+        "boundary_edges",
+        "inconsistent_edges",
+        "volume",
+        "area",
+        "bbox",
+    ] {
+        assert_eq!(a[k], b[k], "{k}");
+    }
+}
+
+#[test]
+fn bad_input_exits_1_naming_file_and_line() {
+    let bad = tmp("bad.obj");
+    std::fs::write(&bad, "v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n").unwrap();
+    let out = meshbool(&["info", bad.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("bad.obj") && err.contains("line 3") && err.contains("non-finite"),
+        "{err}"
+    );
+
+    let stl = tmp("short.stl");
+    std::fs::write(&stl, [0u8; 40]).unwrap();
+    let out = meshbool(&["info", stl.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("byte 40"));
+
+    let out = meshbool(&["info", tmp("missing.obj").to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+}
+
+#[test]
+fn usage_errors_exit_2() {
+    assert_eq!(meshbool(&["info"]).status.code(), Some(2));
+    assert_eq!(
+        meshbool(&["convert", "a.obj", "b.obj", "--to", "gltf"])
+            .status
+            .code(),
+        Some(2)
+    );
+    assert_eq!(meshbool(&["frobnicate"]).status.code(), Some(2));
+}

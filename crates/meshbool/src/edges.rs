@@ -1,0 +1,221 @@
+//! Edge adjacency: which triangles use each undirected edge, and in which direction.
+//! The basis of the edge statistics in [`crate::measure`], of edge-connected components,
+//! and of patch flood fills in the boolean pipeline.
+
+use rayon::prelude::*;
+
+use crate::Mesh;
+
+/// One triangle's use of an edge.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct EdgeUse {
+    /// The triangle.
+    pub triangle: u32,
+    /// Which of the triangle's edges: corner `k` to corner `(k+1) % 3`.
+    pub corner: u8,
+    /// True when the triangle runs along the edge from its lower vertex index to its higher.
+    pub forward: bool,
+}
+
+/// Undirected edges of a mesh and the triangles incident to each (compressed rows).
+///
+/// Edges are sorted by their vertex pair. Edges from a triangle to itself that repeats a
+/// vertex index (`[a, a, b]` has the loop `a–a`) are left out; [`EdgeTopology::triangle_edges`]
+/// marks them with [`EdgeTopology::NO_EDGE`].
+#[derive(Clone, Debug, Default)]
+pub struct EdgeTopology {
+    /// The edges as vertex pairs `[lo, hi]` with `lo < hi`, sorted.
+    pub edges: Vec<[u32; 2]>,
+    /// `uses[offsets[e]..offsets[e + 1]]` are the uses of edge `e`.
+    pub offsets: Vec<u32>,
+    /// All edge uses, grouped by edge, in triangle order within an edge.
+    pub uses: Vec<EdgeUse>,
+    /// For every triangle, the edge id of its edge `k` (corner `k` to `k+1`).
+    pub triangle_edges: Vec<[u32; 3]>,
+}
+
+impl EdgeTopology {
+    /// Marks a triangle edge that joins a vertex to itself.
+    pub const NO_EDGE: u32 = u32::MAX;
+
+    /// Builds the adjacency of `mesh` (indices must be in range). O(n log n), parallel sort.
+    pub fn new(mesh: &Mesh) -> Self {
+        let mut half: Vec<(u64, u32)> = Vec::with_capacity(mesh.triangles.len() * 3);
+        for (t, tri) in mesh.triangles.iter().enumerate() {
+            for k in 0..3 {
+                let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                if a != b {
+                    let key = (u64::from(a.min(b)) << 32) | u64::from(a.max(b));
+                    half.push((key, (t as u32) * 3 + k as u32));
+                }
+            }
+        }
+        half.par_sort_unstable();
+
+        let mut edges = Vec::new();
+        let mut offsets = Vec::with_capacity(half.len() / 2 + 1);
+        let mut uses = Vec::with_capacity(half.len());
+        let mut triangle_edges = vec![[Self::NO_EDGE; 3]; mesh.triangles.len()];
+        let mut prev = None;
+        for &(key, h) in &half {
+            if prev != Some(key) {
+                prev = Some(key);
+                offsets.push(uses.len() as u32);
+                edges.push([(key >> 32) as u32, key as u32]);
+            }
+            let (t, k) = (h / 3, (h % 3) as usize);
+            triangle_edges[t as usize][k] = (edges.len() - 1) as u32;
+            let from = mesh.triangles[t as usize][k];
+            uses.push(EdgeUse {
+                triangle: t,
+                corner: k as u8,
+                forward: u64::from(from) == key >> 32,
+            });
+        }
+        offsets.push(uses.len() as u32);
+        EdgeTopology {
+            edges,
+            offsets,
+            uses,
+            triangle_edges,
+        }
+    }
+
+    /// Number of undirected edges.
+    pub fn edge_count(&self) -> usize {
+        self.edges.len()
+    }
+
+    /// The uses of edge `e`.
+    #[inline]
+    pub fn uses_of(&self, e: usize) -> &[EdgeUse] {
+        &self.uses[self.offsets[e] as usize..self.offsets[e + 1] as usize]
+    }
+
+    /// Classifies edge `e` by how it is used.
+    pub fn kind(&self, e: usize) -> EdgeKind {
+        match self.uses_of(e) {
+            [_] => EdgeKind::Boundary,
+            [a, b] if a.forward != b.forward => EdgeKind::Manifold,
+            [_, _] => EdgeKind::Inconsistent,
+            _ => EdgeKind::NonManifold,
+        }
+    }
+
+    /// Edge-connected components: triangles sharing an edge (of any kind) are in the same
+    /// component. Returns the number of components and each triangle's component id;
+    /// ids are numbered in order of each component's first triangle.
+    pub fn components(&self) -> (usize, Vec<u32>) {
+        let n = self.triangle_edges.len();
+        let mut parent: Vec<u32> = (0..n as u32).collect();
+        fn find(parent: &mut [u32], mut x: u32) -> u32 {
+            while parent[x as usize] != x {
+                let up = parent[parent[x as usize] as usize];
+                parent[x as usize] = up;
+                x = up;
+            }
+            x
+        }
+        for e in 0..self.edges.len() {
+            let u = self.uses_of(e);
+            for w in u.windows(2) {
+                let (a, b) = (
+                    find(&mut parent, w[0].triangle),
+                    find(&mut parent, w[1].triangle),
+                );
+                if a != b {
+                    // Keep the lower id as root so that labels follow triangle order.
+                    parent[a.max(b) as usize] = a.min(b);
+                }
+            }
+        }
+        let mut label = vec![u32::MAX; n];
+        let mut count = 0u32;
+        let out = (0..n as u32)
+            .map(|t| {
+                let r = find(&mut parent, t) as usize;
+                if label[r] == u32::MAX {
+                    label[r] = count;
+                    count += 1;
+                }
+                label[r]
+            })
+            .collect();
+        (count as usize, out)
+    }
+}
+
+/// How an undirected edge is used by the triangles around it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EdgeKind {
+    /// Used by exactly one triangle: on the mesh boundary.
+    Boundary,
+    /// Used by two triangles in opposite directions: a consistently oriented interior edge.
+    Manifold,
+    /// Used by two triangles in the same direction: their orientations disagree.
+    Inconsistent,
+    /// Used by more than two triangles.
+    NonManifold,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cube_has_18_manifold_edges_and_one_component() {
+        let topo = EdgeTopology::new(&Mesh::unit_cube());
+        assert_eq!(topo.edge_count(), 18);
+        assert!((0..18).all(|e| topo.kind(e) == EdgeKind::Manifold));
+        assert_eq!(topo.components(), (1, vec![0; 12]));
+        for (t, te) in topo.triangle_edges.iter().enumerate() {
+            for &e in te {
+                assert!(topo
+                    .uses_of(e as usize)
+                    .iter()
+                    .any(|u| u.triangle == t as u32));
+            }
+        }
+    }
+
+    #[test]
+    fn kinds_of_edges() {
+        // Two triangles sharing edge 0-1 in the same direction, a third sharing it too.
+        let m = Mesh::new(
+            vec![
+                [0.0; 3],
+                [1.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [0.0, -1.0, 0.0],
+                [0.0, 0.0, 1.0],
+            ],
+            vec![[0, 1, 2], [0, 1, 3]],
+        );
+        let topo = EdgeTopology::new(&m);
+        let e01 = topo.edges.iter().position(|&e| e == [0, 1]).unwrap();
+        assert_eq!(topo.kind(e01), EdgeKind::Inconsistent);
+        let mut m3 = m.clone();
+        m3.triangles.push([1, 0, 4]);
+        let topo = EdgeTopology::new(&m3);
+        assert_eq!(topo.kind(e01), EdgeKind::NonManifold);
+        assert_eq!(topo.components().0, 1);
+    }
+
+    #[test]
+    fn components_in_first_triangle_order() {
+        let mut a = Mesh::cuboid([5.0; 3], [6.0; 3]);
+        let b = Mesh::unit_cube();
+        let off = a.positions.len() as u32;
+        a.positions.extend(&b.positions);
+        // Interleave the triangles of the two cubes.
+        let tris_a = a.triangles.clone();
+        a.triangles.clear();
+        for (ta, tb) in tris_a.iter().zip(&b.triangles) {
+            a.triangles.push(tb.map(|i| i + off));
+            a.triangles.push(*ta);
+        }
+        let (n, ids) = EdgeTopology::new(&a).components();
+        assert_eq!(n, 2);
+        assert_eq!(&ids[..4], &[0, 1, 0, 1]);
+    }
+}

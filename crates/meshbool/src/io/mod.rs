@@ -1,0 +1,306 @@
+//! Reading and writing meshes: STL (binary and ASCII), OBJ, PLY (ASCII, binary little and
+//! big endian), DXF (3DFACE and polyface meshes) and JSON triangle soups.
+//!
+//! Everything is read into `f64`. Formats that store corners per triangle (STL, DXF 3DFACE,
+//! JSON soups) are welded on read where positions are exactly equal ([`crate::weld_exact`]).
+//! Readers never panic: malformed content gives [`Error::Parse`] with the line or byte
+//! where it went wrong; NaN/infinite coordinates and out-of-range indices are errors.
+//!
+//! Writers use the shortest decimal form that reads back to the same `f64` (text formats)
+//! or `f64` fields (PLY), so positions round-trip bit-exactly, except binary STL, which
+//! stores `f32` by definition.
+
+use std::fmt;
+use std::fs;
+use std::io::{BufWriter, Write};
+use std::path::Path;
+
+use crate::error::{Error, Location, Result};
+use crate::Mesh;
+
+mod dxf;
+mod json;
+mod obj;
+mod ply;
+mod stl;
+
+/// A file format (with its encoding, where a format has several).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Format {
+    /// Binary STL (`f32` coordinates).
+    StlBinary,
+    /// ASCII STL.
+    StlAscii,
+    /// Wavefront OBJ (`v`/`f`; polygons are triangulated as fans on read).
+    Obj,
+    /// ASCII PLY.
+    PlyAscii,
+    /// Binary little-endian PLY (written with `double` positions).
+    PlyBinaryLe,
+    /// Binary big-endian PLY.
+    PlyBinaryBe,
+    /// ASCII DXF: read 3DFACE entities and polyface meshes, written as 3DFACE.
+    Dxf,
+    /// JSON soup `[{"v0":{"x":..,"y":..,"z":..},"v1":..,"v2":..}, ..]`.
+    JsonSoup,
+    /// Kirra's JSON: `[{"vertices":[{"x":..,"y":..,"z":..}, x3]}, ..]`.
+    JsonKirra,
+}
+
+impl fmt::Display for Format {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Format::StlBinary => "binary STL",
+            Format::StlAscii => "ASCII STL",
+            Format::Obj => "OBJ",
+            Format::PlyAscii => "ASCII PLY",
+            Format::PlyBinaryLe => "binary little-endian PLY",
+            Format::PlyBinaryBe => "binary big-endian PLY",
+            Format::Dxf => "DXF",
+            Format::JsonSoup => "JSON soup",
+            Format::JsonKirra => "Kirra JSON",
+        })
+    }
+}
+
+impl Format {
+    /// All formats, with the names [`Format::from_name`] accepts.
+    pub const NAMES: [(&'static str, Format); 9] = [
+        ("stl", Format::StlBinary),
+        ("stl-ascii", Format::StlAscii),
+        ("obj", Format::Obj),
+        ("ply", Format::PlyBinaryLe),
+        ("ply-ascii", Format::PlyAscii),
+        ("ply-be", Format::PlyBinaryBe),
+        ("dxf", Format::Dxf),
+        ("json", Format::JsonSoup),
+        ("kirra-json", Format::JsonKirra),
+    ];
+
+    /// The format for a name such as `stl`, `stl-ascii`, `ply-ascii`, `kirra-json` (case-insensitive).
+    pub fn from_name(name: &str) -> Option<Format> {
+        let name = name.to_ascii_lowercase();
+        Self::NAMES
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|&(_, f)| f)
+    }
+
+    /// The format written for a file name's extension: `.stl` binary STL, `.obj`, `.ply`
+    /// binary little-endian, `.dxf`, `.json` JSON soup. `None` for other extensions.
+    pub fn for_path(path: impl AsRef<Path>) -> Option<Format> {
+        let ext = path.as_ref().extension()?.to_str()?.to_ascii_lowercase();
+        Some(match ext.as_str() {
+            "stl" => Format::StlBinary,
+            "obj" => Format::Obj,
+            "ply" => Format::PlyBinaryLe,
+            "dxf" => Format::Dxf,
+            "json" => Format::JsonSoup,
+            _ => return None,
+        })
+    }
+}
+
+/// The format of `bytes`, from the content, with `hint` (a format from the file name)
+/// deciding between families the content cannot tell apart. STL's binary/ASCII encoding
+/// and PLY's encoding always come from the content. `None` when nothing fits.
+pub fn detect_format(bytes: &[u8], hint: Option<Format>) -> Option<Format> {
+    let family = |f: Format| match f {
+        Format::StlBinary | Format::StlAscii => 0,
+        Format::Obj => 1,
+        Format::PlyAscii | Format::PlyBinaryLe | Format::PlyBinaryBe => 2,
+        Format::Dxf => 3,
+        Format::JsonSoup | Format::JsonKirra => 4,
+    };
+    if bytes.starts_with(b"ply") {
+        return ply::encoding(bytes).or(Some(Format::PlyAscii));
+    }
+    match hint.map(family) {
+        Some(0) => return Some(stl::encoding(bytes)),
+        Some(1) => return Some(Format::Obj),
+        Some(2) => return Some(Format::PlyAscii),
+        Some(3) => return Some(Format::Dxf),
+        Some(4) => return Some(Format::JsonSoup),
+        _ => {}
+    }
+    if stl::is_binary(bytes) {
+        return Some(Format::StlBinary);
+    }
+    let text = bytes.trim_ascii_start();
+    if text.starts_with(b"solid") {
+        return Some(Format::StlAscii);
+    }
+    if text.starts_with(b"[") || text.starts_with(b"{") {
+        return Some(Format::JsonSoup);
+    }
+    if dxf::looks_like(text) {
+        return Some(Format::Dxf);
+    }
+    if obj::looks_like(bytes) {
+        return Some(Format::Obj);
+    }
+    None
+}
+
+/// Reads a mesh from bytes in the given format (for STL and PLY the encoding is taken from
+/// the content; for JSON both soup layouts are accepted).
+pub fn read_bytes(bytes: &[u8], format: Format) -> Result<Mesh> {
+    if bytes.trim_ascii().is_empty() {
+        return Err(Error::parse(format, Location::Whole, "the file is empty"));
+    }
+    let mesh = match format {
+        Format::StlBinary | Format::StlAscii => stl::read(bytes)?,
+        Format::Obj => obj::read(bytes)?,
+        Format::PlyAscii | Format::PlyBinaryLe | Format::PlyBinaryBe => ply::read(bytes)?,
+        Format::Dxf => dxf::read(bytes)?,
+        Format::JsonSoup | Format::JsonKirra => json::read(bytes)?,
+    };
+    mesh.validate()?;
+    Ok(mesh)
+}
+
+/// Reads a mesh file, telling the format from the extension and the content.
+pub fn read_path(path: impl AsRef<Path>) -> Result<Mesh> {
+    let path = path.as_ref();
+    let bytes = fs::read(path)?;
+    let format = detect_format(&bytes, Format::for_path(path))
+        .ok_or_else(|| Error::UnknownFormat(path.display().to_string()))?;
+    read_bytes(&bytes, format)
+}
+
+/// Writes `mesh` to `out` in `format`. The mesh must be valid ([`Mesh::validate`]).
+pub fn write(out: &mut impl Write, mesh: &Mesh, format: Format) -> Result<()> {
+    mesh.validate()?;
+    match format {
+        Format::StlBinary => stl::write_binary(out, mesh),
+        Format::StlAscii => stl::write_ascii(out, mesh),
+        Format::Obj => obj::write(out, mesh),
+        Format::PlyAscii | Format::PlyBinaryLe | Format::PlyBinaryBe => {
+            ply::write(out, mesh, format)
+        }
+        Format::Dxf => dxf::write(out, mesh),
+        Format::JsonSoup | Format::JsonKirra => json::write(out, mesh, format),
+    }?;
+    Ok(())
+}
+
+/// Writes `mesh` to a file in the format its extension names ([`Format::for_path`]).
+pub fn write_path(path: impl AsRef<Path>, mesh: &Mesh) -> Result<()> {
+    let path = path.as_ref();
+    let format =
+        Format::for_path(path).ok_or_else(|| Error::UnknownFormat(path.display().to_string()))?;
+    write_path_as(path, mesh, format)
+}
+
+/// Writes `mesh` to a file in `format`.
+pub fn write_path_as(path: impl AsRef<Path>, mesh: &Mesh, format: Format) -> Result<()> {
+    let mut out = BufWriter::new(fs::File::create(path)?);
+    write(&mut out, mesh, format)?;
+    out.flush()?;
+    Ok(())
+}
+
+/// Output assembled in a buffer and handed to the writer in pieces of about 64 KiB, with
+/// number formatting that round-trips (`ryu` for `f64`, `itoa` for integers).
+struct Out<'a, W: Write> {
+    w: &'a mut W,
+    buf: Vec<u8>,
+    num: ryu::Buffer,
+    int: itoa::Buffer,
+}
+
+impl<'a, W: Write> Out<'a, W> {
+    const CHUNK: usize = 1 << 16;
+
+    fn new(w: &'a mut W) -> Self {
+        Out {
+            w,
+            buf: Vec::with_capacity(Self::CHUNK + 1024),
+            num: ryu::Buffer::new(),
+            int: itoa::Buffer::new(),
+        }
+    }
+
+    fn bytes(&mut self, b: &[u8]) -> &mut Self {
+        self.buf.extend_from_slice(b);
+        self
+    }
+
+    /// The shortest decimal text that parses back to exactly `x` (`x` must be finite).
+    fn f64(&mut self, x: f64) -> &mut Self {
+        self.buf
+            .extend_from_slice(self.num.format_finite(x).as_bytes());
+        self
+    }
+
+    fn int(&mut self, x: u64) -> &mut Self {
+        self.buf.extend_from_slice(self.int.format(x).as_bytes());
+        self
+    }
+
+    /// Call after each record: passes the buffer on once it is full.
+    fn record_done(&mut self) -> std::io::Result<()> {
+        if self.buf.len() >= Self::CHUNK {
+            self.w.write_all(&self.buf)?;
+            self.buf.clear();
+        }
+        Ok(())
+    }
+
+    fn finish(mut self) -> Result<()> {
+        self.w.write_all(&self.buf)?;
+        self.buf.clear();
+        Ok(())
+    }
+}
+
+/// Parses a decimal number from a text format; non-finite values are errors.
+fn parse_f64(token: &[u8], format: Format, line: usize) -> Result<f64> {
+    let bad = || {
+        Error::parse(
+            format,
+            Location::Line(line),
+            format!(
+                "expected a number, found {:?}",
+                String::from_utf8_lossy(token)
+            ),
+        )
+    };
+    let x: f64 = std::str::from_utf8(token)
+        .map_err(|_| bad())?
+        .parse()
+        .map_err(|_| bad())?;
+    if !x.is_finite() {
+        return Err(Error::parse(
+            format,
+            Location::Line(line),
+            format!("non-finite coordinate {:?}", String::from_utf8_lossy(token)),
+        ));
+    }
+    Ok(x)
+}
+
+/// Lines of a text file with their 1-based numbers, without line terminators.
+fn lines(bytes: &[u8]) -> impl Iterator<Item = (usize, &[u8])> {
+    bytes
+        .split(|&b| b == b'\n')
+        .enumerate()
+        .map(|(i, l)| (i + 1, l.strip_suffix(b"\r").unwrap_or(l)))
+}
+
+/// Whitespace-separated tokens of a line.
+fn tokens(line: &[u8]) -> impl Iterator<Item = &[u8]> {
+    line.split(|b| b.is_ascii_whitespace())
+        .filter(|t| !t.is_empty())
+}
+
+/// Splits polygon `poly` (vertex indices, in order) into a fan of triangles.
+fn push_fan(poly: &[u32], out: &mut Vec<[u32; 3]>) {
+    for k in 1..poly.len().saturating_sub(1) {
+        out.push([poly[0], poly[k], poly[k + 1]]);
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,346 @@
+//! PLY, ASCII and binary (little and big endian): `vertex` elements with scalar `x y z`
+//! properties of any type, `face` elements with a `vertex_indices` (or `vertex_index`) list
+//! of any integer type; every other element and property is skipped. Written as binary
+//! little-endian (or the encoding asked for) with `double` positions.
+
+use std::io::Write;
+
+use super::{parse_f64, tokens, Format, Out};
+use crate::error::{Error, Location, Result};
+use crate::Mesh;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Scalar {
+    I8,
+    U8,
+    I16,
+    U16,
+    I32,
+    U32,
+    F32,
+    F64,
+}
+
+impl Scalar {
+    fn parse(name: &[u8]) -> Option<Scalar> {
+        Some(match name {
+            b"char" | b"int8" => Scalar::I8,
+            b"uchar" | b"uint8" => Scalar::U8,
+            b"short" | b"int16" => Scalar::I16,
+            b"ushort" | b"uint16" => Scalar::U16,
+            b"int" | b"int32" => Scalar::I32,
+            b"uint" | b"uint32" => Scalar::U32,
+            b"float" | b"float32" => Scalar::F32,
+            b"double" | b"float64" => Scalar::F64,
+            _ => return None,
+        })
+    }
+
+    fn size(self) -> usize {
+        match self {
+            Scalar::I8 | Scalar::U8 => 1,
+            Scalar::I16 | Scalar::U16 => 2,
+            Scalar::I32 | Scalar::U32 | Scalar::F32 => 4,
+            Scalar::F64 => 8,
+        }
+    }
+}
+
+enum Prop {
+    Scalar(Scalar, Vec<u8>),
+    List(Scalar, Scalar, Vec<u8>),
+}
+
+struct Element {
+    name: Vec<u8>,
+    count: u64,
+    props: Vec<Prop>,
+}
+
+/// The encoding named in the header, when there is a readable `format` line.
+pub(super) fn encoding(bytes: &[u8]) -> Option<Format> {
+    let line = super::lines(&bytes[..bytes.len().min(4096)])
+        .find(|(_, l)| l.starts_with(b"format"))?
+        .1;
+    match tokens(line).nth(1)? {
+        b"ascii" => Some(Format::PlyAscii),
+        b"binary_little_endian" => Some(Format::PlyBinaryLe),
+        b"binary_big_endian" => Some(Format::PlyBinaryBe),
+        _ => None,
+    }
+}
+
+/// Parses the header: the encoding, the elements and the byte offset where the body starts.
+fn header(bytes: &[u8]) -> Result<(Format, Vec<Element>, usize, usize)> {
+    let err = |ln: usize, msg: &str| Error::parse(Format::PlyAscii, Location::Line(ln), msg);
+    let mut pos = 0;
+    let mut ln = 0;
+    let mut format = None;
+    let mut elements: Vec<Element> = Vec::new();
+    loop {
+        ln += 1;
+        let Some(len) = bytes[pos..].iter().position(|&b| b == b'\n') else {
+            return Err(err(ln, "header ends without end_header"));
+        };
+        let line = &bytes[pos..pos + len];
+        let line = line.strip_suffix(b"\r").unwrap_or(line);
+        pos += len + 1;
+        let t: Vec<&[u8]> = tokens(line).collect();
+        match t.as_slice() {
+            [b"ply"] if ln == 1 => {}
+            _ if ln == 1 => return Err(err(1, "missing the 'ply' magic line")),
+            [] | [b"comment", ..] | [b"obj_info", ..] => {}
+            [b"format", enc, _version] => {
+                format = Some(match *enc {
+                    b"ascii" => Format::PlyAscii,
+                    b"binary_little_endian" => Format::PlyBinaryLe,
+                    b"binary_big_endian" => Format::PlyBinaryBe,
+                    _ => return Err(err(ln, "unknown PLY encoding")),
+                })
+            }
+            [b"element", name, count] => {
+                let count = std::str::from_utf8(count)
+                    .ok()
+                    .and_then(|c| c.parse().ok())
+                    .ok_or_else(|| err(ln, "element count is not a number"))?;
+                elements.push(Element {
+                    name: name.to_vec(),
+                    count,
+                    props: Vec::new(),
+                });
+            }
+            [b"property", b"list", ct, it, name] => {
+                let (Some(ct), Some(it)) = (Scalar::parse(ct), Scalar::parse(it)) else {
+                    return Err(err(ln, "unknown property type"));
+                };
+                let e = elements
+                    .last_mut()
+                    .ok_or_else(|| err(ln, "property before any element"))?;
+                e.props.push(Prop::List(ct, it, name.to_vec()));
+            }
+            [b"property", ty, name] => {
+                let ty = Scalar::parse(ty).ok_or_else(|| err(ln, "unknown property type"))?;
+                let e = elements
+                    .last_mut()
+                    .ok_or_else(|| err(ln, "property before any element"))?;
+                e.props.push(Prop::Scalar(ty, name.to_vec()));
+            }
+            [b"end_header"] => break,
+            _ => return Err(err(ln, "unrecognised header line")),
+        }
+    }
+    let format = format.ok_or_else(|| err(ln, "header has no format line"))?;
+    Ok((format, elements, pos, ln))
+}
+
+/// Reads values one at a time from an ASCII or binary body, knowing where it is for errors.
+struct Body<'a> {
+    bytes: &'a [u8],
+    pos: usize,
+    line: usize,
+    format: Format,
+}
+
+impl Body<'_> {
+    fn err(&self, msg: impl Into<String>) -> Error {
+        let loc = match self.format {
+            Format::PlyAscii => Location::Line(self.line),
+            _ => Location::Byte(self.pos as u64),
+        };
+        Error::parse(self.format, loc, msg)
+    }
+
+    fn next(&mut self, ty: Scalar) -> Result<f64> {
+        match self.format {
+            Format::PlyAscii => {
+                while self.pos < self.bytes.len() && self.bytes[self.pos].is_ascii_whitespace() {
+                    if self.bytes[self.pos] == b'\n' {
+                        self.line += 1;
+                    }
+                    self.pos += 1;
+                }
+                let start = self.pos;
+                while self.pos < self.bytes.len() && !self.bytes[self.pos].is_ascii_whitespace() {
+                    self.pos += 1;
+                }
+                if start == self.pos {
+                    return Err(self.err("file ends before all elements are read: truncated?"));
+                }
+                parse_f64(&self.bytes[start..self.pos], self.format, self.line)
+            }
+            _ => {
+                let n = ty.size();
+                let Some(raw) = self.bytes.get(self.pos..self.pos + n) else {
+                    return Err(self.err("file ends before all elements are read: truncated?"));
+                };
+                let mut b = [0u8; 8];
+                b[..n].copy_from_slice(raw);
+                if self.format == Format::PlyBinaryBe {
+                    b[..n].reverse();
+                }
+                self.pos += n;
+                let b4 = [b[0], b[1], b[2], b[3]];
+                Ok(match ty {
+                    Scalar::I8 => f64::from(b[0] as i8),
+                    Scalar::U8 => f64::from(b[0]),
+                    Scalar::I16 => f64::from(i16::from_le_bytes([b[0], b[1]])),
+                    Scalar::U16 => f64::from(u16::from_le_bytes([b[0], b[1]])),
+                    Scalar::I32 => f64::from(i32::from_le_bytes(b4)),
+                    Scalar::U32 => f64::from(u32::from_le_bytes(b4)),
+                    Scalar::F32 => f64::from(f32::from_le_bytes(b4)),
+                    Scalar::F64 => f64::from_le_bytes(b),
+                })
+            }
+        }
+    }
+}
+
+pub(super) fn read(bytes: &[u8]) -> Result<Mesh> {
+    let (format, elements, start, header_lines) = header(bytes)?;
+    let mut body = Body {
+        bytes,
+        pos: start,
+        line: header_lines + 1,
+        format,
+    };
+    let nverts = elements
+        .iter()
+        .find(|e| e.name == b"vertex")
+        .map_or(0, |e| e.count);
+    if nverts > u64::from(u32::MAX) {
+        return Err(body.err("more vertices than 2^32-1"));
+    }
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    let mut poly: Vec<u32> = Vec::new();
+    for e in &elements {
+        let is_vertex = e.name == b"vertex";
+        let is_face = e.name == b"face";
+        if is_vertex {
+            for axis in [&b"x"[..], b"y", b"z"] {
+                if !e
+                    .props
+                    .iter()
+                    .any(|p| matches!(p, Prop::Scalar(_, n) if n == axis))
+                {
+                    return Err(body.err(format!(
+                        "vertex element has no scalar property {}",
+                        String::from_utf8_lossy(axis)
+                    )));
+                }
+            }
+            positions.reserve(e.count.min(1 << 24) as usize);
+        }
+        if e.props.is_empty() {
+            continue; // nothing to read, whatever the count says
+        }
+        for _ in 0..e.count {
+            let mut p = [0.0; 3];
+            for prop in &e.props {
+                match prop {
+                    Prop::Scalar(ty, name) => {
+                        let v = body.next(*ty)?;
+                        if is_vertex {
+                            let k = match name.as_slice() {
+                                b"x" => 0,
+                                b"y" => 1,
+                                b"z" => 2,
+                                _ => continue,
+                            };
+                            if !v.is_finite() {
+                                return Err(body.err("non-finite vertex coordinate"));
+                            }
+                            p[k] = v;
+                        }
+                    }
+                    Prop::List(ct, it, name) => {
+                        let n = body.next(*ct)?;
+                        if n < 0.0 || n.fract() != 0.0 {
+                            return Err(body.err(format!("bad list length {n}")));
+                        }
+                        let indices =
+                            is_face && (name == b"vertex_indices" || name == b"vertex_index");
+                        poly.clear();
+                        for _ in 0..n as u64 {
+                            let i = body.next(*it)?;
+                            if indices {
+                                if i < 0.0 || i.fract() != 0.0 || i >= nverts as f64 {
+                                    return Err(body.err(format!(
+                                        "vertex index {i} out of range ({nverts} vertices)"
+                                    )));
+                                }
+                                poly.push(i as u32);
+                            }
+                        }
+                        if indices {
+                            if poly.len() < 3 {
+                                return Err(body.err(format!(
+                                    "face has {} vertices, needs at least 3",
+                                    poly.len()
+                                )));
+                            }
+                            super::push_fan(&poly, &mut triangles);
+                        }
+                    }
+                }
+            }
+            if is_vertex {
+                positions.push(p);
+            }
+        }
+    }
+    Ok(Mesh::new(positions, triangles))
+}
+
+pub(super) fn write(out: &mut impl Write, mesh: &Mesh, format: Format) -> Result<()> {
+    let (enc, be) = match format {
+        Format::PlyAscii => ("ascii", false),
+        Format::PlyBinaryBe => ("binary_big_endian", true),
+        _ => ("binary_little_endian", false),
+    };
+    let index_type = if mesh.positions.len() > i32::MAX as usize {
+        "uint"
+    } else {
+        "int"
+    };
+    let head = format!(
+        "ply\nformat {enc} 1.0\ncomment meshbool\nelement vertex {}\nproperty double x\n\
+         property double y\nproperty double z\nelement face {}\n\
+         property list uchar {index_type} vertex_indices\nend_header\n",
+        mesh.positions.len(),
+        mesh.triangles.len()
+    );
+    let mut o = Out::new(out);
+    o.bytes(head.as_bytes());
+    let f = |x: f64| if be { x.to_be_bytes() } else { x.to_le_bytes() };
+    let u = |x: u32| if be { x.to_be_bytes() } else { x.to_le_bytes() };
+    for p in &mesh.positions {
+        if format == Format::PlyAscii {
+            o.f64(p[0])
+                .bytes(b" ")
+                .f64(p[1])
+                .bytes(b" ")
+                .f64(p[2])
+                .bytes(b"\n");
+        } else {
+            o.bytes(&f(p[0])).bytes(&f(p[1])).bytes(&f(p[2]));
+        }
+        o.record_done()?;
+    }
+    for t in &mesh.triangles {
+        if format == Format::PlyAscii {
+            o.bytes(b"3");
+            for &i in t {
+                o.bytes(b" ").int(u64::from(i));
+            }
+            o.bytes(b"\n");
+        } else {
+            o.bytes(&[3]);
+            for &i in t {
+                o.bytes(&u(i));
+            }
+        }
+        o.record_done()?;
+    }
+    o.finish()
+}

@@ -1,0 +1,217 @@
+//! STL, binary and ASCII. Binary vs ASCII is decided by the file size first: a file of
+//! exactly `84 + 50 n` bytes whose header announces `n` triangles is binary even when its
+//! header starts with "solid" (many exporters write that).
+
+use std::io::Write;
+
+use super::{lines, parse_f64, tokens, Format, Out};
+use crate::error::{Error, Location, Result};
+use crate::{Mesh, Welder};
+
+const HEADER: usize = 80;
+const RECORD: usize = 50;
+
+fn announced(bytes: &[u8]) -> Option<u64> {
+    let n = bytes.get(HEADER..HEADER + 4)?;
+    Some(u64::from(u32::from_le_bytes([n[0], n[1], n[2], n[3]])))
+}
+
+/// True when the size matches the triangle count in the binary header.
+pub(super) fn is_binary(bytes: &[u8]) -> bool {
+    announced(bytes).is_some_and(|n| (HEADER + 4) as u64 + RECORD as u64 * n == bytes.len() as u64)
+}
+
+/// Which STL encoding `bytes` are in. Anything that is neither consistent binary nor starts
+/// with "solid" is taken as binary, so that the binary reader reports what is wrong.
+pub(super) fn encoding(bytes: &[u8]) -> Format {
+    if !is_binary(bytes) && bytes.trim_ascii_start().starts_with(b"solid") {
+        Format::StlAscii
+    } else {
+        Format::StlBinary
+    }
+}
+
+pub(super) fn read(bytes: &[u8]) -> Result<Mesh> {
+    match encoding(bytes) {
+        Format::StlAscii => read_ascii(bytes),
+        _ => read_binary(bytes),
+    }
+}
+
+fn read_binary(bytes: &[u8]) -> Result<Mesh> {
+    let err =
+        |at: usize, msg: String| Error::parse(Format::StlBinary, Location::Byte(at as u64), msg);
+    let Some(n) = announced(bytes) else {
+        return Err(err(
+            bytes.len(),
+            format!(
+                "file ends after {} bytes, inside the 84-byte header",
+                bytes.len()
+            ),
+        ));
+    };
+    let room = (bytes.len() - HEADER - 4) / RECORD;
+    if n != room as u64 || (bytes.len() - HEADER - 4) % RECORD != 0 {
+        return Err(err(
+            HEADER,
+            format!(
+                "header announces {n} triangles ({} bytes) but the file has {} bytes \
+                 (room for {room} triangles): truncated or wrong triangle count",
+                (HEADER + 4) as u64 + RECORD as u64 * n,
+                bytes.len()
+            ),
+        ));
+    }
+    let body = &bytes[HEADER + 4..];
+    let mut welder = Welder::with_capacity(room * 3);
+    let mut triangles = Vec::with_capacity(room);
+    for (t, rec) in body.chunks_exact(RECORD).enumerate() {
+        let f = |k: usize| f32::from_le_bytes([rec[k], rec[k + 1], rec[k + 2], rec[k + 3]]);
+        let mut tri = [0u32; 3];
+        for (c, idx) in tri.iter_mut().enumerate() {
+            let o = 12 + 12 * c;
+            let p = [f(o), f(o + 4), f(o + 8)];
+            if let Some(k) = p.iter().position(|x| !x.is_finite()) {
+                return Err(err(
+                    HEADER + 4 + t * RECORD + o + 4 * k,
+                    format!("non-finite coordinate in triangle {t}"),
+                ));
+            }
+            *idx = welder.index(p.map(f64::from));
+        }
+        triangles.push(tri);
+    }
+    Ok(Mesh::new(welder.into_positions(), triangles))
+}
+
+fn read_ascii(bytes: &[u8]) -> Result<Mesh> {
+    let fmt = Format::StlAscii;
+    let err = |line: usize, msg: String| Error::parse(fmt, Location::Line(line), msg);
+    let mut welder = Welder::with_capacity(bytes.len() / 80);
+    let mut triangles = Vec::new();
+    let mut poly: Vec<u32> = Vec::new();
+    // Where we are: outside a solid, in a solid, in a facet, in its loop.
+    #[derive(PartialEq)]
+    enum State {
+        Top,
+        Solid,
+        Facet,
+        Loop,
+    }
+    let mut state = State::Top;
+    let mut opened = 0;
+    for (ln, line) in lines(bytes) {
+        let mut tok = tokens(line);
+        let Some(key) = tok.next() else { continue };
+        match (key, &state) {
+            (b"solid", State::Top) => state = State::Solid,
+            (b"facet", State::Solid) => {
+                state = State::Facet;
+                opened = ln;
+            }
+            (b"outer", State::Facet) => {
+                state = State::Loop;
+                poly.clear();
+            }
+            (b"vertex", State::Loop) => {
+                let mut p = [0.0; 3];
+                for c in &mut p {
+                    let t = tok
+                        .next()
+                        .ok_or_else(|| err(ln, "vertex needs three coordinates".into()))?;
+                    *c = parse_f64(t, fmt, ln)?;
+                }
+                poly.push(welder.index(p));
+            }
+            (b"endloop", State::Loop) => {
+                if poly.len() < 3 {
+                    return Err(err(
+                        ln,
+                        format!("facet has {} vertices, needs 3", poly.len()),
+                    ));
+                }
+                super::push_fan(&poly, &mut triangles);
+                state = State::Facet;
+            }
+            (b"endfacet", State::Facet) => state = State::Solid,
+            (b"endsolid", State::Solid) => state = State::Top,
+            _ => {
+                return Err(err(
+                    ln,
+                    format!("unexpected {:?} here", String::from_utf8_lossy(key)),
+                ))
+            }
+        }
+    }
+    match state {
+        State::Top => Ok(Mesh::new(welder.into_positions(), triangles)),
+        State::Solid => Err(err(
+            lines(bytes).count(),
+            "missing endsolid: file truncated?".into(),
+        )),
+        _ => Err(err(
+            opened,
+            "facet not closed before end of file: truncated?".into(),
+        )),
+    }
+}
+
+fn normal32(m: &Mesh, t: usize) -> [f32; 3] {
+    let [a, b, c] = m.corners(t);
+    let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+    let n = [
+        u[1] * v[2] - u[2] * v[1],
+        u[2] * v[0] - u[0] * v[2],
+        u[0] * v[1] - u[1] * v[0],
+    ];
+    let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    if len > 0.0 && len.is_finite() {
+        n.map(|x| (x / len) as f32)
+    } else {
+        [0.0; 3]
+    }
+}
+
+pub(super) fn write_binary(out: &mut impl Write, mesh: &Mesh) -> Result<()> {
+    let n = u32::try_from(mesh.triangles.len()).map_err(|_| {
+        Error::invalid(Location::Whole, "binary STL holds at most 2^32-1 triangles")
+    })?;
+    let mut o = Out::new(out);
+    let mut head = [b' '; HEADER];
+    let label = b"meshbool binary STL";
+    head[..label.len()].copy_from_slice(label);
+    o.bytes(&head).bytes(&n.to_le_bytes());
+    for t in 0..mesh.triangles.len() {
+        for x in normal32(mesh, t) {
+            o.bytes(&x.to_le_bytes());
+        }
+        for x in mesh.corners(t).into_iter().flatten() {
+            o.bytes(&(x as f32).to_le_bytes());
+        }
+        o.bytes(&[0, 0]).record_done()?;
+    }
+    o.finish()
+}
+
+pub(super) fn write_ascii(out: &mut impl Write, mesh: &Mesh) -> Result<()> {
+    let mut o = Out::new(out);
+    o.bytes(b"solid meshbool\n");
+    for t in 0..mesh.triangles.len() {
+        o.bytes(b"facet normal");
+        for x in normal32(mesh, t) {
+            o.bytes(b" ").f64(f64::from(x));
+        }
+        o.bytes(b"\n outer loop\n");
+        for p in mesh.corners(t) {
+            o.bytes(b"  vertex");
+            for x in p {
+                o.bytes(b" ").f64(x);
+            }
+            o.bytes(b"\n");
+        }
+        o.bytes(b" endloop\nendfacet\n").record_done()?;
+    }
+    o.bytes(b"endsolid meshbool\n");
+    o.finish()
+}

@@ -1,0 +1,444 @@
+use super::*;
+use crate::measure::mesh_stats;
+
+/// A mesh whose coordinates exercise number formatting: UTM offsets, tiny and huge
+/// magnitudes, negative zero, values with 17 significant digits.
+fn awkward_mesh() -> Mesh {
+    let mut m = Mesh::cuboid(
+        [478_614.7, 6_772_313.84, -0.1],
+        [478_624.700_000_000_1, 6_772_333.123_456_789, 1e-300],
+    );
+    m.positions.push([1e300, -2.5e-310, 0.1 + 0.2]);
+    m.positions.push([-0.0, std::f64::consts::PI, -1.0 / 3.0]);
+    m.positions.push([7.0, 8.0, 9.0]);
+    m.triangles.push([8, 9, 10]);
+    m
+}
+
+fn write_to_vec(mesh: &Mesh, format: Format) -> Vec<u8> {
+    let mut out = Vec::new();
+    write(&mut out, mesh, format).unwrap();
+    out
+}
+
+fn round_trip(mesh: &Mesh, format: Format) -> Mesh {
+    let bytes = write_to_vec(mesh, format);
+    assert_eq!(
+        detect_format(&bytes, None)
+            .map(|f| f == format || matches!((f, format), (Format::JsonSoup, Format::JsonKirra))),
+        Some(true),
+        "{format}"
+    );
+    read_bytes(&bytes, detect_format(&bytes, None).unwrap()).unwrap()
+}
+
+/// Corner positions compared as bit patterns, with -0.0 taken as 0.0 (welding merges them).
+fn soup_bits(m: &Mesh) -> Vec<[[u64; 3]; 3]> {
+    m.to_soup()
+        .iter()
+        .map(|t| t.map(|p| p.map(|x| (x + 0.0).to_bits())))
+        .collect()
+}
+
+#[test]
+fn indexed_formats_round_trip_bit_exact() {
+    let m = awkward_mesh();
+    for f in [
+        Format::Obj,
+        Format::PlyAscii,
+        Format::PlyBinaryLe,
+        Format::PlyBinaryBe,
+    ] {
+        let back = round_trip(&m, f);
+        assert_eq!(back.triangles, m.triangles, "{f}");
+        let bits = |m: &Mesh| {
+            m.positions
+                .iter()
+                .map(|p| p.map(f64::to_bits))
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(bits(&back), bits(&m), "{f}");
+    }
+}
+
+#[test]
+fn soup_formats_round_trip_bit_exact_and_weld() {
+    let m = awkward_mesh();
+    for f in [
+        Format::StlAscii,
+        Format::Dxf,
+        Format::JsonSoup,
+        Format::JsonKirra,
+    ] {
+        let back = round_trip(&m, f);
+        assert_eq!(soup_bits(&back), soup_bits(&m), "{f}");
+        // Welded on read: the cube's 8 corners + 3 others.
+        assert_eq!(back.vertex_count(), 11, "{f}");
+        let (a, b) = (mesh_stats(&back), mesh_stats(&m));
+        assert_eq!(
+            (a.edges, a.boundary_edges, a.components),
+            (b.edges, b.boundary_edges, b.components),
+            "{f}"
+        );
+    }
+}
+
+#[test]
+fn binary_stl_round_trips_through_f32() {
+    let m = Mesh::cuboid([-1.5, 2.25, 3.0], [4.0, 5.5, 6.125]);
+    let back = round_trip(&m, Format::StlBinary);
+    assert_eq!(back.to_soup(), m.to_soup());
+    let s = mesh_stats(&back);
+    assert_eq!(
+        (s.vertices, s.boundary_edges, s.volume),
+        (8, 0, 5.5 * 3.25 * 3.125)
+    );
+    // Awkward values come back as their f32 roundings.
+    let a = awkward_mesh();
+    let back = round_trip(
+        &Mesh::new(a.positions.clone(), a.triangles[..12].to_vec()),
+        Format::StlBinary,
+    );
+    let want: Vec<_> = a.to_soup()[..12]
+        .iter()
+        .map(|t| t.map(|p| p.map(|x| f64::from(x as f32))))
+        .collect();
+    assert_eq!(back.to_soup(), want);
+}
+
+fn binary_stl_of(mesh: &Mesh) -> Vec<u8> {
+    write_to_vec(mesh, Format::StlBinary)
+}
+
+fn parse_err(bytes: &[u8], format: Format) -> (Location, String) {
+    match read_bytes(bytes, format) {
+        Err(Error::Parse {
+            location, message, ..
+        }) => (location, message),
+        other => panic!("expected a parse error, got {other:?}"),
+    }
+}
+
+#[test]
+fn binary_stl_with_solid_header_is_binary() {
+    let mut bytes = binary_stl_of(&Mesh::unit_cube());
+    bytes[..12].copy_from_slice(b"solid cube  ");
+    assert_eq!(
+        detect_format(&bytes, Some(Format::StlBinary)),
+        Some(Format::StlBinary)
+    );
+    let m = read_bytes(&bytes, Format::StlBinary).unwrap();
+    assert_eq!(mesh_stats(&m).volume, 1.0);
+}
+
+#[test]
+fn truncated_binary_stl_is_an_error() {
+    let bytes = binary_stl_of(&Mesh::unit_cube());
+    let (loc, msg) = parse_err(&bytes[..bytes.len() - 10], Format::StlBinary);
+    assert_eq!(loc, Location::Byte(80));
+    assert!(
+        msg.contains("announces 12 triangles") && msg.contains("room for 11"),
+        "{msg}"
+    );
+    let (loc, _) = parse_err(&bytes[..50], Format::StlBinary);
+    assert_eq!(loc, Location::Byte(50));
+}
+
+#[test]
+fn wrong_triangle_count_is_an_error() {
+    let mut bytes = binary_stl_of(&Mesh::unit_cube());
+    bytes[80..84].copy_from_slice(&13u32.to_le_bytes());
+    let (_, msg) = parse_err(&bytes, Format::StlBinary);
+    assert!(msg.contains("announces 13"), "{msg}");
+}
+
+#[test]
+fn nan_in_binary_stl_names_the_byte() {
+    let mut bytes = binary_stl_of(&Mesh::unit_cube());
+    let at = 84 + 50 * 3 + 12 + 12 + 4; // triangle 3, corner 1, y
+    bytes[at..at + 4].copy_from_slice(&f32::NAN.to_le_bytes());
+    assert_eq!(
+        parse_err(&bytes, Format::StlBinary).0,
+        Location::Byte(at as u64)
+    );
+}
+
+#[test]
+fn empty_input_is_an_error_in_every_format() {
+    for (_, f) in Format::NAMES {
+        assert_eq!(parse_err(b"", f).0, Location::Whole, "{f}");
+        assert_eq!(parse_err(b" \n", f).0, Location::Whole, "{f}");
+    }
+}
+
+#[test]
+fn ascii_stl_several_solids_and_polygons() {
+    let text = b"solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nendloop\nendfacet\nendsolid a\n\
+                 solid b with spaces\n  facet normal 0 0 0\n  outer loop\n  vertex 0 0 0\n  vertex 1 1 0\n vertex 0 1 0\n vertex -1 1 0\n  endloop\n  endfacet\nendsolid\n";
+    let m = read_bytes(text, Format::StlAscii).unwrap();
+    assert_eq!((m.triangle_count(), m.vertex_count()), (3, 5));
+}
+
+#[test]
+fn ascii_stl_errors_name_the_line() {
+    let good = b"solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nendloop\nendfacet\nendsolid a\n";
+    // Cut inside a vertex line: that line; cut after a vertex: the facet that stays open.
+    assert_eq!(
+        parse_err(&good[..60], Format::StlAscii).0,
+        Location::Line(5)
+    );
+    assert_eq!(
+        parse_err(&good[..64], Format::StlAscii).0,
+        Location::Line(2)
+    );
+    let bad = String::from_utf8_lossy(good).replace("vertex 1 0 0", "vertex 1 zero 0");
+    assert_eq!(
+        parse_err(bad.as_bytes(), Format::StlAscii).0,
+        Location::Line(5)
+    );
+    let nan = String::from_utf8_lossy(good).replace("vertex 1 0 0", "vertex 1 NaN 0");
+    let (loc, msg) = parse_err(nan.as_bytes(), Format::StlAscii);
+    assert_eq!(loc, Location::Line(5));
+    assert!(msg.contains("non-finite"), "{msg}");
+    let cut = String::from_utf8_lossy(good).replace("endsolid a\n", "");
+    assert!(parse_err(cut.as_bytes(), Format::StlAscii)
+        .1
+        .contains("endsolid"));
+}
+
+#[test]
+fn obj_polygons_negative_indices_and_extras() {
+    let text = b"# comment\nmtllib x.mtl\no thing\nv 0 0 0\nv 1 0 0 1.0\nv 1 1 0 0.5 0.5 0.5\nv 0 1 0\nvt 0 0\nvn 0 0 1\n\
+                 g group\nusemtl m\ns off\nf 1/1/1 2/1/1 3/1/1 4/1/1\nf -4//1 -2//1 -1//1\nl 1 2\n";
+    let m = read_bytes(text, Format::Obj).unwrap();
+    assert_eq!(m.triangles, vec![[0, 1, 2], [0, 2, 3], [0, 2, 3]]);
+    assert_eq!(m.positions[1], [1.0, 0.0, 0.0]);
+}
+
+#[test]
+fn obj_bad_indices_name_the_line() {
+    for (text, line) in [
+        (&b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"[..], 4),
+        (b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n", 4),
+        (b"v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 -7\n", 5),
+        (b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n", 4),
+        (b"v 0 0 0\nv 1 0 0\nf 1 2\n", 3),
+        (b"v 0 0 0\nv 1 inf 0\nv 0 1 0\nf 1 2 3\n", 2),
+        (b"v 0 0\n", 1),
+    ] {
+        assert_eq!(
+            parse_err(text, Format::Obj).0,
+            Location::Line(line),
+            "{}",
+            String::from_utf8_lossy(text)
+        );
+    }
+}
+
+#[test]
+fn ply_with_extra_properties_elements_and_types() {
+    let header = "ply\r\nformat binary_big_endian 1.0\r\ncomment x\r\nelement vertex 4\r\nproperty float x\r\nproperty float y\r\n\
+                  property float z\r\nproperty uchar red\r\nproperty list uchar int extra\r\nelement face 1\r\n\
+                  property list uchar uint vertex_indices\r\nproperty float quality\r\nelement edge 1\r\nproperty int a\r\nend_header\r\n";
+    let mut b = header.as_bytes().to_vec();
+    for (i, p) in [
+        [0.0f32, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.5],
+        [0.0, 1.0, 0.0],
+    ]
+    .iter()
+    .enumerate()
+    {
+        for x in p {
+            b.extend_from_slice(&x.to_be_bytes());
+        }
+        b.push(200);
+        b.push(i as u8); // list of i ints
+        for _ in 0..i {
+            b.extend_from_slice(&7i32.to_be_bytes());
+        }
+    }
+    b.push(4);
+    for i in [0u32, 1, 2, 3] {
+        b.extend_from_slice(&i.to_be_bytes());
+    }
+    b.extend_from_slice(&1.5f32.to_be_bytes());
+    b.extend_from_slice(&9i32.to_be_bytes());
+    let m = read_bytes(&b, detect_format(&b, None).unwrap()).unwrap();
+    assert_eq!(m.triangles, vec![[0, 1, 2], [0, 2, 3]]);
+    assert_eq!(m.positions[2], [1.0, 1.0, 0.5]);
+    // Truncated body: the byte where it ran out.
+    assert!(matches!(
+        parse_err(&b[..b.len() - 3], Format::PlyBinaryBe).0,
+        Location::Byte(_)
+    ));
+}
+
+#[test]
+fn ply_ascii_errors() {
+    let ok = "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\nproperty double z\n\
+              element face 1\nproperty list uchar int vertex_index\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    assert_eq!(
+        read_bytes(ok.as_bytes(), Format::PlyAscii)
+            .unwrap()
+            .triangles,
+        vec![[0, 1, 2]]
+    );
+    assert_eq!(
+        parse_err(
+            ok.replace("3 0 1 2", "3 0 1 3").as_bytes(),
+            Format::PlyAscii
+        )
+        .0,
+        Location::Line(13)
+    );
+    assert_eq!(
+        parse_err(ok.replace("1 0 0", "1 nan 0").as_bytes(), Format::PlyAscii).0,
+        Location::Line(11)
+    );
+    assert_eq!(
+        parse_err(&ok.as_bytes()[..ok.len() - 4], Format::PlyAscii).0,
+        Location::Line(13)
+    );
+    assert_eq!(
+        parse_err(
+            ok.replace("double y", "quad y").as_bytes(),
+            Format::PlyAscii
+        )
+        .0,
+        Location::Line(5)
+    );
+    assert_eq!(
+        parse_err(ok.replace("end_header\n", "").as_bytes(), Format::PlyAscii).0,
+        Location::Line(9)
+    );
+    assert!(parse_err(b"ply\nformat ascii 1.0\n", Format::PlyAscii)
+        .1
+        .contains("end_header"));
+}
+
+#[test]
+fn dxf_quads_and_polyface_meshes() {
+    // A quad 3DFACE, a triangle 3DFACE (4th corner = 3rd), a polyface mesh with one quad
+    // face, and a 3DFACE inside BLOCKS that must not be read.
+    let face = |pts: [[f64; 3]; 4]| {
+        let mut s = String::from("0\n3DFACE\n8\nlayer\n");
+        for (k, p) in pts.iter().enumerate() {
+            for (a, x) in p.iter().enumerate() {
+                s += &format!("{}\n{x}\n", 10 * (a + 1) + k);
+            }
+        }
+        s
+    };
+    let mut s = String::from("999\nmade by hand\n0\nSECTION\n2\nBLOCKS\n");
+    s += &face([[9.0; 3], [8.0; 3], [7.0, 0.0, 0.0], [7.0, 0.0, 0.0]]);
+    s += "0\nENDSEC\n0\nSECTION\n2\nENTITIES\n";
+    s += &face([
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+    ]);
+    s += &face([
+        [0.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [0.0, 0.0, 1.0],
+    ]);
+    s += "0\nPOLYLINE\n8\n0\n66\n1\n70\n64\n71\n4\n72\n1\n";
+    for p in [
+        [5.0, 0.0, 0.0],
+        [6.0, 0.0, 0.0],
+        [6.0, 1.0, 0.0],
+        [5.0, 1.0, 0.0],
+    ] {
+        s += &format!(
+            "0\nVERTEX\n8\n0\n10\n{}\n20\n{}\n30\n{}\n70\n192\n",
+            p[0], p[1], p[2]
+        );
+    }
+    s += "0\nVERTEX\n8\n0\n10\n0\n20\n0\n30\n0\n70\n128\n71\n1\n72\n-2\n73\n3\n74\n4\n0\nSEQEND\n0\nENDSEC\n0\nEOF\n";
+    let m = read_bytes(s.as_bytes(), detect_format(s.as_bytes(), None).unwrap()).unwrap();
+    assert_eq!(m.triangle_count(), 5);
+    assert_eq!(m.vertex_count(), 9);
+    assert_eq!(crate::measure::area(&m), 1.0 + 0.5 + 1.0);
+    // Truncated: no EOF.
+    let cut = &s[..s.len() - 8];
+    assert!(parse_err(cut.as_bytes(), Format::Dxf).1.contains("EOF"));
+    // A face record pointing past the vertices.
+    let bad = s.replace("74\n4\n", "74\n9\n");
+    assert!(parse_err(bad.as_bytes(), Format::Dxf)
+        .1
+        .contains("vertex 9"));
+    assert!(parse_err(b"AutoCAD Binary DXF\r\n\x1a\0", Format::Dxf)
+        .1
+        .contains("binary DXF"));
+}
+
+#[test]
+fn json_layouts_and_errors() {
+    let soup = br#"[{"v0":{"x":0,"y":0,"z":0},"v1":{"x":1,"y":0,"z":0},"v2":{"x":0,"y":1,"z":0},"id":"t1"}]"#;
+    let kirra = br#"[{"vertices":[{"x":0,"y":0,"z":0},{"x":1,"y":0,"z":0},{"x":0,"y":1,"z":0},{"x":-1,"y":0,"z":0}],"color":3}]"#;
+    assert_eq!(
+        read_bytes(soup, Format::JsonSoup).unwrap().triangle_count(),
+        1
+    );
+    assert_eq!(
+        read_bytes(kirra, Format::JsonSoup)
+            .unwrap()
+            .triangle_count(),
+        2
+    );
+    let (loc, msg) = parse_err(b"[\n{\"v0\":{\"x\":0,\"y\":0}}]", Format::JsonSoup);
+    assert_eq!(loc, Location::Line(2));
+    assert!(msg.contains("v0"), "{msg}");
+    assert_eq!(parse_err(b"[\n\n{", Format::JsonSoup).0, Location::Line(3));
+    assert!(
+        parse_err(br#"[{"vertices":[{"x":0,"y":0,"z":0}]}]"#, Format::JsonSoup)
+            .1
+            .contains("needs at least 3")
+    );
+    assert!(matches!(
+        parse_err(br#"[{"v0":{"x":1e999,"y":0,"z":0}}]"#, Format::JsonSoup).0,
+        Location::Line(1)
+    ));
+}
+
+#[test]
+fn detection_by_name_and_content() {
+    let cube = Mesh::unit_cube();
+    for (_, f) in Format::NAMES {
+        let bytes = write_to_vec(&cube, f);
+        let seen = detect_format(&bytes, None).unwrap();
+        let want = if f == Format::JsonKirra {
+            Format::JsonSoup
+        } else {
+            f
+        };
+        assert_eq!(seen, want, "{f}");
+        assert_eq!(
+            detect_format(&bytes, Some(f)).map(|g| g == want || f == Format::PlyAscii),
+            Some(true)
+        );
+    }
+    assert_eq!(Format::for_path("a/b.STL"), Some(Format::StlBinary));
+    assert_eq!(Format::for_path("x.txt"), None);
+    assert_eq!(Format::from_name("PLY-ascii"), Some(Format::PlyAscii));
+    assert_eq!(detect_format(b"hello world", None), None);
+}
+
+#[test]
+fn writing_invalid_mesh_is_an_error() {
+    let mut m = Mesh::unit_cube();
+    m.positions[0][0] = f64::INFINITY;
+    for (_, f) in Format::NAMES {
+        assert!(
+            matches!(
+                write(&mut Vec::new(), &m, f),
+                Err(Error::InvalidMesh { .. })
+            ),
+            "{f}"
+        );
+    }
+}

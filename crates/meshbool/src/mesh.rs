@@ -1,0 +1,352 @@
+//! The one data model: [`Mesh`] (positions + triangles), soup ↔ indexed conversion,
+//! exact welding and bounds.
+
+use rustc_hash::FxHashMap;
+
+use crate::error::{Error, Location, Result};
+
+/// A triangle mesh: vertex positions and triangles as triples of vertex indices
+/// (counter-clockwise seen from the side the normal points to).
+///
+/// A triangle soup is a `Mesh` whose triangles share no vertices ([`Mesh::from_soup_unwelded`]).
+/// Nothing about the mesh is assumed: it may be open, non-manifold, inconsistently oriented
+/// or contain degenerate triangles; [`crate::measure::mesh_stats`] tells which.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Mesh {
+    /// Vertex positions `[x, y, z]`.
+    pub positions: Vec<[f64; 3]>,
+    /// Triangles as indices into `positions`.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+/// An axis-aligned bounding box.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Aabb {
+    /// Smallest coordinates.
+    pub min: [f64; 3],
+    /// Largest coordinates.
+    pub max: [f64; 3],
+}
+
+impl Aabb {
+    /// The box's centre.
+    pub fn center(&self) -> [f64; 3] {
+        std::array::from_fn(|i| 0.5 * (self.min[i] + self.max[i]))
+    }
+
+    /// The box's edge lengths.
+    pub fn size(&self) -> [f64; 3] {
+        std::array::from_fn(|i| self.max[i] - self.min[i])
+    }
+}
+
+/// The result of [`weld_exact`]: the welded mesh and, for every input vertex, its new index.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Welded {
+    /// The mesh with every set of equal positions merged into one vertex.
+    pub mesh: Mesh,
+    /// `vertex_map[old] = new` for every input vertex.
+    pub vertex_map: Vec<u32>,
+}
+
+impl Mesh {
+    /// A mesh from positions and triangles, as given (no checks; see [`Mesh::validate`]).
+    pub fn new(positions: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>) -> Self {
+        Mesh {
+            positions,
+            triangles,
+        }
+    }
+
+    /// The axis-aligned unit cube `[0,1]^3`, 8 vertices, 12 outward-facing triangles.
+    pub fn unit_cube() -> Self {
+        Self::cuboid([0.0; 3], [1.0; 3])
+    }
+
+    /// An axis-aligned box from `min` to `max`, 8 vertices, 12 outward-facing triangles.
+    pub fn cuboid(min: [f64; 3], max: [f64; 3]) -> Self {
+        let positions = (0..8)
+            .map(|i| {
+                [
+                    if i & 1 == 0 { min[0] } else { max[0] },
+                    if i & 2 == 0 { min[1] } else { max[1] },
+                    if i & 4 == 0 { min[2] } else { max[2] },
+                ]
+            })
+            .collect();
+        let triangles = vec![
+            [0, 2, 1],
+            [1, 2, 3], // z = min
+            [4, 5, 6],
+            [5, 7, 6], // z = max
+            [0, 1, 4],
+            [1, 5, 4], // y = min
+            [2, 6, 3],
+            [3, 6, 7], // y = max
+            [0, 4, 2],
+            [2, 4, 6], // x = min
+            [1, 3, 5],
+            [3, 7, 5], // x = max
+        ];
+        Mesh {
+            positions,
+            triangles,
+        }
+    }
+
+    /// Number of triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// Number of vertices (including any that no triangle uses).
+    pub fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// True when the mesh has no triangles.
+    pub fn is_empty(&self) -> bool {
+        self.triangles.is_empty()
+    }
+
+    /// The three corner positions of triangle `t`. Panics if `t` or its indices are out of
+    /// range; call [`Mesh::validate`] first on untrusted data.
+    #[inline]
+    pub fn corners(&self, t: usize) -> [[f64; 3]; 3] {
+        let [a, b, c] = self.triangles[t];
+        [
+            self.positions[a as usize],
+            self.positions[b as usize],
+            self.positions[c as usize],
+        ]
+    }
+
+    /// A mesh from a triangle soup (three corner positions per triangle), with corners at
+    /// exactly equal positions welded into one vertex ([`weld_exact`]).
+    pub fn from_soup(soup: &[[[f64; 3]; 3]]) -> Self {
+        let mut welder = Welder::with_capacity(soup.len() * 3);
+        let triangles = soup.iter().map(|t| t.map(|p| welder.index(p))).collect();
+        Mesh {
+            positions: welder.into_positions(),
+            triangles,
+        }
+    }
+
+    /// A mesh from a triangle soup without welding: triangle `t` uses vertices `3t..3t+3`.
+    pub fn from_soup_unwelded(soup: &[[[f64; 3]; 3]]) -> Self {
+        let positions = soup.iter().flatten().copied().collect();
+        let triangles = (0..soup.len() as u32)
+            .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
+            .collect();
+        Mesh {
+            positions,
+            triangles,
+        }
+    }
+
+    /// The triangle soup: three corner positions per triangle.
+    /// Panics on out-of-range indices; call [`Mesh::validate`] first on untrusted data.
+    pub fn to_soup(&self) -> Vec<[[f64; 3]; 3]> {
+        (0..self.triangles.len()).map(|t| self.corners(t)).collect()
+    }
+
+    /// Checks the data model: every coordinate finite, every index in range, at most
+    /// `u32::MAX` vertices. The error names the first offending vertex or triangle.
+    pub fn validate(&self) -> Result<()> {
+        if self.positions.len() > u32::MAX as usize {
+            return Err(Error::invalid(
+                Location::Whole,
+                format!(
+                    "{} vertices exceed the limit of {}",
+                    self.positions.len(),
+                    u32::MAX
+                ),
+            ));
+        }
+        if let Some(v) = self
+            .positions
+            .iter()
+            .position(|p| p.iter().any(|c| !c.is_finite()))
+        {
+            return Err(Error::invalid(
+                Location::Vertex(v),
+                format!("non-finite coordinate {:?}", self.positions[v]),
+            ));
+        }
+        let n = self.positions.len() as u64;
+        if let Some(t) = self
+            .triangles
+            .iter()
+            .position(|tri| tri.iter().any(|&i| u64::from(i) >= n))
+        {
+            return Err(Error::invalid(
+                Location::Triangle(t),
+                format!(
+                    "vertex index out of range in {:?} (the mesh has {n} vertices)",
+                    self.triangles[t]
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// The bounding box of the vertices that triangles use; `None` for a mesh without triangles.
+    pub fn bounds(&self) -> Option<Aabb> {
+        let mut it = self.triangles.iter().flatten();
+        let first = self.positions[*it.next()? as usize];
+        let mut b = Aabb {
+            min: first,
+            max: first,
+        };
+        for &i in it {
+            let p = self.positions[i as usize];
+            b.min = std::array::from_fn(|k| b.min[k].min(p[k]));
+            b.max = std::array::from_fn(|k| b.max[k].max(p[k]));
+        }
+        Some(b)
+    }
+
+    /// The same mesh with every triangle's orientation reversed.
+    pub fn flipped(&self) -> Mesh {
+        Mesh {
+            positions: self.positions.clone(),
+            triangles: self.triangles.iter().map(|&[a, b, c]| [a, c, b]).collect(),
+        }
+    }
+}
+
+/// Hash key of a position: its bit pattern, with `-0.0` folded onto `0.0` so that
+/// positions that are equal as numbers share one key.
+#[inline]
+fn position_key(p: &[f64; 3]) -> [u64; 3] {
+    [
+        (p[0] + 0.0).to_bits(),
+        (p[1] + 0.0).to_bits(),
+        (p[2] + 0.0).to_bits(),
+    ]
+}
+
+/// Assigns vertex indices to positions, one index per distinct position (exact equality,
+/// `0.0 == -0.0`), in order of first appearance. The shared core of [`weld_exact`] and of
+/// the readers of formats that store corners per triangle.
+pub(crate) struct Welder {
+    map: FxHashMap<[u64; 3], u32>,
+    positions: Vec<[f64; 3]>,
+}
+
+impl Welder {
+    /// A welder expecting about `corners` positions.
+    pub(crate) fn with_capacity(corners: usize) -> Self {
+        let mut map = FxHashMap::default();
+        // Typical closed meshes have about one vertex per two triangles (six corners).
+        map.reserve(corners / 4);
+        Welder {
+            map,
+            positions: Vec::with_capacity(corners / 4),
+        }
+    }
+
+    /// The index of position `p`, new if no equal position was seen before.
+    #[inline]
+    pub(crate) fn index(&mut self, p: [f64; 3]) -> u32 {
+        let positions = &mut self.positions;
+        *self.map.entry(position_key(&p)).or_insert_with(|| {
+            positions.push(p);
+            (positions.len() - 1) as u32
+        })
+    }
+
+    /// The distinct positions, indexed as [`Welder::index`] returned them.
+    pub(crate) fn into_positions(self) -> Vec<[f64; 3]> {
+        self.positions
+    }
+}
+
+/// Welds vertices whose positions are exactly equal (as `f64` numbers; `0.0` and `-0.0`
+/// are equal). No tolerance: for welding within a distance use the repair tools.
+///
+/// Input: any mesh (indices must be in range). Output: the welded mesh, vertices in order
+/// of first appearance in `positions`, triangles unchanged in number and order (a triangle
+/// whose corners become equal stays, as a degenerate triangle), plus the old→new vertex map.
+/// Deterministic.
+pub fn weld_exact(mesh: &Mesh) -> Welded {
+    let mut welder = Welder::with_capacity(mesh.positions.len() * 4);
+    let vertex_map: Vec<u32> = mesh.positions.iter().map(|&p| welder.index(p)).collect();
+    let triangles = mesh
+        .triangles
+        .iter()
+        .map(|t| t.map(|i| vertex_map[i as usize]))
+        .collect();
+    Welded {
+        mesh: Mesh {
+            positions: welder.into_positions(),
+            triangles,
+        },
+        vertex_map,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn soup_round_trip_welds_shared_corners() {
+        let cube = Mesh::unit_cube();
+        let soup = cube.to_soup();
+        assert_eq!(soup.len(), 12);
+        let unwelded = Mesh::from_soup_unwelded(&soup);
+        assert_eq!(unwelded.vertex_count(), 36);
+        let welded = Mesh::from_soup(&soup);
+        assert_eq!(welded.vertex_count(), 8);
+        assert_eq!(welded.to_soup(), soup);
+    }
+
+    #[test]
+    fn weld_merges_negative_zero_but_not_neighbours() {
+        let m = Mesh::new(
+            vec![
+                [0.0, 0.0, 1.0],
+                [-0.0, 0.0, 1.0],
+                [0.0, 0.0, f64::from_bits(1.0f64.to_bits() + 1)],
+            ],
+            vec![[0, 1, 2]],
+        );
+        let w = weld_exact(&m);
+        assert_eq!(w.vertex_map, vec![0, 0, 1]);
+        assert_eq!(w.mesh.triangles, vec![[0, 0, 1]]);
+    }
+
+    #[test]
+    fn validate_names_offender() {
+        let mut m = Mesh::unit_cube();
+        m.triangles[5] = [0, 1, 8];
+        assert!(matches!(
+            m.validate(),
+            Err(Error::InvalidMesh {
+                location: Location::Triangle(5),
+                ..
+            })
+        ));
+        let mut m = Mesh::unit_cube();
+        m.positions[3][1] = f64::NAN;
+        assert!(matches!(
+            m.validate(),
+            Err(Error::InvalidMesh {
+                location: Location::Vertex(3),
+                ..
+            })
+        ));
+        assert!(Mesh::unit_cube().validate().is_ok());
+    }
+
+    #[test]
+    fn bounds_of_cuboid() {
+        let b = Mesh::cuboid([-1.0, 2.0, 3.0], [4.0, 5.0, 6.0])
+            .bounds()
+            .unwrap();
+        assert_eq!(b.min, [-1.0, 2.0, 3.0]);
+        assert_eq!(b.max, [4.0, 5.0, 6.0]);
+        assert_eq!(Mesh::default().bounds(), None);
+    }
+}
