@@ -33,6 +33,7 @@ mod error;
 pub mod io;
 pub mod measure;
 mod mesh;
+pub mod shapes;
 
 pub use edges::EdgeTopology;
 pub use error::{Error, Location, Result};

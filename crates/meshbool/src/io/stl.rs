@@ -6,6 +6,7 @@ use std::io::Write;
 
 use super::{lines, parse_f64, tokens, Format, Out};
 use crate::error::{Error, Location, Result};
+use crate::mesh::Hashed;
 use crate::{Mesh, Welder};
 
 const HEADER: usize = 80;
@@ -63,24 +64,46 @@ fn read_binary(bytes: &[u8]) -> Result<Mesh> {
         ));
     }
     let body = &bytes[HEADER + 4..];
-    let mut welder = Welder::with_capacity(room * 3);
-    let mut triangles = Vec::with_capacity(room);
-    for (t, rec) in body.chunks_exact(RECORD).enumerate() {
-        let f = |k: usize| f32::from_le_bytes([rec[k], rec[k + 1], rec[k + 2], rec[k + 3]]);
-        let mut tri = [0u32; 3];
-        for (c, idx) in tri.iter_mut().enumerate() {
-            let o = 12 + 12 * c;
-            let p = [f(o), f(o + 4), f(o + 8)];
-            if let Some(k) = p.iter().position(|x| !x.is_finite()) {
-                return Err(err(
-                    HEADER + 4 + t * RECORD + o + 4 * k,
-                    format!("non-finite coordinate in triangle {t}"),
-                ));
+    // Decode and hash block b+1 on one core while the other welds block b.
+    const BLOCK: usize = 4096;
+    let blocks: Vec<&[u8]> = body.chunks(RECORD * BLOCK).collect();
+    let decode = |b: usize, out: &mut Hashed| -> Result<()> {
+        out.positions.clear();
+        for (r, rec) in blocks[b].chunks_exact(RECORD).enumerate() {
+            let f = |k: usize| f32::from_le_bytes([rec[k], rec[k + 1], rec[k + 2], rec[k + 3]]);
+            for o in [12, 24, 36] {
+                let p = [f(o), f(o + 4), f(o + 8)];
+                if let Some(k) = p.iter().position(|x| !x.is_finite()) {
+                    let t = b * BLOCK + r;
+                    return Err(err(
+                        HEADER + 4 + t * RECORD + o + 4 * k,
+                        format!("non-finite coordinate in triangle {t}"),
+                    ));
+                }
+                out.positions.push(p.map(f64::from));
             }
-            *idx = welder.index(p.map(f64::from));
         }
-        triangles.push(tri);
+        out.hash();
+        Ok(())
+    };
+    let mut welder = Welder::with_capacity(room * 3);
+    let mut ids: Vec<u32> = Vec::with_capacity(room * 3);
+    let (mut cur, mut next) = (Hashed::default(), Hashed::default());
+    if !blocks.is_empty() {
+        decode(0, &mut cur)?;
     }
+    for b in 0..blocks.len() {
+        let (decoded, ()) = rayon::join(
+            || match b + 1 < blocks.len() {
+                true => decode(b + 1, &mut next),
+                false => Ok(()),
+            },
+            || welder.index_hashed(&cur, &mut ids),
+        );
+        decoded?;
+        std::mem::swap(&mut cur, &mut next);
+    }
+    let triangles = ids.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
     Ok(Mesh::new(welder.into_positions(), triangles))
 }
 
