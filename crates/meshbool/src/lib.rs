@@ -31,6 +31,7 @@
 pub mod edges;
 mod error;
 pub mod io;
+pub mod kernel;
 pub mod measure;
 mod mesh;
 pub mod shapes;

@@ -9,6 +9,7 @@ use rustc_hash::FxHashSet;
 use serde::Serialize;
 
 use crate::edges::{EdgeKind, EdgeTopology};
+use crate::kernel::{orient2d, Point, Sign};
 use crate::Aabb;
 use crate::Mesh;
 
@@ -102,12 +103,9 @@ pub fn projected_area(mesh: &Mesh, plane: Plane) -> f64 {
 /// Exactly whether three points are collinear (the triangle has zero area).
 pub fn is_degenerate(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
     // The normal's components are the three 2D orientations of the projections; the
-    // triangle has zero area exactly when all three are zero. `robust` gets the sign exact.
-    let zero = |i: usize, j: usize| {
-        let p = |q: [f64; 3]| robust::Coord { x: q[i], y: q[j] };
-        robust::orient2d(p(a), p(b), p(c)) == 0.0
-    };
-    zero(0, 1) && zero(1, 2) && zero(2, 0)
+    // triangle has zero area exactly when all three are zero.
+    let [a, b, c] = [a, b, c].map(Point::Explicit);
+    (0..3).all(|axis| orient2d(&a, &b, &c, axis) == Sign::Zero)
 }
 
 /// Number of degenerate triangles: a repeated vertex index or three collinear corners (exact).

@@ -1,0 +1,379 @@
+//! The exact kernel: points (explicit input coordinates and implicit intersection points)
+//! and the predicates that every topological decision of the pipeline goes through.
+//!
+//! Nothing outside this module compares floats to decide topology. Every point has exact
+//! homogeneous coordinates `(X, Y, Z, W)`, polynomials in input `f64` coordinates without
+//! division. A predicate is the sign of a polynomial in those; it is evaluated first in
+//! interval arithmetic ([`interval`]), and only where the interval contains zero again with
+//! exact dyadic numbers ([`exact`]). The answer is always the exact sign.
+//!
+//! Conventions: `orient3d(a, b, c, d)` is positive when `d` lies on the side of the plane
+//! `abc` that its normal `(b − a) × (c − a)` points to; `orient2d(a, b, c, axis)` is positive
+//! when `a, b, c` turn counter-clockwise in the projection that drops coordinate `axis`,
+//! keeping the other two in cyclic order (`axis` 2 → (x, y), 0 → (y, z), 1 → (z, x)), so a
+//! triangle facing `+axis` is counter-clockwise in its projection.
+
+use std::cmp::Ordering;
+
+mod exact;
+mod interval;
+#[cfg(test)]
+mod tests;
+
+use exact::Dyadic;
+use interval::Interval;
+
+/// The sign of an exact value.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Sign {
+    /// Less than zero.
+    Negative = -1,
+    /// Exactly zero.
+    Zero = 0,
+    /// Greater than zero.
+    Positive = 1,
+}
+
+impl Sign {
+    /// The sign of a product.
+    pub fn times(self, o: Sign) -> Sign {
+        match (self as i8) * (o as i8) {
+            1 => Sign::Positive,
+            -1 => Sign::Negative,
+            _ => Sign::Zero,
+        }
+    }
+
+    /// The opposite sign.
+    pub fn reversed(self) -> Sign {
+        self.times(Sign::Negative)
+    }
+
+    fn of_f64(x: f64) -> Sign {
+        if x > 0.0 {
+            Sign::Positive
+        } else if x < 0.0 {
+            Sign::Negative
+        } else {
+            Sign::Zero
+        }
+    }
+}
+
+/// Number types the predicates are evaluated in: ring operations and a sign that may be
+/// undecided (intervals) or always known (exact).
+pub(crate) trait Num: Clone {
+    fn from_f64(x: f64) -> Self;
+    fn add(&self, o: &Self) -> Self;
+    fn sub(&self, o: &Self) -> Self;
+    fn mul(&self, o: &Self) -> Self;
+    fn sign(&self) -> Option<Sign>;
+}
+
+/// A point: an input vertex, or an intersection point defined by input vertices and kept
+/// in that form (never rounded) for every decision.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Point {
+    /// An input vertex.
+    Explicit([f64; 3]),
+    /// Where segment `p q` crosses the plane of triangle `a b c`. Precondition: `p` and `q`
+    /// lie strictly on opposite sides of that plane (so the point exists and is unique).
+    Lpi {
+        /// Segment start.
+        p: [f64; 3],
+        /// Segment end.
+        q: [f64; 3],
+        /// Plane's first point.
+        a: [f64; 3],
+        /// Plane's second point.
+        b: [f64; 3],
+        /// Plane's third point.
+        c: [f64; 3],
+    },
+    /// Where segments `p q` and `r s`, lying in one plane, cross. Precondition: their
+    /// projections dropping coordinate `axis` are not parallel (the plane's normal must
+    /// have a non-zero `axis` component, e.g. its largest one).
+    Ssi {
+        /// First segment's start.
+        p: [f64; 3],
+        /// First segment's end.
+        q: [f64; 3],
+        /// Second segment's start.
+        r: [f64; 3],
+        /// Second segment's end.
+        s: [f64; 3],
+        /// The dropped coordinate of the projection used to intersect the lines.
+        axis: u8,
+    },
+}
+
+fn lift<T: Num>(p: &[f64; 3]) -> [T; 3] {
+    p.map(T::from_f64)
+}
+
+fn vsub<T: Num>(a: &[T; 3], b: &[T; 3]) -> [T; 3] {
+    [a[0].sub(&b[0]), a[1].sub(&b[1]), a[2].sub(&b[2])]
+}
+
+fn cross<T: Num>(a: &[T; 3], b: &[T; 3]) -> [T; 3] {
+    [
+        a[1].mul(&b[2]).sub(&a[2].mul(&b[1])),
+        a[2].mul(&b[0]).sub(&a[0].mul(&b[2])),
+        a[0].mul(&b[1]).sub(&a[1].mul(&b[0])),
+    ]
+}
+
+fn dot<T: Num>(a: &[T; 3], b: &[T; 3]) -> T {
+    a[0].mul(&b[0]).add(&a[1].mul(&b[1])).add(&a[2].mul(&b[2]))
+}
+
+/// `u × v` restricted to the projection dropping `axis` (cyclic order of the others).
+fn cross2<T: Num>(u: &[T; 3], v: &[T; 3], axis: usize) -> T {
+    let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+    u[i].mul(&v[j]).sub(&u[j].mul(&v[i]))
+}
+
+/// `p · w + d · t` per coordinate: the homogeneous point `p + (t / w) d`.
+fn along<T: Num>(p: &[T; 3], d: &[T; 3], t: &T, w: &T) -> [T; 4] {
+    [
+        p[0].mul(w).add(&d[0].mul(t)),
+        p[1].mul(w).add(&d[1].mul(t)),
+        p[2].mul(w).add(&d[2].mul(t)),
+        w.clone(),
+    ]
+}
+
+impl Point {
+    /// Homogeneous coordinates `(X, Y, Z, W)`: the point is `(X/W, Y/W, Z/W)`, `W ≠ 0`.
+    fn homogeneous<T: Num>(&self) -> [T; 4] {
+        match self {
+            Point::Explicit(p) => {
+                let [x, y, z] = lift(p);
+                [x, y, z, T::from_f64(1.0)]
+            }
+            Point::Lpi { p, q, a, b, c } => {
+                let (p, q, a, b, c) = (lift(p), lift(q), lift(a), lift(b), lift(c));
+                let n = cross(&vsub(&b, &a), &vsub(&c, &a));
+                let d = vsub(&q, &p);
+                along(&p, &d, &dot(&n, &vsub(&a, &p)), &dot(&n, &d))
+            }
+            Point::Ssi { p, q, r, s, axis } => {
+                let (p, q, r, s) = (lift(p), lift(q), lift(r), lift(s));
+                let (d, e) = (vsub(&q, &p), vsub(&s, &r));
+                let axis = *axis as usize;
+                along(
+                    &p,
+                    &d,
+                    &cross2(&vsub(&r, &p), &e, axis),
+                    &cross2(&d, &e, axis),
+                )
+            }
+        }
+    }
+
+    /// The nearest-ish `f64` coordinates (a few ulps off for implicit points): for output,
+    /// hashing and bounding boxes, never for decisions.
+    pub fn approx(&self) -> [f64; 3] {
+        match self {
+            Point::Explicit(p) => *p,
+            _ => {
+                let [x, y, z, w] = self.homogeneous::<F64>();
+                [x.0 / w.0, y.0 / w.0, z.0 / w.0]
+            }
+        }
+    }
+
+    /// The input coordinates if the point is explicit.
+    pub fn explicit(&self) -> Option<[f64; 3]> {
+        match self {
+            Point::Explicit(p) => Some(*p),
+            _ => None,
+        }
+    }
+}
+
+/// Plain `f64` evaluation, used only for approximate coordinates.
+#[derive(Clone, Copy)]
+struct F64(f64);
+
+impl Num for F64 {
+    fn from_f64(x: f64) -> Self {
+        F64(x)
+    }
+    fn add(&self, o: &Self) -> Self {
+        F64(self.0 + o.0)
+    }
+    fn sub(&self, o: &Self) -> Self {
+        F64(self.0 - o.0)
+    }
+    fn mul(&self, o: &Self) -> Self {
+        F64(self.0 * o.0)
+    }
+    fn sign(&self) -> Option<Sign> {
+        Some(Sign::of_f64(self.0))
+    }
+}
+
+/// Sign of a polynomial given as a generic function: intervals first, exact if undecided.
+macro_rules! decide {
+    ($f:ident ( $($arg:expr),* )) => {{
+        match $f::<Interval>($($arg),*).sign() {
+            Some(s) => s,
+            None => $f::<Dyadic>($($arg),*).sign().expect("exact signs are always decided"),
+        }
+    }};
+}
+
+fn sign_of_w(p: &Point) -> Sign {
+    match p {
+        Point::Explicit(_) => Sign::Positive,
+        _ => decide!(w_of(p)),
+    }
+}
+
+fn w_of<T: Num>(p: &Point) -> T {
+    let [_, _, _, w] = p.homogeneous::<T>();
+    w
+}
+
+/// `(b − a) × (c − a) · (P − a)`, times `W_P` (explicit plane, any point).
+fn plane_side<T: Num>(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], p: &Point) -> T {
+    let (a, b, c) = (lift::<T>(a), lift(b), lift(c));
+    let n = cross(&vsub(&b, &a), &vsub(&c, &a));
+    let [x, y, z, w] = p.homogeneous::<T>();
+    let rel = [
+        x.sub(&w.mul(&a[0])),
+        y.sub(&w.mul(&a[1])),
+        z.sub(&w.mul(&a[2])),
+    ];
+    dot(&n, &rel)
+}
+
+fn det3<T: Num>(m: [[T; 3]; 3]) -> T {
+    let minor = |i: usize, j: usize| m[1][i].mul(&m[2][j]).sub(&m[1][j].mul(&m[2][i]));
+    m[0][0]
+        .mul(&minor(1, 2))
+        .sub(&m[0][1].mul(&minor(0, 2)))
+        .add(&m[0][2].mul(&minor(0, 1)))
+}
+
+fn det4_rows<T: Num>(a: &Point, b: &Point, c: &Point, d: &Point) -> T {
+    let r = [a, b, c, d].map(|p| p.homogeneous::<T>());
+    // Laplace expansion along the last column (W).
+    let minor = |skip: usize| {
+        let rows: Vec<&[T; 4]> = (0..4).filter(|&i| i != skip).map(|i| &r[i]).collect();
+        det3([0, 1, 2].map(|k| [rows[k][0].clone(), rows[k][1].clone(), rows[k][2].clone()]))
+    };
+    let mut acc = T::from_f64(0.0);
+    for (i, row) in r.iter().enumerate() {
+        let term = row[3].mul(&minor(i));
+        // Cofactor sign (−1)^(i+3).
+        acc = if i % 2 == 1 {
+            acc.add(&term)
+        } else {
+            acc.sub(&term)
+        };
+    }
+    acc
+}
+
+fn orient2d_rows<T: Num>(a: &Point, b: &Point, c: &Point, axis: usize) -> T {
+    let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+    det3([a, b, c].map(|p| {
+        let h = p.homogeneous::<T>();
+        [h[i].clone(), h[j].clone(), h[3].clone()]
+    }))
+}
+
+fn coord_diff<T: Num>(a: &Point, b: &Point, axis: usize) -> T {
+    let (ha, hb) = (a.homogeneous::<T>(), b.homogeneous::<T>());
+    ha[axis].mul(&hb[3]).sub(&hb[axis].mul(&ha[3]))
+}
+
+/// Exact orientation of `d` against the oriented plane through explicit points `a b c`:
+/// positive on the side `(b − a) × (c − a)` points to, zero on the plane.
+pub fn orient3d_plane(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &Point) -> Sign {
+    match d {
+        Point::Explicit(p) => orient3d_explicit(a, b, c, p),
+        _ => decide!(plane_side(a, b, c, d)).times(sign_of_w(d)),
+    }
+}
+
+/// True when Shewchuk's adaptive predicates (`robust`) are exact for these coordinates:
+/// they assume no overflow or underflow. With every coordinate zero or of magnitude in
+/// `[2^-200, 2^200]`, all differences and their error terms are multiples of `2^-252` and
+/// below `2^201`, so products of three stay in the normal range.
+fn robust_safe(points: &[&[f64; 3]]) -> bool {
+    const LO: f64 = 6.223_015_277_861_142e-61; // 2^-200
+    const HI: f64 = 1.606_938_044_258_990_3e60; // 2^200
+    points
+        .iter()
+        .flat_map(|p| p.iter())
+        .all(|&x| x == 0.0 || (LO..=HI).contains(&x.abs()))
+}
+
+fn plane_side_explicit<T: Num>(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> T {
+    plane_side(a, b, c, &Point::Explicit(*d))
+}
+
+/// [`orient3d_plane`] for four input points: Shewchuk's adaptive exact predicate where its
+/// assumptions hold, the kernel's interval/exact evaluation otherwise.
+pub fn orient3d_explicit(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> Sign {
+    if !robust_safe(&[a, b, c, d]) {
+        return decide!(plane_side_explicit(a, b, c, d));
+    }
+    let c3 = |p: &[f64; 3]| robust::Coord3D {
+        x: p[0],
+        y: p[1],
+        z: p[2],
+    };
+    // robust's orient3d is positive when d is below (opposite to our convention).
+    Sign::of_f64(robust::orient3d(c3(a), c3(b), c3(c), c3(d))).reversed()
+}
+
+/// Exact orientation of four points of any kind (see the module conventions).
+pub fn orient3d(a: &Point, b: &Point, c: &Point, d: &Point) -> Sign {
+    if let (Some(a), Some(b), Some(c)) = (a.explicit(), b.explicit(), c.explicit()) {
+        return orient3d_plane(&a, &b, &c, d);
+    }
+    let w = [a, b, c, d]
+        .iter()
+        .fold(Sign::Positive, |s, p| s.times(sign_of_w(p)));
+    decide!(det4_rows(a, b, c, d)).reversed().times(w)
+}
+
+/// Exact orientation of three points in the projection dropping coordinate `axis`
+/// (0, 1 or 2): positive when counter-clockwise (see the module conventions).
+pub fn orient2d(a: &Point, b: &Point, c: &Point, axis: usize) -> Sign {
+    if let (Some(pa), Some(pb), Some(pc)) = (a.explicit(), b.explicit(), c.explicit()) {
+        if robust_safe(&[&pa, &pb, &pc]) {
+            let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+            let c2 = |p: [f64; 3]| robust::Coord { x: p[i], y: p[j] };
+            return Sign::of_f64(robust::orient2d(c2(pa), c2(pb), c2(pc)));
+        }
+    }
+    let w = [a, b, c]
+        .iter()
+        .fold(Sign::Positive, |s, p| s.times(sign_of_w(p)));
+    decide!(orient2d_rows(a, b, c, axis)).times(w)
+}
+
+/// Exact comparison of coordinate `axis` of two points.
+pub fn cmp_coord(a: &Point, b: &Point, axis: usize) -> Ordering {
+    if let (Some(pa), Some(pb)) = (a.explicit(), b.explicit()) {
+        // Inputs are finite (validated meshes), so the comparison is total.
+        return pa[axis].partial_cmp(&pb[axis]).unwrap_or(Ordering::Equal);
+    }
+    let s = decide!(coord_diff(a, b, axis))
+        .times(sign_of_w(a))
+        .times(sign_of_w(b));
+    (s as i8).cmp(&0)
+}
+
+/// Exactly whether two points coincide.
+pub fn same_point(a: &Point, b: &Point) -> bool {
+    if let (Some(pa), Some(pb)) = (a.explicit(), b.explicit()) {
+        return pa == pb;
+    }
+    (0..3).all(|k| decide!(coord_diff(a, b, k)) == Sign::Zero)
+}

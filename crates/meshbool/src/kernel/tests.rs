@@ -1,0 +1,384 @@
+//! The kernel against an independent oracle: every point constructed explicitly in big
+//! rationals (`num-rational`), every predicate a rational determinant.
+
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{Signed, Zero};
+
+use super::*;
+
+type Q = BigRational;
+
+fn q(x: f64) -> Q {
+    Q::from_float(x).unwrap()
+}
+
+fn qv(p: &[f64; 3]) -> [Q; 3] {
+    p.map(q)
+}
+
+fn sub(a: &[Q; 3], b: &[Q; 3]) -> [Q; 3] {
+    [&a[0] - &b[0], &a[1] - &b[1], &a[2] - &b[2]]
+}
+
+fn crs(a: &[Q; 3], b: &[Q; 3]) -> [Q; 3] {
+    [
+        &a[1] * &b[2] - &a[2] * &b[1],
+        &a[2] * &b[0] - &a[0] * &b[2],
+        &a[0] * &b[1] - &a[1] * &b[0],
+    ]
+}
+
+fn dt(a: &[Q; 3], b: &[Q; 3]) -> Q {
+    &a[0] * &b[0] + &a[1] * &b[1] + &a[2] * &b[2]
+}
+
+/// The point as exact rational coordinates, computed the textbook way (with division).
+fn oracle_point(p: &Point) -> [Q; 3] {
+    match p {
+        Point::Explicit(p) => qv(p),
+        Point::Lpi { p, q: qq, a, b, c } => {
+            let (p, qq, a, b, c) = (qv(p), qv(qq), qv(a), qv(b), qv(c));
+            let n = crs(&sub(&b, &a), &sub(&c, &a));
+            let d = sub(&qq, &p);
+            let t = dt(&n, &sub(&a, &p)) / dt(&n, &d);
+            [&p[0] + &t * &d[0], &p[1] + &t * &d[1], &p[2] + &t * &d[2]]
+        }
+        Point::Ssi {
+            p,
+            q: qq,
+            r,
+            s,
+            axis,
+        } => {
+            let (p, qq, r, s) = (qv(p), qv(qq), qv(r), qv(s));
+            let (i, j) = ((*axis as usize + 1) % 3, (*axis as usize + 2) % 3);
+            let (d, e, f) = (sub(&qq, &p), sub(&s, &r), sub(&r, &p));
+            let c2 = |u: &[Q; 3], v: &[Q; 3]| &u[i] * &v[j] - &u[j] * &v[i];
+            let t = c2(&f, &e) / c2(&d, &e);
+            [&p[0] + &t * &d[0], &p[1] + &t * &d[1], &p[2] + &t * &d[2]]
+        }
+    }
+}
+
+fn sign_q(x: &Q) -> Sign {
+    if x.is_zero() {
+        Sign::Zero
+    } else if x.is_positive() {
+        Sign::Positive
+    } else {
+        Sign::Negative
+    }
+}
+
+fn oracle_orient3d(a: &Point, b: &Point, c: &Point, d: &Point) -> Sign {
+    let [a, b, c, d] = [a, b, c, d].map(oracle_point);
+    sign_q(&dt(&crs(&sub(&b, &a), &sub(&c, &a)), &sub(&d, &a)))
+}
+
+fn oracle_orient2d(a: &Point, b: &Point, c: &Point, axis: usize) -> Sign {
+    let [a, b, c] = [a, b, c].map(oracle_point);
+    let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+    let (u, v) = (sub(&b, &a), sub(&c, &a));
+    sign_q(&(&u[i] * &v[j] - &u[j] * &v[i]))
+}
+
+/// Small deterministic generator (xorshift64*).
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
+    }
+    fn unit(&mut self) -> f64 {
+        (self.next() >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn point(&mut self, offset: [f64; 3], scale: f64) -> [f64; 3] {
+        std::array::from_fn(|k| offset[k] + scale * (self.unit() - 0.5))
+    }
+}
+
+const UTM: [f64; 3] = [478_614.7, 6_772_313.84, 412.5];
+
+/// An LPI whose segment really crosses the plane (the constructor's precondition).
+fn random_lpi(rng: &mut Rng, offset: [f64; 3], scale: f64) -> Point {
+    loop {
+        let [p, q, a, b, c] = [0; 5].map(|_| rng.point(offset, scale));
+        let (sp, sq) = (
+            orient3d_explicit(&a, &b, &c, &p),
+            orient3d_explicit(&a, &b, &c, &q),
+        );
+        if sp != Sign::Zero && sq == sp.reversed() {
+            return Point::Lpi { p, q, a, b, c };
+        }
+    }
+}
+
+fn random_point(rng: &mut Rng, offset: [f64; 3], scale: f64) -> Point {
+    if rng.next() % 2 == 0 {
+        Point::Explicit(rng.point(offset, scale))
+    } else {
+        random_lpi(rng, offset, scale)
+    }
+}
+
+#[test]
+fn predicates_agree_with_rationals_on_random_points() {
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    for offset in [[0.0; 3], UTM] {
+        for _ in 0..300 {
+            let pts: Vec<Point> = (0..4)
+                .map(|_| random_point(&mut rng, offset, 10.0))
+                .collect();
+            assert_eq!(
+                orient3d(&pts[0], &pts[1], &pts[2], &pts[3]),
+                oracle_orient3d(&pts[0], &pts[1], &pts[2], &pts[3])
+            );
+            for axis in 0..3 {
+                assert_eq!(
+                    orient2d(&pts[0], &pts[1], &pts[2], axis),
+                    oracle_orient2d(&pts[0], &pts[1], &pts[2], axis)
+                );
+            }
+        }
+    }
+}
+
+/// An LPI of a segment crossing the plane of a triangle `t`: the point lies exactly on
+/// that plane, so orient3d against `t` (and against any triangle of the same plane) is
+/// exactly zero; the interval filter cannot decide this, the exact path must.
+#[test]
+fn implicit_point_on_its_own_plane_is_exactly_zero() {
+    let mut rng = Rng(42);
+    for offset in [[0.0; 3], UTM] {
+        for _ in 0..200 {
+            let lpi = random_lpi(&mut rng, offset, 10.0);
+            let Point::Lpi { a, b, c, p, q } = lpi.clone() else {
+                unreachable!()
+            };
+            assert_eq!(orient3d_plane(&a, &b, &c, &lpi), Sign::Zero);
+            assert_eq!(
+                oracle_orient3d(
+                    &Point::Explicit(a),
+                    &Point::Explicit(b),
+                    &Point::Explicit(c),
+                    &lpi
+                ),
+                Sign::Zero
+            );
+            // On the segment too: collinear with p and q in every projection.
+            for axis in 0..3 {
+                assert_eq!(
+                    orient2d(&Point::Explicit(p), &Point::Explicit(q), &lpi, axis),
+                    Sign::Zero
+                );
+            }
+            // The same geometric point from the plane spanned differently (b, c, a).
+            let again = Point::Lpi {
+                p: q,
+                q: p,
+                a: b,
+                b: c,
+                c: a,
+            };
+            assert!(same_point(&lpi, &again));
+            for axis in 0..3 {
+                assert_eq!(cmp_coord(&lpi, &again, axis), Ordering::Equal);
+            }
+        }
+    }
+}
+
+/// Points one ulp off a plane: the exact sign is that of the ulp.
+#[test]
+fn one_ulp_off_an_axis_plane() {
+    for offset in [0.0, UTM[2]] {
+        let z = offset + 0.1;
+        let (a, b, c) = (
+            [UTM[0], UTM[1], z],
+            [UTM[0] + 3.0, UTM[1], z],
+            [UTM[0], UTM[1] + 2.0, z],
+        );
+        let at = |zz: f64| Point::Explicit([UTM[0] + 0.7, UTM[1] + 0.3, zz]);
+        assert_eq!(orient3d_plane(&a, &b, &c, &at(z)), Sign::Zero);
+        assert_eq!(orient3d_plane(&a, &b, &c, &at(z.next_up())), Sign::Positive);
+        assert_eq!(
+            orient3d_plane(&a, &b, &c, &at(z.next_down())),
+            Sign::Negative
+        );
+        // An implicit point whose segment crosses z one ulp above: strictly above the plane.
+        let lpi = Point::Lpi {
+            p: [UTM[0] + 1.0, UTM[1] + 1.0, z - 1.0],
+            q: [UTM[0] + 1.5, UTM[1] + 0.5, z + 1.0],
+            a: [UTM[0], UTM[1], z.next_up()],
+            b: [UTM[0] + 1.0, UTM[1], z.next_up()],
+            c: [UTM[0], UTM[1] + 1.0, z.next_up()],
+        };
+        assert_eq!(orient3d_plane(&a, &b, &c, &lpi), Sign::Positive);
+        assert_eq!(
+            oracle_orient3d(
+                &Point::Explicit(a),
+                &Point::Explicit(b),
+                &Point::Explicit(c),
+                &lpi
+            ),
+            Sign::Positive
+        );
+    }
+}
+
+/// A tilted plane through UTM-sized coordinates: an LPI on it against a second triangle
+/// spanning the same plane (exactly coplanar: integer-valued points) is zero.
+#[test]
+fn implicit_point_on_another_triangle_of_the_same_plane() {
+    // Plane x + 2y + 4z = k through integer points (exactly representable).
+    let k = 478_614.0 + 2.0 * 6_772_313.0 + 4.0 * 100.0;
+    let on = |x: f64, y: f64| [x, y, (k - x - 2.0 * y) / 4.0];
+    let (a, b, c) = (
+        on(478_614.0, 6_772_313.0),
+        on(478_618.0, 6_772_313.0),
+        on(478_614.0, 6_772_317.0),
+    );
+    let (d, e, f) = (
+        on(478_610.0, 6_772_309.0),
+        on(478_630.0, 6_772_321.0),
+        on(478_602.0, 6_772_333.0),
+    );
+    for p in [a, b, c, d, e, f] {
+        assert_eq!(p[0] + 2.0 * p[1] + 4.0 * p[2], k); // representable exactly
+    }
+    let lpi = Point::Lpi {
+        p: [478_615.3, 6_772_314.1, 0.0],
+        q: [478_615.1, 6_772_314.9, 300.0],
+        a,
+        b,
+        c,
+    };
+    assert_eq!(orient3d_plane(&d, &e, &f, &lpi), Sign::Zero);
+    let nudged = [f[0], f[1], f[2].next_up()];
+    assert_eq!(
+        orient3d_plane(&d, &e, &nudged, &lpi),
+        oracle_orient3d(
+            &Point::Explicit(d),
+            &Point::Explicit(e),
+            &Point::Explicit(nudged),
+            &lpi
+        )
+    );
+    assert_ne!(orient3d_plane(&d, &e, &nudged, &lpi), Sign::Zero);
+}
+
+/// Coplanar segment crossings: the point is on both segments' lines, equal to the LPI of
+/// one segment with a plane through the other, and ordered correctly along an axis.
+#[test]
+fn coplanar_segment_crossings() {
+    let mut rng = Rng(7);
+    for offset in [[0.0; 3], UTM] {
+        for _ in 0..200 {
+            // Four points in the plane z = 0.25 x + 0.5 y + c (exact: dyadic coefficients on a grid).
+            let pt = |rng: &mut Rng| {
+                let (x, y) = (
+                    (rng.next() % 1000) as f64 * 0.125,
+                    (rng.next() % 1000) as f64 * 0.125,
+                );
+                [offset[0] + x, offset[1] + y, offset[2] + 0.25 * x + 0.5 * y]
+            };
+            let [p, q, r, s] = [0; 4].map(|_| pt(&mut rng));
+            let e = |x| Point::Explicit(x);
+            // Only crossing lines: non-parallel in the (x, y) projection.
+            if orient2d(&e(p), &e(q), &e(r), 2) == orient2d(&e(p), &e(q), &e(s), 2) {
+                continue;
+            }
+            if orient2d(&e(r), &e(s), &e(p), 2) == Sign::Zero {
+                continue;
+            }
+            let x = Point::Ssi {
+                p,
+                q,
+                r,
+                s,
+                axis: 2,
+            };
+            for axis in 0..3 {
+                assert_eq!(orient2d(&e(p), &e(q), &x, axis), Sign::Zero);
+                assert_eq!(orient2d(&e(r), &e(s), &x, axis), Sign::Zero);
+            }
+            // The same point as the crossing of p q with the vertical plane through r s.
+            let up = [r[0], r[1], r[2] + 1.0];
+            let lpi = Point::Lpi {
+                p,
+                q,
+                a: r,
+                b: s,
+                c: up,
+            };
+            assert!(same_point(&x, &lpi), "{x:?}");
+            assert_eq!(oracle_point(&x), oracle_point(&lpi));
+            let other = Point::Explicit(pt(&mut rng));
+            for axis in 0..3 {
+                let want = oracle_point(&x)[axis].cmp(&oracle_point(&other)[axis]);
+                assert_eq!(cmp_coord(&x, &other, axis), want);
+            }
+        }
+    }
+}
+
+#[test]
+fn approx_is_close_to_exact() {
+    let mut rng = Rng(99);
+    for _ in 0..200 {
+        let lpi = random_lpi(&mut rng, UTM, 10.0);
+        let exact = oracle_point(&lpi);
+        let approx = lpi.approx();
+        for k in 0..3 {
+            let err = (&exact[k] - q(approx[k])).abs();
+            // Within 1e-6 m at UTM magnitude for well-conditioned random crossings.
+            assert!(
+                err < Q::new(BigInt::from(1), BigInt::from(1_000_000)),
+                "{k}: {err}"
+            );
+        }
+    }
+}
+
+#[test]
+fn extreme_magnitudes_fall_back_to_exact() {
+    // Products overflow f64: intervals become unbounded, the exact path decides.
+    let big = 1e200;
+    let (a, b, c) = ([0.0, 0.0, 0.0], [big, 0.0, 0.0], [0.0, big, 0.0]);
+    let lpi = Point::Lpi {
+        p: [1.0, 1.0, -big],
+        q: [1.0, 1.0, big],
+        a,
+        b,
+        c,
+    };
+    assert_eq!(orient3d_plane(&a, &b, &c, &lpi), Sign::Zero);
+    let above = Point::Explicit([1.0, 1.0, 1e-300]);
+    assert_eq!(
+        orient3d(
+            &Point::Explicit(a),
+            &Point::Explicit(b),
+            &Point::Explicit(c),
+            &above
+        ),
+        Sign::Positive
+    );
+    assert_eq!(cmp_coord(&lpi, &above, 2), Ordering::Less);
+    // Shewchuk's predicate alone gets this wrong (its error bound overflows).
+    let on_line = [2e200, 2e200, 2e200];
+    assert!(crate::measure::is_degenerate([0.0; 3], [1e200; 3], on_line));
+    assert!(!crate::measure::is_degenerate(
+        [0.0; 3],
+        [1e200; 3],
+        [on_line[0], on_line[1], on_line[2].next_up()]
+    ));
+    assert!(!crate::measure::is_degenerate(
+        [0.0; 3],
+        [1e-300, 0.0, 0.0],
+        [0.0, 1e-300, 0.0]
+    ));
+}
