@@ -28,8 +28,10 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod bvh;
 pub mod edges;
 mod error;
+pub mod intersect;
 pub mod io;
 pub mod kernel;
 pub mod measure;

@@ -377,3 +377,36 @@ pub fn same_point(a: &Point, b: &Point) -> bool {
     }
     (0..3).all(|k| decide!(coord_diff(a, b, k)) == Sign::Zero)
 }
+
+fn cross_component<T: Num>(
+    p: &[f64; 3],
+    q: &[f64; 3],
+    r: &[f64; 3],
+    s: &[f64; 3],
+    axis: usize,
+) -> T {
+    let (p, q, r, s) = (lift::<T>(p), lift(q), lift(r), lift(s));
+    cross2(&vsub(&q, &p), &vsub(&s, &r), axis)
+}
+
+/// Exact sign of component `axis` of `(q − p) × (s − r)` (for a triangle `a b c`:
+/// `cross_sign(a, b, a, c, axis)` is its normal's component).
+pub fn cross_sign(p: &[f64; 3], q: &[f64; 3], r: &[f64; 3], s: &[f64; 3], axis: usize) -> Sign {
+    decide!(cross_component(p, q, r, s, axis))
+}
+
+fn normals_cross_component<T: Num>(t: &[[f64; 3]; 3], u: &[[f64; 3]; 3], axis: usize) -> T {
+    let normal = |t: &[[f64; 3]; 3]| {
+        let [a, b, c] = t.map(|p| lift::<T>(&p));
+        cross(&vsub(&b, &a), &vsub(&c, &a))
+    };
+    let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+    let (n, m) = (normal(t), normal(u));
+    n[i].mul(&m[j]).sub(&n[j].mul(&m[i]))
+}
+
+/// Exact sign of component `axis` of `n_t × n_u`, the direction of the line where the
+/// planes of triangles `t` and `u` meet.
+pub fn normals_cross_sign(t: &[[f64; 3]; 3], u: &[[f64; 3]; 3], axis: usize) -> Sign {
+    decide!(normals_cross_component(t, u, axis))
+}

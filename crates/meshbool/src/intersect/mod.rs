@@ -1,0 +1,206 @@
+//! Intersection of two meshes: the seam (every point and segment where their surfaces
+//! meet, found exactly), and the seam chained into polylines ([`curves`]).
+//!
+//! Pipeline position: broad phase ([`crate::bvh`]) → exact triangle–triangle tests
+//! ([`tritri`]) → seam points named by [`Label`]s (so the same point reached from several
+//! triangle pairs is one point) → segments. The arrangement stage consumes the seam; the
+//! curves are also useful on their own (`meshbool curves`).
+
+use rayon::prelude::*;
+use rustc_hash::FxHashMap;
+
+use crate::bvh::Bvh;
+use crate::kernel::{cross_sign, Point, Sign};
+use crate::Mesh;
+
+mod curves;
+pub mod tritri;
+
+pub use curves::{chain, Polyline};
+pub use tritri::{Feature, Label, TriTri};
+
+/// One seam segment between two distinct seam points.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SeamSegment {
+    /// Seam point ids (indices into [`Seam::points`]), in ascending order.
+    pub ends: [u32; 2],
+    /// True when the segment comes from coplanar triangles (a boundary or crossing edge of
+    /// a shared region) rather than from surfaces that cross.
+    pub coplanar: bool,
+}
+
+/// Where a seam segment lies: in the closure of triangle `tri_a` of A and `tri_b` of B.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SegmentSource {
+    /// Index into [`Seam::segments`].
+    pub segment: u32,
+    /// Triangle of mesh A.
+    pub tri_a: u32,
+    /// Triangle of mesh B.
+    pub tri_b: u32,
+}
+
+/// The intersection of two meshes.
+#[derive(Clone, Debug, Default)]
+pub struct Seam {
+    /// Every seam point, by label (unique).
+    pub points: Vec<Label>,
+    /// Exact constructions of the points (same order).
+    pub exact: Vec<Point>,
+    /// Approximate coordinates of the points (same order), for output only.
+    pub positions: Vec<[f64; 3]>,
+    /// Distinct seam segments.
+    pub segments: Vec<SeamSegment>,
+    /// Every triangle pair each segment was found in (a segment along an edge lies in
+    /// several triangles).
+    pub sources: Vec<SegmentSource>,
+    /// Points where the meshes only touch (not on any segment).
+    pub touching: Vec<u32>,
+    /// Degenerate (zero-area) triangles of A and of B, left out of the test.
+    pub degenerate: [usize; 2],
+    /// Triangle pairs whose boxes overlapped (broad-phase candidates).
+    pub candidate_pairs: usize,
+}
+
+/// The canonical exact construction of a labelled seam point.
+pub fn label_point(l: &Label, a: &Mesh, b: &Mesh) -> Point {
+    let pa = |v: u32| a.positions[v as usize];
+    let pb = |v: u32| b.positions[v as usize];
+    match (l.a, l.b) {
+        (Feature::Vertex(v), _) => Point::Explicit(pa(v)),
+        (_, Feature::Vertex(v)) => Point::Explicit(pb(v)),
+        (Feature::Edge(u, v), Feature::Face(t)) => {
+            let [x, y, z] = b.corners(t as usize);
+            Point::Lpi {
+                p: pa(u),
+                q: pa(v),
+                a: x,
+                b: y,
+                c: z,
+            }
+        }
+        (Feature::Face(t), Feature::Edge(u, v)) => {
+            let [x, y, z] = a.corners(t as usize);
+            Point::Lpi {
+                p: pb(u),
+                q: pb(v),
+                a: x,
+                b: y,
+                c: z,
+            }
+        }
+        (Feature::Edge(u, v), Feature::Edge(r, s)) => {
+            let (p, q, r, s) = (pa(u), pa(v), pb(r), pb(s));
+            // Crossing edges span a plane; intersect in a projection where it is not edge-on.
+            let axis = (0..3)
+                .find(|&k| cross_sign(&p, &q, &r, &s, k) != Sign::Zero)
+                .unwrap_or(2);
+            Point::Ssi {
+                p,
+                q,
+                r,
+                s,
+                axis: axis as u8,
+            }
+        }
+        (Feature::Face(_), Feature::Face(_)) => {
+            unreachable!("two faces do not meet in a single point")
+        }
+    }
+}
+
+fn tri(m: &Mesh, t: usize) -> Option<tritri::Tri> {
+    tritri::Tri::new(t as u32, m.triangles[t], m.corners(t))
+}
+
+/// Intersects meshes `a` and `b` exactly. Inputs must be valid ([`Mesh::validate`]) and
+/// should be welded ([`crate::weld_exact`]): points are named by vertex ids, so two vertices
+/// at the same position would name one point twice and break the curves there.
+/// Degenerate triangles are left out and counted in [`Seam::degenerate`].
+pub fn intersect(a: &Mesh, b: &Mesh) -> Seam {
+    let (ba, bb) = rayon::join(|| Bvh::new(a), || Bvh::new(b));
+    let pairs = ba.overlapping_pairs(&bb);
+    let tris = |m: &Mesh| -> Vec<Option<tritri::Tri>> {
+        (0..m.triangles.len())
+            .into_par_iter()
+            .map(|t| tri(m, t))
+            .collect()
+    };
+    // Only triangles in some candidate pair need their projection set up.
+    let (ta, tb) = rayon::join(|| tris(a), || tris(b));
+    let results: Vec<(u32, u32, TriTri)> = pairs
+        .par_iter()
+        .filter_map(|&(i, j)| {
+            let (x, y) = (ta[i as usize].as_ref()?, tb[j as usize].as_ref()?);
+            match tritri::intersect(x, y) {
+                TriTri::None => None,
+                r => Some((i, j, r)),
+            }
+        })
+        .collect();
+
+    let mut seam = Seam {
+        degenerate: [
+            ta.iter().filter(|t| t.is_none()).count(),
+            tb.iter().filter(|t| t.is_none()).count(),
+        ],
+        candidate_pairs: pairs.len(),
+        ..Seam::default()
+    };
+    let mut point_ids: FxHashMap<Label, u32> = FxHashMap::default();
+    let mut seg_ids: FxHashMap<[u32; 2], u32> = FxHashMap::default();
+    let mut touching = Vec::new();
+    let mut id_of = |l: Label, seam: &mut Seam| -> u32 {
+        *point_ids.entry(l).or_insert_with(|| {
+            seam.points.push(l);
+            (seam.points.len() - 1) as u32
+        })
+    };
+    for (i, j, r) in &results {
+        let mut add_segment = |s: [Label; 2], coplanar: bool, seam: &mut Seam| {
+            let (x, y) = (id_of(s[0], seam), id_of(s[1], seam));
+            let ends = [x.min(y), x.max(y)];
+            let id = *seg_ids.entry(ends).or_insert_with(|| {
+                seam.segments.push(SeamSegment { ends, coplanar });
+                (seam.segments.len() - 1) as u32
+            });
+            seam.segments[id as usize].coplanar &= coplanar;
+            seam.sources.push(SegmentSource {
+                segment: id,
+                tri_a: *i,
+                tri_b: *j,
+            });
+        };
+        match r {
+            TriTri::None => {}
+            TriTri::Point(l) => touching.push(*l),
+            TriTri::Segment(s) => add_segment(*s, false, &mut seam),
+            TriTri::Coplanar { segments, points } => {
+                for s in segments {
+                    add_segment(*s, true, &mut seam);
+                }
+                touching.extend(points);
+            }
+        }
+    }
+    let mut on_segment = vec![false; seam.points.len()];
+    for s in &seam.segments {
+        on_segment[s.ends[0] as usize] = true;
+        on_segment[s.ends[1] as usize] = true;
+    }
+    for l in touching {
+        let id = id_of(l, &mut seam);
+        if on_segment.get(id as usize) != Some(&true) && !seam.touching.contains(&id) {
+            seam.touching.push(id);
+        }
+    }
+    seam.exact = seam
+        .points
+        .par_iter()
+        .map(|l| label_point(l, a, b))
+        .collect();
+    seam.positions = seam.exact.par_iter().map(Point::approx).collect();
+    seam
+}
+#[cfg(test)]
+mod tests;

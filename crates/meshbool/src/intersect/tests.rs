@@ -1,0 +1,370 @@
+use super::tritri::{edge, intersect as tt, Feature::*, Label, Tri, TriTri};
+use super::*;
+use crate::edges::{EdgeKind, EdgeTopology};
+use crate::shapes::{heightfield, uv_sphere};
+
+fn t(id: u32, base: u32, p: [[f64; 3]; 3]) -> Tri {
+    Tri::new(id, [base, base + 1, base + 2], p).unwrap()
+}
+
+fn l(a: Feature, b: Feature) -> Label {
+    Label { a, b }
+}
+
+/// Triangle A: in z = 0, vertices 0, 1, 2.
+fn a_tri() -> Tri {
+    t(0, 0, [[0.0, 0.0, 0.0], [4.0, 0.0, 0.0], [0.0, 4.0, 0.0]])
+}
+
+fn seg(r: TriTri) -> [Label; 2] {
+    match r {
+        TriTri::Segment(mut s) => {
+            s.sort();
+            s
+        }
+        other => panic!("expected a segment, got {other:?}"),
+    }
+}
+
+#[test]
+fn proper_crossing() {
+    // B stands vertically through A's interior: both crossing points are B's edges
+    // through A's face.
+    let b = t(0, 10, [[1.0, 1.0, -1.0], [1.0, 1.0, 1.0], [2.0, 1.0, 0.5]]);
+    let mut want = [l(Face(0), edge(10, 11)), l(Face(0), edge(10, 12))];
+    want.sort();
+    assert_eq!(seg(tt(&a_tri(), &b)), want);
+}
+
+#[test]
+fn crossing_through_an_edge_of_a() {
+    // B crosses A's edge 0-1 (y = 0): one end on that edge, labelled edge × edge.
+    let b = t(
+        0,
+        10,
+        [[1.0, -1.0, -1.0], [1.0, 1.0, -1.0], [1.0, 1.0, 1.0]],
+    );
+    let s = seg(tt(&a_tri(), &b));
+    assert!(s.contains(&l(edge(0, 1), edge(10, 12))), "{s:?}");
+    assert!(s.contains(&l(Face(0), edge(11, 12))), "{s:?}");
+}
+
+#[test]
+fn vertex_on_plane_touches() {
+    let b = t(0, 10, [[1.0, 1.0, 0.0], [1.0, 2.0, 1.0], [2.0, 1.0, 1.0]]);
+    assert_eq!(tt(&a_tri(), &b), TriTri::Point(l(Face(0), Vertex(10))));
+    // The vertex touches A's edge instead.
+    let b = t(0, 10, [[1.0, 0.0, 0.0], [1.0, 2.0, 1.0], [2.0, 1.0, 1.0]]);
+    assert_eq!(tt(&a_tri(), &b), TriTri::Point(l(edge(0, 1), Vertex(10))));
+}
+
+#[test]
+fn vertex_on_vertex() {
+    let b = t(0, 10, [[4.0, 0.0, 0.0], [5.0, 1.0, 1.0], [5.0, -1.0, 1.0]]);
+    assert_eq!(tt(&a_tri(), &b), TriTri::Point(l(Vertex(1), Vertex(10))));
+}
+
+#[test]
+fn vertex_in_plane_and_crossing() {
+    // B's vertex 10 lies inside A, the opposite edge crosses below: segment from the
+    // vertex to B's crossing edge... which is below A's plane, so the segment ends where
+    // B's edge 10-11/10-12 leaves... construct: 11 above, 12 below.
+    let b = t(0, 10, [[1.0, 1.0, 0.0], [1.0, 2.0, 1.0], [2.0, 2.0, -1.0]]);
+    let s = seg(tt(&a_tri(), &b));
+    let mut want = [l(Face(0), Vertex(10)), l(Face(0), edge(11, 12))];
+    want.sort();
+    assert_eq!(s, want);
+}
+
+#[test]
+fn edge_in_plane() {
+    // B's edge 10-11 lies in A's plane and crosses A's edge 1-2 (x + y = 4).
+    let b = t(0, 10, [[1.0, 1.0, 0.0], [5.0, 1.0, 0.0], [3.0, 1.0, 2.0]]);
+    let s = seg(tt(&a_tri(), &b));
+    let mut want = [l(Face(0), Vertex(10)), l(edge(1, 2), edge(10, 11))];
+    want.sort();
+    assert_eq!(s, want);
+}
+
+#[test]
+fn edge_through_edge_skew() {
+    // B's edge 10-11 pierces A's edge 0-2 (x = 0) at (0, 1, 0); B's other vertex is above.
+    let b = t(0, 10, [[-1.0, 1.0, -1.0], [1.0, 1.0, 1.0], [1.0, 3.0, 1.0]]);
+    let r = tt(&a_tri(), &b);
+    let s = seg(r);
+    assert!(s.contains(&l(edge(0, 2), edge(10, 11))), "{s:?}");
+}
+
+#[test]
+fn coplanar_overlap_gives_the_clipped_edges() {
+    // B: a triangle in z = 0 overlapping A's corner region at (4,0).
+    let b = t(0, 10, [[3.0, -1.0, 0.0], [6.0, -1.0, 0.0], [3.0, 2.0, 0.0]]);
+    match tt(&a_tri(), &b) {
+        TriTri::Coplanar { segments, points } => {
+            assert!(points.is_empty());
+            // Overlap polygon: (3,0) (4,0) (3,1): three sides, each along an edge of A or B.
+            assert_eq!(segments.len(), 3, "{segments:?}");
+            let all: Vec<Label> = segments.iter().flatten().copied().collect();
+            assert!(all.contains(&l(Vertex(1), Face(0))));
+            assert!(all.contains(&l(edge(0, 1), edge(10, 12))));
+            assert!(all.contains(&l(edge(1, 2), edge(10, 12))));
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn coplanar_touching_at_a_vertex_and_apart() {
+    let b = t(0, 10, [[4.0, 0.0, 0.0], [6.0, 0.0, 0.0], [6.0, -2.0, 0.0]]);
+    assert_eq!(
+        tt(&a_tri(), &b),
+        TriTri::Coplanar {
+            segments: vec![],
+            points: vec![l(Vertex(1), Vertex(10))]
+        }
+    );
+    let far = t(0, 10, [[5.0, 5.0, 0.0], [6.0, 5.0, 0.0], [6.0, 6.0, 0.0]]);
+    assert_eq!(tt(&a_tri(), &far), TriTri::None);
+}
+
+#[test]
+fn identical_triangles_share_their_edges() {
+    let b = t(0, 10, a_tri().p);
+    match tt(&a_tri(), &b) {
+        TriTri::Coplanar { segments, .. } => {
+            let mut want = vec![
+                [l(Vertex(0), Vertex(10)), l(Vertex(1), Vertex(11))],
+                [l(Vertex(1), Vertex(11)), l(Vertex(2), Vertex(12))],
+                [l(Vertex(0), Vertex(10)), l(Vertex(2), Vertex(12))],
+            ];
+            want.sort();
+            assert_eq!(segments, want);
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn degenerate_triangle_is_refused() {
+    assert!(Tri::new(0, [0, 1, 2], [[0.0; 3], [1.0; 3], [2.0; 3]]).is_none());
+}
+
+fn rotate(m: &Mesh, axis: [f64; 3], angle: f64, shift: [f64; 3]) -> Mesh {
+    let n = (axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]).sqrt();
+    let [x, y, z] = axis.map(|c| c / n);
+    let (s, c) = angle.sin_cos();
+    let r = [
+        [
+            c + x * x * (1.0 - c),
+            x * y * (1.0 - c) - z * s,
+            x * z * (1.0 - c) + y * s,
+        ],
+        [
+            y * x * (1.0 - c) + z * s,
+            c + y * y * (1.0 - c),
+            y * z * (1.0 - c) - x * s,
+        ],
+        [
+            z * x * (1.0 - c) - y * s,
+            z * y * (1.0 - c) + x * s,
+            c + z * z * (1.0 - c),
+        ],
+    ];
+    let positions = m
+        .positions
+        .iter()
+        .map(|p| {
+            std::array::from_fn(|i| r[i][0] * p[0] + r[i][1] * p[1] + r[i][2] * p[2] + shift[i])
+        })
+        .collect();
+    Mesh::new(positions, m.triangles.clone())
+}
+
+#[test]
+fn two_spheres_meet_in_one_loop_on_the_analytic_circle() {
+    for (seg, rings) in [(32, 16), (96, 48)] {
+        let a = uv_sphere([0.0; 3], 1.0, seg, rings);
+        let b = uv_sphere([0.5, 0.0, 0.0], 1.0, seg, rings);
+        let seam = intersect(&a, &b);
+        let curves = chain(&seam, false);
+        assert_eq!(curves.len(), 1, "{seg}");
+        assert!(curves[0].closed);
+        assert_eq!(curves[0].points.len(), seam.points.len());
+        // The circle x = 0.25, radius sqrt(1 - 0.25²); tessellation error of the sphere
+        // is at most r (1 - cos(π / rings)) (rings are the coarser direction here).
+        let sag = 1.0 - (std::f64::consts::PI / f64::from(rings)).cos();
+        let rho = (1.0f64 - 0.0625).sqrt();
+        for p in &seam.positions {
+            assert!((p[0] - 0.25).abs() <= 2.0 * sag, "{p:?}");
+            let r = (p[1] * p[1] + p[2] * p[2]).sqrt();
+            assert!((r - rho).abs() <= 2.0 * sag, "{p:?}");
+        }
+        assert!((curves[0].length(&seam) - 2.0 * std::f64::consts::PI * rho).abs() < 0.05);
+    }
+}
+
+#[test]
+fn sphere_and_its_rotated_copy_shifted_1e9_give_closed_loops() {
+    let a = uv_sphere([0.0; 3], 1.0, 48, 24);
+    for (axis, angle) in [
+        ([0.3, 0.5, 0.8], 0.2),
+        ([0.0, 0.0, 1.0], 1e-12),
+        ([1.0, 0.0, 0.0], 0.05),
+    ] {
+        let b = rotate(&a, axis, angle, [1e-9, 0.0, 0.0]);
+        let seam = intersect(&a, &b);
+        let curves = chain(&seam, false);
+        assert!(!curves.is_empty(), "{axis:?} {angle}");
+        assert!(
+            curves.iter().all(|c| c.closed),
+            "{axis:?} {angle}: {:?}",
+            curves.iter().map(|c| c.closed).collect::<Vec<_>>()
+        );
+    }
+}
+
+fn read(name: &str) -> Mesh {
+    crate::io::read_path(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../data")
+            .join(name),
+    )
+    .unwrap()
+}
+
+#[test]
+fn kirra_terrain_and_cylinder_meet_in_one_closed_loop() {
+    for (t, c) in [
+        ("kirra_terrain.obj", "kirra_cylinder.obj"),
+        ("kap_terrain.obj", "kap_cylinder.obj"),
+    ] {
+        let seam = intersect(&read(t), &read(c));
+        let curves = chain(&seam, true);
+        assert_eq!(curves.len(), 1, "{t}");
+        assert!(curves[0].closed, "{t}");
+        assert!(seam.touching.is_empty());
+    }
+}
+
+#[test]
+fn crossing_terrains_give_open_chains_ending_on_boundaries() {
+    let a = heightfield([0.0, 0.0], [10.0, 10.0], 23, 19, |x, y| {
+        0.5 * (x * 0.7).sin() + 0.3 * (y * 0.9).cos()
+    });
+    let b = heightfield([-1.0, -1.0], [11.0, 11.0], 17, 29, |x, y| {
+        0.08 * (x - 5.0) + 0.05 * (y - 5.0) + 0.1
+    });
+    let seam = intersect(&a, &b);
+    let curves = chain(&seam, false);
+    assert!(!curves.is_empty());
+    let boundary = |m: &Mesh| -> Vec<[u32; 2]> {
+        let topo = EdgeTopology::new(m);
+        (0..topo.edge_count())
+            .filter(|&e| topo.kind(e) == EdgeKind::Boundary)
+            .map(|e| topo.edges[e])
+            .collect()
+    };
+    let (ba, bb) = (boundary(&a), boundary(&b));
+    let on_boundary = |lab: &Label| {
+        let hit = |f: Feature, bnd: &[[u32; 2]]| match f {
+            Feature::Edge(u, v) => bnd.contains(&[u, v]),
+            Feature::Vertex(v) => bnd.iter().any(|e| e.contains(&v)),
+            Feature::Face(_) => false,
+        };
+        hit(lab.a, &ba) || hit(lab.b, &bb)
+    };
+    for c in &curves {
+        assert!(!c.closed);
+        for end in [c.points[0], *c.points.last().unwrap()] {
+            assert!(
+                on_boundary(&seam.points[end as usize]),
+                "{:?}",
+                seam.points[end as usize]
+            );
+        }
+    }
+}
+
+#[test]
+fn identical_cubes_are_all_coplanar() {
+    let cube = Mesh::unit_cube();
+    let seam = intersect(&cube, &cube);
+    // The 18 edges of the cube are the shared segments: the 6 face diagonals only between
+    // coplanar faces, the 12 cube edges also where perpendicular faces meet.
+    assert_eq!(seam.segments.len(), 18);
+    assert_eq!(seam.segments.iter().filter(|s| s.coplanar).count(), 6);
+    assert_eq!(seam.points.len(), 8);
+    assert!(seam
+        .points
+        .iter()
+        .all(|p| matches!((p.a, p.b), (Feature::Vertex(_), Feature::Vertex(_)))));
+}
+
+fn swap(l: Label) -> Label {
+    Label { a: l.b, b: l.a }
+}
+
+/// Every result must be the same with the triangles' roles swapped, and every reported
+/// point must lie in both closed triangles. Integer coordinates in 0..=3 make vertices on
+/// edges, shared vertices, edges in planes and coplanar pairs common.
+#[test]
+fn tritri_is_symmetric_and_its_points_lie_in_both_triangles() {
+    let mut state = 0x1234_5678_9abc_def1u64;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state % 4) as f64
+    };
+    let (mut segments, mut points, mut coplanar) = (0, 0, 0);
+    for _ in 0..20_000 {
+        let pa: [[f64; 3]; 3] = std::array::from_fn(|_| std::array::from_fn(|_| next()));
+        let pb: [[f64; 3]; 3] = std::array::from_fn(|_| std::array::from_fn(|_| next()));
+        let (Some(a), Some(b)) = (Tri::new(0, [0, 1, 2], pa), Tri::new(0, [10, 11, 12], pb)) else {
+            continue;
+        };
+        let (ab, ba) = (tt(&a, &b), tt(&b, &a));
+        let normalise = |r: &TriTri, flip: bool| -> (Vec<[Label; 2]>, Vec<Label>) {
+            let f = |l: Label| if flip { swap(l) } else { l };
+            let (mut s, mut p): (Vec<[Label; 2]>, Vec<Label>) = match r {
+                TriTri::None => (vec![], vec![]),
+                TriTri::Point(l) => (vec![], vec![f(*l)]),
+                TriTri::Segment(s) => (vec![s.map(f)], vec![]),
+                TriTri::Coplanar { segments, points } => (
+                    segments.iter().map(|s| s.map(f)).collect(),
+                    points.iter().map(|&l| f(l)).collect(),
+                ),
+            };
+            s.iter_mut().for_each(|x| x.sort());
+            s.sort();
+            p.sort();
+            (s, p)
+        };
+        let (sab, pab) = normalise(&ab, false);
+        // With the roles swapped the labels name b's features first.
+        assert_eq!(
+            (sab.clone(), pab.clone()),
+            normalise(&ba, true),
+            "{pa:?} {pb:?}"
+        );
+        segments += sab.len();
+        points += pab.len();
+        coplanar += matches!(ab, TriTri::Coplanar { .. }) as usize;
+        // Every point lies in both closed triangles, on exactly the features its label
+        // names. Single-triangle meshes: A has vertices 0..3, B vertices 10..13 (face 0 each).
+        let mesh_a = Mesh::new(pa.to_vec(), vec![[0, 1, 2]]);
+        let mut pos_b = vec![[0.0; 3]; 10];
+        pos_b.extend(pb);
+        let mesh_b = Mesh::new(pos_b, vec![[10, 11, 12]]);
+        for lab in sab.iter().flatten().chain(&pab) {
+            let x = label_point(lab, &mesh_a, &mesh_b);
+            assert_eq!(a.locate(&x), Some(lab.a), "{lab:?} {pa:?} {pb:?}");
+            assert_eq!(b.locate(&x), Some(lab.b), "{lab:?} {pa:?} {pb:?}");
+        }
+    }
+    // The generator must really exercise every kind of result.
+    assert!(
+        segments > 1000 && points > 1000 && coplanar > 30,
+        "{segments} {points} {coplanar}"
+    );
+}

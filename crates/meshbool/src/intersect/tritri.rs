@@ -1,0 +1,347 @@
+//! Exact intersection of two triangles, one from each mesh, in every configuration:
+//! proper crossing, vertex on plane, vertex on vertex, edge through edge, edge in plane,
+//! coplanar overlap, touching at a point.
+//!
+//! Results are given as [`Label`]s: a point is named by the smallest feature (vertex,
+//! edge, face) of each mesh that contains it, found with exact predicates. The same point
+//! reached from different triangle pairs therefore gets the same label, and each label has
+//! one canonical construction ([`super::label_point`]).
+
+use std::cmp::Ordering;
+
+use crate::kernel::{
+    cmp_coord, normals_cross_sign, orient2d, orient3d_explicit, same_point, Point, Sign,
+};
+
+/// A vertex, edge or face of one mesh, by its vertex / triangle ids (edges sorted).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Feature {
+    /// A vertex.
+    Vertex(u32),
+    /// An edge `(lo, hi)` by its vertex ids.
+    Edge(u32, u32),
+    /// A triangle's interior.
+    Face(u32),
+}
+
+/// The edge between vertices `u` and `v`.
+pub fn edge(u: u32, v: u32) -> Feature {
+    Feature::Edge(u.min(v), u.max(v))
+}
+
+/// A seam point named by the smallest feature of mesh A and of mesh B containing it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Label {
+    /// Feature of mesh A.
+    pub a: Feature,
+    /// Feature of mesh B.
+    pub b: Feature,
+}
+
+/// A triangle with its ids and corner coordinates.
+#[derive(Clone, Copy, Debug)]
+pub struct Tri {
+    /// Triangle id in its mesh.
+    pub id: u32,
+    /// Vertex ids.
+    pub v: [u32; 3],
+    /// Corner coordinates.
+    pub p: [[f64; 3]; 3],
+    /// A projection axis in which the triangle is not degenerate, and its orientation there.
+    axis: usize,
+    sign: Sign,
+}
+
+impl Tri {
+    /// `None` for a degenerate (zero-area) triangle.
+    pub fn new(id: u32, v: [u32; 3], p: [[f64; 3]; 3]) -> Option<Tri> {
+        let n = approx_normal(&p);
+        let mut axes = [0, 1, 2];
+        axes.sort_by(|&i, &j| n[j].abs().total_cmp(&n[i].abs()));
+        let e = p.map(Point::Explicit);
+        axes.into_iter().find_map(|axis| {
+            let sign = orient2d(&e[0], &e[1], &e[2], axis);
+            (sign != Sign::Zero).then_some(Tri {
+                id,
+                v,
+                p,
+                axis,
+                sign,
+            })
+        })
+    }
+
+    fn corner(&self, k: usize) -> Point {
+        Point::Explicit(self.p[k])
+    }
+
+    /// The smallest feature of this (closed) triangle containing `x`, which must lie in
+    /// the triangle's plane; `None` when `x` is outside.
+    pub fn locate(&self, x: &Point) -> Option<Feature> {
+        let o: [Sign; 3] = std::array::from_fn(|k| {
+            orient2d(&self.corner(k), &self.corner((k + 1) % 3), x, self.axis).times(self.sign)
+        });
+        if o.contains(&Sign::Negative) {
+            return None;
+        }
+        // Edge k runs from corner k to corner k+1.
+        match o.map(|s| s == Sign::Zero) {
+            [false, false, false] => Some(Feature::Face(self.id)),
+            [true, false, false] => Some(edge(self.v[0], self.v[1])),
+            [false, true, false] => Some(edge(self.v[1], self.v[2])),
+            [false, false, true] => Some(edge(self.v[2], self.v[0])),
+            [true, true, false] => Some(Feature::Vertex(self.v[1])),
+            [false, true, true] => Some(Feature::Vertex(self.v[2])),
+            [true, false, true] => Some(Feature::Vertex(self.v[0])),
+            [true, true, true] => None, // impossible for a non-degenerate triangle
+        }
+    }
+}
+
+fn approx_normal(p: &[[f64; 3]; 3]) -> [f64; 3] {
+    let u: [f64; 3] = std::array::from_fn(|k| p[1][k] - p[0][k]);
+    let v: [f64; 3] = std::array::from_fn(|k| p[2][k] - p[0][k]);
+    [
+        u[1] * v[2] - u[2] * v[1],
+        u[2] * v[0] - u[0] * v[2],
+        u[0] * v[1] - u[1] * v[0],
+    ]
+}
+
+/// What two triangles share.
+#[derive(Clone, Debug, PartialEq)]
+pub enum TriTri {
+    /// Nothing.
+    None,
+    /// One point (touching).
+    Point(Label),
+    /// A segment between two distinct points (non-coplanar triangles).
+    Segment([Label; 2]),
+    /// Coplanar triangles: the parts of each triangle's edges inside the other (the
+    /// boundary of their overlap and the edges crossing it), and isolated touching points.
+    Coplanar {
+        /// Segments, each between two distinct points.
+        segments: Vec<[Label; 2]>,
+        /// Points where the triangles only touch.
+        points: Vec<Label>,
+    },
+}
+
+/// A point on the other triangle's plane, with the feature of its own triangle it lies on.
+struct OnPlane {
+    point: Point,
+    own: Feature,
+}
+
+/// The points of `t` on the plane of `o`, given the sides `s` of `t`'s corners: corners on
+/// the plane and crossings of edges whose ends are on opposite sides.
+fn on_plane(t: &Tri, s: [Sign; 3], o: &Tri) -> Vec<OnPlane> {
+    let mut out = Vec::with_capacity(2);
+    for (i, side) in s.iter().enumerate() {
+        if *side == Sign::Zero {
+            out.push(OnPlane {
+                point: t.corner(i),
+                own: Feature::Vertex(t.v[i]),
+            });
+        }
+    }
+    for i in 0..3 {
+        let j = (i + 1) % 3;
+        if s[i].times(s[j]) == Sign::Negative {
+            out.push(OnPlane {
+                point: Point::Lpi {
+                    p: t.p[i],
+                    q: t.p[j],
+                    a: o.p[0],
+                    b: o.p[1],
+                    c: o.p[2],
+                },
+                own: edge(t.v[i], t.v[j]),
+            });
+        }
+    }
+    out
+}
+
+/// Intersects triangles `a` (mesh A) and `b` (mesh B) exactly.
+pub fn intersect(a: &Tri, b: &Tri) -> TriTri {
+    let sa =
+        a.p.map(|p| orient3d_explicit(&b.p[0], &b.p[1], &b.p[2], &p));
+    if sa[0] != Sign::Zero && sa[0] == sa[1] && sa[1] == sa[2] {
+        return TriTri::None;
+    }
+    if sa == [Sign::Zero; 3] {
+        return coplanar(a, b);
+    }
+    let sb =
+        b.p.map(|p| orient3d_explicit(&a.p[0], &a.p[1], &a.p[2], &p));
+    if sb[0] != Sign::Zero && sb[0] == sb[1] && sb[1] == sb[2] {
+        return TriTri::None;
+    }
+    // Both triangles meet the line L where the planes cross; order points along an axis
+    // in which L's direction is (exactly) non-zero.
+    let d = {
+        let (n, m) = (approx_normal(&a.p), approx_normal(&b.p));
+        [
+            n[1] * m[2] - n[2] * m[1],
+            n[2] * m[0] - n[0] * m[2],
+            n[0] * m[1] - n[1] * m[0],
+        ]
+    };
+    let mut axes = [0, 1, 2];
+    axes.sort_by(|&i, &j| d[j].abs().total_cmp(&d[i].abs()));
+    let Some(axis) = axes
+        .into_iter()
+        .find(|&k| normals_cross_sign(&a.p, &b.p, k) != Sign::Zero)
+    else {
+        return TriTri::None; // parallel distinct planes cannot get here; stay safe
+    };
+    let sorted = |mut v: Vec<OnPlane>| {
+        v.sort_by(|x, y| cmp_coord(&x.point, &y.point, axis));
+        v
+    };
+    let ia = sorted(on_plane(a, sa, b));
+    let ib = sorted(on_plane(b, sb, a));
+    let (Some(a_lo), Some(b_lo)) = (ia.first(), ib.first()) else {
+        return TriTri::None;
+    };
+    let (a_hi, b_hi) = (ia.last().unwrap_or(a_lo), ib.last().unwrap_or(b_lo));
+    // Overlap of the two collinear intervals: [later start, earlier end].
+    let lo_from_a = cmp_coord(&a_lo.point, &b_lo.point, axis) != Ordering::Less;
+    let hi_from_a = cmp_coord(&a_hi.point, &b_hi.point, axis) != Ordering::Greater;
+    let lo = if lo_from_a { a_lo } else { b_lo };
+    let hi = if hi_from_a { a_hi } else { b_hi };
+    if cmp_coord(&lo.point, &hi.point, axis) == Ordering::Greater {
+        return TriTri::None;
+    }
+    let label = |x: &OnPlane, from_a: bool| -> Option<Label> {
+        Some(if from_a {
+            Label {
+                a: x.own,
+                b: b.locate(&x.point)?,
+            }
+        } else {
+            Label {
+                a: a.locate(&x.point)?,
+                b: x.own,
+            }
+        })
+    };
+    let (Some(l0), Some(l1)) = (label(lo, lo_from_a), label(hi, hi_from_a)) else {
+        debug_assert!(false, "an overlap end lies outside a triangle");
+        return TriTri::None;
+    };
+    if l0 == l1 || same_point(&lo.point, &hi.point) {
+        TriTri::Point(l0)
+    } else {
+        TriTri::Segment([l0, l1])
+    }
+}
+
+/// Coplanar triangles: each edge clipped to the other triangle.
+fn coplanar(a: &Tri, b: &Tri) -> TriTri {
+    let mut segments: Vec<[Label; 2]> = Vec::new();
+    let mut points: Vec<Label> = Vec::new();
+    for (own, other, own_is_a) in [(a, b, true), (b, a, false)] {
+        for i in 0..3 {
+            match clip_edge(own, i, other, own_is_a) {
+                Clip::None => {}
+                Clip::Point(l) => points.push(l),
+                Clip::Segment(mut s) => {
+                    s.sort();
+                    segments.push(s);
+                }
+            }
+        }
+    }
+    segments.sort();
+    segments.dedup();
+    points.sort();
+    points.dedup();
+    points.retain(|p| !segments.iter().any(|s| s.contains(p)));
+    if segments.is_empty() && points.is_empty() {
+        TriTri::None
+    } else {
+        TriTri::Coplanar { segments, points }
+    }
+}
+
+enum Clip {
+    None,
+    Point(Label),
+    Segment([Label; 2]),
+}
+
+/// The part of edge `i` of `own` inside the coplanar triangle `other`.
+fn clip_edge(own: &Tri, i: usize, other: &Tri, own_is_a: bool) -> Clip {
+    let j = (i + 1) % 3;
+    let (p, q) = (own.corner(i), own.corner(j));
+    let own_edge = edge(own.v[i], own.v[j]);
+    let mk = |own_f: Feature, other_f: Feature| {
+        if own_is_a {
+            Label {
+                a: own_f,
+                b: other_f,
+            }
+        } else {
+            Label {
+                a: other_f,
+                b: own_f,
+            }
+        }
+    };
+    // Along the edge, order by its longest coordinate (non-zero: the corners differ there).
+    let axis = (0..3)
+        .max_by(|&x, &y| {
+            (own.p[j][x] - own.p[i][x])
+                .abs()
+                .total_cmp(&(own.p[j][y] - own.p[i][y]).abs())
+        })
+        .unwrap_or(0);
+    let proj = other.axis;
+    let mut cands: Vec<(Point, Label)> = Vec::new();
+    for (k, x) in [(i, &p), (j, &q)] {
+        if let Some(f) = other.locate(x) {
+            cands.push((x.clone(), mk(Feature::Vertex(own.v[k]), f)));
+        }
+    }
+    let between = |w: &Point| {
+        let (a, b) = (cmp_coord(&p, w, axis), cmp_coord(w, &q, axis));
+        a != Ordering::Equal && a == b
+    };
+    for m in 0..3 {
+        let w = other.corner(m);
+        if orient2d(&p, &q, &w, proj) == Sign::Zero && between(&w) {
+            cands.push((w, mk(own_edge, Feature::Vertex(other.v[m]))));
+        }
+    }
+    for m in 0..3 {
+        let n = (m + 1) % 3;
+        let (w0, w1) = (other.corner(m), other.corner(n));
+        let crosses = |s: Sign, t: Sign| s.times(t) == Sign::Negative;
+        if crosses(orient2d(&w0, &w1, &p, proj), orient2d(&w0, &w1, &q, proj))
+            && crosses(orient2d(&p, &q, &w0, proj), orient2d(&p, &q, &w1, proj))
+        {
+            let x = Point::Ssi {
+                p: own.p[i],
+                q: own.p[j],
+                r: other.p[m],
+                s: other.p[n],
+                axis: proj as u8,
+            };
+            cands.push((x, mk(own_edge, edge(other.v[m], other.v[n]))));
+        }
+    }
+    cands.sort_by(|x, y| cmp_coord(&x.0, &y.0, axis));
+    match cands.as_slice() {
+        [] => Clip::None,
+        [only] => Clip::Point(only.1),
+        [first, .., last] => {
+            if same_point(&first.0, &last.0) {
+                Clip::Point(first.1)
+            } else {
+                Clip::Segment([first.1, last.1])
+            }
+        }
+    }
+}
