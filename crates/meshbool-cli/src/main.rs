@@ -8,7 +8,7 @@ use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use meshbool::io::{self, Format};
 use meshbool::measure::{mesh_stats, MeshStats};
-use meshbool::Mesh;
+use meshbool::{intersect, weld_exact, Mesh};
 
 #[derive(Parser)]
 #[command(
@@ -50,6 +50,37 @@ enum Command {
         #[arg(long, value_parser = parse_format)]
         to: Option<Format>,
     },
+    /// Compute the exact intersection curves of two meshes and write them as polylines
+    /// (.obj `l` elements, .dxf 3D POLYLINEs, or .json).
+    Curves {
+        /// First mesh.
+        a: PathBuf,
+        /// Second mesh.
+        b: PathBuf,
+        /// Output file for the polylines (.obj, .dxf or .json).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// Leave out segments that only bound coplanar overlaps (shared faces).
+        #[arg(long)]
+        no_coplanar: bool,
+        /// Print a JSON summary on stdout.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+#[derive(serde::Serialize)]
+struct CurvesSummary {
+    loops: usize,
+    open_chains: usize,
+    total_length: f64,
+    points: usize,
+    segments: usize,
+    coplanar_segments: usize,
+    touching_points: usize,
+    candidate_pairs: usize,
+    degenerate_triangles: [usize; 2],
+    seconds: f64,
 }
 
 fn parse_format(s: &str) -> Result<Format, String> {
@@ -167,6 +198,71 @@ fn run(cli: Cli) -> Result<()> {
                 mesh.triangle_count(),
                 mesh.vertex_count()
             );
+        }
+        Command::Curves {
+            a,
+            b,
+            output,
+            no_coplanar,
+            json,
+        } => {
+            let (ma, mb) = (
+                weld_exact(&read(&a, None)?).mesh,
+                weld_exact(&read(&b, None)?).mesh,
+            );
+            let start = std::time::Instant::now();
+            let seam = intersect::intersect(&ma, &mb);
+            let curves = intersect::chain(&seam, !no_coplanar);
+            let seconds = start.elapsed().as_secs_f64();
+            let summary = CurvesSummary {
+                loops: curves.iter().filter(|c| c.closed).count(),
+                open_chains: curves.iter().filter(|c| !c.closed).count(),
+                total_length: curves.iter().map(|c| c.length(&seam)).sum(),
+                points: seam.points.len(),
+                segments: seam.segments.len(),
+                coplanar_segments: seam.segments.iter().filter(|s| s.coplanar).count(),
+                touching_points: seam.touching.len(),
+                candidate_pairs: seam.candidate_pairs,
+                degenerate_triangles: seam.degenerate,
+                seconds,
+            };
+            if let Some(out) = &output {
+                let format = Format::for_path(out).with_context(|| {
+                    format!(
+                        "cannot tell the output format from {}: use .obj, .dxf or .json",
+                        out.display()
+                    )
+                })?;
+                let lines: Vec<_> = curves.iter().map(|c| c.to_xyz(&seam)).collect();
+                let mut file = std::io::BufWriter::new(
+                    std::fs::File::create(out)
+                        .with_context(|| format!("creating {}", out.display()))?,
+                );
+                io::write_polylines(&mut file, &lines, format)
+                    .with_context(|| format!("writing {}", out.display()))?;
+                std::io::Write::flush(&mut file)?;
+            }
+            if json {
+                println!("{}", serde_json::to_string_pretty(&summary)?);
+            } else {
+                eprintln!(
+                    "{} loops, {} open chains, total length {}, {} seam points ({:.3} s)",
+                    summary.loops,
+                    summary.open_chains,
+                    summary.total_length,
+                    summary.points,
+                    seconds
+                );
+            }
+            if seam.degenerate != [0, 0] {
+                eprintln!(
+                    "warning: left out degenerate (zero-area) triangles: {} in {}, {} in {}",
+                    seam.degenerate[0],
+                    a.display(),
+                    seam.degenerate[1],
+                    b.display()
+                );
+            }
         }
     }
     Ok(())

@@ -125,3 +125,54 @@ fn usage_errors_exit_2() {
     );
     assert_eq!(meshbool(&["frobnicate"]).status.code(), Some(2));
 }
+
+#[test]
+fn curves_of_terrain_and_cylinder_is_one_loop_in_every_format() {
+    for ext in ["obj", "dxf", "json"] {
+        let out = tmp(&format!("curve.{ext}"));
+        let r = meshbool(&[
+            "curves",
+            data("kap_terrain.obj").to_str().unwrap(),
+            data("kap_cylinder.obj").to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--json",
+        ]);
+        assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+        let v: serde_json::Value = serde_json::from_slice(&r.stdout).unwrap();
+        assert_eq!(v["loops"], 1);
+        assert_eq!(v["open_chains"], 0);
+        let n = v["points"].as_u64().unwrap() as usize;
+        let text = std::fs::read_to_string(&out).unwrap();
+        match ext {
+            "obj" => {
+                assert_eq!(text.lines().filter(|l| l.starts_with("v ")).count(), n);
+                let l: Vec<&str> = text.lines().filter(|l| l.starts_with("l ")).collect();
+                assert_eq!(l.len(), 1);
+                // Closed: the first index is repeated at the end.
+                assert_eq!(l[0].split(' ').nth(1), l[0].split(' ').next_back());
+            }
+            "dxf" => assert_eq!(text.matches("\nVERTEX\n").count(), n),
+            _ => {
+                let j: serde_json::Value = serde_json::from_str(&text).unwrap();
+                assert_eq!(j[0]["closed"], true);
+                assert_eq!(j[0]["points"].as_array().unwrap().len(), n);
+                // UTM coordinates survive in full.
+                assert!(j[0]["points"][0][1].as_f64().unwrap() > 6_772_000.0);
+            }
+        }
+    }
+}
+
+#[test]
+fn curves_rejects_an_unknown_output_extension() {
+    let r = meshbool(&[
+        "curves",
+        data("kirra_cup.obj").to_str().unwrap(),
+        data("kirra_terrain.obj").to_str().unwrap(),
+        "-o",
+        tmp("c.stl").to_str().unwrap(),
+    ]);
+    assert_eq!(r.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&r.stderr).contains("polylines cannot be written"));
+}

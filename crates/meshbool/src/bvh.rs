@@ -18,36 +18,68 @@ const LEAF: usize = 4;
 /// An axis-aligned box as `[min, max]`.
 type Box3 = [[f64; 3]; 2];
 
-fn union(a: &Box3, b: &Box3) -> Box3 {
-    [
-        std::array::from_fn(|k| a[0][k].min(b[0][k])),
-        std::array::from_fn(|k| a[1][k].max(b[1][k])),
-    ]
-}
+/// A box in `f32`, rounded outward so that it contains the `f64` box it was made from.
+type Box3f = [[f32; 3]; 2];
 
 #[inline]
 fn overlaps(a: &Box3, b: &Box3) -> bool {
     (0..3).all(|k| a[0][k] <= b[1][k] && b[0][k] <= a[1][k])
 }
 
-/// A node: its box and either two children or a range of `order`.
+#[inline]
+fn overlaps_f(a: &Box3f, b: &Box3f) -> bool {
+    (0..3).all(|k| a[0][k] <= b[1][k] && b[0][k] <= a[1][k])
+}
+
+fn down(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) > x {
+        f.next_down()
+    } else {
+        f
+    }
+}
+
+fn up(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) < x {
+        f.next_up()
+    } else {
+        f
+    }
+}
+
+fn tri_box(m: &Mesh, t: u32) -> Box3 {
+    let [a, b, c] = m.corners(t as usize);
+    [
+        std::array::from_fn(|k| a[k].min(b[k]).min(c[k])),
+        std::array::from_fn(|k| a[k].max(b[k]).max(c[k])),
+    ]
+}
+
+/// A node in pre-order layout: its left child follows it, `right` is the right child.
 #[derive(Clone, Copy, Debug)]
 struct Node {
-    bbox: Box3,
-    /// Leaf: first index into `order`; inner: index of the left child (right = left + 1).
+    bbox: Box3f,
+    /// Leaf: first index into `order`; inner: index of the right child.
     start: u32,
     /// Leaf: number of triangles (> 0); inner: 0.
     count: u32,
 }
 
-/// A BVH over the triangles of one mesh.
+const EMPTY: Node = Node {
+    bbox: [[0.0; 3]; 2],
+    start: 0,
+    count: 0,
+};
+
+/// A BVH over the triangles of one mesh. It keeps no copy of the mesh: queries take the
+/// mesh again and must be given the same one.
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
     nodes: Vec<Node>,
     /// Triangle ids in leaf order.
     order: Vec<u32>,
-    /// Their boxes, in the same order.
-    boxes: Vec<Box3>,
 }
 
 /// Spreads the low 21 bits of `x` to every third bit.
@@ -60,6 +92,16 @@ fn spread(x: u64) -> u64 {
     (x | x << 2) & 0x1249_2492_4924_9249
 }
 
+/// Leaves in a range of `n` triangles.
+fn leaves(n: usize) -> usize {
+    n.div_ceil(LEAF)
+}
+
+/// The leaf-aligned middle of a range of `n` triangles.
+fn split_at(n: usize) -> usize {
+    (leaves(n) / 2) * LEAF
+}
+
 impl Bvh {
     /// Builds the hierarchy of `mesh` (indices must be in range).
     pub fn new(mesh: &Mesh) -> Self {
@@ -67,98 +109,83 @@ impl Bvh {
         if n == 0 {
             return Bvh::default();
         }
-        let boxes: Vec<Box3> = (0..n)
-            .into_par_iter()
-            .map(|t| {
-                let [a, b, c] = mesh.corners(t);
-                [
-                    std::array::from_fn(|k| a[k].min(b[k]).min(c[k])),
-                    std::array::from_fn(|k| a[k].max(b[k]).max(c[k])),
-                ]
-            })
-            .collect();
-        let all = boxes
-            .par_iter()
-            .copied()
-            .reduce(|| boxes[0], |a, b| union(&a, &b));
+        let Some(all) = mesh.bounds() else {
+            return Bvh::default();
+        };
         let scale: [f64; 3] = std::array::from_fn(|k| {
-            let ext = all[1][k] - all[0][k];
+            let ext = all.max[k] - all.min[k];
             if ext > 0.0 {
                 ((1u64 << 21) - 1) as f64 / ext
             } else {
                 0.0
             }
         });
-        let mut keyed: Vec<(u64, u32)> = boxes
-            .par_iter()
-            .enumerate()
-            .map(|(t, b)| {
+        let mut keyed: Vec<(u64, u32)> = (0..n as u32)
+            .into_par_iter()
+            .map(|t| {
+                let [a, b, c] = mesh.corners(t as usize);
                 let cell = |k: usize| {
-                    let c = 0.5 * (b[0][k] + b[1][k]) - all[0][k];
-                    ((c * scale[k]) as u64).min((1 << 21) - 1)
+                    let centre = (a[k] + b[k] + c[k]) / 3.0 - all.min[k];
+                    ((centre * scale[k]).max(0.0) as u64).min((1 << 21) - 1)
                 };
                 (
                     spread(cell(0)) | spread(cell(1)) << 1 | spread(cell(2)) << 2,
-                    t as u32,
+                    t,
                 )
             })
             .collect();
         keyed.par_sort_unstable();
-        let order: Vec<u32> = keyed.into_iter().map(|(_, t)| t).collect();
-        let mut nodes = Vec::with_capacity(2 * n.div_ceil(LEAF));
-        nodes.push(Node {
-            bbox: all,
-            start: 0,
-            count: 0,
-        });
-        Self::build(&mut nodes, 0, 0, n, &order, &boxes);
-        let boxes = order.iter().map(|&t| boxes[t as usize]).collect();
-        Bvh {
-            nodes,
-            order,
-            boxes,
-        }
+        let order: Vec<u32> = keyed.into_par_iter().map(|(_, t)| t).collect();
+        let mut nodes = vec![EMPTY; 2 * leaves(n) - 1];
+        Self::build(&mut nodes, 0, 0, &order, mesh);
+        Bvh { nodes, order }
     }
 
-    /// Fills node `at` for `order[lo..hi]`.
-    fn build(
-        nodes: &mut Vec<Node>,
-        at: usize,
-        lo: usize,
-        hi: usize,
-        order: &[u32],
-        boxes: &[Box3],
-    ) {
-        if hi - lo <= LEAF {
-            let bbox = order[lo + 1..hi]
-                .iter()
-                .fold(boxes[order[lo] as usize], |b, &t| {
-                    union(&b, &boxes[t as usize])
-                });
-            nodes[at] = Node {
+    /// Fills `nodes` (the pre-order subtree of `order`, whose first node has index `base`
+    /// and whose first triangle is at `offset` in the whole order) and returns its box.
+    fn build(nodes: &mut [Node], base: usize, offset: usize, order: &[u32], mesh: &Mesh) -> Box3f {
+        if order.len() <= LEAF {
+            let b = order[1..].iter().fold(tri_box(mesh, order[0]), |b, &t| {
+                let c = tri_box(mesh, t);
+                [
+                    std::array::from_fn(|k| b[0][k].min(c[0][k])),
+                    std::array::from_fn(|k| b[1][k].max(c[1][k])),
+                ]
+            });
+            let bbox = [b[0].map(down), b[1].map(up)];
+            nodes[0] = Node {
                 bbox,
-                start: lo as u32,
-                count: (hi - lo) as u32,
+                start: offset as u32,
+                count: order.len() as u32,
             };
-            return;
+            return bbox;
         }
-        let left = nodes.len();
-        let empty = Node {
-            bbox: [[0.0; 3]; 2],
-            start: 0,
+        let mid = split_at(order.len());
+        let (head, rest) = nodes.split_at_mut(1);
+        let (left, right) = rest.split_at_mut(2 * leaves(mid) - 1);
+        let (lo, hi) = order.split_at(mid);
+        let right_base = base + 1 + left.len();
+        let (bl, br) = if order.len() > 1 << 14 {
+            rayon::join(
+                || Self::build(left, base + 1, offset, lo, mesh),
+                || Self::build(right, right_base, offset + mid, hi, mesh),
+            )
+        } else {
+            (
+                Self::build(left, base + 1, offset, lo, mesh),
+                Self::build(right, right_base, offset + mid, hi, mesh),
+            )
+        };
+        let bbox = [
+            std::array::from_fn(|k| bl[0][k].min(br[0][k])),
+            std::array::from_fn(|k| bl[1][k].max(br[1][k])),
+        ];
+        head[0] = Node {
+            bbox,
+            start: right_base as u32,
             count: 0,
         };
-        nodes.push(empty);
-        nodes.push(empty);
-        // Leaf-aligned middle keeps leaves full.
-        let mid = lo + ((hi - lo).div_ceil(LEAF) / 2) * LEAF;
-        Self::build(nodes, left, lo, mid, order, boxes);
-        Self::build(nodes, left + 1, mid, hi, order, boxes);
-        nodes[at] = Node {
-            bbox: union(&nodes[left].bbox, &nodes[left + 1].bbox),
-            start: left as u32,
-            count: 0,
-        };
+        bbox
     }
 
     /// Number of triangles indexed.
@@ -171,76 +198,90 @@ impl Bvh {
         self.order.is_empty()
     }
 
-    /// Every pair `(triangle of self, triangle of other)` whose boxes overlap (closed
-    /// boxes: touching counts). Parallel; the pairs come sorted.
-    pub fn overlapping_pairs(&self, other: &Bvh) -> Vec<(u32, u32)> {
+    /// Every pair `(triangle of mesh, triangle of other_mesh)` whose exact boxes overlap
+    /// (closed boxes: touching counts). `self` must be built from `mesh`, `other` from
+    /// `other_mesh`. Parallel; the pairs come sorted.
+    pub fn overlapping_pairs(
+        &self,
+        mesh: &Mesh,
+        other: &Bvh,
+        other_mesh: &Mesh,
+    ) -> Vec<(u32, u32)> {
         if self.is_empty() || other.is_empty() {
             return Vec::new();
         }
-        let mut pairs = self.pairs_below(other, 0, 0, 0);
+        let q = Query {
+            a: self,
+            b: other,
+            ma: mesh,
+            mb: other_mesh,
+        };
+        let mut pairs = q.below(0, 0, 0);
         pairs.par_sort_unstable();
         pairs
     }
+}
 
-    fn pairs_below(&self, other: &Bvh, a: usize, b: usize, depth: u32) -> Vec<(u32, u32)> {
-        let (na, nb) = (&self.nodes[a], &other.nodes[b]);
-        if !overlaps(&na.bbox, &nb.bbox) {
+/// A tree-vs-tree traversal.
+struct Query<'a> {
+    a: &'a Bvh,
+    b: &'a Bvh,
+    ma: &'a Mesh,
+    mb: &'a Mesh,
+}
+
+impl Query<'_> {
+    fn below(&self, x: usize, y: usize, depth: u32) -> Vec<(u32, u32)> {
+        let (na, nb) = (&self.a.nodes[x], &self.b.nodes[y]);
+        if !overlaps_f(&na.bbox, &nb.bbox) {
             return Vec::new();
         }
-        match (na.count > 0, nb.count > 0) {
+        let split_a = match (na.count > 0, nb.count > 0) {
             (true, true) => {
                 let mut out = Vec::new();
-                self.leaf_pairs(other, na, nb, &mut out);
-                out
+                self.leaves(na, nb, &mut out);
+                return out;
             }
-            // Descend into the inner node, or the larger box when both are inner.
-            (false, true) => self.split(other, a, b, true, depth),
-            (true, false) => self.split(other, a, b, false, depth),
+            (false, true) => true,
+            (true, false) => false,
             (false, false) => {
-                let vol = |n: &Node| (0..3).map(|k| n.bbox[1][k] - n.bbox[0][k]).product::<f64>();
-                self.split(other, a, b, vol(na) >= vol(nb), depth)
+                let vol = |n: &Node| {
+                    (0..3)
+                        .map(|k| f64::from(n.bbox[1][k] - n.bbox[0][k]))
+                        .product::<f64>()
+                };
+                vol(na) >= vol(nb)
             }
-        }
-    }
-
-    fn split(
-        &self,
-        other: &Bvh,
-        a: usize,
-        b: usize,
-        left_side: bool,
-        depth: u32,
-    ) -> Vec<(u32, u32)> {
-        let (x, y) = if left_side {
-            let c = self.nodes[a].start as usize;
-            ((c, b), (c + 1, b))
-        } else {
-            let c = other.nodes[b].start as usize;
-            ((a, c), (a, c + 1))
         };
-        if depth < 12 {
-            let (mut l, r) = rayon::join(
-                || self.pairs_below(other, x.0, x.1, depth + 1),
-                || self.pairs_below(other, y.0, y.1, depth + 1),
-            );
-            l.extend(r);
-            l
+        let (p, q) = if split_a {
+            ((x + 1, y), (na.start as usize, y))
         } else {
-            let mut l = self.pairs_below(other, x.0, x.1, depth + 1);
-            l.extend(self.pairs_below(other, y.0, y.1, depth + 1));
-            l
-        }
+            ((x, y + 1), (x, nb.start as usize))
+        };
+        let (mut l, r) = if depth < 12 {
+            rayon::join(
+                || self.below(p.0, p.1, depth + 1),
+                || self.below(q.0, q.1, depth + 1),
+            )
+        } else {
+            (
+                self.below(p.0, p.1, depth + 1),
+                self.below(q.0, q.1, depth + 1),
+            )
+        };
+        l.extend(r);
+        l
     }
 
-    fn leaf_pairs(&self, other: &Bvh, na: &Node, nb: &Node, out: &mut Vec<(u32, u32)>) {
-        let (ra, rb) = (
-            na.start as usize..(na.start + na.count) as usize,
-            nb.start as usize..(nb.start + nb.count) as usize,
-        );
-        for i in ra {
-            for j in rb.clone() {
-                if overlaps(&self.boxes[i], &other.boxes[j]) {
-                    out.push((self.order[i], other.order[j]));
+    fn leaves(&self, na: &Node, nb: &Node, out: &mut Vec<(u32, u32)>) {
+        let ta = &self.a.order[na.start as usize..(na.start + na.count) as usize];
+        let tb = &self.b.order[nb.start as usize..(nb.start + nb.count) as usize];
+        let boxes_b: Vec<Box3> = tb.iter().map(|&j| tri_box(self.mb, j)).collect();
+        for &i in ta {
+            let bi = tri_box(self.ma, i);
+            for (&j, bj) in tb.iter().zip(&boxes_b) {
+                if overlaps(&bi, bj) {
+                    out.push((i, j));
                 }
             }
         }
@@ -252,23 +293,15 @@ mod tests {
     use super::*;
     use crate::shapes::uv_sphere;
 
-    fn tri_box(m: &Mesh, t: usize) -> Box3 {
-        let [a, b, c] = m.corners(t);
-        [
-            std::array::from_fn(|k| a[k].min(b[k]).min(c[k])),
-            std::array::from_fn(|k| a[k].max(b[k]).max(c[k])),
-        ]
-    }
-
     #[test]
     fn broad_phase_finds_exactly_the_brute_force_pairs() {
         let a = uv_sphere([0.0; 3], 1.0, 24, 12);
         let b = uv_sphere([0.5, 0.1, 0.0], 1.0, 20, 10);
-        let pairs = Bvh::new(&a).overlapping_pairs(&Bvh::new(&b));
+        let pairs = Bvh::new(&a).overlapping_pairs(&a, &Bvh::new(&b), &b);
         let mut want = Vec::new();
         for i in 0..a.triangles.len() {
             for j in 0..b.triangles.len() {
-                if overlaps(&tri_box(&a, i), &tri_box(&b, j)) {
+                if overlaps(&tri_box(&a, i as u32), &tri_box(&b, j as u32)) {
                     want.push((i as u32, j as u32));
                 }
             }
@@ -286,7 +319,7 @@ mod tests {
         seen.sort_unstable();
         assert_eq!(seen, (0..m.triangles.len() as u32).collect::<Vec<_>>());
         assert!(Bvh::new(&Mesh::default())
-            .overlapping_pairs(&bvh)
+            .overlapping_pairs(&Mesh::default(), &bvh, &m)
             .is_empty());
     }
 
@@ -294,7 +327,7 @@ mod tests {
     fn touching_boxes_count() {
         let a = Mesh::cuboid([0.0; 3], [1.0; 3]);
         let b = Mesh::cuboid([1.0, 0.0, 0.0], [2.0, 1.0, 1.0]);
-        let pairs = Bvh::new(&a).overlapping_pairs(&Bvh::new(&b));
+        let pairs = Bvh::new(&a).overlapping_pairs(&a, &Bvh::new(&b), &b);
         // a's x = 1 face (triangles 10, 11) touches b's x = 1 face (triangles 8, 9).
         for p in [(10, 8), (10, 9), (11, 8), (11, 9)] {
             assert!(pairs.contains(&p), "{p:?}");

@@ -15,6 +15,18 @@ pub struct Polyline {
 }
 
 impl Polyline {
+    /// The polyline with the seam points' approximate coordinates, for writing out.
+    pub fn to_xyz(&self, seam: &Seam) -> crate::io::PolylineXyz {
+        crate::io::PolylineXyz {
+            points: self
+                .points
+                .iter()
+                .map(|&p| seam.positions[p as usize])
+                .collect(),
+            closed: self.closed,
+        }
+    }
+
     /// Length, measured on the approximate point coordinates.
     pub fn length(&self, seam: &Seam) -> f64 {
         let n = self.points.len();

@@ -56,7 +56,8 @@ pub struct Seam {
     pub sources: Vec<SegmentSource>,
     /// Points where the meshes only touch (not on any segment).
     pub touching: Vec<u32>,
-    /// Degenerate (zero-area) triangles of A and of B, left out of the test.
+    /// Degenerate (zero-area) triangles of A and of B among the broad-phase candidates,
+    /// left out of the test (degenerate triangles elsewhere touch nothing).
     pub degenerate: [usize; 2],
     /// Triangle pairs whose boxes overlapped (broad-phase candidates).
     pub candidate_pairs: usize,
@@ -119,31 +120,33 @@ fn tri(m: &Mesh, t: usize) -> Option<tritri::Tri> {
 /// Degenerate triangles are left out and counted in [`Seam::degenerate`].
 pub fn intersect(a: &Mesh, b: &Mesh) -> Seam {
     let (ba, bb) = rayon::join(|| Bvh::new(a), || Bvh::new(b));
-    let pairs = ba.overlapping_pairs(&bb);
-    let tris = |m: &Mesh| -> Vec<Option<tritri::Tri>> {
-        (0..m.triangles.len())
-            .into_par_iter()
-            .map(|t| tri(m, t))
-            .collect()
-    };
-    // Only triangles in some candidate pair need their projection set up.
-    let (ta, tb) = rayon::join(|| tris(a), || tris(b));
+    let pairs = ba.overlapping_pairs(a, &bb, b);
     let results: Vec<(u32, u32, TriTri)> = pairs
         .par_iter()
         .filter_map(|&(i, j)| {
-            let (x, y) = (ta[i as usize].as_ref()?, tb[j as usize].as_ref()?);
-            match tritri::intersect(x, y) {
+            let (x, y) = (tri(a, i as usize)?, tri(b, j as usize)?);
+            match tritri::intersect(&x, &y) {
                 TriTri::None => None,
                 r => Some((i, j, r)),
             }
         })
         .collect();
+    // Degenerate triangles among the candidates are left out of the test: count them.
+    // (Degenerate triangles elsewhere cannot touch the other mesh and change nothing.)
+    let degenerate = |m: &Mesh, mut ids: Vec<u32>| {
+        ids.par_sort_unstable();
+        ids.dedup();
+        ids.par_iter()
+            .filter(|&&t| tri(m, t as usize).is_none())
+            .count()
+    };
+    let (da, db) = rayon::join(
+        || degenerate(a, pairs.iter().map(|p| p.0).collect()),
+        || degenerate(b, pairs.iter().map(|p| p.1).collect()),
+    );
 
     let mut seam = Seam {
-        degenerate: [
-            ta.iter().filter(|t| t.is_none()).count(),
-            tb.iter().filter(|t| t.is_none()).count(),
-        ],
+        degenerate: [da, db],
         candidate_pairs: pairs.len(),
         ..Seam::default()
     };

@@ -22,7 +22,10 @@ mod dxf;
 mod json;
 mod obj;
 mod ply;
+mod polyline;
 mod stl;
+
+pub use polyline::{write_polylines, PolylineXyz};
 
 /// A file format (with its encoding, where a format has several).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

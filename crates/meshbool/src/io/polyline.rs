@@ -1,0 +1,157 @@
+//! Writing polylines (intersection curves): OBJ `l` elements, DXF 3D `POLYLINE`s, JSON.
+
+use std::io::Write;
+
+use super::{Format, Out};
+use crate::error::{Error, Location, Result};
+
+/// A polyline with its coordinates, open or closed (the first point is not repeated).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PolylineXyz {
+    /// The points in order.
+    pub points: Vec<[f64; 3]>,
+    /// True when the last point connects back to the first.
+    pub closed: bool,
+}
+
+/// Writes `lines` in `format`: OBJ (`v` and `l`; a closed line repeats its first index),
+/// DXF (3D `POLYLINE`, flag 1 when closed) or JSON (`[{"closed":..,"points":[[x,y,z],..]}]`).
+/// Coordinates use the shortest text that reads back to the same `f64`.
+pub fn write_polylines(out: &mut impl Write, lines: &[PolylineXyz], format: Format) -> Result<()> {
+    if let Some((i, _)) = lines
+        .iter()
+        .enumerate()
+        .find(|(_, l)| l.points.iter().flatten().any(|x| !x.is_finite()))
+    {
+        return Err(Error::invalid(
+            Location::Triangle(i),
+            "non-finite polyline coordinate",
+        ));
+    }
+    let mut o = Out::new(out);
+    match format {
+        Format::Obj => {
+            o.bytes(b"# meshbool polylines\n");
+            for l in lines {
+                for p in &l.points {
+                    o.bytes(b"v ")
+                        .f64(p[0])
+                        .bytes(b" ")
+                        .f64(p[1])
+                        .bytes(b" ")
+                        .f64(p[2])
+                        .bytes(b"\n");
+                    o.record_done()?;
+                }
+            }
+            let mut base = 1u64;
+            for l in lines {
+                o.bytes(b"l");
+                let n = l.points.len() as u64;
+                for k in 0..n {
+                    o.bytes(b" ").int(base + k);
+                }
+                if l.closed && n > 0 {
+                    o.bytes(b" ").int(base);
+                }
+                o.bytes(b"\n").record_done()?;
+                base += n;
+            }
+        }
+        Format::Dxf => {
+            o.bytes(b"0\nSECTION\n2\nHEADER\n9\n$ACADVER\n1\nAC1009\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n");
+            for l in lines {
+                o.bytes(b"0\nPOLYLINE\n8\n0\n66\n1\n10\n0\n20\n0\n30\n0\n70\n")
+                    .int(8 + u64::from(l.closed))
+                    .bytes(b"\n");
+                for p in &l.points {
+                    o.bytes(b"0\nVERTEX\n8\n0\n10\n")
+                        .f64(p[0])
+                        .bytes(b"\n20\n")
+                        .f64(p[1]);
+                    o.bytes(b"\n30\n").f64(p[2]).bytes(b"\n70\n32\n");
+                    o.record_done()?;
+                }
+                o.bytes(b"0\nSEQEND\n8\n0\n");
+            }
+            o.bytes(b"0\nENDSEC\n0\nEOF\n");
+        }
+        Format::JsonSoup | Format::JsonKirra => {
+            o.bytes(b"[");
+            for (i, l) in lines.iter().enumerate() {
+                o.bytes(if i == 0 { b"\n" } else { b",\n" });
+                o.bytes(if l.closed {
+                    b"{\"closed\":true,\"points\":["
+                } else {
+                    b"{\"closed\":false,\"points\":["
+                });
+                for (k, p) in l.points.iter().enumerate() {
+                    o.bytes(if k == 0 { b"[" } else { b",[" });
+                    o.f64(p[0])
+                        .bytes(b",")
+                        .f64(p[1])
+                        .bytes(b",")
+                        .f64(p[2])
+                        .bytes(b"]");
+                    o.record_done()?;
+                }
+                o.bytes(b"]}");
+            }
+            o.bytes(b"\n]\n");
+        }
+        other => {
+            return Err(Error::UnknownFormat(format!(
+                "polylines cannot be written as {other}: use .obj, .dxf or .json"
+            )))
+        }
+    }
+    o.finish()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn lines() -> Vec<PolylineXyz> {
+        vec![
+            PolylineXyz {
+                points: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.1]],
+                closed: true,
+            },
+            PolylineXyz {
+                points: vec![[478_614.7, 6_772_313.84, 0.1 + 0.2], [5.0, 6.0, 7.0]],
+                closed: false,
+            },
+        ]
+    }
+
+    fn text(f: Format) -> String {
+        let mut out = Vec::new();
+        write_polylines(&mut out, &lines(), f).unwrap();
+        String::from_utf8(out).unwrap()
+    }
+
+    #[test]
+    fn obj_lines_close_by_repeating_the_first_index() {
+        let t = text(Format::Obj);
+        assert!(t.contains("\nl 1 2 3 1\nl 4 5\n"), "{t}");
+        assert!(t.contains("v 478614.7 6772313.84 0.30000000000000004\n"));
+    }
+
+    #[test]
+    fn json_round_trips_coordinates() {
+        let v: serde_json::Value = serde_json::from_str(&text(Format::JsonSoup)).unwrap();
+        assert_eq!(v[0]["closed"], true);
+        assert_eq!(v[1]["points"][0][2].as_f64(), Some(0.1 + 0.2));
+    }
+
+    #[test]
+    fn dxf_has_closed_flag_and_vertices() {
+        let t = text(Format::Dxf);
+        assert_eq!(t.matches("0\nPOLYLINE\n").count(), 2);
+        assert_eq!(t.matches("0\nVERTEX\n").count(), 5);
+        assert!(t.contains("70\n9\n") && t.contains("70\n8\n"));
+        assert!(t.ends_with("0\nEOF\n"));
+        assert!(write_polylines(&mut Vec::new(), &lines(), Format::StlBinary).is_err());
+    }
+}
