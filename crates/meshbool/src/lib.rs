@@ -28,6 +28,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod arrange;
 pub mod bvh;
 pub mod edges;
 mod error;

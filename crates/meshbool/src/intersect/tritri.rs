@@ -71,6 +71,16 @@ impl Tri {
         })
     }
 
+    /// The projection axis in which the triangle is not degenerate.
+    pub fn axis(&self) -> usize {
+        self.axis
+    }
+
+    /// The triangle's orientation (as given) in the projection dropping [`Tri::axis`].
+    pub fn sign(&self) -> Sign {
+        self.sign
+    }
+
     fn corner(&self, k: usize) -> Point {
         Point::Explicit(self.p[k])
     }

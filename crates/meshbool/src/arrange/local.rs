@@ -1,0 +1,359 @@
+//! Constrained triangulation of one input triangle in its own plane, with exact predicates
+//! on (possibly implicit) points only. Incremental: insert points (walking to the triangle
+//! that holds them, splitting it or the edge they lie on), then constraint segments (by
+//! flipping the edges that cross them, as in Sloan's algorithm), then Delaunay-style flips
+//! of unconstrained edges for shape (an approximate in-circle test chooses a flip, the exact
+//! orientation test allows it).
+
+use crate::kernel::{orient2d, Point, Sign};
+
+const NONE: u32 = u32::MAX;
+
+/// A triangulation of one triangle's interior, vertices given as kernel points.
+pub(crate) struct Local {
+    pub(crate) pts: Vec<Point>,
+    approx: Vec<[f64; 3]>,
+    /// Triangles as local vertex indices, counter-clockwise in the normalised frame.
+    pub(crate) tris: Vec<[u32; 3]>,
+    /// Neighbour across edge k (from corner k to k+1), or NONE on the outer boundary.
+    nbr: Vec<[u32; 3]>,
+    /// Edge k is constrained (a seam segment or the outer boundary).
+    fixed: Vec<[bool; 3]>,
+    axis: usize,
+    sign: Sign,
+    last: u32,
+}
+
+/// What went wrong: the inputs broke an assumption (e.g. a constraint crossing another).
+#[derive(Debug)]
+pub(crate) struct Failed(pub &'static str);
+
+fn rot<T: Copy>(a: [T; 3], k: usize) -> [T; 3] {
+    [a[k % 3], a[(k + 1) % 3], a[(k + 2) % 3]]
+}
+
+impl Local {
+    /// The triangle `corners` (counter-clockwise when `sign` is positive in the projection
+    /// dropping `axis`; `sign` must be non-zero).
+    pub(crate) fn new(corners: [[f64; 3]; 3], axis: usize, sign: Sign) -> Local {
+        Local {
+            pts: corners.iter().map(|&p| Point::Explicit(p)).collect(),
+            approx: corners.to_vec(),
+            tris: vec![[0, 1, 2]],
+            nbr: vec![[NONE; 3]],
+            fixed: vec![[true; 3]],
+            axis,
+            sign,
+            last: 0,
+        }
+    }
+
+    fn orient(&self, a: u32, b: u32, c: u32) -> Sign {
+        orient2d(
+            &self.pts[a as usize],
+            &self.pts[b as usize],
+            &self.pts[c as usize],
+            self.axis,
+        )
+        .times(self.sign)
+    }
+
+    fn orient_pt(&self, a: u32, b: u32, x: &Point) -> Sign {
+        orient2d(&self.pts[a as usize], &self.pts[b as usize], x, self.axis).times(self.sign)
+    }
+
+    /// Points `t`'s neighbour that pointed to `old` at `new` instead.
+    fn relink(&mut self, t: u32, old: u32, new: u32) {
+        if t != NONE {
+            for k in 0..3 {
+                if self.nbr[t as usize][k] == old {
+                    self.nbr[t as usize][k] = new;
+                }
+            }
+        }
+    }
+
+    /// Rotates triangle `t`'s arrays so that its slot `k` becomes slot 0.
+    fn rotate(&mut self, t: u32, k: usize) {
+        let t = t as usize;
+        self.tris[t] = rot(self.tris[t], k);
+        self.nbr[t] = rot(self.nbr[t], k);
+        self.fixed[t] = rot(self.fixed[t], k);
+    }
+
+    fn slot_of(&self, t: u32, neighbour: u32) -> usize {
+        (0..3)
+            .find(|&k| self.nbr[t as usize][k] == neighbour)
+            .expect("neighbours link both ways")
+    }
+
+    fn push(&mut self, v: [u32; 3], n: [u32; 3], f: [bool; 3]) -> u32 {
+        self.tris.push(v);
+        self.nbr.push(n);
+        self.fixed.push(f);
+        (self.tris.len() - 1) as u32
+    }
+
+    /// Inserts `x` (which must lie in the closed outer triangle) and returns its index; a
+    /// point equal to an existing vertex returns that vertex.
+    pub(crate) fn insert(&mut self, x: Point, approx: [f64; 3]) -> Result<u32, Failed> {
+        let mut t = self.last.min(self.tris.len() as u32 - 1);
+        let mut steps = 0usize;
+        let mut turn = 0usize;
+        loop {
+            steps += 1;
+            if steps > 4 * self.tris.len() + 16 {
+                return Err(Failed("point location did not converge"));
+            }
+            let v = self.tris[t as usize];
+            let o: [Sign; 3] = std::array::from_fn(|k| self.orient_pt(v[k], v[(k + 1) % 3], &x));
+            // Leave through a negative edge, starting the search at a rotating slot so that
+            // the walk cannot cycle.
+            turn += 1;
+            if let Some(k) = (0..3)
+                .map(|i| (i + turn) % 3)
+                .find(|&k| o[k] == Sign::Negative)
+            {
+                let n = self.nbr[t as usize][k];
+                if n == NONE {
+                    return Err(Failed("point outside its triangle"));
+                }
+                t = n;
+                continue;
+            }
+            let zeros: Vec<usize> = (0..3).filter(|&k| o[k] == Sign::Zero).collect();
+            let id = self.pts.len() as u32;
+            match zeros.as_slice() {
+                [] => {
+                    self.pts.push(x);
+                    self.approx.push(approx);
+                    self.split_face(t, id);
+                }
+                [k] => {
+                    self.pts.push(x);
+                    self.approx.push(approx);
+                    self.split_edge(t, *k, id);
+                }
+                // On two edges: it is their shared corner.
+                [0, 1] => return Ok(v[1]),
+                [1, 2] => return Ok(v[2]),
+                [0, 2] => return Ok(v[0]),
+                _ => return Err(Failed("degenerate triangle in the triangulation")),
+            }
+            self.last = t;
+            return Ok(id);
+        }
+    }
+
+    fn split_face(&mut self, t: u32, x: u32) {
+        let [a, b, c] = self.tris[t as usize];
+        let [nab, nbc, nca] = self.nbr[t as usize];
+        let [fab, fbc, fca] = self.fixed[t as usize];
+        let t1 = self.push([b, c, x], [nbc, NONE, t], [fbc, false, false]);
+        let t2 = self.push([c, a, x], [nca, t, t1], [fca, false, false]);
+        self.nbr[t1 as usize][1] = t2;
+        self.tris[t as usize] = [a, b, x];
+        self.nbr[t as usize] = [nab, t1, t2];
+        self.fixed[t as usize] = [fab, false, false];
+        self.relink(nbc, t, t1);
+        self.relink(nca, t, t2);
+    }
+
+    fn split_edge(&mut self, t: u32, k: usize, x: u32) {
+        self.rotate(t, k);
+        let u = self.nbr[t as usize][0];
+        let [p, q, r] = self.tris[t as usize];
+        let [_, nqr, nrp] = self.nbr[t as usize];
+        let [f, fqr, frp] = self.fixed[t as usize];
+        // t becomes (p, x, r); tb = (x, q, r).
+        let tb = self.push([x, q, r], [NONE, nqr, t], [f, fqr, false]);
+        self.tris[t as usize] = [p, x, r];
+        self.nbr[t as usize] = [NONE, tb, nrp];
+        self.fixed[t as usize] = [f, false, frp];
+        self.relink(nqr, t, tb);
+        if u != NONE {
+            let m = self.slot_of(u, t);
+            self.rotate(u, m);
+            let [_, _, s] = self.tris[u as usize];
+            let [_, nps, nsq] = self.nbr[u as usize];
+            let [_, fps, fsq] = self.fixed[u as usize];
+            // u = (q, p, s) becomes (x, p, s); ua = (q, x, s).
+            let ua = self.push([q, x, s], [tb, u, nsq], [f, false, fsq]);
+            self.tris[u as usize] = [x, p, s];
+            self.nbr[u as usize] = [t, nps, ua];
+            self.fixed[u as usize] = [f, fps, false];
+            self.relink(nsq, u, ua);
+            self.nbr[t as usize][0] = u;
+            self.nbr[tb as usize][0] = ua;
+        }
+    }
+
+    /// Flips the edge in slot `k` of `t`; the caller has checked that the quad is strictly
+    /// convex. Returns the two triangles now sharing the new diagonal.
+    fn flip(&mut self, t: u32, k: usize) -> (u32, u32) {
+        self.rotate(t, k);
+        let u = self.nbr[t as usize][0];
+        let m = self.slot_of(u, t);
+        self.rotate(u, m);
+        let [a, b, c] = self.tris[t as usize];
+        let [_, nbc, nca] = self.nbr[t as usize];
+        let [_, fbc, fca] = self.fixed[t as usize];
+        let d = self.tris[u as usize][2];
+        let [_, nad, ndb] = self.nbr[u as usize];
+        let [_, fad, fdb] = self.fixed[u as usize];
+        // t' = (c, a, d), u' = (d, b, c).
+        self.tris[t as usize] = [c, a, d];
+        self.nbr[t as usize] = [nca, nad, u];
+        self.fixed[t as usize] = [fca, fad, false];
+        self.tris[u as usize] = [d, b, c];
+        self.nbr[u as usize] = [ndb, nbc, t];
+        self.fixed[u as usize] = [fdb, fbc, false];
+        self.relink(nad, u, t);
+        self.relink(nbc, t, u);
+        (t, u)
+    }
+
+    /// Whether flipping slot `k` of `t` is allowed: interior, unconstrained, strictly convex.
+    fn flippable(&self, t: u32, k: usize) -> bool {
+        let u = self.nbr[t as usize][k];
+        if u == NONE || self.fixed[t as usize][k] {
+            return false;
+        }
+        let v = rot(self.tris[t as usize], k);
+        let (a, b, c) = (v[0], v[1], v[2]);
+        let m = self.slot_of(u, t);
+        let d = rot(self.tris[u as usize], m)[2];
+        self.orient(c, a, d) == Sign::Positive && self.orient(d, b, c) == Sign::Positive
+    }
+
+    fn find_edge(&self, a: u32, b: u32) -> Option<(u32, usize)> {
+        (0..self.tris.len()).find_map(|t| {
+            let v = self.tris[t];
+            (0..3)
+                .find(|&k| v[k] == a && v[(k + 1) % 3] == b)
+                .map(|k| (t as u32, k))
+        })
+    }
+
+    fn mark_fixed(&mut self, a: u32, b: u32) -> bool {
+        let mut found = false;
+        for (x, y) in [(a, b), (b, a)] {
+            if let Some((t, k)) = self.find_edge(x, y) {
+                self.fixed[t as usize][k] = true;
+                found = true;
+            }
+        }
+        found
+    }
+
+    /// Makes segment `p q` (two vertices) an edge of the triangulation.
+    pub(crate) fn constrain(&mut self, p: u32, q: u32) -> Result<(), Failed> {
+        if p == q || self.mark_fixed(p, q) {
+            return Ok(());
+        }
+        // A vertex exactly on the open segment splits it.
+        let side: Vec<Sign> = (0..self.pts.len() as u32)
+            .map(|v| self.orient(p, q, v))
+            .collect();
+        let axis_cmp = |a: u32, b: u32| {
+            // Order along p q by a coordinate in which they differ.
+            let (pa, pb) = (&self.approx[p as usize], &self.approx[q as usize]);
+            let k = (0..3)
+                .max_by(|&i, &j| (pa[i] - pb[i]).abs().total_cmp(&(pa[j] - pb[j]).abs()))
+                .unwrap_or(0);
+            crate::kernel::cmp_coord(&self.pts[a as usize], &self.pts[b as usize], k)
+        };
+        for v in 0..self.pts.len() as u32 {
+            if v != p && v != q && side[v as usize] == Sign::Zero {
+                let (x, y) = (axis_cmp(p, v), axis_cmp(v, q));
+                if x != std::cmp::Ordering::Equal && x == y {
+                    self.constrain(p, v)?;
+                    return self.constrain(v, q);
+                }
+            }
+        }
+        let crosses = |l: &Local, a: u32, b: u32| {
+            side[a as usize].times(side[b as usize]) == Sign::Negative
+                && l.orient(a, b, p).times(l.orient(a, b, q)) == Sign::Negative
+        };
+        let mut queue: Vec<(u32, u32)> = Vec::new();
+        for t in 0..self.tris.len() {
+            let v = self.tris[t];
+            for k in 0..3 {
+                let (a, b) = (v[k], v[(k + 1) % 3]);
+                if a < b && crosses(self, a, b) {
+                    if self.fixed[t][k] {
+                        return Err(Failed("a constraint crosses another constraint"));
+                    }
+                    queue.push((a, b));
+                }
+            }
+        }
+        let mut guard = 0usize;
+        while let Some((a, b)) = queue.pop() {
+            guard += 1;
+            if guard > 64 * (self.tris.len() + 16) {
+                return Err(Failed("constraint insertion did not converge"));
+            }
+            let Some((t, k)) = self.find_edge(a, b) else {
+                continue;
+            };
+            if !self.flippable(t, k) {
+                queue.insert(0, (a, b));
+                continue;
+            }
+            let (t, _) = self.flip(t, k);
+            // The new diagonal is (c, d): slot 2 of t' = (c, a, d) runs d → c.
+            let v = self.tris[t as usize];
+            let (c, d) = (v[0], v[2]);
+            if crosses(self, c, d) {
+                queue.insert(0, (c.min(d), c.max(d)));
+            }
+        }
+        if self.mark_fixed(p, q) {
+            Ok(())
+        } else {
+            Err(Failed("constraint missing after insertion"))
+        }
+    }
+
+    /// Lawson flips towards a Delaunay triangulation of the unconstrained edges. The
+    /// in-circle test is approximate (it only chooses); validity is the exact convexity test.
+    pub(crate) fn improve(&mut self) {
+        let (i, j) = ((self.axis + 1) % 3, (self.axis + 2) % 3);
+        let xy = |l: &Local, v: u32| robust::Coord {
+            x: l.approx[v as usize][i],
+            y: l.approx[v as usize][j],
+        };
+        let mut budget = 8 * self.tris.len() + 16;
+        let mut changed = true;
+        while changed && budget > 0 {
+            changed = false;
+            for t in 0..self.tris.len() as u32 {
+                for k in 0..3 {
+                    if budget == 0 || !self.flippable(t, k) {
+                        continue;
+                    }
+                    let v = rot(self.tris[t as usize], k);
+                    let u = self.nbr[t as usize][k];
+                    let d = rot(self.tris[u as usize], self.slot_of(u, t))[2];
+                    let ic = robust::incircle(
+                        xy(self, v[0]),
+                        xy(self, v[1]),
+                        xy(self, v[2]),
+                        xy(self, d),
+                    ) * match self.sign {
+                        Sign::Negative => -1.0,
+                        _ => 1.0,
+                    };
+                    if ic > 0.0 {
+                        self.flip(t, k);
+                        budget -= 1;
+                        changed = true;
+                        break;
+                    }
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,197 @@
+//! Arrangement: every triangle cut by the seam is re-triangulated in its own plane with its
+//! seam points and seam segments as constraints, so that both meshes become conforming
+//! along the seam: one vertex per seam point, shared (by number within each mesh, by exact
+//! position across the two), and every seam segment an edge of both.
+//!
+//! Pipeline position: after [`crate::intersect`], before classification. Seam points on a
+//! triangle's edge are inserted into both triangles of that edge, so no T-junctions appear.
+
+use rayon::prelude::*;
+use rustc_hash::{FxHashMap, FxHashSet};
+
+use crate::intersect::tritri::Tri;
+use crate::intersect::{Feature, Seam};
+use crate::kernel::Point;
+use crate::Mesh;
+
+mod local;
+
+/// Which input mesh to arrange.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Side {
+    /// The first mesh of the seam.
+    A,
+    /// The second mesh of the seam.
+    B,
+}
+
+/// One mesh cut along the seam.
+#[derive(Clone, Debug, Default)]
+pub struct Arranged {
+    /// The conforming mesh: the input vertices first (same ids), then one vertex per seam
+    /// point that is not an input vertex of this mesh (approximate coordinates).
+    pub mesh: Mesh,
+    /// The exact point of every vertex.
+    pub points: Vec<Point>,
+    /// For every output triangle, the input triangle it is part of.
+    pub parent: Vec<u32>,
+    /// For every seam point, its vertex in [`Arranged::mesh`].
+    pub seam_vertex: Vec<u32>,
+    /// The seam segments as vertex pairs `[lo, hi]` of [`Arranged::mesh`] (sorted), each
+    /// an edge of the mesh.
+    pub seam_edges: Vec<[u32; 2]>,
+    /// Input triangles that could not be re-triangulated, with the reason (inconsistent
+    /// input, such as a self-intersecting mesh), kept uncut; empty for valid inputs.
+    pub failed: Vec<(u32, &'static str)>,
+}
+
+fn feature(l: &crate::intersect::Label, side: Side) -> Feature {
+    match side {
+        Side::A => l.a,
+        Side::B => l.b,
+    }
+}
+
+/// Cuts `mesh` (side `side` of `seam`) along the seam. `mesh` must be the mesh the seam was
+/// computed from on that side.
+pub fn arrange(mesh: &Mesh, seam: &Seam, side: Side) -> Arranged {
+    // Vertex ids of seam points.
+    let mut positions = mesh.positions.clone();
+    let mut points: Vec<Point> = mesh.positions.iter().map(|&p| Point::Explicit(p)).collect();
+    let mut face_pts: FxHashMap<u32, Vec<u32>> = FxHashMap::default();
+    let mut edge_pts: FxHashMap<(u32, u32), Vec<u32>> = FxHashMap::default();
+    let seam_vertex: Vec<u32> = seam
+        .points
+        .iter()
+        .enumerate()
+        .map(|(s, l)| match feature(l, side) {
+            Feature::Vertex(v) => v,
+            f => {
+                let id = positions.len() as u32;
+                positions.push(seam.positions[s]);
+                points.push(seam.exact[s].clone());
+                match f {
+                    Feature::Face(t) => face_pts.entry(t).or_default().push(id),
+                    Feature::Edge(u, v) => edge_pts.entry((u, v)).or_default().push(id),
+                    Feature::Vertex(_) => unreachable!(),
+                }
+                id
+            }
+        })
+        .collect();
+    let seam_edges: Vec<[u32; 2]> = seam
+        .segments
+        .iter()
+        .map(|s| {
+            let (x, y) = (
+                seam_vertex[s.ends[0] as usize],
+                seam_vertex[s.ends[1] as usize],
+            );
+            [x.min(y), x.max(y)]
+        })
+        .collect();
+    // Constraints per triangle.
+    let mut cons: FxHashMap<u32, Vec<[u32; 2]>> = FxHashMap::default();
+    for src in &seam.sources {
+        let t = match side {
+            Side::A => src.tri_a,
+            Side::B => src.tri_b,
+        };
+        cons.entry(t)
+            .or_default()
+            .push(seam_edges[src.segment as usize]);
+    }
+    let mut cut: FxHashSet<u32> = face_pts.keys().copied().collect();
+    cut.extend(cons.keys().copied());
+    if !edge_pts.is_empty() {
+        for (t, tri) in mesh.triangles.iter().enumerate() {
+            if (0..3).any(|k| {
+                let (u, v) = (tri[k], tri[(k + 1) % 3]);
+                edge_pts.contains_key(&(u.min(v), u.max(v)))
+            }) {
+                cut.insert(t as u32);
+            }
+        }
+    }
+    let mut cut: Vec<u32> = cut.into_iter().collect();
+    cut.sort_unstable();
+
+    type Cut = (u32, Result<Vec<[u32; 3]>, local::Failed>);
+    let results: Vec<Cut> = cut
+        .par_iter()
+        .map(|&t| {
+            let tri = mesh.triangles[t as usize];
+            let corners = mesh.corners(t as usize);
+            let Some(info) = Tri::new(t, tri, corners) else {
+                return (t, Err(local::Failed("degenerate triangle")));
+            };
+            let mut lt = local::Local::new(corners, info.axis(), info.sign());
+            let mut to_local: FxHashMap<u32, u32> = FxHashMap::default();
+            for (k, &v) in tri.iter().enumerate() {
+                to_local.insert(v, k as u32);
+            }
+            let mut ids: Vec<u32> = tri.to_vec();
+            let mut run = || -> Result<Vec<[u32; 3]>, local::Failed> {
+                let mut mine: Vec<u32> = face_pts.get(&t).cloned().unwrap_or_default();
+                for k in 0..3 {
+                    let (u, v) = (tri[k], tri[(k + 1) % 3]);
+                    if let Some(p) = edge_pts.get(&(u.min(v), u.max(v))) {
+                        mine.extend(p);
+                    }
+                }
+                for g in mine {
+                    let l = lt.insert(points[g as usize].clone(), positions[g as usize])?;
+                    if l as usize == ids.len() {
+                        ids.push(g);
+                    }
+                    to_local.insert(g, l);
+                }
+                for c in cons.get(&t).map(Vec::as_slice).unwrap_or(&[]) {
+                    let (Some(&p), Some(&q)) = (to_local.get(&c[0]), to_local.get(&c[1])) else {
+                        return Err(local::Failed("constraint end not in the triangle"));
+                    };
+                    lt.constrain(p, q)?;
+                }
+                lt.improve();
+                Ok(lt.tris.iter().map(|v| v.map(|l| ids[l as usize])).collect())
+            };
+            (t, run())
+        })
+        .collect();
+
+    let mut replaced: FxHashMap<u32, Vec<[u32; 3]>> = FxHashMap::default();
+    let mut failed = Vec::new();
+    for (t, r) in results {
+        match r {
+            Ok(tris) => {
+                replaced.insert(t, tris);
+            }
+            Err(local::Failed(why)) => failed.push((t, why)),
+        }
+    }
+    let mut triangles = Vec::with_capacity(mesh.triangles.len() + 2 * replaced.len());
+    let mut parent = Vec::with_capacity(triangles.capacity());
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        match replaced.get(&(t as u32)) {
+            Some(sub) => {
+                triangles.extend_from_slice(sub);
+                parent.extend(std::iter::repeat_n(t as u32, sub.len()));
+            }
+            None => {
+                triangles.push(*tri);
+                parent.push(t as u32);
+            }
+        }
+    }
+    Arranged {
+        mesh: Mesh::new(positions, triangles),
+        points,
+        parent,
+        seam_vertex,
+        seam_edges,
+        failed,
+    }
+}
+
+#[cfg(test)]
+mod tests;

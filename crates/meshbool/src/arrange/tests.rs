@@ -1,0 +1,170 @@
+use super::*;
+use crate::edges::{EdgeKind, EdgeTopology};
+use crate::intersect::intersect;
+use crate::measure::{area, mesh_stats, signed_volume};
+use crate::shapes::uv_sphere;
+
+fn edges_of(m: &Mesh) -> FxHashSet<[u32; 2]> {
+    let topo = EdgeTopology::new(m);
+    topo.edges.iter().copied().collect()
+}
+
+/// Both arranged meshes: closed inputs stay closed and manifold, area and volume are
+/// preserved, and every seam segment is an edge of each.
+fn check_closed_pair(a: &Mesh, b: &Mesh) {
+    let seam = intersect(a, b);
+    for (m, side) in [(a, Side::A), (b, Side::B)] {
+        let arr = arrange(m, &seam, side);
+        assert!(arr.failed.is_empty(), "{:?}", arr.failed);
+        let s = mesh_stats(&arr.mesh);
+        assert_eq!(
+            (s.boundary_edges, s.non_manifold_edges, s.inconsistent_edges),
+            (0, 0, 0),
+            "{side:?}"
+        );
+        assert!(
+            (area(&arr.mesh) - area(m)).abs() < 1e-9 * area(m),
+            "{side:?}"
+        );
+        assert!(
+            (signed_volume(&arr.mesh) - signed_volume(m)).abs() < 1e-9 * signed_volume(m).abs(),
+            "{side:?}"
+        );
+        let edges = edges_of(&arr.mesh);
+        for e in &arr.seam_edges {
+            assert!(edges.contains(e), "{side:?}: seam edge {e:?} missing");
+        }
+        assert_eq!(arr.parent.len(), arr.mesh.triangles.len());
+    }
+}
+
+#[test]
+fn spheres_become_conforming_along_the_seam() {
+    let a = uv_sphere([0.0; 3], 1.0, 32, 16);
+    let b = uv_sphere([0.5, 0.1, 0.05], 0.8, 24, 12);
+    check_closed_pair(&a, &b);
+}
+
+#[test]
+fn aligned_spheres_with_coincident_rings() {
+    // Same tessellation, shifted along x: ring vertices of one lie in the other's ring
+    // planes, many edge-through-edge and vertex-on-face configurations.
+    let a = uv_sphere([0.0; 3], 1.0, 32, 16);
+    let b = uv_sphere([0.5, 0.0, 0.0], 1.0, 32, 16);
+    check_closed_pair(&a, &b);
+}
+
+#[test]
+fn cubes_with_coplanar_faces() {
+    let a = Mesh::unit_cube();
+    let b = Mesh::cuboid([0.5, 0.25, 0.0], [1.5, 0.75, 1.0]);
+    check_closed_pair(&a, &b);
+    let c = Mesh::cuboid([0.5, 0.5, 0.5], [1.5, 1.5, 1.5]);
+    check_closed_pair(&a, &c);
+}
+
+#[test]
+fn terrain_cut_by_cylinder_keeps_its_boundary() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data");
+    let t = crate::io::read_path(dir.join("kirra_terrain.obj")).unwrap();
+    let c = crate::io::read_path(dir.join("kirra_cylinder.obj")).unwrap();
+    let seam = intersect(&t, &c);
+    let arr = arrange(&t, &seam, Side::A);
+    assert!(arr.failed.is_empty());
+    let s = mesh_stats(&arr.mesh);
+    assert_eq!((s.boundary_edges, s.non_manifold_edges), (560, 0));
+    assert_eq!(s.inconsistent_edges, 46);
+    assert!((s.area - area(&t)).abs() < 1e-9 * s.area);
+    let edges = edges_of(&arr.mesh);
+    assert!(arr.seam_edges.iter().all(|e| edges.contains(e)));
+    let topo = EdgeTopology::new(&arr.mesh);
+    for e in &arr.seam_edges {
+        let id = topo.edges.binary_search(e).unwrap();
+        assert_ne!(topo.kind(id), EdgeKind::Boundary);
+    }
+}
+
+fn moved(m: &Mesh, axis: [f64; 3], angle: f64, shift: [f64; 3]) -> Mesh {
+    let n = (axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]).sqrt();
+    let [x, y, z] = axis.map(|c| c / n);
+    let (s, c) = angle.sin_cos();
+    let r = [
+        [
+            c + x * x * (1.0 - c),
+            x * y * (1.0 - c) - z * s,
+            x * z * (1.0 - c) + y * s,
+        ],
+        [
+            y * x * (1.0 - c) + z * s,
+            c + y * y * (1.0 - c),
+            y * z * (1.0 - c) - x * s,
+        ],
+        [
+            z * x * (1.0 - c) - y * s,
+            z * y * (1.0 - c) + x * s,
+            c + z * z * (1.0 - c),
+        ],
+    ];
+    let positions = m
+        .positions
+        .iter()
+        .map(|p| {
+            std::array::from_fn(|i| r[i][0] * p[0] + r[i][1] * p[1] + r[i][2] * p[2] + shift[i])
+        })
+        .collect();
+    Mesh::new(positions, m.triangles.clone())
+}
+
+#[test]
+fn random_rigid_motions_of_spheres_tori_and_cubes() {
+    let mut state = 0x0123_4567_89ab_cdefu64;
+    let mut unit = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let shapes = [
+        uv_sphere([0.0; 3], 1.0, 24, 12),
+        crate::shapes::torus([0.0; 3], 1.0, 0.35, 24, 12),
+        Mesh::cuboid([-0.7; 3], [0.7; 3]),
+    ];
+    for i in 0..12 {
+        let a = &shapes[i % 3];
+        let b = &shapes[(i / 3) % 3];
+        let axis = [unit() - 0.5, unit() - 0.5, unit() - 0.5];
+        let shift = [unit() - 0.5, unit() - 0.5, unit() - 0.5];
+        check_closed_pair(a, &moved(b, axis, 6.0 * unit(), shift));
+    }
+}
+
+#[test]
+fn near_identical_copies() {
+    let a = uv_sphere([0.0; 3], 1.0, 24, 12);
+    check_closed_pair(&a, &moved(&a, [0.3, 0.5, 0.8], 0.2, [1e-9, 0.0, 0.0]));
+    check_closed_pair(&a, &moved(&a, [0.0, 0.0, 1.0], 1e-12, [0.0; 3]));
+    let cube = Mesh::unit_cube();
+    check_closed_pair(&cube, &moved(&cube, [1.0, 1.0, 1.0], 1e-12, [0.0; 3]));
+}
+
+#[test]
+fn identical_meshes_need_no_cuts() {
+    let a = uv_sphere([0.0; 3], 1.0, 24, 12);
+    let seam = intersect(&a, &a);
+    let arr = arrange(&a, &seam, Side::A);
+    assert_eq!(arr.mesh.triangles, a.triangles);
+    assert_eq!(arr.mesh.positions.len(), a.positions.len());
+}
+
+#[test]
+fn utm_offset_pair() {
+    let off = [478_614.7, 6_772_313.84, 350.0];
+    let a = uv_sphere(off, 10.0, 24, 12);
+    let b = moved(
+        &uv_sphere([0.0; 3], 8.0, 20, 10),
+        [0.2, 0.1, 1.0],
+        0.3,
+        [off[0] + 5.0, off[1] + 1.0, off[2]],
+    );
+    check_closed_pair(&a, &b);
+}
