@@ -29,7 +29,9 @@
 #![warn(missing_docs)]
 
 pub mod arrange;
+pub mod boolean;
 pub mod bvh;
+pub mod classify;
 pub mod edges;
 mod error;
 pub mod intersect;

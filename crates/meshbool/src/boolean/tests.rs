@@ -1,0 +1,236 @@
+use super::*;
+use crate::measure::{mesh_stats, signed_volume};
+use crate::shapes::{torus, uv_sphere};
+
+fn vol(m: &Mesh) -> f64 {
+    signed_volume(m)
+}
+
+/// Closed, manifold, consistently oriented (or empty).
+fn assert_closed(m: &Mesh, what: &str) {
+    if m.triangles.is_empty() {
+        return;
+    }
+    let s = mesh_stats(m);
+    assert_eq!(
+        (s.boundary_edges, s.non_manifold_edges, s.inconsistent_edges),
+        (0, 0, 0),
+        "{what}: {} triangles",
+        s.triangles
+    );
+}
+
+/// All four operations, closed outputs, and the volume identities.
+fn check(a: &Mesh, b: &Mesh, tol: f64) -> [f64; 4] {
+    let ops = [
+        Op::Union,
+        Op::Intersection,
+        Op::Difference,
+        Op::ReverseDifference,
+    ];
+    let r = ops.map(|op| {
+        let r = boolean(a, b, op);
+        assert!(r.failed.is_empty(), "{op:?}: {:?}", r.failed);
+        assert_closed(&r.mesh, &format!("{op:?}"));
+        vol(&r.mesh)
+    });
+    let [u, i, d, rd] = r;
+    let (va, vb) = (vol(a), vol(b));
+    let scale = va.abs().max(vb.abs());
+    assert!(
+        (u + i - va - vb).abs() <= tol * scale,
+        "union+inter {u}+{i} vs {va}+{vb}"
+    );
+    assert!((d - (va - i)).abs() <= tol * scale, "A-B {d} vs {va}-{i}");
+    assert!((rd - (vb - i)).abs() <= tol * scale, "B-A {rd} vs {vb}-{i}");
+    r
+}
+
+#[test]
+fn overlapping_cubes_exact_volumes() {
+    let a = Mesh::unit_cube();
+    let b = Mesh::cuboid([0.5, 0.25, -0.5], [1.5, 0.75, 0.5]);
+    let [u, i, d, rd] = check(&a, &b, 0.0);
+    assert_eq!(i, 0.5 * 0.5 * 0.5);
+    assert_eq!(u, 1.0 + 0.5 - 0.125);
+    assert_eq!(d, 1.0 - 0.125);
+    assert_eq!(rd, 0.5 - 0.125);
+}
+
+#[test]
+fn cubes_with_coplanar_faces_exact_volumes() {
+    let a = Mesh::unit_cube();
+    // Shares the planes y = 0, y = 1, z = 0, z = 1 with a.
+    let b = Mesh::cuboid([0.5, 0.0, 0.0], [1.5, 1.0, 1.0]);
+    let [u, i, d, rd] = check(&a, &b, 0.0);
+    assert_eq!((u, i, d, rd), (1.5, 0.5, 0.5, 0.5));
+    // A corner overlap sharing three planes.
+    let c = Mesh::cuboid([0.5, 0.5, 0.5], [1.0, 1.0, 1.0]);
+    let [u, i, d, rd] = check(&a, &c, 0.0);
+    assert_eq!((u, i, d, rd), (1.0, 0.125, 0.875, 0.0));
+}
+
+#[test]
+fn identical_meshes() {
+    for m in [Mesh::unit_cube(), uv_sphere([0.0; 3], 1.0, 24, 12)] {
+        let v = vol(&m);
+        assert_eq!(vol(&boolean(&m, &m, Op::Union).mesh), v);
+        assert_eq!(vol(&boolean(&m, &m, Op::Intersection).mesh), v);
+        assert!(boolean(&m, &m, Op::Difference).mesh.triangles.is_empty());
+        assert_eq!(
+            boolean(&m, &m, Op::Union).mesh.triangles.len(),
+            m.triangles.len()
+        );
+    }
+}
+
+#[test]
+fn touching_cubes() {
+    let a = Mesh::unit_cube();
+    // Face to face.
+    let b = Mesh::cuboid([1.0, 0.0, 0.0], [2.0, 1.0, 1.0]);
+    let [u, i, d, rd] = check(&a, &b, 0.0);
+    assert_eq!((u, i, d, rd), (2.0, 0.0, 1.0, 1.0));
+    // Union of face-to-face cubes: the shared face disappears, a 2x1x1 box remains.
+    let un = boolean(&a, &b, Op::Union).mesh;
+    assert_eq!(mesh_stats(&un).area, 10.0);
+    // Edge to edge: the union is a solid whose one shared edge has four faces (a
+    // non-manifold edge, correctly), no boundary; vertex to vertex: manifold edges.
+    for (b, non_manifold) in [
+        (Mesh::cuboid([1.0, 1.0, 0.0], [2.0, 2.0, 1.0]), 1),
+        (Mesh::cuboid([1.0; 3], [2.0; 3]), 0),
+    ] {
+        let un = boolean(&a, &b, Op::Union).mesh;
+        let s = mesh_stats(&un);
+        assert_eq!(
+            (
+                s.triangles,
+                s.boundary_edges,
+                s.non_manifold_edges,
+                s.inconsistent_edges
+            ),
+            (24, 0, non_manifold, 0)
+        );
+        assert_eq!(s.volume, 2.0);
+        assert!(boolean(&a, &b, Op::Intersection).mesh.triangles.is_empty());
+        assert_eq!(vol(&boolean(&a, &b, Op::Difference).mesh), 1.0);
+    }
+}
+
+#[test]
+fn sphere_strictly_inside_cube() {
+    let cube = Mesh::cuboid([-2.0; 3], [2.0; 3]);
+    let s = uv_sphere([0.1, 0.2, 0.3], 1.0, 32, 16);
+    let [u, i, d, rd] = check(&cube, &s, 1e-12);
+    assert_eq!(i, vol(&s));
+    assert_eq!(u, 64.0);
+    assert!((d - (64.0 - vol(&s))).abs() < 1e-12);
+    assert_eq!(rd, 0.0);
+    let cavity = boolean(&cube, &s, Op::Difference).mesh;
+    assert_eq!(mesh_stats(&cavity).components, 2);
+}
+
+#[test]
+fn disjoint_meshes() {
+    let a = Mesh::unit_cube();
+    let b = uv_sphere([5.0; 3], 1.0, 16, 8);
+    let [u, i, d, rd] = check(&a, &b, 1e-12);
+    assert_eq!(i, 0.0);
+    assert_eq!(d, 1.0);
+    assert_eq!(rd, vol(&b));
+    assert!((u - 1.0 - vol(&b)).abs() < 1e-12);
+}
+
+fn moved(m: &Mesh, axis: [f64; 3], angle: f64, shift: [f64; 3]) -> Mesh {
+    let n = (axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]).sqrt();
+    let [x, y, z] = axis.map(|c| c / n);
+    let (s, c) = angle.sin_cos();
+    let r = [
+        [
+            c + x * x * (1.0 - c),
+            x * y * (1.0 - c) - z * s,
+            x * z * (1.0 - c) + y * s,
+        ],
+        [
+            y * x * (1.0 - c) + z * s,
+            c + y * y * (1.0 - c),
+            y * z * (1.0 - c) - x * s,
+        ],
+        [
+            z * x * (1.0 - c) - y * s,
+            z * y * (1.0 - c) + x * s,
+            c + z * z * (1.0 - c),
+        ],
+    ];
+    let positions = m
+        .positions
+        .iter()
+        .map(|p| {
+            std::array::from_fn(|i| r[i][0] * p[0] + r[i][1] * p[1] + r[i][2] * p[2] + shift[i])
+        })
+        .collect();
+    Mesh::new(positions, m.triangles.clone())
+}
+
+#[test]
+fn volume_identities_over_random_rigid_motions() {
+    let mut state = 0xdead_beef_1234_5678u64;
+    let mut unit = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let shapes = [
+        uv_sphere([0.0; 3], 1.0, 24, 12),
+        torus([0.0; 3], 1.0, 0.35, 24, 12),
+        Mesh::cuboid([-0.7; 3], [0.7; 3]),
+    ];
+    for k in 0..18 {
+        let a = &shapes[k % 3];
+        let b = &shapes[(k / 3) % 3];
+        let axis = [unit() - 0.5, unit() - 0.5, unit() - 0.5];
+        let shift = [unit() - 0.5, unit() - 0.5, unit() - 0.5];
+        check(a, &moved(b, axis, 6.0 * unit(), shift), 1e-9);
+    }
+}
+
+#[test]
+fn near_degenerate_copies() {
+    let a = uv_sphere([0.0; 3], 1.0, 24, 12);
+    check(&a, &moved(&a, [0.3, 0.5, 0.8], 0.2, [1e-9, 0.0, 0.0]), 1e-9);
+    check(&a, &moved(&a, [0.0, 0.0, 1.0], 1e-12, [0.0; 3]), 1e-9);
+    let cube = Mesh::unit_cube();
+    check(&cube, &moved(&cube, [1.0, 1.0, 1.0], 1e-12, [0.0; 3]), 1e-9);
+}
+
+#[test]
+fn utm_offset_cubes_exact() {
+    let o = [478_614.0, 6_772_313.0, 350.0];
+    let a = Mesh::cuboid(o, [o[0] + 10.0, o[1] + 10.0, o[2] + 10.0]);
+    let b = Mesh::cuboid(
+        [o[0] + 5.0, o[1], o[2] + 2.5],
+        [o[0] + 15.0, o[1] + 10.0, o[2] + 7.5],
+    );
+    let [u, i, d, rd] = check(&a, &b, 1e-12);
+    assert_eq!(i, 250.0);
+    assert_eq!(u, 1000.0 + 500.0 - 250.0);
+    assert_eq!((d, rd), (750.0, 250.0));
+}
+
+#[test]
+fn provenance_names_sources() {
+    let a = Mesh::unit_cube();
+    let b = Mesh::cuboid([0.5, 0.25, -0.5], [1.5, 0.75, 0.5]);
+    let r = boolean(&a, &b, Op::Difference);
+    assert_eq!(r.provenance.len(), r.mesh.triangles.len());
+    assert!(r
+        .provenance
+        .iter()
+        .any(|p| p.source == Source::A && !p.flipped));
+    assert!(r
+        .provenance
+        .iter()
+        .all(|p| (p.source == Source::B) == p.flipped));
+    assert!(r.provenance.iter().all(|p| p.triangle < 12));
+}

@@ -1,0 +1,259 @@
+//! Classification: which parts of one arranged mesh lie inside, outside, or on (coplanar
+//! with) the other mesh.
+//!
+//! Pipeline position: after [`crate::arrange`]. Patches are the connected pieces of the
+//! arranged mesh between seam edges. A patch's side comes from the other mesh's local fan at
+//! a seam edge it touches (exact `orient3d` of the patch triangle's far vertex against the
+//! fan's planes, with the dihedral wedge's convexity deciding how the two sides combine).
+//! Patches touching no seam, or whose seam edges disagree (an open surface whose seam
+//! stops inside the patch), use the generalized winding number of the other mesh.
+
+use rayon::prelude::*;
+use rustc_hash::{FxHashMap, FxHashSet};
+
+use crate::arrange::Arranged;
+use crate::edges::EdgeTopology;
+use crate::intersect::tritri::Tri;
+use crate::kernel::{orient2d, orient3d_plane, Point, Sign};
+use crate::Mesh;
+
+/// Where a triangle of one mesh lies relative to the other mesh.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Class {
+    /// Inside the other (closed) mesh, or behind the other (open) surface.
+    Inside,
+    /// Outside, or in front.
+    Outside,
+    /// On a face of the other mesh, facing the same way.
+    CoplanarSame,
+    /// On a face of the other mesh, facing the opposite way.
+    CoplanarOpposite,
+}
+
+/// The classification of one arranged mesh.
+#[derive(Clone, Debug, Default)]
+pub struct Classified {
+    /// Class of every triangle of the arranged mesh.
+    pub class: Vec<Class>,
+    /// Patch id of every triangle.
+    pub patch: Vec<u32>,
+    /// Number of patches.
+    pub patches: usize,
+    /// Patches classified by winding number (no seam edge, or disagreeing seam edges).
+    pub by_winding: usize,
+}
+
+/// Generalized winding number of `mesh` at `p` (Jacobson et al. 2013): 1 inside a closed,
+/// outward-facing mesh, 0 outside; ±1/2 on either side of a large open surface (positive
+/// behind it, where its normals point away).
+pub fn winding_number(mesh: &Mesh, p: [f64; 3]) -> f64 {
+    let total: f64 = (0..mesh.triangles.len())
+        .into_par_iter()
+        .map(|t| {
+            let [a, b, c] = mesh
+                .corners(t)
+                .map(|q| [q[0] - p[0], q[1] - p[1], q[2] - p[2]]);
+            let len = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+            let (la, lb, lc) = (len(a), len(b), len(c));
+            let det = a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+                + a[2] * (b[0] * c[1] - b[1] * c[0]);
+            let dot = |u: [f64; 3], v: [f64; 3]| u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+            let den = la * lb * lc + dot(a, b) * lc + dot(b, c) * la + dot(c, a) * lb;
+            2.0 * det.atan2(den)
+        })
+        .sum();
+    // det(a, b, c) > 0 when p is behind the triangle: solid angles count positive there.
+    total / (4.0 * std::f64::consts::PI)
+}
+
+/// One triangle of the other mesh's fan around a seam edge: its plane (an input triangle,
+/// explicit) and its far vertex (exact).
+struct FanFace {
+    plane: [[f64; 3]; 3],
+    far: Point,
+}
+
+/// The class of a triangle with far vertex `w` at seam edge `e0 e1` against the fan.
+/// `own` is the input triangle the classified triangle comes from. `None` when the fan does
+/// not decide (a boundary or non-manifold edge of the other mesh).
+fn local_class(own: &[[f64; 3]; 3], w: &Point, e: [&Point; 2], fan: &[FanFace]) -> Option<Class> {
+    let [f0, f1] = fan else { return None };
+    let s = [f0, f1].map(|f| orient3d_plane(&f.plane[0], &f.plane[1], &f.plane[2], w));
+    for (k, f) in [f0, f1].iter().enumerate() {
+        if s[k] != Sign::Zero {
+            continue;
+        }
+        // In the plane of this face: overlapping it when on the same side of the edge.
+        let info = Tri::new(0, [0, 1, 2], f.plane)?;
+        let axis = info.axis();
+        let (ow, of) = (
+            orient2d(e[0], e[1], w, axis),
+            orient2d(e[0], e[1], &f.far, axis),
+        );
+        if ow != Sign::Zero && ow == of {
+            let own_sign = orient2d(
+                &Point::Explicit(own[0]),
+                &Point::Explicit(own[1]),
+                &Point::Explicit(own[2]),
+                axis,
+            );
+            return Some(if own_sign == info.sign() {
+                Class::CoplanarSame
+            } else {
+                Class::CoplanarOpposite
+            });
+        }
+    }
+    let convex = orient3d_plane(&f0.plane[0], &f0.plane[1], &f0.plane[2], &f1.far);
+    let behind = |x: Sign| x == Sign::Negative;
+    let inside = match convex {
+        Sign::Negative => behind(s[0]) && behind(s[1]),
+        Sign::Positive => behind(s[0]) || behind(s[1]),
+        Sign::Zero => behind(s[0]) || behind(s[1]),
+    };
+    Some(if inside {
+        Class::Inside
+    } else {
+        Class::Outside
+    })
+}
+
+/// Classifies the triangles of `x` (an arranged mesh, from input mesh `x_in`) against the
+/// other mesh: `y_in` its input, `y` its arrangement along the same seam. `y_closed` picks
+/// the winding-number threshold (1/2 for closed, 0 for open surfaces).
+pub fn classify(
+    x: &Arranged,
+    x_in: &Mesh,
+    y: &Arranged,
+    y_in: &Mesh,
+    y_closed: bool,
+) -> Classified {
+    let n = x.mesh.triangles.len();
+    let topo = EdgeTopology::new(&x.mesh);
+    let seam: FxHashSet<[u32; 2]> = x.seam_edges.iter().copied().collect();
+    // Patches: flood over edges that are not seam edges.
+    let mut patch = vec![u32::MAX; n];
+    let mut patches = 0u32;
+    let mut stack = Vec::new();
+    for start in 0..n {
+        if patch[start] != u32::MAX {
+            continue;
+        }
+        patch[start] = patches;
+        stack.push(start as u32);
+        while let Some(t) = stack.pop() {
+            for &e in &topo.triangle_edges[t as usize] {
+                if e == EdgeTopology::NO_EDGE || seam.contains(&topo.edges[e as usize]) {
+                    continue;
+                }
+                for u in topo.uses_of(e as usize) {
+                    if patch[u.triangle as usize] == u32::MAX {
+                        patch[u.triangle as usize] = patches;
+                        stack.push(u.triangle);
+                    }
+                }
+            }
+        }
+        patches += 1;
+    }
+    // Votes from every seam edge use.
+    let seam_of_vertex: FxHashMap<u32, u32> = x
+        .seam_vertex
+        .iter()
+        .enumerate()
+        .map(|(s, &v)| (v, s as u32))
+        .collect();
+    let ytopo = EdgeTopology::new(&y.mesh);
+    let seam_edge_ids: Vec<usize> = (0..topo.edge_count())
+        .filter(|&e| seam.contains(&topo.edges[e]))
+        .collect();
+    let votes: Vec<(u32, Option<Class>)> = seam_edge_ids
+        .par_iter()
+        .flat_map_iter(|&e| {
+            let [u, v] = topo.edges[e];
+            let (su, sv) = (seam_of_vertex[&u], seam_of_vertex[&v]);
+            let (yu, yv) = (y.seam_vertex[su as usize], y.seam_vertex[sv as usize]);
+            let fan: Vec<FanFace> = ytopo
+                .edges
+                .binary_search(&[yu.min(yv), yu.max(yv)])
+                .map(|ye| {
+                    ytopo
+                        .uses_of(ye)
+                        .iter()
+                        .map(|use_| {
+                            let tri = y.mesh.triangles[use_.triangle as usize];
+                            FanFace {
+                                plane: y_in.corners(y.parent[use_.triangle as usize] as usize),
+                                far: y.points[tri[(use_.corner as usize + 2) % 3] as usize].clone(),
+                            }
+                        })
+                        .collect()
+                })
+                .unwrap_or_default();
+            let ends = [&x.points[u as usize], &x.points[v as usize]];
+            topo.uses_of(e)
+                .iter()
+                .map(|use_| {
+                    let t = use_.triangle as usize;
+                    let w = &x.points[x.mesh.triangles[t][(use_.corner as usize + 2) % 3] as usize];
+                    let own = x_in.corners(x.parent[t] as usize);
+                    (patch[t], local_class(&own, w, ends, &fan))
+                })
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    // None: no vote yet; Some(None): undecided or disagreeing.
+    let mut decided: Vec<Option<Option<Class>>> = vec![None; patches as usize];
+    for (p, c) in votes {
+        let d = &mut decided[p as usize];
+        *d = match (*d, c) {
+            (_, None) | (Some(None), _) => Some(None),
+            (None, Some(c)) => Some(Some(c)),
+            (Some(Some(a)), Some(b)) if a == b => Some(Some(a)),
+            (Some(Some(_)), Some(_)) => Some(None),
+        };
+    }
+    let threshold = if y_closed { 0.5 } else { 0.0 };
+    let centroid = |t: usize| {
+        let [a, b, c] = x.mesh.corners(t);
+        std::array::from_fn(|k| (a[k] + b[k] + c[k]) / 3.0)
+    };
+    let by_wn = |t: usize| {
+        if winding_number(y_in, centroid(t)) > threshold {
+            Class::Inside
+        } else {
+            Class::Outside
+        }
+    };
+    // Patches without a decision: one winding number for a patch without seam edges,
+    // one per triangle where the seam edges disagree.
+    let mut first: Vec<Option<usize>> = vec![None; patches as usize];
+    for (t, &p) in patch.iter().enumerate() {
+        first[p as usize].get_or_insert(t);
+    }
+    let mut by_winding = 0;
+    let mut patch_class: Vec<Option<Class>> = vec![None; patches as usize];
+    for p in 0..patches as usize {
+        patch_class[p] = match decided[p] {
+            Some(Some(c)) => Some(c),
+            None => {
+                by_winding += 1;
+                Some(by_wn(first[p].expect("patches are not empty")))
+            }
+            Some(None) => {
+                by_winding += 1;
+                None
+            }
+        };
+    }
+    let class = (0..n)
+        .into_par_iter()
+        .map(|t| patch_class[patch[t] as usize].unwrap_or_else(|| by_wn(t)))
+        .collect();
+    Classified {
+        class,
+        patch,
+        patches: patches as usize,
+        by_winding,
+    }
+}
