@@ -234,3 +234,107 @@ fn provenance_names_sources() {
         .all(|p| (p.source == Source::B) == p.flipped));
     assert!(r.provenance.iter().all(|p| p.triangle < 12));
 }
+
+fn data(name: &str) -> Mesh {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data");
+    crate::io::read_path(dir.join(name)).unwrap()
+}
+
+/// Every seam edge of the split terrain has an inside triangle on one side and an outside
+/// triangle on the other; the groups' areas add up to the terrain's area.
+fn check_open_split(terrain: &Mesh, tool: &Mesh) -> Split {
+    let s = split(terrain, tool);
+    assert!(s.a.failed.is_empty() && s.b.failed.is_empty());
+    let topo = crate::edges::EdgeTopology::new(&s.a.mesh);
+    let mut seam_edges = 0;
+    for e in &s.a.seam_edges {
+        let id = topo.edges.binary_search(e).unwrap();
+        let classes: Vec<Class> = topo
+            .uses_of(id)
+            .iter()
+            .map(|u| s.class_a.class[u.triangle as usize])
+            .collect();
+        assert_eq!(classes.len(), 2, "{e:?}");
+        assert!(
+            classes.contains(&Class::Inside) && classes.contains(&Class::Outside),
+            "{e:?}: {classes:?}"
+        );
+        seam_edges += 1;
+    }
+    assert!(seam_edges > 0);
+    let area_of = |c: Class| {
+        let tris: Vec<[u32; 3]> = (0..s.a.mesh.triangles.len())
+            .filter(|&t| s.class_a.class[t] == c)
+            .map(|t| s.a.mesh.triangles[t])
+            .collect();
+        crate::measure::area(&Mesh::new(s.a.mesh.positions.clone(), tris))
+    };
+    let (ai, ao) = (area_of(Class::Inside), area_of(Class::Outside));
+    let total = crate::measure::area(terrain);
+    assert!(ai > 0.0 && ao > 0.0);
+    assert!(
+        (ai + ao - total).abs() < 1e-9 * total,
+        "{ai} + {ao} vs {total}"
+    );
+    s
+}
+
+#[test]
+fn terrain_split_by_cylinder_and_cup() {
+    for (t, c) in [
+        ("kirra_terrain.obj", "kirra_cylinder.obj"),
+        ("kap_terrain.obj", "kap_cylinder.obj"),
+    ] {
+        let (terrain, cyl) = (data(t), data(c));
+        check_open_split(&terrain, &cyl);
+        // Terrain minus the cylinder: a hole whose boundary is the seam loop.
+        let r = boolean(&terrain, &cyl, Op::Difference);
+        let holed: Vec<[u32; 3]> = r
+            .provenance
+            .iter()
+            .zip(&r.mesh.triangles)
+            .filter(|(p, _)| p.source == Source::A)
+            .map(|(_, t)| *t)
+            .collect();
+        let holed = Mesh::new(r.mesh.positions.clone(), holed);
+        let seam_len = crate::intersect::chain(&crate::intersect::intersect(&terrain, &cyl), true)
+            [0]
+        .points
+        .len();
+        let st = mesh_stats(&holed);
+        assert_eq!(st.boundary_edges, 560 + seam_len, "{t}");
+    }
+    check_open_split(&data("kirra_terrain.obj"), &data("kirra_cup.obj"));
+}
+
+#[test]
+fn crossing_terrains_split_along_the_open_curve() {
+    use crate::shapes::heightfield;
+    let a = heightfield([0.0, 0.0], [10.0, 10.0], 23, 19, |x, y| {
+        0.5 * (x * 0.7).sin() + 0.3 * (y * 0.9).cos()
+    });
+    let b = heightfield([-1.0, -1.0], [11.0, 11.0], 17, 29, |x, y| {
+        0.08 * (x - 5.0) + 0.05 * (y - 5.0) + 0.1
+    });
+    let s = check_open_split(&a, &b);
+    // And the other way round: b split by a.
+    let topo = crate::edges::EdgeTopology::new(&s.b.mesh);
+    for e in &s.b.seam_edges {
+        let id = topo.edges.binary_search(e).unwrap();
+        let classes: Vec<Class> = topo
+            .uses_of(id)
+            .iter()
+            .map(|u| s.class_b.class[u.triangle as usize])
+            .collect();
+        assert!(
+            classes.contains(&Class::Inside) && classes.contains(&Class::Outside),
+            "{classes:?}"
+        );
+    }
+    // Below a (behind its up-facing normals) is "inside": b's far-below corner is inside.
+    let low = heightfield([-1.0, -1.0], [11.0, 11.0], 3, 3, |_, _| -50.0);
+    let seam = crate::intersect::intersect(&a, &low);
+    assert!(seam.segments.is_empty());
+    let cls = split(&low, &a).class_a;
+    assert!(cls.class.iter().all(|&c| c == Class::Inside));
+}

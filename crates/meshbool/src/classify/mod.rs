@@ -167,7 +167,8 @@ pub fn classify(
     let seam_edge_ids: Vec<usize> = (0..topo.edge_count())
         .filter(|&e| seam.contains(&topo.edges[e]))
         .collect();
-    let votes: Vec<(u32, Option<Class>)> = seam_edge_ids
+    // (patch, triangle, class) for every use of a seam edge.
+    let votes: Vec<(u32, u32, Option<Class>)> = seam_edge_ids
         .par_iter()
         .flat_map_iter(|&e| {
             let [u, v] = topo.edges[e];
@@ -197,21 +198,28 @@ pub fn classify(
                     let t = use_.triangle as usize;
                     let w = &x.points[x.mesh.triangles[t][(use_.corner as usize + 2) % 3] as usize];
                     let own = x_in.corners(x.parent[t] as usize);
-                    (patch[t], local_class(&own, w, ends, &fan))
+                    (patch[t], t as u32, local_class(&own, w, ends, &fan))
                 })
                 .collect::<Vec<_>>()
         })
         .collect();
     // None: no vote yet; Some(None): undecided or disagreeing.
-    let mut decided: Vec<Option<Option<Class>>> = vec![None; patches as usize];
-    for (p, c) in votes {
-        let d = &mut decided[p as usize];
-        *d = match (*d, c) {
+    fn combine(d: Option<Option<Class>>, c: Option<Class>) -> Option<Option<Class>> {
+        match (d, c) {
             (_, None) | (Some(None), _) => Some(None),
             (None, Some(c)) => Some(Some(c)),
             (Some(Some(a)), Some(b)) if a == b => Some(Some(a)),
             (Some(Some(_)), Some(_)) => Some(None),
-        };
+        }
+    }
+    let mut decided: Vec<Option<Option<Class>>> = vec![None; patches as usize];
+    // Per triangle too: where a patch's votes disagree (the seam stops inside it), the
+    // triangles along the seam keep their own local answer.
+    let mut own_vote: FxHashMap<u32, Option<Class>> = FxHashMap::default();
+    for (p, t, c) in votes {
+        decided[p as usize] = combine(decided[p as usize], c);
+        let v = own_vote.get(&t).copied();
+        own_vote.insert(t, combine(v, c).flatten());
     }
     let threshold = if y_closed { 0.5 } else { 0.0 };
     let centroid = |t: usize| {
@@ -248,7 +256,11 @@ pub fn classify(
     }
     let class = (0..n)
         .into_par_iter()
-        .map(|t| patch_class[patch[t] as usize].unwrap_or_else(|| by_wn(t)))
+        .map(|t| {
+            patch_class[patch[t] as usize]
+                .or_else(|| own_vote.get(&(t as u32)).copied().flatten())
+                .unwrap_or_else(|| by_wn(t))
+        })
         .collect();
     Classified {
         class,
