@@ -8,7 +8,7 @@ use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use meshbool::io::{self, Format};
 use meshbool::measure::{mesh_stats, MeshStats};
-use meshbool::{intersect, weld_exact, Mesh};
+use meshbool::{boolean, intersect, weld_exact, EdgeTopology, Mesh};
 
 #[derive(Parser)]
 #[command(
@@ -50,6 +50,79 @@ enum Command {
         #[arg(long, value_parser = parse_format)]
         to: Option<Format>,
     },
+    /// A ∪ B: the union of two meshes.
+    Union {
+        /// First mesh.
+        a: PathBuf,
+        /// Second mesh.
+        b: PathBuf,
+        /// Output mesh file.
+        #[arg(short, long)]
+        output: PathBuf,
+        #[command(flatten)]
+        opts: BoolOpts,
+    },
+    /// A ∩ B: the intersection of two meshes.
+    #[command(alias = "intersect")]
+    Intersection {
+        /// First mesh.
+        a: PathBuf,
+        /// Second mesh.
+        b: PathBuf,
+        /// Output mesh file.
+        #[arg(short, long)]
+        output: PathBuf,
+        #[command(flatten)]
+        opts: BoolOpts,
+    },
+    /// A − B (or B − A with --reverse).
+    #[command(alias = "subtract")]
+    Difference {
+        /// Mesh to subtract from.
+        a: PathBuf,
+        /// Mesh to subtract.
+        b: PathBuf,
+        /// Output mesh file.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Compute B − A instead.
+        #[arg(long)]
+        reverse: bool,
+        #[command(flatten)]
+        opts: BoolOpts,
+    },
+    /// Split both meshes along their intersection into groups (a_in_b, a_out_b, b_in_a,
+    /// b_out_a, and coplanar a_on_b_same/opposite, b_on_a_same/opposite) and their
+    /// connected components; writes one file per group and per component plus manifest.json.
+    Split {
+        /// First mesh.
+        a: PathBuf,
+        /// Second mesh.
+        b: PathBuf,
+        /// Output directory.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// File format of the pieces (obj, ply, ...; f64-exact formats keep seam vertices shared).
+        #[arg(long, default_value = "ply", value_parser = parse_format)]
+        format: Format,
+        #[command(flatten)]
+        opts: BoolOpts,
+    },
+    /// Merge pieces of a split into one welded mesh: `--keep a_out_b --keep b_in_a:flip
+    /// --keep a_in_b#2` (group, optional #component, optional :flip).
+    Pick {
+        /// Directory written by `meshbool split`.
+        dir: PathBuf,
+        /// A piece to keep: GROUP[#COMPONENT][:flip].
+        #[arg(long = "keep", required = true)]
+        keep: Vec<String>,
+        /// Output mesh file.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Print a JSON report on stdout.
+        #[arg(long)]
+        json: bool,
+    },
     /// Compute the exact intersection curves of two meshes and write them as polylines
     /// (.obj `l` elements, .dxf 3D POLYLINEs, or .json).
     Curves {
@@ -67,6 +140,21 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+}
+
+/// Options shared by the boolean commands.
+#[derive(clap::Args, Clone)]
+struct BoolOpts {
+    /// Proceed even when an input has inconsistently oriented or non-manifold edges (the
+    /// result then assumes the orientation as given; the JSON report lists what was assumed).
+    #[arg(long)]
+    force: bool,
+    /// Print a JSON report on stdout.
+    #[arg(long)]
+    json: bool,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    threads: Option<usize>,
 }
 
 #[derive(serde::Serialize)]
@@ -149,8 +237,323 @@ fn print_human(file: &str, s: &MeshStats) {
     }
 }
 
+/// Reads, validates and welds a boolean operand; refuses inconsistent orientation and
+/// non-manifold edges unless `force`, in which case what was assumed is returned.
+fn operand(path: &Path, force: bool, assumed: &mut Vec<String>) -> Result<Mesh> {
+    let mesh = weld_exact(&read(path, None)?).mesh;
+    let s = mesh_stats(&mesh);
+    let mut problems = Vec::new();
+    if s.inconsistent_edges > 0 {
+        problems.push(format!(
+            "{} inconsistently oriented edges",
+            s.inconsistent_edges
+        ));
+    }
+    if s.non_manifold_edges > 0 {
+        problems.push(format!("{} non-manifold edges", s.non_manifold_edges));
+    }
+    if !problems.is_empty() {
+        let what = format!("{}: {}", path.display(), problems.join(", "));
+        if !force {
+            anyhow::bail!(
+                "{what}; inside/outside would be ambiguous. Repair the input, or pass --force \
+                 to proceed with the orientation as given"
+            );
+        }
+        assumed.push(format!("{what} (orientation taken as given)"));
+    }
+    if s.degenerate_triangles > 0 {
+        assumed.push(format!(
+            "{}: {} degenerate triangles are ignored where they meet the other mesh",
+            path.display(),
+            s.degenerate_triangles
+        ));
+    }
+    Ok(mesh)
+}
+
+fn set_threads(n: Option<usize>) -> Result<()> {
+    if let Some(n) = n {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build_global()?;
+    }
+    Ok(())
+}
+
+#[derive(serde::Serialize)]
+struct BoolReport {
+    operation: &'static str,
+    triangles: usize,
+    vertices: usize,
+    boundary_edges: usize,
+    non_manifold_edges: usize,
+    closed: bool,
+    volume: f64,
+    area: f64,
+    seam_points: usize,
+    failed_triangles: Vec<String>,
+    assumed: Vec<String>,
+    seconds: f64,
+}
+
+fn run_boolean(a: &Path, b: &Path, output: &Path, op: boolean::Op, opts: &BoolOpts) -> Result<()> {
+    set_threads(opts.threads)?;
+    let mut assumed = Vec::new();
+    let (ma, mb) = (
+        operand(a, opts.force, &mut assumed)?,
+        operand(b, opts.force, &mut assumed)?,
+    );
+    let start = std::time::Instant::now();
+    let r = boolean::boolean(&ma, &mb, op);
+    let seconds = start.elapsed().as_secs_f64();
+    io::write_path(output, &r.mesh).with_context(|| format!("writing {}", output.display()))?;
+    let s = mesh_stats(&r.mesh);
+    let report = BoolReport {
+        operation: match op {
+            boolean::Op::Union => "union",
+            boolean::Op::Intersection => "intersection",
+            boolean::Op::Difference => "difference",
+            boolean::Op::ReverseDifference => "reverse-difference",
+        },
+        triangles: s.triangles,
+        vertices: s.vertices,
+        boundary_edges: s.boundary_edges,
+        non_manifold_edges: s.non_manifold_edges,
+        closed: s.closed,
+        volume: s.volume,
+        area: s.area,
+        seam_points: r.seam_points,
+        failed_triangles: r
+            .failed
+            .iter()
+            .map(|(src, t, why)| format!("{src:?} triangle {t}: {why}"))
+            .collect(),
+        assumed,
+        seconds,
+    };
+    for w in report.assumed.iter().chain(&report.failed_triangles) {
+        eprintln!("warning: {w}");
+    }
+    if opts.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        eprintln!(
+            "wrote {} ({} triangles, volume {}, {} boundary edges, {:.3} s)",
+            output.display(),
+            s.triangles,
+            s.volume,
+            s.boundary_edges,
+            seconds
+        );
+    }
+    Ok(())
+}
+
+#[derive(serde::Serialize, serde::Deserialize)]
+struct PieceInfo {
+    file: String,
+    triangles: usize,
+    area: f64,
+    volume: f64,
+}
+
+#[derive(serde::Serialize, serde::Deserialize)]
+struct GroupInfo {
+    name: String,
+    #[serde(flatten)]
+    piece: PieceInfo,
+    components: Vec<PieceInfo>,
+}
+
+#[derive(serde::Serialize, serde::Deserialize)]
+struct Manifest {
+    a: String,
+    b: String,
+    seam_points: usize,
+    groups: Vec<GroupInfo>,
+}
+
+fn piece_info(file: String, m: &Mesh) -> PieceInfo {
+    let s = mesh_stats(m);
+    PieceInfo {
+        file,
+        triangles: s.triangles,
+        area: s.area,
+        volume: s.volume,
+    }
+}
+
+fn run_split(a: &Path, b: &Path, dir: &Path, format: Format, opts: &BoolOpts) -> Result<()> {
+    set_threads(opts.threads)?;
+    let mut assumed = Vec::new();
+    let (ma, mb) = (
+        operand(a, opts.force, &mut assumed)?,
+        operand(b, opts.force, &mut assumed)?,
+    );
+    for w in &assumed {
+        eprintln!("warning: {w}");
+    }
+    let s = boolean::split(&ma, &mb);
+    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    let ext = Format::NAMES
+        .iter()
+        .find(|(_, f)| *f == format)
+        .map_or("ply", |(n, _)| n.split('-').next().unwrap_or("ply"));
+    let mut groups = Vec::new();
+    for g in boolean::Group::ALL {
+        let (mesh, _) = s.group(g);
+        if mesh.is_empty() {
+            continue;
+        }
+        let write = |name: String, m: &Mesh| -> Result<PieceInfo> {
+            let path = dir.join(&name);
+            io::write_path_as(&path, m, format)
+                .with_context(|| format!("writing {}", path.display()))?;
+            Ok(piece_info(name, m))
+        };
+        let piece = write(format!("{}.{ext}", g.name()), &mesh)?;
+        let (count, ids) = EdgeTopology::new(&mesh).components();
+        let mut components = Vec::new();
+        if count > 1 {
+            for k in 0..count {
+                let tris = mesh
+                    .triangles
+                    .iter()
+                    .zip(&ids)
+                    .filter(|(_, &c)| c as usize == k)
+                    .map(|(t, _)| *t)
+                    .collect();
+                let sub = boolean::pick(&[(&Mesh::new(mesh.positions.clone(), tris), false)]);
+                components.push(write(format!("{}.{k}.{ext}", g.name()), &sub)?);
+            }
+        }
+        groups.push(GroupInfo {
+            name: g.name().to_string(),
+            piece,
+            components,
+        });
+    }
+    let manifest = Manifest {
+        a: a.display().to_string(),
+        b: b.display().to_string(),
+        seam_points: s.seam.points.len(),
+        groups,
+    };
+    let text = serde_json::to_string_pretty(&manifest)?;
+    std::fs::write(dir.join("manifest.json"), &text)?;
+    if opts.json {
+        println!("{text}");
+    } else {
+        for g in &manifest.groups {
+            eprintln!(
+                "{:<16} {:>8} triangles  area {:<14} {} components",
+                g.name,
+                g.piece.triangles,
+                g.piece.area,
+                g.components.len().max(1)
+            );
+        }
+    }
+    Ok(())
+}
+
+fn run_pick(dir: &Path, keep: &[String], output: &Path, json: bool) -> Result<()> {
+    let manifest: Manifest = serde_json::from_slice(
+        &std::fs::read(dir.join("manifest.json"))
+            .with_context(|| format!("reading {}/manifest.json", dir.display()))?,
+    )
+    .context("manifest.json is not a meshbool split manifest")?;
+    let mut meshes = Vec::new();
+    for spec in keep {
+        let (body, flip) = match spec.strip_suffix(":flip") {
+            Some(b) => (b, true),
+            None => (spec.as_str(), false),
+        };
+        let (name, comp) = match body.split_once('#') {
+            Some((n, c)) => (
+                n,
+                Some(
+                    c.parse::<usize>()
+                        .with_context(|| format!("bad component in {spec:?}"))?,
+                ),
+            ),
+            None => (body, None),
+        };
+        let g = manifest
+            .groups
+            .iter()
+            .find(|g| g.name == name)
+            .with_context(|| format!("{spec:?}: no group {name:?} in this split"))?;
+        let file = match comp {
+            None => &g.piece.file,
+            Some(k) if g.components.is_empty() && k == 0 => &g.piece.file,
+            Some(k) => {
+                &g.components
+                    .get(k)
+                    .with_context(|| {
+                        format!(
+                            "{spec:?}: group {name} has {} components",
+                            g.components.len().max(1)
+                        )
+                    })?
+                    .file
+            }
+        };
+        meshes.push((read(&dir.join(file), None)?, flip));
+    }
+    let refs: Vec<(&Mesh, bool)> = meshes.iter().map(|(m, f)| (m, *f)).collect();
+    let merged = boolean::pick(&refs);
+    io::write_path(output, &merged).with_context(|| format!("writing {}", output.display()))?;
+    let s = mesh_stats(&merged);
+    if json {
+        println!("{}", serde_json::to_string_pretty(&s)?);
+    } else {
+        eprintln!(
+            "wrote {} ({} triangles, {} boundary edges)",
+            output.display(),
+            s.triangles,
+            s.boundary_edges
+        );
+    }
+    Ok(())
+}
+
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
+        Command::Union { a, b, output, opts } => {
+            run_boolean(&a, &b, &output, boolean::Op::Union, &opts)?
+        }
+        Command::Intersection { a, b, output, opts } => {
+            run_boolean(&a, &b, &output, boolean::Op::Intersection, &opts)?
+        }
+        Command::Difference {
+            a,
+            b,
+            output,
+            reverse,
+            opts,
+        } => {
+            let op = if reverse {
+                boolean::Op::ReverseDifference
+            } else {
+                boolean::Op::Difference
+            };
+            run_boolean(&a, &b, &output, op, &opts)?
+        }
+        Command::Split {
+            a,
+            b,
+            output,
+            format,
+            opts,
+        } => run_split(&a, &b, &output, format, &opts)?,
+        Command::Pick {
+            dir,
+            keep,
+            output,
+            json,
+        } => run_pick(&dir, &keep, &output, json)?,
         Command::Info { files, json, from } => {
             let mut all = Vec::new();
             for f in &files {

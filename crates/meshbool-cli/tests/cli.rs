@@ -176,3 +176,116 @@ fn curves_rejects_an_unknown_output_extension() {
     assert_eq!(r.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&r.stderr).contains("polylines cannot be written"));
 }
+
+fn write_cube(name: &str, min: [f64; 3], max: [f64; 3]) -> PathBuf {
+    let p = tmp(name);
+    meshbool::io::write_path(&p, &meshbool::Mesh::cuboid(min, max)).unwrap();
+    p
+}
+
+fn report(args: &[&str]) -> serde_json::Value {
+    let out = meshbool(args);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+#[test]
+fn boolean_commands_give_exact_cube_volumes() {
+    let a = write_cube("ba.stl", [0.0; 3], [1.0; 3]);
+    let b = write_cube("bb.obj", [0.5, 0.0, 0.0], [1.5, 1.0, 1.0]);
+    let (a, b) = (a.to_str().unwrap(), b.to_str().unwrap());
+    let out = tmp("r.ply");
+    let out = out.to_str().unwrap();
+    for (cmd, extra, vol) in [
+        ("union", None, 1.5),
+        ("intersection", None, 0.5),
+        ("intersect", None, 0.5),
+        ("difference", None, 0.5),
+        ("subtract", Some("--reverse"), 0.5),
+    ] {
+        let mut args = vec![cmd, a, b, "-o", out, "--json"];
+        args.extend(extra);
+        let r = report(&args);
+        assert_eq!(r["volume"], vol, "{cmd}");
+        assert_eq!(r["boundary_edges"], 0, "{cmd}");
+        assert_eq!(r["closed"], true, "{cmd}");
+        let info = report(&["info", "--json", out]);
+        assert_eq!(info["volume"], vol, "{cmd}");
+    }
+}
+
+#[test]
+fn boolean_refuses_inconsistent_input_without_force() {
+    let t = data("kirra_terrain.obj");
+    let c = data("kirra_cylinder.obj");
+    let out = tmp("forced.ply");
+    let args = [
+        "difference",
+        t.to_str().unwrap(),
+        c.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ];
+    let r = meshbool(&args);
+    assert_eq!(r.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&r.stderr).contains("46 inconsistently oriented edges"));
+    let mut forced = args.to_vec();
+    forced.extend(["--force", "--json"]);
+    let v = report(&forced);
+    assert_eq!(v["boundary_edges"], 560);
+    assert_eq!(v["assumed"].as_array().unwrap().len(), 1);
+}
+
+#[test]
+fn split_then_pick_rebuilds_the_difference() {
+    let a = write_cube("sa.ply", [0.0; 3], [1.0; 3]);
+    let b = write_cube("sb.ply", [0.5, 0.25, -0.5], [1.5, 0.75, 0.5]);
+    let dir = tmp("split");
+    let m = report(&[
+        "split",
+        a.to_str().unwrap(),
+        b.to_str().unwrap(),
+        "-o",
+        dir.to_str().unwrap(),
+        "--json",
+    ]);
+    let names: Vec<&str> = m["groups"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|g| g["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["a_in_b", "a_out_b", "b_in_a", "b_out_a"]);
+    let area: f64 = m["groups"].as_array().unwrap()[..2]
+        .iter()
+        .map(|g| g["area"].as_f64().unwrap())
+        .sum();
+    assert!((area - 6.0).abs() < 1e-12);
+    let out = tmp("picked.obj");
+    let v = report(&[
+        "pick",
+        dir.to_str().unwrap(),
+        "--keep",
+        "a_out_b",
+        "--keep",
+        "b_in_a:flip",
+        "-o",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    assert_eq!(v["volume"], 1.0 - 0.125);
+    assert_eq!(v["boundary_edges"], 0);
+    let bad = meshbool(&[
+        "pick",
+        dir.to_str().unwrap(),
+        "--keep",
+        "a_on_b_same",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(bad.status.code(), Some(1));
+}

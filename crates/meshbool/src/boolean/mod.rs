@@ -220,5 +220,120 @@ pub fn boolean(a: &Mesh, b: &Mesh, op: Op) -> BooleanResult {
     }
 }
 
+/// The groups of split-and-pick: each mesh's triangles by their class against the other.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Group {
+    /// A's part inside B (behind B for an open B).
+    AInB,
+    /// A's part outside B.
+    AOutB,
+    /// B's part inside A.
+    BInA,
+    /// B's part outside A.
+    BOutA,
+    /// A's part on B's faces, facing the same way.
+    AOnBSame,
+    /// A's part on B's faces, facing the opposite way.
+    AOnBOpposite,
+    /// B's part on A's faces, facing the same way.
+    BOnASame,
+    /// B's part on A's faces, facing the opposite way.
+    BOnAOpposite,
+}
+
+impl Group {
+    /// All groups, in a fixed order.
+    pub const ALL: [Group; 8] = [
+        Group::AInB,
+        Group::AOutB,
+        Group::BInA,
+        Group::BOutA,
+        Group::AOnBSame,
+        Group::AOnBOpposite,
+        Group::BOnASame,
+        Group::BOnAOpposite,
+    ];
+
+    /// The group's name as used in file names and on the command line (`a_in_b`, ...).
+    pub fn name(self) -> &'static str {
+        match self {
+            Group::AInB => "a_in_b",
+            Group::AOutB => "a_out_b",
+            Group::BInA => "b_in_a",
+            Group::BOutA => "b_out_a",
+            Group::AOnBSame => "a_on_b_same",
+            Group::AOnBOpposite => "a_on_b_opposite",
+            Group::BOnASame => "b_on_a_same",
+            Group::BOnAOpposite => "b_on_a_opposite",
+        }
+    }
+
+    /// The group named `name` ([`Group::name`]).
+    pub fn from_name(name: &str) -> Option<Group> {
+        Group::ALL.into_iter().find(|g| g.name() == name)
+    }
+
+    fn side_and_class(self) -> (Source, Class) {
+        match self {
+            Group::AInB => (Source::A, Class::Inside),
+            Group::AOutB => (Source::A, Class::Outside),
+            Group::BInA => (Source::B, Class::Inside),
+            Group::BOutA => (Source::B, Class::Outside),
+            Group::AOnBSame => (Source::A, Class::CoplanarSame),
+            Group::AOnBOpposite => (Source::A, Class::CoplanarOpposite),
+            Group::BOnASame => (Source::B, Class::CoplanarSame),
+            Group::BOnAOpposite => (Source::B, Class::CoplanarOpposite),
+        }
+    }
+}
+
+impl Split {
+    /// The triangles of one group as a mesh (vertices compacted), with their provenance.
+    pub fn group(&self, g: Group) -> (Mesh, Vec<Provenance>) {
+        let (side, class) = g.side_and_class();
+        let pick = |cls: &Classified, t: usize| (cls.class[t] == class).then_some(false);
+        match side {
+            Source::A => merge(self, |t| pick(&self.class_a, t), |_| None),
+            Source::B => merge(self, |_| None, |t| pick(&self.class_b, t)),
+        }
+    }
+}
+
+/// Merges meshes into one, each optionally flipped, welding exactly equal positions: the
+/// "pick" of split-and-pick (pieces written by a split share their seam vertices bit for bit).
+pub fn pick(pieces: &[(&Mesh, bool)]) -> Mesh {
+    let mut all = Mesh::default();
+    for (m, flip) in pieces {
+        let off = all.positions.len() as u32;
+        all.positions.extend_from_slice(&m.positions);
+        all.triangles.extend(m.triangles.iter().map(|t| {
+            let t = t.map(|i| i + off);
+            if *flip {
+                [t[0], t[2], t[1]]
+            } else {
+                t
+            }
+        }));
+    }
+    let w = crate::weld_exact(&all).mesh;
+    // Drop vertices no triangle uses.
+    let mut id = vec![u32::MAX; w.positions.len()];
+    let mut positions = Vec::new();
+    let triangles = w
+        .triangles
+        .iter()
+        .map(|t| {
+            t.map(|v| {
+                if id[v as usize] == u32::MAX {
+                    id[v as usize] = positions.len() as u32;
+                    positions.push(w.positions[v as usize]);
+                }
+                id[v as usize]
+            })
+        })
+        .collect();
+    Mesh::new(positions, triangles)
+}
+
 #[cfg(test)]
 mod tests;

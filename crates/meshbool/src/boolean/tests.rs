@@ -338,3 +338,37 @@ fn crossing_terrains_split_along_the_open_curve() {
     let cls = split(&low, &a).class_a;
     assert!(cls.class.iter().all(|&c| c == Class::Inside));
 }
+
+#[test]
+fn split_groups_pick_back_into_the_booleans() {
+    let a = uv_sphere([0.0; 3], 1.0, 24, 12);
+    let b = moved(
+        &torus([0.0; 3], 1.0, 0.35, 24, 12),
+        [1.0, 0.2, 0.1],
+        0.7,
+        [0.3, 0.1, 0.0],
+    );
+    let s = split(&a, &b);
+    let g = |x: Group| s.group(x).0;
+    let (a_out, b_out, a_in, b_in) = (
+        g(Group::AOutB),
+        g(Group::BOutA),
+        g(Group::AInB),
+        g(Group::BInA),
+    );
+    // Groups partition each arranged mesh.
+    let n = |m: &Mesh| m.triangles.len();
+    assert_eq!(
+        n(&a_out) + n(&a_in) + n(&g(Group::AOnBSame)) + n(&g(Group::AOnBOpposite)),
+        s.a.mesh.triangles.len()
+    );
+    let union = pick(&[(&a_out, false), (&b_out, false)]);
+    assert_closed(&union, "picked union");
+    assert!((vol(&union) - vol(&boolean(&a, &b, Op::Union).mesh)).abs() < 1e-12);
+    let diff = pick(&[(&a_out, false), (&b_in, true)]);
+    assert_closed(&diff, "picked difference");
+    assert!((vol(&diff) - vol(&boolean(&a, &b, Op::Difference).mesh)).abs() < 1e-12);
+    let inter = pick(&[(&a_in, false), (&b_in, false)]);
+    assert!((vol(&inter) + vol(&union) - vol(&a) - vol(&b)).abs() < 1e-9);
+    assert_eq!(Group::from_name("b_in_a"), Some(Group::BInA));
+}
