@@ -2,8 +2,6 @@
 //! The basis of the edge statistics in [`crate::measure`], of edge-connected components,
 //! and of patch flood fills in the boolean pipeline.
 
-use rayon::prelude::*;
-
 use crate::Mesh;
 
 /// One triangle's use of an edge.
@@ -38,39 +36,59 @@ impl EdgeTopology {
     /// Marks a triangle edge that joins a vertex to itself.
     pub const NO_EDGE: u32 = u32::MAX;
 
-    /// Builds the adjacency of `mesh` (indices must be in range). O(n log n), parallel sort.
+    /// Builds the adjacency of `mesh` (indices must be in range). Linear time: half-edges
+    /// are bucketed by their lower vertex (a counting sort), then each small bucket is sorted
+    /// by the higher vertex.
     pub fn new(mesh: &Mesh) -> Self {
-        let mut half: Vec<(u64, u32)> = Vec::with_capacity(mesh.triangles.len() * 3);
+        let nv = mesh.positions.len();
+        // Bucket sizes by lower vertex.
+        let mut start = vec![0u32; nv + 1];
+        for tri in &mesh.triangles {
+            for k in 0..3 {
+                let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                if a != b {
+                    start[a.min(b) as usize + 1] += 1;
+                }
+            }
+        }
+        for v in 0..nv {
+            start[v + 1] += start[v];
+        }
+        // (higher vertex, half-edge id) per bucket, in triangle order.
+        let mut fill = start.clone();
+        let mut half = vec![(0u32, 0u32); start[nv] as usize];
         for (t, tri) in mesh.triangles.iter().enumerate() {
             for k in 0..3 {
                 let (a, b) = (tri[k], tri[(k + 1) % 3]);
                 if a != b {
-                    let key = (u64::from(a.min(b)) << 32) | u64::from(a.max(b));
-                    half.push((key, (t as u32) * 3 + k as u32));
+                    let lo = a.min(b) as usize;
+                    half[fill[lo] as usize] = (a.max(b), (t as u32) * 3 + k as u32);
+                    fill[lo] += 1;
                 }
             }
         }
-        half.par_sort_unstable();
-
-        let mut edges = Vec::new();
-        let mut offsets = Vec::with_capacity(half.len() / 2 + 1);
+        let mut edges = Vec::with_capacity(half.len() / 2 + 1);
+        let mut offsets = Vec::with_capacity(half.len() / 2 + 2);
         let mut uses = Vec::with_capacity(half.len());
         let mut triangle_edges = vec![[Self::NO_EDGE; 3]; mesh.triangles.len()];
-        let mut prev = None;
-        for &(key, h) in &half {
-            if prev != Some(key) {
-                prev = Some(key);
-                offsets.push(uses.len() as u32);
-                edges.push([(key >> 32) as u32, key as u32]);
+        for lo in 0..nv {
+            let bucket = &mut half[start[lo] as usize..start[lo + 1] as usize];
+            bucket.sort_unstable();
+            let mut prev = None;
+            for &(hi, h) in bucket.iter() {
+                if prev != Some(hi) {
+                    prev = Some(hi);
+                    offsets.push(uses.len() as u32);
+                    edges.push([lo as u32, hi]);
+                }
+                let (t, k) = (h / 3, (h % 3) as usize);
+                triangle_edges[t as usize][k] = (edges.len() - 1) as u32;
+                uses.push(EdgeUse {
+                    triangle: t,
+                    corner: k as u8,
+                    forward: mesh.triangles[t as usize][k] as usize == lo,
+                });
             }
-            let (t, k) = (h / 3, (h % 3) as usize);
-            triangle_edges[t as usize][k] = (edges.len() - 1) as u32;
-            let from = mesh.triangles[t as usize][k];
-            uses.push(EdgeUse {
-                triangle: t,
-                corner: k as u8,
-                forward: u64::from(from) == key >> 32,
-            });
         }
         offsets.push(uses.len() as u32);
         EdgeTopology {
@@ -100,6 +118,12 @@ impl EdgeTopology {
             [_, _] => EdgeKind::Inconsistent,
             _ => EdgeKind::NonManifold,
         }
+    }
+
+    /// True when every edge has exactly two uses (no boundary, no non-manifold edge) and
+    /// there is at least one edge.
+    pub fn is_closed(&self) -> bool {
+        !self.edges.is_empty() && self.offsets.windows(2).all(|w| w[1] - w[0] == 2)
     }
 
     /// Edge-connected components: triangles sharing an edge (of any kind) are in the same

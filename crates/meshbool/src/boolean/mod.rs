@@ -5,9 +5,9 @@
 //! of every output triangle.
 
 use crate::arrange::{arrange, Arranged, Side};
-use crate::classify::{classify, Class, Classified};
+use crate::classify::{classify, Class, Classified, Operand};
+use crate::edges::EdgeTopology;
 use crate::intersect::{intersect, Seam};
-use crate::measure::mesh_stats;
 use crate::Mesh;
 
 /// A boolean operation.
@@ -101,10 +101,26 @@ pub struct Split {
 pub fn split(a: &Mesh, b: &Mesh) -> Split {
     let seam = intersect(a, b);
     let (arr_a, arr_b) = rayon::join(|| arrange(a, &seam, Side::A), || arrange(b, &seam, Side::B));
-    let (closed_a, closed_b) = rayon::join(|| mesh_stats(a).closed, || mesh_stats(b).closed);
+    // Closedness picks the winding-number threshold; the arranged mesh is closed exactly
+    // when its input is (cutting keeps every edge's use count).
+    let (topo_a, topo_b) = rayon::join(
+        || EdgeTopology::new(&arr_a.mesh),
+        || EdgeTopology::new(&arr_b.mesh),
+    );
+    let (closed_a, closed_b) = (topo_a.is_closed(), topo_b.is_closed());
+    let oa = Operand {
+        input: a,
+        arranged: &arr_a,
+        topology: &topo_a,
+    };
+    let ob = Operand {
+        input: b,
+        arranged: &arr_b,
+        topology: &topo_b,
+    };
     let (class_a, class_b) = rayon::join(
-        || classify(&arr_a, a, &arr_b, b, closed_b),
-        || classify(&arr_b, b, &arr_a, a, closed_a),
+        || classify(&oa, &ob, closed_b),
+        || classify(&ob, &oa, closed_a),
     );
     Split {
         seam,

@@ -118,18 +118,23 @@ fn local_class(own: &[[f64; 3]; 3], w: &Point, e: [&Point; 2], fan: &[FanFace]) 
     })
 }
 
-/// Classifies the triangles of `x` (an arranged mesh, from input mesh `x_in`) against the
-/// other mesh: `y_in` its input, `y` its arrangement along the same seam. `y_closed` picks
-/// the winding-number threshold (1/2 for closed, 0 for open surfaces).
-pub fn classify(
-    x: &Arranged,
-    x_in: &Mesh,
-    y: &Arranged,
-    y_in: &Mesh,
-    y_closed: bool,
-) -> Classified {
+/// One side of a classification: an input mesh, its arrangement and the arrangement's
+/// edge topology.
+pub struct Operand<'a> {
+    /// The input mesh.
+    pub input: &'a Mesh,
+    /// Its arrangement along the seam.
+    pub arranged: &'a Arranged,
+    /// `EdgeTopology::new(&arranged.mesh)`.
+    pub topology: &'a EdgeTopology,
+}
+
+/// Classifies the triangles of `x` against the other mesh `y` (both arranged along the same
+/// seam). `y_closed` picks the winding-number threshold (1/2 for closed, 0 for open).
+pub fn classify(x: &Operand, y: &Operand, y_closed: bool) -> Classified {
+    let (x_in, topo, y_in, ytopo) = (x.input, x.topology, y.input, y.topology);
+    let (x, y) = (x.arranged, y.arranged);
     let n = x.mesh.triangles.len();
-    let topo = EdgeTopology::new(&x.mesh);
     let seam: FxHashSet<[u32; 2]> = x.seam_edges.iter().copied().collect();
     // Patches: flood over edges that are not seam edges.
     let mut patch = vec![u32::MAX; n];
@@ -163,7 +168,6 @@ pub fn classify(
         .enumerate()
         .map(|(s, &v)| (v, s as u32))
         .collect();
-    let ytopo = EdgeTopology::new(&y.mesh);
     let seam_edge_ids: Vec<usize> = (0..topo.edge_count())
         .filter(|&e| seam.contains(&topo.edges[e]))
         .collect();
