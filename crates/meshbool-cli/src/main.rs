@@ -6,6 +6,7 @@ use std::process::ExitCode;
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
+use meshbool::edges::EdgeKind;
 use meshbool::io::{self, Format};
 use meshbool::measure::{mesh_stats, MeshStats};
 use meshbool::{boolean, intersect, weld_exact, EdgeTopology, Mesh};
@@ -241,16 +242,22 @@ fn print_human(file: &str, s: &MeshStats) {
 /// non-manifold edges unless `force`, in which case what was assumed is returned.
 fn operand(path: &Path, force: bool, assumed: &mut Vec<String>) -> Result<Mesh> {
     let mesh = weld_exact(&read(path, None)?).mesh;
-    let s = mesh_stats(&mesh);
-    let mut problems = Vec::new();
-    if s.inconsistent_edges > 0 {
-        problems.push(format!(
-            "{} inconsistently oriented edges",
-            s.inconsistent_edges
-        ));
+    // Only what decides whether inside/outside is well defined: edge kinds (linear time).
+    let topo = EdgeTopology::new(&mesh);
+    let (mut inconsistent, mut non_manifold) = (0, 0);
+    for e in 0..topo.edge_count() {
+        match topo.kind(e) {
+            EdgeKind::Inconsistent => inconsistent += 1,
+            EdgeKind::NonManifold => non_manifold += 1,
+            _ => {}
+        }
     }
-    if s.non_manifold_edges > 0 {
-        problems.push(format!("{} non-manifold edges", s.non_manifold_edges));
+    let mut problems = Vec::new();
+    if inconsistent > 0 {
+        problems.push(format!("{inconsistent} inconsistently oriented edges"));
+    }
+    if non_manifold > 0 {
+        problems.push(format!("{non_manifold} non-manifold edges"));
     }
     if !problems.is_empty() {
         let what = format!("{}: {}", path.display(), problems.join(", "));
@@ -262,14 +269,26 @@ fn operand(path: &Path, force: bool, assumed: &mut Vec<String>) -> Result<Mesh> 
         }
         assumed.push(format!("{what} (orientation taken as given)"));
     }
-    if s.degenerate_triangles > 0 {
-        assumed.push(format!(
-            "{}: {} degenerate triangles are ignored where they meet the other mesh",
-            path.display(),
-            s.degenerate_triangles
-        ));
-    }
     Ok(mesh)
+}
+
+/// Edge counts, volume and area of a result: the part of [`mesh_stats`] a report needs.
+fn result_measures(m: &Mesh) -> (usize, usize, f64, f64) {
+    let topo = EdgeTopology::new(m);
+    let (mut boundary, mut non_manifold) = (0, 0);
+    for e in 0..topo.edge_count() {
+        match topo.kind(e) {
+            EdgeKind::Boundary => boundary += 1,
+            EdgeKind::NonManifold => non_manifold += 1,
+            _ => {}
+        }
+    }
+    (
+        boundary,
+        non_manifold,
+        meshbool::measure::signed_volume(m),
+        meshbool::measure::area(m),
+    )
 }
 
 fn set_threads(n: Option<usize>) -> Result<()> {
@@ -308,7 +327,13 @@ fn run_boolean(a: &Path, b: &Path, output: &Path, op: boolean::Op, opts: &BoolOp
     let r = boolean::boolean(&ma, &mb, op);
     let seconds = start.elapsed().as_secs_f64();
     io::write_path(output, &r.mesh).with_context(|| format!("writing {}", output.display()))?;
-    let s = mesh_stats(&r.mesh);
+    let (boundary_edges, non_manifold_edges, volume, area) = result_measures(&r.mesh);
+    if r.degenerate != [0, 0] {
+        assumed.push(format!(
+            "degenerate (zero-area) triangles where the meshes meet were left out: {} in A, {} in B",
+            r.degenerate[0], r.degenerate[1]
+        ));
+    }
     let report = BoolReport {
         operation: match op {
             boolean::Op::Union => "union",
@@ -316,13 +341,13 @@ fn run_boolean(a: &Path, b: &Path, output: &Path, op: boolean::Op, opts: &BoolOp
             boolean::Op::Difference => "difference",
             boolean::Op::ReverseDifference => "reverse-difference",
         },
-        triangles: s.triangles,
-        vertices: s.vertices,
-        boundary_edges: s.boundary_edges,
-        non_manifold_edges: s.non_manifold_edges,
-        closed: s.closed,
-        volume: s.volume,
-        area: s.area,
+        triangles: r.mesh.triangles.len(),
+        vertices: r.mesh.positions.len(),
+        boundary_edges,
+        non_manifold_edges,
+        closed: !r.mesh.is_empty() && boundary_edges == 0 && non_manifold_edges == 0,
+        volume,
+        area,
         seam_points: r.seam_points,
         failed_triangles: r
             .failed
@@ -341,9 +366,9 @@ fn run_boolean(a: &Path, b: &Path, output: &Path, op: boolean::Op, opts: &BoolOp
         eprintln!(
             "wrote {} ({} triangles, volume {}, {} boundary edges, {:.3} s)",
             output.display(),
-            s.triangles,
-            s.volume,
-            s.boundary_edges,
+            report.triangles,
+            report.volume,
+            report.boundary_edges,
             seconds
         );
     }

@@ -53,6 +53,9 @@ pub struct BooleanResult {
     pub provenance: Vec<Provenance>,
     /// Seam points, for statistics.
     pub seam_points: usize,
+    /// Degenerate (zero-area) triangles of A and B where the meshes meet, left out of the
+    /// intersection test (see [`Seam::degenerate`]).
+    pub degenerate: [usize; 2],
     /// Triangles that could not be re-triangulated (invalid input), kept uncut: each is
     /// `(source, triangle, reason)`. Empty for valid inputs.
     pub failed: Vec<(Source, u32, &'static str)>,
@@ -207,6 +210,7 @@ pub fn boolean(a: &Mesh, b: &Mesh, op: Op) -> BooleanResult {
                 Source::B => Source::A,
             };
         }
+        r.degenerate.swap(0, 1);
         for f in &mut r.failed {
             f.0 = match f.0 {
                 Source::A => Source::B,
@@ -232,6 +236,7 @@ pub fn boolean(a: &Mesh, b: &Mesh, op: Op) -> BooleanResult {
         mesh,
         provenance,
         seam_points: s.seam.points.len(),
+        degenerate: s.seam.degenerate,
         failed,
     }
 }

@@ -258,13 +258,39 @@ pub fn classify(x: &Operand, y: &Operand, y_closed: bool) -> Classified {
             }
         };
     }
-    let class = (0..n)
+    // Patches whose seam stops inside them: the triangles along the seam keep their local
+    // answer and pass it on through the patch breadth-first, so every other triangle takes
+    // the class of the nearest decided one (deterministic: sources in triangle order).
+    // Per-triangle winding numbers would be O(n·m) here; the hierarchical fast winding
+    // number is the planned replacement for the region beyond the other surface's reach.
+    let mut class: Vec<Option<Class>> = (0..n).map(|t| patch_class[patch[t] as usize]).collect();
+    let mut queue = std::collections::VecDeque::new();
+    for t in 0..n {
+        if class[t].is_none() {
+            if let Some(Some(c)) = own_vote.get(&(t as u32)) {
+                class[t] = Some(*c);
+                queue.push_back(t as u32);
+            }
+        }
+    }
+    while let Some(t) = queue.pop_front() {
+        let c = class[t as usize];
+        for &e in &topo.triangle_edges[t as usize] {
+            if e == EdgeTopology::NO_EDGE || seam.contains(&topo.edges[e as usize]) {
+                continue;
+            }
+            for u in topo.uses_of(e as usize) {
+                if class[u.triangle as usize].is_none() {
+                    class[u.triangle as usize] = c;
+                    queue.push_back(u.triangle);
+                }
+            }
+        }
+    }
+    let class = class
         .into_par_iter()
-        .map(|t| {
-            patch_class[patch[t] as usize]
-                .or_else(|| own_vote.get(&(t as u32)).copied().flatten())
-                .unwrap_or_else(|| by_wn(t))
-        })
+        .enumerate()
+        .map(|(t, c)| c.unwrap_or_else(|| by_wn(t)))
         .collect();
     Classified {
         class,
