@@ -265,10 +265,10 @@ pub fn classify(x: &Operand, y: &Operand, y_closed: bool) -> Classified {
     // number is the planned replacement for the region beyond the other surface's reach.
     let mut class: Vec<Option<Class>> = (0..n).map(|t| patch_class[patch[t] as usize]).collect();
     let mut queue = std::collections::VecDeque::new();
-    for t in 0..n {
-        if class[t].is_none() {
+    for (t, slot) in class.iter_mut().enumerate() {
+        if slot.is_none() {
             if let Some(Some(c)) = own_vote.get(&(t as u32)) {
-                class[t] = Some(*c);
+                *slot = Some(*c);
                 queue.push_back(t as u32);
             }
         }
