@@ -52,45 +52,18 @@ enum Command {
         to: Option<Format>,
     },
     /// A ∪ B: the union of two meshes.
-    Union {
-        /// First mesh.
-        a: PathBuf,
-        /// Second mesh.
-        b: PathBuf,
-        /// Output mesh file.
-        #[arg(short, long)]
-        output: PathBuf,
-        #[command(flatten)]
-        opts: BoolOpts,
-    },
+    Union(OperandArgs),
     /// A ∩ B: the intersection of two meshes.
     #[command(alias = "intersect")]
-    Intersection {
-        /// First mesh.
-        a: PathBuf,
-        /// Second mesh.
-        b: PathBuf,
-        /// Output mesh file.
-        #[arg(short, long)]
-        output: PathBuf,
-        #[command(flatten)]
-        opts: BoolOpts,
-    },
+    Intersection(OperandArgs),
     /// A − B (or B − A with --reverse).
     #[command(alias = "subtract")]
     Difference {
-        /// Mesh to subtract from.
-        a: PathBuf,
-        /// Mesh to subtract.
-        b: PathBuf,
-        /// Output mesh file.
-        #[arg(short, long)]
-        output: PathBuf,
+        #[command(flatten)]
+        args: OperandArgs,
         /// Compute B − A instead.
         #[arg(long)]
         reverse: bool,
-        #[command(flatten)]
-        opts: BoolOpts,
     },
     /// Split both meshes along their intersection into groups (a_in_b, a_out_b, b_in_a,
     /// b_out_a, and coplanar a_on_b_same/opposite, b_on_a_same/opposite) and their
@@ -141,6 +114,20 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+}
+
+/// The operands and output of a boolean command.
+#[derive(clap::Args, Clone)]
+struct OperandArgs {
+    /// First mesh (A).
+    a: PathBuf,
+    /// Second mesh (B).
+    b: PathBuf,
+    /// Output mesh file.
+    #[arg(short, long)]
+    output: PathBuf,
+    #[command(flatten)]
+    opts: BoolOpts,
 }
 
 /// Options shared by the boolean commands.
@@ -316,7 +303,8 @@ struct BoolReport {
     seconds: f64,
 }
 
-fn run_boolean(a: &Path, b: &Path, output: &Path, op: boolean::Op, opts: &BoolOpts) -> Result<()> {
+fn run_boolean(args: &OperandArgs, op: boolean::Op) -> Result<()> {
+    let (a, b, output, opts) = (&args.a, &args.b, &args.output, &args.opts);
     set_threads(opts.threads)?;
     let mut assumed = Vec::new();
     let (ma, mb) = (
@@ -546,25 +534,15 @@ fn run_pick(dir: &Path, keep: &[String], output: &Path, json: bool) -> Result<()
 
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
-        Command::Union { a, b, output, opts } => {
-            run_boolean(&a, &b, &output, boolean::Op::Union, &opts)?
-        }
-        Command::Intersection { a, b, output, opts } => {
-            run_boolean(&a, &b, &output, boolean::Op::Intersection, &opts)?
-        }
-        Command::Difference {
-            a,
-            b,
-            output,
-            reverse,
-            opts,
-        } => {
+        Command::Union(args) => run_boolean(&args, boolean::Op::Union)?,
+        Command::Intersection(args) => run_boolean(&args, boolean::Op::Intersection)?,
+        Command::Difference { args, reverse } => {
             let op = if reverse {
                 boolean::Op::ReverseDifference
             } else {
                 boolean::Op::Difference
             };
-            run_boolean(&a, &b, &output, op, &opts)?
+            run_boolean(&args, op)?
         }
         Command::Split {
             a,

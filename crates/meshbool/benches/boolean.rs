@@ -5,18 +5,12 @@
 use std::sync::LazyLock;
 
 use meshbool::boolean::{boolean, Op};
-use meshbool::shapes::uv_sphere;
+use meshbool::shapes::{rigid_motion, uv_sphere};
 use meshbool::Mesh;
 
 fn pair(segments: u32, rings: u32) -> (Mesh, Mesh) {
     let a = uv_sphere([0.0; 3], 1.0, segments, rings);
-    let (s, c) = 0.1f64.sin_cos();
-    let positions = a
-        .positions
-        .iter()
-        .map(|p| [c * p[0] - s * p[1] + 0.5, s * p[0] + c * p[1], p[2]])
-        .collect();
-    let b = Mesh::new(positions, a.triangles.clone());
+    let b = rigid_motion(&a, [0.0, 0.0, 1.0], 0.1, [0.5, 0.0, 0.0]);
     (a, b)
 }
 

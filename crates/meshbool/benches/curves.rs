@@ -5,29 +5,13 @@
 use std::sync::LazyLock;
 
 use meshbool::intersect::{chain, intersect};
-use meshbool::shapes::uv_sphere;
+use meshbool::shapes::{rigid_motion, uv_sphere};
 use meshbool::Mesh;
-
-fn rotated_z(m: &Mesh, angle: f64, shift: [f64; 3]) -> Mesh {
-    let (s, c) = angle.sin_cos();
-    let positions = m
-        .positions
-        .iter()
-        .map(|p| {
-            [
-                c * p[0] - s * p[1] + shift[0],
-                s * p[0] + c * p[1] + shift[1],
-                p[2] + shift[2],
-            ]
-        })
-        .collect();
-    Mesh::new(positions, m.triangles.clone())
-}
 
 /// Sphere pairs by triangle count per sphere: 2 · segments · (rings − 1).
 fn pair(segments: u32, rings: u32) -> (Mesh, Mesh) {
     let a = uv_sphere([0.0; 3], 1.0, segments, rings);
-    let b = rotated_z(&a, 0.1, [0.5, 0.0, 0.0]);
+    let b = rigid_motion(&a, [0.0, 0.0, 1.0], 0.1, [0.5, 0.0, 0.0]);
     (a, b)
 }
 

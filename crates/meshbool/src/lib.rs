@@ -40,6 +40,8 @@ pub mod kernel;
 pub mod measure;
 mod mesh;
 pub mod shapes;
+#[cfg(test)]
+mod test_util;
 
 pub use edges::EdgeTopology;
 pub use error::{Error, Location, Result};

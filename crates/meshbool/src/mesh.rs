@@ -461,13 +461,8 @@ mod tests {
     /// more distinct positions arrive than the table was sized for (it must grow).
     #[test]
     fn weld_matches_naive_reference() {
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state
-        };
+        let mut rng = crate::test_util::Rng(0x2545_f491_4f6c_dd1d);
+        let mut next = || rng.next();
         let pool: Vec<[f64; 3]> = (0..30_000)
             .map(|i| {
                 let base = [

@@ -103,6 +103,39 @@ pub fn heightfield(
     Mesh::new(positions, triangles)
 }
 
+/// `mesh` rotated by `angle` radians about `axis` (through the origin; any non-zero
+/// length), then translated by `shift`. Triangles are unchanged.
+pub fn rigid_motion(mesh: &Mesh, axis: [f64; 3], angle: f64, shift: [f64; 3]) -> Mesh {
+    let n = (axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]).sqrt();
+    let [x, y, z] = axis.map(|c| c / n);
+    let (s, c) = angle.sin_cos();
+    let r = [
+        [
+            c + x * x * (1.0 - c),
+            x * y * (1.0 - c) - z * s,
+            x * z * (1.0 - c) + y * s,
+        ],
+        [
+            y * x * (1.0 - c) + z * s,
+            c + y * y * (1.0 - c),
+            y * z * (1.0 - c) - x * s,
+        ],
+        [
+            z * x * (1.0 - c) - y * s,
+            z * y * (1.0 - c) + x * s,
+            c + z * z * (1.0 - c),
+        ],
+    ];
+    let positions = mesh
+        .positions
+        .iter()
+        .map(|p| {
+            std::array::from_fn(|i| r[i][0] * p[0] + r[i][1] * p[1] + r[i][2] * p[2] + shift[i])
+        })
+        .collect();
+    Mesh::new(positions, mesh.triangles.clone())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -2,7 +2,9 @@ use super::*;
 use crate::edges::{EdgeKind, EdgeTopology};
 use crate::intersect::intersect;
 use crate::measure::{area, mesh_stats, signed_volume};
+use crate::shapes::rigid_motion;
 use crate::shapes::uv_sphere;
+use crate::test_util::Rng;
 
 fn edges_of(m: &Mesh) -> FxHashSet<[u32; 2]> {
     let topo = EdgeTopology::new(m);
@@ -84,46 +86,10 @@ fn terrain_cut_by_cylinder_keeps_its_boundary() {
     }
 }
 
-fn moved(m: &Mesh, axis: [f64; 3], angle: f64, shift: [f64; 3]) -> Mesh {
-    let n = (axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]).sqrt();
-    let [x, y, z] = axis.map(|c| c / n);
-    let (s, c) = angle.sin_cos();
-    let r = [
-        [
-            c + x * x * (1.0 - c),
-            x * y * (1.0 - c) - z * s,
-            x * z * (1.0 - c) + y * s,
-        ],
-        [
-            y * x * (1.0 - c) + z * s,
-            c + y * y * (1.0 - c),
-            y * z * (1.0 - c) - x * s,
-        ],
-        [
-            z * x * (1.0 - c) - y * s,
-            z * y * (1.0 - c) + x * s,
-            c + z * z * (1.0 - c),
-        ],
-    ];
-    let positions = m
-        .positions
-        .iter()
-        .map(|p| {
-            std::array::from_fn(|i| r[i][0] * p[0] + r[i][1] * p[1] + r[i][2] * p[2] + shift[i])
-        })
-        .collect();
-    Mesh::new(positions, m.triangles.clone())
-}
-
 #[test]
 fn random_rigid_motions_of_spheres_tori_and_cubes() {
-    let mut state = 0x0123_4567_89ab_cdefu64;
-    let mut unit = || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = Rng(0x0123_4567_89ab_cdef);
+    let mut unit = || rng.unit();
     let shapes = [
         uv_sphere([0.0; 3], 1.0, 24, 12),
         crate::shapes::torus([0.0; 3], 1.0, 0.35, 24, 12),
@@ -134,17 +100,23 @@ fn random_rigid_motions_of_spheres_tori_and_cubes() {
         let b = &shapes[(i / 3) % 3];
         let axis = [unit() - 0.5, unit() - 0.5, unit() - 0.5];
         let shift = [unit() - 0.5, unit() - 0.5, unit() - 0.5];
-        check_closed_pair(a, &moved(b, axis, 6.0 * unit(), shift));
+        check_closed_pair(a, &rigid_motion(b, axis, 6.0 * unit(), shift));
     }
 }
 
 #[test]
 fn near_identical_copies() {
     let a = uv_sphere([0.0; 3], 1.0, 24, 12);
-    check_closed_pair(&a, &moved(&a, [0.3, 0.5, 0.8], 0.2, [1e-9, 0.0, 0.0]));
-    check_closed_pair(&a, &moved(&a, [0.0, 0.0, 1.0], 1e-12, [0.0; 3]));
+    check_closed_pair(
+        &a,
+        &rigid_motion(&a, [0.3, 0.5, 0.8], 0.2, [1e-9, 0.0, 0.0]),
+    );
+    check_closed_pair(&a, &rigid_motion(&a, [0.0, 0.0, 1.0], 1e-12, [0.0; 3]));
     let cube = Mesh::unit_cube();
-    check_closed_pair(&cube, &moved(&cube, [1.0, 1.0, 1.0], 1e-12, [0.0; 3]));
+    check_closed_pair(
+        &cube,
+        &rigid_motion(&cube, [1.0, 1.0, 1.0], 1e-12, [0.0; 3]),
+    );
 }
 
 #[test]
@@ -160,7 +132,7 @@ fn identical_meshes_need_no_cuts() {
 fn utm_offset_pair() {
     let off = [478_614.7, 6_772_313.84, 350.0];
     let a = uv_sphere(off, 10.0, 24, 12);
-    let b = moved(
+    let b = rigid_motion(
         &uv_sphere([0.0; 3], 8.0, 20, 10),
         [0.2, 0.1, 1.0],
         0.3,

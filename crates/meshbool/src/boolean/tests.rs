@@ -1,6 +1,8 @@
 use super::*;
 use crate::measure::{mesh_stats, signed_volume};
+use crate::shapes::rigid_motion;
 use crate::shapes::{torus, uv_sphere};
+use crate::test_util::Rng;
 
 fn vol(m: &Mesh) -> f64 {
     signed_volume(m)
@@ -141,46 +143,10 @@ fn disjoint_meshes() {
     assert!((u - 1.0 - vol(&b)).abs() < 1e-12);
 }
 
-fn moved(m: &Mesh, axis: [f64; 3], angle: f64, shift: [f64; 3]) -> Mesh {
-    let n = (axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]).sqrt();
-    let [x, y, z] = axis.map(|c| c / n);
-    let (s, c) = angle.sin_cos();
-    let r = [
-        [
-            c + x * x * (1.0 - c),
-            x * y * (1.0 - c) - z * s,
-            x * z * (1.0 - c) + y * s,
-        ],
-        [
-            y * x * (1.0 - c) + z * s,
-            c + y * y * (1.0 - c),
-            y * z * (1.0 - c) - x * s,
-        ],
-        [
-            z * x * (1.0 - c) - y * s,
-            z * y * (1.0 - c) + x * s,
-            c + z * z * (1.0 - c),
-        ],
-    ];
-    let positions = m
-        .positions
-        .iter()
-        .map(|p| {
-            std::array::from_fn(|i| r[i][0] * p[0] + r[i][1] * p[1] + r[i][2] * p[2] + shift[i])
-        })
-        .collect();
-    Mesh::new(positions, m.triangles.clone())
-}
-
 #[test]
 fn volume_identities_over_random_rigid_motions() {
-    let mut state = 0xdead_beef_1234_5678u64;
-    let mut unit = || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = Rng(0xdead_beef_1234_5678);
+    let mut unit = || rng.unit();
     let shapes = [
         uv_sphere([0.0; 3], 1.0, 24, 12),
         torus([0.0; 3], 1.0, 0.35, 24, 12),
@@ -191,17 +157,29 @@ fn volume_identities_over_random_rigid_motions() {
         let b = &shapes[(k / 3) % 3];
         let axis = [unit() - 0.5, unit() - 0.5, unit() - 0.5];
         let shift = [unit() - 0.5, unit() - 0.5, unit() - 0.5];
-        check(a, &moved(b, axis, 6.0 * unit(), shift), 1e-9);
+        check(a, &rigid_motion(b, axis, 6.0 * unit(), shift), 1e-9);
     }
 }
 
 #[test]
 fn near_degenerate_copies() {
     let a = uv_sphere([0.0; 3], 1.0, 24, 12);
-    check(&a, &moved(&a, [0.3, 0.5, 0.8], 0.2, [1e-9, 0.0, 0.0]), 1e-9);
-    check(&a, &moved(&a, [0.0, 0.0, 1.0], 1e-12, [0.0; 3]), 1e-9);
+    check(
+        &a,
+        &rigid_motion(&a, [0.3, 0.5, 0.8], 0.2, [1e-9, 0.0, 0.0]),
+        1e-9,
+    );
+    check(
+        &a,
+        &rigid_motion(&a, [0.0, 0.0, 1.0], 1e-12, [0.0; 3]),
+        1e-9,
+    );
     let cube = Mesh::unit_cube();
-    check(&cube, &moved(&cube, [1.0, 1.0, 1.0], 1e-12, [0.0; 3]), 1e-9);
+    check(
+        &cube,
+        &rigid_motion(&cube, [1.0, 1.0, 1.0], 1e-12, [0.0; 3]),
+        1e-9,
+    );
 }
 
 #[test]
@@ -342,7 +320,7 @@ fn crossing_terrains_split_along_the_open_curve() {
 #[test]
 fn split_groups_pick_back_into_the_booleans() {
     let a = uv_sphere([0.0; 3], 1.0, 24, 12);
-    let b = moved(
+    let b = rigid_motion(
         &torus([0.0; 3], 1.0, 0.35, 24, 12),
         [1.0, 0.2, 0.1],
         0.7,

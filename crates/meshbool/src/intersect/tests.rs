@@ -1,7 +1,9 @@
 use super::tritri::{edge, intersect as tt, Feature::*, Label, Tri, TriTri};
 use super::*;
 use crate::edges::{EdgeKind, EdgeTopology};
+use crate::shapes::rigid_motion;
 use crate::shapes::{heightfield, uv_sphere};
+use crate::test_util::Rng;
 
 fn t(id: u32, base: u32, p: [[f64; 3]; 3]) -> Tri {
     Tri::new(id, [base, base + 1, base + 2], p).unwrap()
@@ -149,37 +151,6 @@ fn degenerate_triangle_is_refused() {
     assert!(Tri::new(0, [0, 1, 2], [[0.0; 3], [1.0; 3], [2.0; 3]]).is_none());
 }
 
-fn rotate(m: &Mesh, axis: [f64; 3], angle: f64, shift: [f64; 3]) -> Mesh {
-    let n = (axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]).sqrt();
-    let [x, y, z] = axis.map(|c| c / n);
-    let (s, c) = angle.sin_cos();
-    let r = [
-        [
-            c + x * x * (1.0 - c),
-            x * y * (1.0 - c) - z * s,
-            x * z * (1.0 - c) + y * s,
-        ],
-        [
-            y * x * (1.0 - c) + z * s,
-            c + y * y * (1.0 - c),
-            y * z * (1.0 - c) - x * s,
-        ],
-        [
-            z * x * (1.0 - c) - y * s,
-            z * y * (1.0 - c) + x * s,
-            c + z * z * (1.0 - c),
-        ],
-    ];
-    let positions = m
-        .positions
-        .iter()
-        .map(|p| {
-            std::array::from_fn(|i| r[i][0] * p[0] + r[i][1] * p[1] + r[i][2] * p[2] + shift[i])
-        })
-        .collect();
-    Mesh::new(positions, m.triangles.clone())
-}
-
 #[test]
 fn two_spheres_meet_in_one_loop_on_the_analytic_circle() {
     for (seg, rings) in [(32, 16), (96, 48)] {
@@ -211,7 +182,7 @@ fn sphere_and_its_rotated_copy_shifted_1e9_give_closed_loops() {
         ([0.0, 0.0, 1.0], 1e-12),
         ([1.0, 0.0, 0.0], 0.05),
     ] {
-        let b = rotate(&a, axis, angle, [1e-9, 0.0, 0.0]);
+        let b = rigid_motion(&a, axis, angle, [1e-9, 0.0, 0.0]);
         let seam = intersect(&a, &b);
         let curves = chain(&seam, false);
         assert!(!curves.is_empty(), "{axis:?} {angle}");
@@ -309,13 +280,8 @@ fn swap(l: Label) -> Label {
 /// edges, shared vertices, edges in planes and coplanar pairs common.
 #[test]
 fn tritri_is_symmetric_and_its_points_lie_in_both_triangles() {
-    let mut state = 0x1234_5678_9abc_def1u64;
-    let mut next = || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state % 4) as f64
-    };
+    let mut rng = Rng(0x1234_5678_9abc_def1);
+    let mut next = || (rng.next() % 4) as f64;
     let (mut segments, mut points, mut coplanar) = (0, 0, 0);
     for _ in 0..20_000 {
         let pa: [[f64; 3]; 3] = std::array::from_fn(|_| std::array::from_fn(|_| next()));

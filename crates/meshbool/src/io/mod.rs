@@ -237,6 +237,17 @@ impl<'a, W: Write> Out<'a, W> {
         self
     }
 
+    /// An OBJ vertex line `v x y z`.
+    fn obj_vertex(&mut self, p: &[f64; 3]) -> &mut Self {
+        self.bytes(b"v ")
+            .f64(p[0])
+            .bytes(b" ")
+            .f64(p[1])
+            .bytes(b" ")
+            .f64(p[2])
+            .bytes(b"\n")
+    }
+
     fn int(&mut self, x: u64) -> &mut Self {
         self.buf.extend_from_slice(self.int.format(x).as_bytes());
         self

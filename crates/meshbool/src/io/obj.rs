@@ -100,13 +100,7 @@ pub(super) fn write(out: &mut impl Write, mesh: &Mesh) -> Result<()> {
     let mut o = Out::new(out);
     o.bytes(b"# meshbool\n");
     for p in &mesh.positions {
-        o.bytes(b"v ")
-            .f64(p[0])
-            .bytes(b" ")
-            .f64(p[1])
-            .bytes(b" ")
-            .f64(p[2])
-            .bytes(b"\n");
+        o.obj_vertex(p);
         o.record_done()?;
     }
     for t in &mesh.triangles {

@@ -34,13 +34,7 @@ pub fn write_polylines(out: &mut impl Write, lines: &[PolylineXyz], format: Form
             o.bytes(b"# meshbool polylines\n");
             for l in lines {
                 for p in &l.points {
-                    o.bytes(b"v ")
-                        .f64(p[0])
-                        .bytes(b" ")
-                        .f64(p[1])
-                        .bytes(b" ")
-                        .f64(p[2])
-                        .bytes(b"\n");
+                    o.obj_vertex(p);
                     o.record_done()?;
                 }
             }
