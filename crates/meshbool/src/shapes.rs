@@ -172,6 +172,31 @@ mod tests {
     }
 
     #[test]
+    fn rigid_motion_keeps_shape_and_moves_it() {
+        let cube = Mesh::unit_cube();
+        // A quarter turn about z maps the unit cube onto [-1,0]x[0,1]x[0,1], then shifted.
+        let m = rigid_motion(
+            &cube,
+            [0.0, 0.0, 2.0],
+            std::f64::consts::FRAC_PI_2,
+            [1.0, 0.0, 5.0],
+        );
+        let b = m.bounds().unwrap();
+        for k in 0..3 {
+            assert!(
+                (b.min[k] - [0.0, 0.0, 5.0][k]).abs() < 1e-15
+                    && (b.max[k] - [1.0, 1.0, 6.0][k]).abs() < 1e-15
+            );
+        }
+        assert!((mesh_stats(&m).volume - 1.0).abs() < 1e-14);
+        assert_eq!(m.triangles, cube.triangles);
+        assert_eq!(
+            rigid_motion(&cube, [1.0, 2.0, 3.0], 0.0, [0.0; 3]).positions,
+            cube.positions
+        );
+    }
+
+    #[test]
     fn heightfield_is_an_open_grid() {
         let m = heightfield([0.0, 0.0], [10.0, 5.0], 10, 5, |x, y| 0.1 * x + 0.2 * y);
         let s = mesh_stats(&m);
