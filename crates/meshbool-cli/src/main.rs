@@ -9,6 +9,7 @@ use clap::{Parser, Subcommand};
 use meshbool::edges::EdgeKind;
 use meshbool::io::{self, Format};
 use meshbool::measure::{mesh_stats, MeshStats};
+use meshbool::repair::{orient, Facing};
 use meshbool::{boolean, intersect, weld_exact, EdgeTopology, Mesh};
 
 #[derive(Parser)]
@@ -93,6 +94,24 @@ enum Command {
         /// Output mesh file.
         #[arg(short, long)]
         output: PathBuf,
+        /// Print a JSON report on stdout.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Make triangle orientation consistent across every manifold edge, component by
+    /// component, and face each component as asked (default: as most triangles already did).
+    Orient {
+        /// Input mesh.
+        input: PathBuf,
+        /// Output mesh file.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Normals up (positive projected XY area): terrain and other open surfaces.
+        #[arg(long, conflicts_with = "outward")]
+        z_up: bool,
+        /// Closed components outward (positive volume).
+        #[arg(long)]
+        outward: bool,
         /// Print a JSON report on stdout.
         #[arg(long)]
         json: bool,
@@ -557,6 +576,35 @@ fn run(cli: Cli) -> Result<()> {
             output,
             json,
         } => run_pick(&dir, &keep, &output, json)?,
+        Command::Orient {
+            input,
+            output,
+            z_up,
+            outward,
+            json,
+        } => {
+            let mesh = weld_exact(&read(&input, None)?).mesh;
+            let facing = match (z_up, outward) {
+                (true, _) => Facing::ZUp,
+                (_, true) => Facing::Outward,
+                _ => Facing::Majority,
+            };
+            let (oriented, report) = orient(&mesh, facing);
+            io::write_path(&output, &oriented)
+                .with_context(|| format!("writing {}", output.display()))?;
+            if json {
+                println!("{}", serde_json::to_string_pretty(&report)?);
+            } else {
+                eprintln!(
+                    "wrote {}: {} triangles flipped, {} components, {} edges could not be made consistent, {} non-manifold edges",
+                    output.display(),
+                    report.flipped,
+                    report.components,
+                    report.conflicting_edges,
+                    report.non_manifold_edges
+                );
+            }
+        }
         Command::Info { files, json, from } => {
             let mut all = Vec::new();
             for f in &files {

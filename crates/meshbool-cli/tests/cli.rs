@@ -289,3 +289,32 @@ fn split_then_pick_rebuilds_the_difference() {
     ]);
     assert_eq!(bad.status.code(), Some(1));
 }
+
+#[test]
+fn oriented_terrain_needs_no_force() {
+    let oriented = tmp("oriented.ply");
+    let r = report(&[
+        "orient",
+        data("kap_terrain.obj").to_str().unwrap(),
+        "-o",
+        oriented.to_str().unwrap(),
+        "--z-up",
+        "--json",
+    ]);
+    assert_eq!(r["flipped"], 22);
+    assert_eq!(r["conflicting_edges"], 0);
+    let info = report(&["info", "--json", oriented.to_str().unwrap()]);
+    assert_eq!(info["inconsistent_edges"], 0);
+    assert_eq!(info["boundary_edges"], 560);
+    let out = tmp("mined.ply");
+    let v = report(&[
+        "difference",
+        oriented.to_str().unwrap(),
+        data("kap_cylinder.obj").to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    assert_eq!(v["boundary_edges"], 560);
+    assert_eq!(v["assumed"].as_array().unwrap().len(), 0);
+}

@@ -39,6 +39,7 @@ pub mod io;
 pub mod kernel;
 pub mod measure;
 mod mesh;
+pub mod repair;
 pub mod shapes;
 #[cfg(test)]
 mod test_util;
