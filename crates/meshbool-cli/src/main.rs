@@ -159,6 +159,10 @@ struct BoolOpts {
     /// Print a JSON report on stdout.
     #[arg(long)]
     json: bool,
+    /// Skip the check for self-intersecting inputs (it costs about as much as the boolean
+    /// on large meshes); only for inputs known to be clean.
+    #[arg(long)]
+    no_self_check: bool,
     /// Worker threads (default: all cores).
     #[arg(long)]
     threads: Option<usize>,
@@ -246,7 +250,8 @@ fn print_human(file: &str, s: &MeshStats) {
 
 /// Reads, validates and welds a boolean operand; refuses inconsistent orientation and
 /// non-manifold edges unless `force`, in which case what was assumed is returned.
-fn operand(path: &Path, force: bool, assumed: &mut Vec<String>) -> Result<Mesh> {
+fn operand(path: &Path, opts: &BoolOpts, assumed: &mut Vec<String>) -> Result<Mesh> {
+    let force = opts.force;
     let mesh = weld_exact(&read(path, None)?).mesh;
     // Only what decides whether inside/outside is well defined: edge kinds (linear time).
     let topo = EdgeTopology::new(&mesh);
@@ -265,15 +270,32 @@ fn operand(path: &Path, force: bool, assumed: &mut Vec<String>) -> Result<Mesh> 
     if non_manifold > 0 {
         problems.push(format!("{non_manifold} non-manifold edges"));
     }
+    let crossings = if opts.no_self_check {
+        assumed.push(format!(
+            "{}: not checked for self-intersections",
+            path.display()
+        ));
+        Vec::new()
+    } else {
+        intersect::self_intersections(&mesh)
+    };
+    if let Some(&(i, j)) = crossings.first() {
+        let [a, b, c] = mesh.corners(i as usize);
+        let near: [f64; 3] = std::array::from_fn(|k| (a[k] + b[k] + c[k]) / 3.0);
+        problems.push(format!(
+            "{} self-intersecting triangle pairs (first: triangles {i} and {j}, near {near:?})",
+            crossings.len()
+        ));
+    }
     if !problems.is_empty() {
         let what = format!("{}: {}", path.display(), problems.join(", "));
         if !force {
             anyhow::bail!(
                 "{what}; inside/outside would be ambiguous. Repair the input, or pass --force \
-                 to proceed with the orientation as given"
+                 to proceed with the input as given"
             );
         }
-        assumed.push(format!("{what} (orientation taken as given)"));
+        assumed.push(format!("{what} (input taken as given)"));
     }
     Ok(mesh)
 }
@@ -327,8 +349,8 @@ fn run_boolean(args: &OperandArgs, op: boolean::Op) -> Result<()> {
     set_threads(opts.threads)?;
     let mut assumed = Vec::new();
     let (ma, mb) = (
-        operand(a, opts.force, &mut assumed)?,
-        operand(b, opts.force, &mut assumed)?,
+        operand(a, opts, &mut assumed)?,
+        operand(b, opts, &mut assumed)?,
     );
     let start = std::time::Instant::now();
     let r = boolean::boolean(&ma, &mb, op);
@@ -420,8 +442,8 @@ fn run_split(a: &Path, b: &Path, dir: &Path, format: Format, opts: &BoolOpts) ->
     set_threads(opts.threads)?;
     let mut assumed = Vec::new();
     let (ma, mb) = (
-        operand(a, opts.force, &mut assumed)?,
-        operand(b, opts.force, &mut assumed)?,
+        operand(a, opts, &mut assumed)?,
+        operand(b, opts, &mut assumed)?,
     );
     for w in &assumed {
         eprintln!("warning: {w}");

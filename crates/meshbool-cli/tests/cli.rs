@@ -318,3 +318,31 @@ fn oriented_terrain_needs_no_force() {
     assert_eq!(v["boundary_edges"], 560);
     assert_eq!(v["assumed"].as_array().unwrap().len(), 0);
 }
+
+#[test]
+fn self_intersecting_input_is_refused_with_a_location() {
+    // Two overlapping cubes in one file.
+    let mut m = meshbool::Mesh::unit_cube();
+    let other = meshbool::Mesh::cuboid([0.5; 3], [1.5; 3]);
+    let n = m.positions.len() as u32;
+    m.positions.extend(&other.positions);
+    m.triangles
+        .extend(other.triangles.iter().map(|t| t.map(|v| v + n)));
+    let bad = tmp("selfx.ply");
+    meshbool::io::write_path(&bad, &m).unwrap();
+    let c = write_cube("selfx_b.ply", [2.0; 3], [3.0; 3]);
+    let out = tmp("selfx_out.ply");
+    let r = meshbool(&[
+        "union",
+        bad.to_str().unwrap(),
+        c.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(r.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert!(
+        err.contains("self-intersecting triangle pairs") && err.contains("near"),
+        "{err}"
+    );
+}

@@ -222,6 +222,24 @@ impl Bvh {
     }
 }
 
+impl Bvh {
+    /// Every pair `(i, j)`, `i < j`, of triangles of `mesh` (the mesh this tree was built
+    /// from) whose exact boxes overlap, in no particular order. Each node pair is visited
+    /// once (a self-traversal), not twice as `overlapping_pairs(mesh, self, mesh)` would.
+    pub fn self_pairs(&self, mesh: &Mesh) -> Vec<(u32, u32)> {
+        if self.is_empty() {
+            return Vec::new();
+        }
+        let q = Query {
+            a: self,
+            b: self,
+            ma: mesh,
+            mb: mesh,
+        };
+        q.within(0, 0)
+    }
+}
+
 /// A tree-vs-tree traversal.
 struct Query<'a> {
     a: &'a Bvh,
@@ -231,6 +249,45 @@ struct Query<'a> {
 }
 
 impl Query<'_> {
+    /// Pairs inside the subtree of node `x` (a self-query: `a` and `b` are the same tree).
+    fn within(&self, x: usize, depth: u32) -> Vec<(u32, u32)> {
+        let n = &self.a.nodes[x];
+        if n.count > 0 {
+            let ts = &self.a.order[n.start as usize..(n.start + n.count) as usize];
+            let boxes: Vec<Box3> = ts.iter().map(|&t| tri_box(self.ma, t)).collect();
+            let mut out = Vec::new();
+            for i in 0..ts.len() {
+                for j in i + 1..ts.len() {
+                    if overlaps(&boxes[i], &boxes[j]) {
+                        out.push((ts[i].min(ts[j]), ts[i].max(ts[j])));
+                    }
+                }
+            }
+            return out;
+        }
+        let (l, r) = (x + 1, n.start as usize);
+        let go = || {
+            let (mut a, b) =
+                rayon::join(|| self.within(l, depth + 1), || self.within(r, depth + 1));
+            a.extend(b);
+            a
+        };
+        let mut out = if depth < 12 {
+            let (mut a, b) = rayon::join(go, || self.below(l, r, depth + 1));
+            a.extend(b);
+            a
+        } else {
+            let mut a = self.within(l, depth + 1);
+            a.extend(self.within(r, depth + 1));
+            a.extend(self.below(l, r, depth + 1));
+            a
+        };
+        for p in &mut out {
+            *p = (p.0.min(p.1), p.0.max(p.1));
+        }
+        out
+    }
+
     fn below(&self, x: usize, y: usize, depth: u32) -> Vec<(u32, u32)> {
         let (na, nb) = (&self.a.nodes[x], &self.b.nodes[y]);
         if !overlaps_f(&na.bbox, &nb.bbox) {
@@ -321,6 +378,23 @@ mod tests {
         assert!(Bvh::new(&Mesh::default())
             .overlapping_pairs(&Mesh::default(), &bvh, &m)
             .is_empty());
+    }
+
+    #[test]
+    fn self_pairs_match_brute_force() {
+        let m = uv_sphere([0.0; 3], 1.0, 20, 10);
+        let mut got = Bvh::new(&m).self_pairs(&m);
+        got.sort_unstable();
+        let mut want = Vec::new();
+        for i in 0..m.triangles.len() as u32 {
+            for j in i + 1..m.triangles.len() as u32 {
+                if overlaps(&tri_box(&m, i), &tri_box(&m, j)) {
+                    want.push((i, j));
+                }
+            }
+        }
+        assert_eq!(got.len(), want.len());
+        assert!(got == want);
     }
 
     #[test]

@@ -334,3 +334,62 @@ fn tritri_is_symmetric_and_its_points_lie_in_both_triangles() {
         "{segments} {points} {coplanar}"
     );
 }
+
+#[test]
+fn self_intersections_found_exactly() {
+    // Valid closed meshes and the terrains: none (folded-but-not-overlapping neighbours
+    // are not intersections).
+    assert!(self_intersections(&uv_sphere([0.0; 3], 1.0, 32, 16)).is_empty());
+    assert!(self_intersections(&Mesh::unit_cube()).is_empty());
+    assert!(self_intersections(&read("kirra_terrain.obj")).is_empty());
+    // Two spheres in one mesh, overlapping: every crossing pair is reported.
+    let a = uv_sphere([0.0; 3], 1.0, 32, 16);
+    let b = uv_sphere([0.5, 0.1, 0.0], 1.0, 24, 12);
+    let n = a.positions.len() as u32;
+    let mut both = a.clone();
+    both.positions.extend(&b.positions);
+    both.triangles
+        .extend(b.triangles.iter().map(|t| t.map(|v| v + n)));
+    let pairs = self_intersections(&both);
+    // Expected: every pair of a and b that meets at all (segments and single points).
+    let na = a.triangles.len() as u32;
+    let crossing: std::collections::BTreeSet<(u32, u32)> = crate::bvh::Bvh::new(&a)
+        .overlapping_pairs(&a, &crate::bvh::Bvh::new(&b), &b)
+        .into_iter()
+        .filter(|&(i, j)| {
+            let (x, y) = (tri(&a, i as usize).unwrap(), tri(&b, j as usize).unwrap());
+            tt(&x, &y) != TriTri::None
+        })
+        .map(|(i, j)| (i, j + na))
+        .collect();
+    assert!(crossing.len() > 100);
+    assert_eq!(
+        pairs
+            .iter()
+            .copied()
+            .collect::<std::collections::BTreeSet<_>>(),
+        crossing
+    );
+    // A triangle folded flat onto its neighbour (sharing an edge, overlapping).
+    let fold = Mesh::new(
+        vec![
+            [0.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [1.0, 2.0, 0.0],
+            [1.0, 1.0, 0.0],
+        ],
+        vec![[0, 1, 2], [1, 0, 3]],
+    );
+    assert_eq!(self_intersections(&fold), vec![(0, 1)]);
+    // The same, but the second triangle on the other side of the edge: fine.
+    let flat = Mesh::new(
+        vec![
+            [0.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [1.0, 2.0, 0.0],
+            [1.0, -1.0, 0.0],
+        ],
+        vec![[0, 1, 2], [1, 0, 3]],
+    );
+    assert!(self_intersections(&flat).is_empty());
+}
