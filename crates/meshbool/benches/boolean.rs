@@ -1,21 +1,10 @@
-//! Boolean union of two UV spheres (the second rotated 0.1 rad about z and shifted 0.5
-//! along x), in memory: intersection, arrangement, classification, selection, merge.
-//! Run: `cargo bench -p meshbool --bench boolean`.
+//! Boolean union of the sphere pairs in `common`, in memory: intersection, arrangement,
+//! classification, selection, merge. Run: `cargo bench -p meshbool --bench boolean`.
 
-use std::sync::LazyLock;
+mod common;
 
+use common::{P200K, P2M};
 use meshbool::boolean::{boolean, Op};
-use meshbool::shapes::{rigid_motion, uv_sphere};
-use meshbool::Mesh;
-
-fn pair(segments: u32, rings: u32) -> (Mesh, Mesh) {
-    let a = uv_sphere([0.0; 3], 1.0, segments, rings);
-    let b = rigid_motion(&a, [0.0, 0.0, 1.0], 0.1, [0.5, 0.0, 0.0]);
-    (a, b)
-}
-
-static P200K: LazyLock<(Mesh, Mesh)> = LazyLock::new(|| pair(632, 159));
-static P2M: LazyLock<(Mesh, Mesh)> = LazyLock::new(|| pair(2000, 501));
 
 fn main() {
     divan::main();
