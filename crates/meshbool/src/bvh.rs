@@ -215,6 +215,7 @@ impl Bvh {
             b: other,
             ma: mesh,
             mb: other_mesh,
+            keep: &|_, _| true,
         };
         let mut pairs = q.below(0, 0, 0);
         pairs.par_sort_unstable();
@@ -227,6 +228,16 @@ impl Bvh {
     /// from) whose exact boxes overlap, in no particular order. Each node pair is visited
     /// once (a self-traversal), not twice as `overlapping_pairs(mesh, self, mesh)` would.
     pub fn self_pairs(&self, mesh: &Mesh) -> Vec<(u32, u32)> {
+        self.self_pairs_where(mesh, &|_, _| true)
+    }
+
+    /// The pairs of [`Bvh::self_pairs`] for which `keep(i, j)` (with `i < j`) holds,
+    /// tested in parallel as the traversal finds them: the candidates are never stored.
+    pub fn self_pairs_where(
+        &self,
+        mesh: &Mesh,
+        keep: &(dyn Fn(u32, u32) -> bool + Sync),
+    ) -> Vec<(u32, u32)> {
         if self.is_empty() {
             return Vec::new();
         }
@@ -235,6 +246,7 @@ impl Bvh {
             b: self,
             ma: mesh,
             mb: mesh,
+            keep,
         };
         q.within(0, 0)
     }
@@ -246,6 +258,8 @@ struct Query<'a> {
     b: &'a Bvh,
     ma: &'a Mesh,
     mb: &'a Mesh,
+    /// Which overlapping pairs to report.
+    keep: &'a (dyn Fn(u32, u32) -> bool + Sync),
 }
 
 impl Query<'_> {
@@ -258,8 +272,9 @@ impl Query<'_> {
             let mut out = Vec::new();
             for i in 0..ts.len() {
                 for j in i + 1..ts.len() {
-                    if overlaps(&boxes[i], &boxes[j]) {
-                        out.push((ts[i].min(ts[j]), ts[i].max(ts[j])));
+                    let (p, q) = (ts[i].min(ts[j]), ts[i].max(ts[j]));
+                    if overlaps(&boxes[i], &boxes[j]) && (self.keep)(p, q) {
+                        out.push((p, q));
                     }
                 }
             }
@@ -337,7 +352,7 @@ impl Query<'_> {
         for &i in ta {
             let bi = tri_box(self.ma, i);
             for (&j, bj) in tb.iter().zip(&boxes_b) {
-                if overlaps(&bi, bj) {
+                if overlaps(&bi, bj) && (self.keep)(i.min(j), i.max(j)) {
                     out.push((i, j));
                 }
             }

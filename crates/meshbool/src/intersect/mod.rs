@@ -210,57 +210,58 @@ pub fn intersect(a: &Mesh, b: &Mesh) -> Seam {
 /// left out. Sorted `(i, j)` with `i < j`.
 pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
     use crate::kernel::{orient2d, orient3d_explicit};
+    let meets = |i: u32, j: u32| -> bool {
+        let (vi, vj) = (m.triangles[i as usize], m.triangles[j as usize]);
+        let (pi, pj) = (m.corners(i as usize), m.corners(j as usize));
+        // Cheap exact rejection first: the corners of one triangle that it does not
+        // share with the other all strictly on one side of the other's plane.
+        let apart = |p: &[[f64; 3]; 3], q: &[[f64; 3]; 3], vq: &[u32; 3], vp: &[u32; 3]| {
+            let s: Vec<Sign> = (0..3)
+                .filter(|&k| !vp.contains(&vq[k]))
+                .map(|k| orient3d_explicit(&p[0], &p[1], &p[2], &q[k]))
+                .collect();
+            !s.is_empty() && s[0] != Sign::Zero && s.iter().all(|&x| x == s[0])
+        };
+        let shared = (0..3).filter(|&k| vj.contains(&vi[k])).count();
+        if shared == 3 {
+            return true; // the same triangle twice
+        }
+        if shared < 2 && (apart(&pi, &pj, &vj, &vi) || apart(&pj, &pi, &vi, &vj)) {
+            return false;
+        }
+        let (Some(x), Some(y)) = (tri(m, i as usize), tri(m, j as usize)) else {
+            return false;
+        };
+        if shared == 2 {
+            // Sharing an edge: they meet elsewhere only when folded flat onto each other:
+            // the other triangle's far vertex in this one's plane, on the same side.
+            let ks: Vec<usize> = (0..3).filter(|&k| y.v.contains(&x.v[k])).collect();
+            let far_x = 3 - ks[0] - ks[1];
+            let Some(far_y) = (0..3).find(|&k| !x.v.contains(&y.v[k])) else {
+                return true;
+            };
+            let w = Point::Explicit(y.p[far_y]);
+            if orient3d_explicit(&x.p[0], &x.p[1], &x.p[2], &y.p[far_y]) != Sign::Zero {
+                return false;
+            }
+            let (e0, e1) = (Point::Explicit(x.p[ks[0]]), Point::Explicit(x.p[ks[1]]));
+            let sx = orient2d(&e0, &e1, &Point::Explicit(x.p[far_x]), x.axis());
+            return sx == orient2d(&e0, &e1, &w, x.axis());
+        }
+        let labels: Vec<Label> = match tritri::intersect(&x, &y) {
+            TriTri::None => vec![],
+            TriTri::Point(l) => vec![l],
+            TriTri::Segment(s) => s.to_vec(),
+            TriTri::Coplanar { segments, points } => {
+                segments.into_iter().flatten().chain(points).collect()
+            }
+        };
+        labels.iter().any(|l| l.a != l.b)
+    };
     let mut found: Vec<(u32, u32)> = Bvh::new(m)
-        .self_pairs(m)
-        .into_par_iter()
-        .filter(|&(i, j)| {
-            let (vi, vj) = (m.triangles[i as usize], m.triangles[j as usize]);
-            let (pi, pj) = (m.corners(i as usize), m.corners(j as usize));
-            // Cheap exact rejection first: the corners of one triangle that it does not
-            // share with the other all strictly on one side of the other's plane.
-            let apart = |p: &[[f64; 3]; 3], q: &[[f64; 3]; 3], vq: &[u32; 3], vp: &[u32; 3]| {
-                let s: Vec<Sign> = (0..3)
-                    .filter(|&k| !vp.contains(&vq[k]))
-                    .map(|k| orient3d_explicit(&p[0], &p[1], &p[2], &q[k]))
-                    .collect();
-                !s.is_empty() && s[0] != Sign::Zero && s.iter().all(|&x| x == s[0])
-            };
-            let shared = (0..3).filter(|&k| vj.contains(&vi[k])).count();
-            if shared == 3 {
-                return true; // the same triangle twice
-            }
-            if shared < 2 && (apart(&pi, &pj, &vj, &vi) || apart(&pj, &pi, &vi, &vj)) {
-                return false;
-            }
-            let (Some(x), Some(y)) = (tri(m, i as usize), tri(m, j as usize)) else {
-                return false;
-            };
-            if shared == 2 {
-                // Sharing an edge: they meet elsewhere only when folded flat onto each other:
-                // the other triangle's far vertex in this one's plane, on the same side.
-                let ks: Vec<usize> = (0..3).filter(|&k| y.v.contains(&x.v[k])).collect();
-                let far_x = 3 - ks[0] - ks[1];
-                let Some(far_y) = (0..3).find(|&k| !x.v.contains(&y.v[k])) else {
-                    return true;
-                };
-                let w = Point::Explicit(y.p[far_y]);
-                if orient3d_explicit(&x.p[0], &x.p[1], &x.p[2], &y.p[far_y]) != Sign::Zero {
-                    return false;
-                }
-                let (e0, e1) = (Point::Explicit(x.p[ks[0]]), Point::Explicit(x.p[ks[1]]));
-                let sx = orient2d(&e0, &e1, &Point::Explicit(x.p[far_x]), x.axis());
-                return sx == orient2d(&e0, &e1, &w, x.axis());
-            }
-            let labels: Vec<Label> = match tritri::intersect(&x, &y) {
-                TriTri::None => vec![],
-                TriTri::Point(l) => vec![l],
-                TriTri::Segment(s) => s.to_vec(),
-                TriTri::Coplanar { segments, points } => {
-                    segments.into_iter().flatten().chain(points).collect()
-                }
-            };
-            labels.iter().any(|l| l.a != l.b)
-        })
+        .self_pairs_where(m, &meets)
+        .into_iter()
+        .map(|(i, j)| (i.min(j), i.max(j)))
         .collect();
     found.par_sort_unstable();
     found
