@@ -98,6 +98,21 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Close open meshes into solids. Modes: `cap` (triangulate every boundary loop, non-planar
+    /// loops too). Stitching and curtain-to-floor are planned.
+    Close {
+        /// Input mesh.
+        input: PathBuf,
+        /// Output mesh file.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// How to close.
+        #[arg(long, value_enum, default_value = "cap")]
+        mode: CloseMode,
+        /// Print a JSON report on stdout.
+        #[arg(long)]
+        json: bool,
+    },
     /// Make triangle orientation consistent across every manifold edge, component by
     /// component, and face each component as asked (default: as most triangles already did).
     Orient {
@@ -133,6 +148,13 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+}
+
+/// Ways of closing an open mesh.
+#[derive(clap::ValueEnum, Clone, Copy)]
+enum CloseMode {
+    /// Triangulate every boundary loop.
+    Cap,
 }
 
 /// The operands and output of a boolean command.
@@ -598,6 +620,32 @@ fn run(cli: Cli) -> Result<()> {
             output,
             json,
         } => run_pick(&dir, &keep, &output, json)?,
+        Command::Close {
+            input,
+            output,
+            mode,
+            json,
+        } => {
+            let mesh = weld_exact(&read(&input, None)?).mesh;
+            let (closed, report) = match mode {
+                CloseMode::Cap => meshbool::repair::cap_holes(&mesh),
+            };
+            io::write_path(&output, &closed)
+                .with_context(|| format!("writing {}", output.display()))?;
+            if json {
+                println!("{}", serde_json::to_string_pretty(&report)?);
+            } else {
+                eprintln!(
+                    "wrote {}: {} of {} boundary loops capped with {} triangles ({} fan fallbacks, {} open boundary edges left)",
+                    output.display(),
+                    report.capped,
+                    report.loops,
+                    report.triangles_added,
+                    report.fan_fallbacks,
+                    report.open_boundary_edges
+                );
+            }
+        }
         Command::Orient {
             input,
             output,

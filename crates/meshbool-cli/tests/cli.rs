@@ -346,3 +346,33 @@ fn self_intersecting_input_is_refused_with_a_location() {
         "{err}"
     );
 }
+
+#[test]
+fn close_cap_turns_an_open_box_into_a_unit_cube() {
+    let mut m = meshbool::Mesh::unit_cube();
+    m.triangles.drain(4..6);
+    let open = tmp("openbox.obj");
+    meshbool::io::write_path(&open, &m).unwrap();
+    let out = tmp("closedbox.ply");
+    let r = report(&[
+        "close",
+        open.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--mode",
+        "cap",
+        "--json",
+    ]);
+    assert_eq!(
+        (
+            r["loops"].as_u64(),
+            r["capped"].as_u64(),
+            r["triangles_added"].as_u64()
+        ),
+        (Some(1), Some(1), Some(2))
+    );
+    let info = report(&["info", "--json", out.to_str().unwrap()]);
+    assert_eq!(info["volume"], 1.0);
+    assert_eq!(info["closed"], true);
+    assert_eq!(info["inconsistent_edges"], 0);
+}

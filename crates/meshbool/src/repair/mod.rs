@@ -1,7 +1,10 @@
-//! Mesh repair. This first part: consistent orientation ([`orient`]). Weld with a
+//! Mesh repair: consistent orientation ([`orient`]), boundary loops and hole capping
+//! ([`cap_holes`]). Weld with a
 //! tolerance, T-junctions, degenerate removal, hole capping, stitching and curtains follow
 //! (issue 5).
 
+mod cap;
 mod orient;
 
+pub use cap::{boundary_loops, cap_holes, CapReport};
 pub use orient::{orient, Facing, OrientReport};
