@@ -98,8 +98,9 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
-    /// Close open meshes into solids. Modes: `cap` (triangulate every boundary loop, non-planar
-    /// loops too). Stitching and curtain-to-floor are planned.
+    /// Close open meshes into solids. Modes: `cap` (triangulate every boundary loop,
+    /// non-planar loops too), `curtain` (vertical walls from the boundary down to
+    /// `floor = min z − floor-offset`, floor capped; orient the surface up first).
     Close {
         /// Input mesh.
         input: PathBuf,
@@ -109,6 +110,9 @@ enum Command {
         /// How to close.
         #[arg(long, value_enum, default_value = "cap")]
         mode: CloseMode,
+        /// Curtain: distance of the floor below the lowest point.
+        #[arg(long, default_value_t = 10.0)]
+        floor_offset: f64,
         /// Print a JSON report on stdout.
         #[arg(long)]
         json: bool,
@@ -155,6 +159,8 @@ enum Command {
 enum CloseMode {
     /// Triangulate every boundary loop.
     Cap,
+    /// Walls down to a floor, then the floor capped.
+    Curtain,
 }
 
 /// The operands and output of a boolean command.
@@ -624,25 +630,40 @@ fn run(cli: Cli) -> Result<()> {
             input,
             output,
             mode,
+            floor_offset,
             json,
         } => {
             let mesh = weld_exact(&read(&input, None)?).mesh;
             let (closed, report) = match mode {
-                CloseMode::Cap => meshbool::repair::cap_holes(&mesh),
+                CloseMode::Cap => {
+                    let (m, r) = meshbool::repair::cap_holes(&mesh);
+                    (m, serde_json::to_value(r)?)
+                }
+                CloseMode::Curtain => {
+                    anyhow::ensure!(
+                        floor_offset.is_finite() && floor_offset >= 0.0,
+                        "--floor-offset must be a finite number >= 0"
+                    );
+                    let (m, r) = meshbool::repair::curtain(&mesh, floor_offset);
+                    (m, serde_json::to_value(r)?)
+                }
             };
             io::write_path(&output, &closed)
                 .with_context(|| format!("writing {}", output.display()))?;
+            let s = mesh_stats(&closed);
             if json {
-                println!("{}", serde_json::to_string_pretty(&report)?);
+                let mut v = report;
+                v["closed"] = s.closed.into();
+                v["volume"] = s.volume.into();
+                v["boundary_edges"] = s.boundary_edges.into();
+                println!("{}", serde_json::to_string_pretty(&v)?);
             } else {
                 eprintln!(
-                    "wrote {}: {} of {} boundary loops capped with {} triangles ({} fan fallbacks, {} open boundary edges left)",
+                    "wrote {}: {} boundary edges left, closed: {}, volume {} ({report})",
                     output.display(),
-                    report.capped,
-                    report.loops,
-                    report.triangles_added,
-                    report.fan_fallbacks,
-                    report.open_boundary_edges
+                    s.boundary_edges,
+                    s.closed,
+                    s.volume
                 );
             }
         }

@@ -376,3 +376,35 @@ fn close_cap_turns_an_open_box_into_a_unit_cube() {
     assert_eq!(info["closed"], true);
     assert_eq!(info["inconsistent_edges"], 0);
 }
+
+#[test]
+fn oriented_terrain_curtained_is_a_closed_solid() {
+    let oriented = tmp("curt_oriented.ply");
+    report(&[
+        "orient",
+        data("kap_terrain.obj").to_str().unwrap(),
+        "-o",
+        oriented.to_str().unwrap(),
+        "--z-up",
+        "--json",
+    ]);
+    let out = tmp("curtained.ply");
+    let r = report(&[
+        "close",
+        oriented.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--mode",
+        "curtain",
+        "--floor-offset",
+        "10",
+        "--json",
+    ]);
+    assert_eq!(r["closed"], true);
+    assert_eq!(r["boundary_edges"], 0);
+    assert_eq!(r["wall_triangles"], 1120);
+    assert!(r["volume"].as_f64().unwrap() > 0.0);
+    let info = report(&["info", "--json", out.to_str().unwrap()]);
+    assert_eq!(info["inconsistent_edges"], 0);
+    assert_eq!(info["volume"], r["volume"]);
+}
