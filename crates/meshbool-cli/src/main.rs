@@ -117,6 +117,24 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Repair steps, in this order: weld within a distance, then orientation. Every removed
+    /// triangle is counted in the report. (More steps are planned.)
+    Repair {
+        /// Input mesh.
+        input: PathBuf,
+        /// Output mesh file.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Weld vertices closer than this distance (no chaining; see the library docs).
+        #[arg(long)]
+        weld: Option<f64>,
+        /// Make orientation consistent, normals up.
+        #[arg(long)]
+        z_up: bool,
+        /// Print a JSON report on stdout.
+        #[arg(long)]
+        json: bool,
+    },
     /// Make triangle orientation consistent across every manifold edge, component by
     /// component, and face each component as asked (default: as most triangles already did).
     Orient {
@@ -665,6 +683,43 @@ fn run(cli: Cli) -> Result<()> {
                     s.closed,
                     s.volume
                 );
+            }
+        }
+        Command::Repair {
+            input,
+            output,
+            weld,
+            z_up,
+            json,
+        } => {
+            let mut mesh = weld_exact(&read(&input, None)?).mesh;
+            let mut report = serde_json::Map::new();
+            report.insert("triangles_in".into(), mesh.triangles.len().into());
+            if let Some(tol) = weld {
+                anyhow::ensure!(
+                    tol.is_finite() && tol >= 0.0,
+                    "--weld must be a finite distance >= 0"
+                );
+                let (m, r) = meshbool::repair::weld_within(&mesh, tol);
+                report.insert("weld".into(), serde_json::to_value(r)?);
+                mesh = m;
+            }
+            if z_up {
+                let (m, r) = orient(&mesh, Facing::ZUp);
+                report.insert("orient".into(), serde_json::to_value(r)?);
+                mesh = m;
+            }
+            io::write_path(&output, &mesh)
+                .with_context(|| format!("writing {}", output.display()))?;
+            let s = mesh_stats(&mesh);
+            report.insert("triangles_out".into(), s.triangles.into());
+            report.insert("boundary_edges".into(), s.boundary_edges.into());
+            report.insert("inconsistent_edges".into(), s.inconsistent_edges.into());
+            let text = serde_json::to_string_pretty(&report)?;
+            if json {
+                println!("{text}");
+            } else {
+                eprintln!("wrote {}: {text}", output.display());
             }
         }
         Command::Orient {

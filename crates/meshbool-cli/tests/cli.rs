@@ -408,3 +408,36 @@ fn oriented_terrain_curtained_is_a_closed_solid() {
     assert_eq!(info["inconsistent_edges"], 0);
     assert_eq!(info["volume"], r["volume"]);
 }
+
+#[test]
+fn repair_weld_closes_a_crack() {
+    let m = meshbool::Mesh::new(
+        vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [1.0001, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [2.0, 1.0, 0.0],
+            [1.0001, 1.0, 0.0],
+        ],
+        vec![[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]],
+    );
+    let input = tmp("crack.obj");
+    meshbool::io::write_path(&input, &m).unwrap();
+    let out = tmp("crack_fixed.obj");
+    let r = report(&[
+        "repair",
+        input.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--weld",
+        "0.001",
+        "--json",
+    ]);
+    assert_eq!(r["weld"]["merged_vertices"], 2);
+    assert_eq!(r["weld"]["collapsed_triangles"], 0);
+    assert_eq!(r["boundary_edges"], 6);
+    assert_eq!(r["triangles_out"], 4);
+}
