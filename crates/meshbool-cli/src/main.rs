@@ -117,8 +117,8 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
-    /// Repair steps, in this order: weld within a distance, then orientation. Every removed
-    /// triangle is counted in the report. (More steps are planned.)
+    /// Repair steps, in this order: weld within a distance, T-junctions, orientation. Every
+    /// removed triangle is counted in the report. (More steps are planned.)
     Repair {
         /// Input mesh.
         input: PathBuf,
@@ -128,6 +128,9 @@ enum Command {
         /// Weld vertices closer than this distance (no chaining; see the library docs).
         #[arg(long)]
         weld: Option<f64>,
+        /// Split boundary edges at vertices lying exactly on them (closes T-junction cracks).
+        #[arg(long)]
+        tjunctions: bool,
         /// Make orientation consistent, normals up.
         #[arg(long)]
         z_up: bool,
@@ -689,6 +692,7 @@ fn run(cli: Cli) -> Result<()> {
             input,
             output,
             weld,
+            tjunctions,
             z_up,
             json,
         } => {
@@ -702,6 +706,11 @@ fn run(cli: Cli) -> Result<()> {
                 );
                 let (m, r) = meshbool::repair::weld_within(&mesh, tol);
                 report.insert("weld".into(), serde_json::to_value(r)?);
+                mesh = m;
+            }
+            if tjunctions {
+                let (m, r) = meshbool::repair::resolve_t_junctions(&mesh);
+                report.insert("tjunctions".into(), serde_json::to_value(r)?);
                 mesh = m;
             }
             if z_up {

@@ -441,3 +441,28 @@ fn repair_weld_closes_a_crack() {
     assert_eq!(r["boundary_edges"], 6);
     assert_eq!(r["triangles_out"], 4);
 }
+
+#[test]
+fn repair_tjunctions_closes_a_cube_crack() {
+    let mut m = meshbool::Mesh::unit_cube();
+    m.positions.push([1.0, 0.5, 0.0]);
+    m.triangles.truncate(10);
+    m.triangles.extend([[1, 8, 5], [8, 3, 7], [8, 7, 5]]);
+    let input = tmp("tj.ply");
+    meshbool::io::write_path(&input, &m).unwrap();
+    let out = tmp("tj_fixed.ply");
+    let r = report(&[
+        "repair",
+        input.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--tjunctions",
+        "--json",
+    ]);
+    assert_eq!(r["tjunctions"]["edges_split"], 1);
+    assert_eq!(r["boundary_edges"], 0);
+    assert_eq!(
+        report(&["info", "--json", out.to_str().unwrap()])["volume"],
+        1.0
+    );
+}
