@@ -117,8 +117,8 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
-    /// Repair steps, in this order: weld within a distance, T-junctions, orientation. Every
-    /// removed triangle is counted in the report. (More steps are planned.)
+    /// Repair steps, in this order: weld within a distance, duplicate removal, T-junctions,
+    /// orientation. Every removed triangle is counted in the report. (More steps are planned.)
     Repair {
         /// Input mesh.
         input: PathBuf,
@@ -128,6 +128,9 @@ enum Command {
         /// Weld vertices closer than this distance (no chaining; see the library docs).
         #[arg(long)]
         weld: Option<f64>,
+        /// Remove duplicate triangles; anti-parallel pairs (double walls) cancel.
+        #[arg(long)]
+        remove_duplicates: bool,
         /// Split boundary edges at vertices lying exactly on them (closes T-junction cracks).
         #[arg(long)]
         tjunctions: bool,
@@ -692,6 +695,7 @@ fn run(cli: Cli) -> Result<()> {
             input,
             output,
             weld,
+            remove_duplicates,
             tjunctions,
             z_up,
             json,
@@ -706,6 +710,11 @@ fn run(cli: Cli) -> Result<()> {
                 );
                 let (m, r) = meshbool::repair::weld_within(&mesh, tol);
                 report.insert("weld".into(), serde_json::to_value(r)?);
+                mesh = m;
+            }
+            if remove_duplicates {
+                let (m, r) = meshbool::repair::remove_duplicates(&mesh);
+                report.insert("duplicates".into(), serde_json::to_value(r)?);
                 mesh = m;
             }
             if tjunctions {
