@@ -6,7 +6,6 @@ use std::process::ExitCode;
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
-use meshbool::edges::EdgeKind;
 use meshbool::io::{self, Format};
 use meshbool::measure::{mesh_stats, MeshStats};
 use meshbool::repair::{orient, Facing};
@@ -306,15 +305,8 @@ fn operand(path: &Path, opts: &BoolOpts, assumed: &mut Vec<String>) -> Result<Me
     let force = opts.force;
     let mesh = weld_exact(&read(path, None)?).mesh;
     // Only what decides whether inside/outside is well defined: edge kinds (linear time).
-    let topo = EdgeTopology::new(&mesh);
-    let (mut inconsistent, mut non_manifold) = (0, 0);
-    for e in 0..topo.edge_count() {
-        match topo.kind(e) {
-            EdgeKind::Inconsistent => inconsistent += 1,
-            EdgeKind::NonManifold => non_manifold += 1,
-            _ => {}
-        }
-    }
+    let counts = EdgeTopology::new(&mesh).kind_counts();
+    let (inconsistent, non_manifold) = (counts.inconsistent, counts.non_manifold);
     let mut problems = Vec::new();
     if inconsistent > 0 {
         problems.push(format!("{inconsistent} inconsistently oriented edges"));
@@ -354,18 +346,10 @@ fn operand(path: &Path, opts: &BoolOpts, assumed: &mut Vec<String>) -> Result<Me
 
 /// Edge counts, volume and area of a result: the part of [`mesh_stats`] a report needs.
 fn result_measures(m: &Mesh) -> (usize, usize, f64, f64) {
-    let topo = EdgeTopology::new(m);
-    let (mut boundary, mut non_manifold) = (0, 0);
-    for e in 0..topo.edge_count() {
-        match topo.kind(e) {
-            EdgeKind::Boundary => boundary += 1,
-            EdgeKind::NonManifold => non_manifold += 1,
-            _ => {}
-        }
-    }
+    let counts = EdgeTopology::new(m).kind_counts();
     (
-        boundary,
-        non_manifold,
+        counts.boundary,
+        counts.non_manifold,
         meshbool::measure::signed_volume(m),
         meshbool::measure::area(m),
     )

@@ -120,6 +120,20 @@ impl EdgeTopology {
         }
     }
 
+    /// How many edges there are of each [`EdgeKind`].
+    pub fn kind_counts(&self) -> EdgeCounts {
+        let mut c = EdgeCounts::default();
+        for e in 0..self.edge_count() {
+            *match self.kind(e) {
+                EdgeKind::Boundary => &mut c.boundary,
+                EdgeKind::Manifold => &mut c.manifold,
+                EdgeKind::Inconsistent => &mut c.inconsistent,
+                EdgeKind::NonManifold => &mut c.non_manifold,
+            } += 1;
+        }
+        c
+    }
+
     /// True when every edge has exactly two uses (no boundary, no non-manifold edge) and
     /// there is at least one edge.
     pub fn is_closed(&self) -> bool {
@@ -167,6 +181,19 @@ impl EdgeTopology {
             .collect();
         (count as usize, out)
     }
+}
+
+/// Edge counts by kind ([`EdgeTopology::kind_counts`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct EdgeCounts {
+    /// Edges used by one triangle.
+    pub boundary: usize,
+    /// Edges used by two triangles in opposite directions.
+    pub manifold: usize,
+    /// Edges used by two triangles in the same direction.
+    pub inconsistent: usize,
+    /// Edges used by more than two triangles.
+    pub non_manifold: usize,
 }
 
 /// How an undirected edge is used by the triangles around it.

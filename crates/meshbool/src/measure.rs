@@ -8,7 +8,7 @@
 use rustc_hash::FxHashSet;
 use serde::Serialize;
 
-use crate::edges::{EdgeKind, EdgeTopology};
+use crate::edges::EdgeTopology;
 use crate::kernel::{orient2d, Point, Sign};
 use crate::Aabb;
 use crate::Mesh;
@@ -183,17 +183,9 @@ pub struct MeshStats {
 /// Measures a mesh. Input: a mesh with valid indices ([`Mesh::validate`]).
 pub fn mesh_stats(mesh: &Mesh) -> MeshStats {
     let topo = EdgeTopology::new(mesh);
-    let mut counts = [0usize; 4];
-    for e in 0..topo.edge_count() {
-        counts[topo.kind(e) as usize] += 1;
-    }
-    let [boundary, _, inconsistent, non_manifold] = [
-        EdgeKind::Boundary,
-        EdgeKind::Manifold,
-        EdgeKind::Inconsistent,
-        EdgeKind::NonManifold,
-    ]
-    .map(|k| counts[k as usize]);
+    let counts = topo.kind_counts();
+    let (boundary, inconsistent, non_manifold) =
+        (counts.boundary, counts.inconsistent, counts.non_manifold);
     let mut used = vec![false; mesh.positions.len()];
     for &i in mesh.triangles.iter().flatten() {
         used[i as usize] = true;
