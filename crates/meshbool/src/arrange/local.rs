@@ -255,12 +255,9 @@ impl Local {
         let side: Vec<Sign> = (0..self.pts.len() as u32)
             .map(|v| self.orient(p, q, v))
             .collect();
+        // Order along p q by a coordinate in which they differ.
+        let k = crate::kernel::longest_axis(&self.approx[p as usize], &self.approx[q as usize]);
         let axis_cmp = |a: u32, b: u32| {
-            // Order along p q by a coordinate in which they differ.
-            let (pa, pb) = (&self.approx[p as usize], &self.approx[q as usize]);
-            let k = (0..3)
-                .max_by(|&i, &j| (pa[i] - pb[i]).abs().total_cmp(&(pa[j] - pb[j]).abs()))
-                .unwrap_or(0);
             crate::kernel::cmp_coord(&self.pts[a as usize], &self.pts[b as usize], k)
         };
         for v in 0..self.pts.len() as u32 {

@@ -10,7 +10,8 @@
 use std::cmp::Ordering;
 
 use crate::kernel::{
-    cmp_coord, normals_cross_sign, orient2d, orient3d_explicit, same_point, Point, Sign,
+    cmp_coord, longest_axis, normals_cross_sign, orient2d, orient3d_explicit, same_point, Point,
+    Sign,
 };
 
 /// A vertex, edge or face of one mesh, by its vertex / triangle ids (edges sorted).
@@ -301,13 +302,7 @@ fn clip_edge(own: &Tri, i: usize, other: &Tri, own_is_a: bool) -> Clip {
         }
     };
     // Along the edge, order by its longest coordinate (non-zero: the corners differ there).
-    let axis = (0..3)
-        .max_by(|&x, &y| {
-            (own.p[j][x] - own.p[i][x])
-                .abs()
-                .total_cmp(&(own.p[j][y] - own.p[i][y]).abs())
-        })
-        .unwrap_or(0);
+    let axis = longest_axis(&own.p[i], &own.p[j]);
     let proj = other.axis;
     let mut cands: Vec<(Point, Label)> = Vec::new();
     for (k, x) in [(i, &p), (j, &q)] {

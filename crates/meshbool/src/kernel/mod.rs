@@ -370,6 +370,15 @@ pub fn cmp_coord(a: &Point, b: &Point, axis: usize) -> Ordering {
     (s as i8).cmp(&0)
 }
 
+/// The coordinate in which `b − a` is largest in magnitude: the axis to order points along
+/// the segment `a b` by [`cmp_coord`]. For distinct input points the difference there is
+/// non-zero (distinct floats never subtract to zero), so the order is strict.
+pub fn longest_axis(a: &[f64; 3], b: &[f64; 3]) -> usize {
+    (0..3)
+        .max_by(|&i, &j| (b[i] - a[i]).abs().total_cmp(&(b[j] - a[j]).abs()))
+        .unwrap_or(0)
+}
+
 /// Exactly whether two points coincide.
 pub fn same_point(a: &Point, b: &Point) -> bool {
     if let (Some(pa), Some(pb)) = (a.explicit(), b.explicit()) {

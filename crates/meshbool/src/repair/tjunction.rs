@@ -4,7 +4,7 @@
 use serde::Serialize;
 
 use crate::edges::EdgeTopology;
-use crate::kernel::{cmp_coord, orient2d, Point, Sign};
+use crate::kernel::{cmp_coord, longest_axis, orient2d, Point, Sign};
 use crate::Mesh;
 
 /// What [`resolve_t_junctions`] did.
@@ -26,9 +26,7 @@ fn on_open_segment(a: &[f64; 3], b: &[f64; 3], x: &[f64; 3]) -> bool {
     if (0..3).any(|axis| orient2d(&pa, &pb, &px, axis) != Sign::Zero) {
         return false;
     }
-    let k = (0..3)
-        .max_by(|&i, &j| (b[i] - a[i]).abs().total_cmp(&(b[j] - a[j]).abs()))
-        .unwrap_or(0);
+    let k = longest_axis(a, b);
     let (s, t) = (cmp_coord(&pa, &px, k), cmp_coord(&px, &pb, k));
     s != std::cmp::Ordering::Equal && s == t
 }
@@ -75,18 +73,16 @@ pub fn resolve_t_junctions(mesh: &Mesh) -> (Mesh, TJunctionReport) {
         let k = use_.corner as usize;
         let (from, to, opp) = (tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);
         let pf = Point::Explicit(mesh.positions[from as usize]);
-        let axis = (0..3)
-            .max_by(|&i, &j| (b[i] - a[i]).abs().total_cmp(&(b[j] - a[j]).abs()))
-            .unwrap_or(0);
+        let axis = longest_axis(&a, &b);
+        let forward = cmp_coord(&pf, &Point::Explicit(mesh.positions[to as usize]), axis)
+            == std::cmp::Ordering::Less;
         on.sort_by(|&p, &q| {
             let (pp, pq) = (
                 Point::Explicit(mesh.positions[p as usize]),
                 Point::Explicit(mesh.positions[q as usize]),
             );
             let o = cmp_coord(&pp, &pq, axis);
-            if cmp_coord(&pf, &Point::Explicit(mesh.positions[to as usize]), axis)
-                == std::cmp::Ordering::Less
-            {
+            if forward {
                 o
             } else {
                 o.reverse()
