@@ -57,6 +57,21 @@ pub fn boundary_loops(mesh: &Mesh) -> (Vec<Vec<u32>>, usize) {
     (loops, open)
 }
 
+/// The centroid of a closed polygon and its Newell normal (length: twice the area of the
+/// polygon projected on its best-fit plane; direction by the right-hand rule).
+fn centroid_and_newell_normal(pts: &[[f64; 3]]) -> ([f64; 3], [f64; 3]) {
+    let n = pts.len();
+    let c = std::array::from_fn(|k| pts.iter().map(|p| p[k]).sum::<f64>() / n as f64);
+    let mut nn = [0.0f64; 3];
+    for i in 0..n {
+        let (p, q) = (pts[i], pts[(i + 1) % n]);
+        nn[0] += (p[1] - q[1]) * (p[2] + q[2]);
+        nn[1] += (p[2] - q[2]) * (p[0] + q[0]);
+        nn[2] += (p[0] - q[0]) * (p[1] + q[1]);
+    }
+    (c, nn)
+}
+
 /// What [`cap_holes`] did.
 #[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
 pub struct CapReport {
@@ -95,15 +110,8 @@ pub fn cap_holes(mesh: &Mesh) -> (Mesh, CapReport) {
         if n < 3 {
             continue;
         }
-        let c: [f64; 3] = std::array::from_fn(|k| pts.iter().map(|p| p[k]).sum::<f64>() / n as f64);
-        // Newell normal of the polygon, then an orthonormal basis (u, v) with u x v = normal.
-        let mut nn = [0.0f64; 3];
-        for i in 0..n {
-            let (p, q) = (pts[i], pts[(i + 1) % n]);
-            nn[0] += (p[1] - q[1]) * (p[2] + q[2]);
-            nn[1] += (p[2] - q[2]) * (p[0] + q[0]);
-            nn[2] += (p[0] - q[0]) * (p[1] + q[1]);
-        }
+        let (c, nn) = centroid_and_newell_normal(&pts);
+        // An orthonormal basis (u, v) of the Newell plane with u x v = normal.
         let len = (nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]).sqrt();
         let mut tris: Vec<[u32; 3]> = Vec::new();
         if len > 0.0 {
@@ -210,15 +218,7 @@ mod tests {
         assert_eq!((loops.len(), open), (1, 0));
         let rim: Vec<[f64; 3]> = loops[0].iter().map(|&v| m.positions[v as usize]).collect();
         // Non-planar: the rim strays from its Newell plane by more than 1 % of the radius.
-        let n = rim.len();
-        let c: [f64; 3] = std::array::from_fn(|k| rim.iter().map(|p| p[k]).sum::<f64>() / n as f64);
-        let mut nn = [0.0f64; 3];
-        for i in 0..n {
-            let (p, q) = (rim[i], rim[(i + 1) % n]);
-            nn[0] += (p[1] - q[1]) * (p[2] + q[2]);
-            nn[1] += (p[2] - q[2]) * (p[0] + q[0]);
-            nn[2] += (p[0] - q[0]) * (p[1] + q[1]);
-        }
+        let (c, nn) = centroid_and_newell_normal(&rim);
         let l = (nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]).sqrt();
         let off = rim
             .iter()
