@@ -250,6 +250,16 @@ fn read(path: &Path, from: Option<Format>) -> Result<Mesh> {
     run().with_context(|| format!("reading {}", path.display()))
 }
 
+/// Reads a mesh file and welds exactly equal positions (what every operation expects).
+fn read_welded(path: &Path) -> Result<Mesh> {
+    Ok(weld_exact(&read(path, None)?).mesh)
+}
+
+/// Writes a mesh in the format its file name says, naming the file in any error.
+fn write_mesh(path: &Path, mesh: &Mesh) -> Result<()> {
+    io::write_path(path, mesh).with_context(|| format!("writing {}", path.display()))
+}
+
 #[derive(serde::Serialize)]
 struct FileStats<'a> {
     file: &'a str,
@@ -303,7 +313,7 @@ fn print_human(file: &str, s: &MeshStats) {
 /// non-manifold edges unless `force`, in which case what was assumed is returned.
 fn operand(path: &Path, opts: &BoolOpts, assumed: &mut Vec<String>) -> Result<Mesh> {
     let force = opts.force;
-    let mesh = weld_exact(&read(path, None)?).mesh;
+    let mesh = read_welded(path)?;
     // Only what decides whether inside/outside is well defined: edge kinds (linear time).
     let counts = EdgeTopology::new(&mesh).kind_counts();
     let (inconsistent, non_manifold) = (counts.inconsistent, counts.non_manifold);
@@ -391,7 +401,7 @@ fn run_boolean(args: &OperandArgs, op: boolean::Op) -> Result<()> {
     let start = std::time::Instant::now();
     let r = boolean::boolean(&ma, &mb, op);
     let seconds = start.elapsed().as_secs_f64();
-    io::write_path(output, &r.mesh).with_context(|| format!("writing {}", output.display()))?;
+    write_mesh(output, &r.mesh)?;
     let (boundary_edges, non_manifold_edges, volume, area) = result_measures(&r.mesh);
     if r.degenerate != [0, 0] {
         assumed.push(format!(
@@ -594,7 +604,7 @@ fn run_pick(dir: &Path, keep: &[String], output: &Path, json: bool) -> Result<()
     }
     let refs: Vec<(&Mesh, bool)> = meshes.iter().map(|(m, f)| (m, *f)).collect();
     let merged = boolean::pick(&refs);
-    io::write_path(output, &merged).with_context(|| format!("writing {}", output.display()))?;
+    write_mesh(output, &merged)?;
     let s = mesh_stats(&merged);
     if json {
         println!("{}", serde_json::to_string_pretty(&s)?);
@@ -641,7 +651,7 @@ fn run(cli: Cli) -> Result<()> {
             floor_offset,
             json,
         } => {
-            let mesh = weld_exact(&read(&input, None)?).mesh;
+            let mesh = read_welded(&input)?;
             let (closed, report) = match mode {
                 CloseMode::Cap => {
                     let (m, r) = meshbool::repair::cap_holes(&mesh);
@@ -656,8 +666,7 @@ fn run(cli: Cli) -> Result<()> {
                     (m, serde_json::to_value(r)?)
                 }
             };
-            io::write_path(&output, &closed)
-                .with_context(|| format!("writing {}", output.display()))?;
+            write_mesh(&output, &closed)?;
             let s = mesh_stats(&closed);
             if json {
                 let mut v = report;
@@ -684,7 +693,7 @@ fn run(cli: Cli) -> Result<()> {
             z_up,
             json,
         } => {
-            let mut mesh = weld_exact(&read(&input, None)?).mesh;
+            let mut mesh = read_welded(&input)?;
             let mut report = serde_json::Map::new();
             report.insert("triangles_in".into(), mesh.triangles.len().into());
             if let Some(tol) = weld {
@@ -711,8 +720,7 @@ fn run(cli: Cli) -> Result<()> {
                 report.insert("orient".into(), serde_json::to_value(r)?);
                 mesh = m;
             }
-            io::write_path(&output, &mesh)
-                .with_context(|| format!("writing {}", output.display()))?;
+            write_mesh(&output, &mesh)?;
             let s = mesh_stats(&mesh);
             report.insert("triangles_out".into(), s.triangles.into());
             report.insert("boundary_edges".into(), s.boundary_edges.into());
@@ -731,15 +739,14 @@ fn run(cli: Cli) -> Result<()> {
             outward,
             json,
         } => {
-            let mesh = weld_exact(&read(&input, None)?).mesh;
+            let mesh = read_welded(&input)?;
             let facing = match (z_up, outward) {
                 (true, _) => Facing::ZUp,
                 (_, true) => Facing::Outward,
                 _ => Facing::Majority,
             };
             let (oriented, report) = orient(&mesh, facing);
-            io::write_path(&output, &oriented)
-                .with_context(|| format!("writing {}", output.display()))?;
+            write_mesh(&output, &oriented)?;
             if json {
                 println!("{}", serde_json::to_string_pretty(&report)?);
             } else {
@@ -808,10 +815,7 @@ fn run(cli: Cli) -> Result<()> {
             no_coplanar,
             json,
         } => {
-            let (ma, mb) = (
-                weld_exact(&read(&a, None)?).mesh,
-                weld_exact(&read(&b, None)?).mesh,
-            );
+            let (ma, mb) = (read_welded(&a)?, read_welded(&b)?);
             let start = std::time::Instant::now();
             let seam = intersect::intersect(&ma, &mb);
             let curves = intersect::chain(&seam, !no_coplanar);
