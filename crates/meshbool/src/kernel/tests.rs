@@ -83,6 +83,17 @@ fn oracle_orient2d(a: &Point, b: &Point, c: &Point, axis: usize) -> Sign {
     sign_q(&(&u[i] * &v[j] - &u[j] * &v[i]))
 }
 
+/// The kernel and the rational oracle both give `want` for `x` against the plane `a b c`.
+fn assert_plane_side(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], x: &Point, want: Sign) {
+    assert_eq!(orient3d_plane(a, b, c, x), want, "kernel: {x:?}");
+    let e = |p: &[f64; 3]| Point::Explicit(*p);
+    assert_eq!(
+        oracle_orient3d(&e(a), &e(b), &e(c), x),
+        want,
+        "oracle: {x:?}"
+    );
+}
+
 /// Small deterministic generator (xorshift64*).
 struct Rng(u64);
 
@@ -159,16 +170,7 @@ fn implicit_point_on_its_own_plane_is_exactly_zero() {
             let Point::Lpi { a, b, c, p, q } = lpi.clone() else {
                 unreachable!()
             };
-            assert_eq!(orient3d_plane(&a, &b, &c, &lpi), Sign::Zero);
-            assert_eq!(
-                oracle_orient3d(
-                    &Point::Explicit(a),
-                    &Point::Explicit(b),
-                    &Point::Explicit(c),
-                    &lpi
-                ),
-                Sign::Zero
-            );
+            assert_plane_side(&a, &b, &c, &lpi, Sign::Zero);
             // On the segment too: collinear with p and q in every projection.
             for axis in 0..3 {
                 assert_eq!(
@@ -217,16 +219,7 @@ fn one_ulp_off_an_axis_plane() {
             b: [UTM[0] + 1.0, UTM[1], z.next_up()],
             c: [UTM[0], UTM[1] + 1.0, z.next_up()],
         };
-        assert_eq!(orient3d_plane(&a, &b, &c, &lpi), Sign::Positive);
-        assert_eq!(
-            oracle_orient3d(
-                &Point::Explicit(a),
-                &Point::Explicit(b),
-                &Point::Explicit(c),
-                &lpi
-            ),
-            Sign::Positive
-        );
+        assert_plane_side(&a, &b, &c, &lpi, Sign::Positive);
     }
 }
 
