@@ -121,28 +121,35 @@ fn tri(m: &Mesh, t: usize) -> Option<tritri::Tri> {
 pub fn intersect(a: &Mesh, b: &Mesh) -> Seam {
     let (ba, bb) = rayon::join(|| Bvh::new(a), || Bvh::new(b));
     let pairs = ba.overlapping_pairs(a, &bb, b);
+    // Set up every candidate triangle once (sorted ids, looked up by binary search); the
+    // degenerate ones are left out of the test and counted. Degenerate triangles elsewhere
+    // cannot touch the other mesh and change nothing.
+    let prepare = |m: &Mesh, mut ids: Vec<u32>| -> (Vec<u32>, Vec<Option<tritri::Tri>>) {
+        ids.par_sort_unstable();
+        ids.dedup();
+        let tris = ids.par_iter().map(|&t| tri(m, t as usize)).collect();
+        (ids, tris)
+    };
+    let ((ids_a, tris_a), (ids_b, tris_b)) = rayon::join(
+        || prepare(a, pairs.iter().map(|p| p.0).collect()),
+        || prepare(b, pairs.iter().map(|p| p.1).collect()),
+    );
+    let find = |ids: &[u32], tris: &'_ [Option<tritri::Tri>], t: u32| -> Option<tritri::Tri> {
+        ids.binary_search(&t).ok().and_then(|k| tris[k])
+    };
     let results: Vec<(u32, u32, TriTri)> = pairs
         .par_iter()
         .filter_map(|&(i, j)| {
-            let (x, y) = (tri(a, i as usize)?, tri(b, j as usize)?);
+            let (x, y) = (find(&ids_a, &tris_a, i)?, find(&ids_b, &tris_b, j)?);
             match tritri::intersect(&x, &y) {
                 TriTri::None => None,
                 r => Some((i, j, r)),
             }
         })
         .collect();
-    // Degenerate triangles among the candidates are left out of the test: count them.
-    // (Degenerate triangles elsewhere cannot touch the other mesh and change nothing.)
-    let degenerate = |m: &Mesh, mut ids: Vec<u32>| {
-        ids.par_sort_unstable();
-        ids.dedup();
-        ids.par_iter()
-            .filter(|&&t| tri(m, t as usize).is_none())
-            .count()
-    };
-    let (da, db) = rayon::join(
-        || degenerate(a, pairs.iter().map(|p| p.0).collect()),
-        || degenerate(b, pairs.iter().map(|p| p.1).collect()),
+    let (da, db) = (
+        tris_a.iter().filter(|t| t.is_none()).count(),
+        tris_b.iter().filter(|t| t.is_none()).count(),
     );
 
     let mut seam = Seam {
