@@ -1,5 +1,5 @@
 //! Intersection curves of the sphere pairs in `common` (broad phase, exact tests, seam
-//! assembly, chaining). Run: `cargo bench -p meshbool --bench curves`.
+//! assembly, chaining) and the self-intersection input check. Run: `cargo bench -p meshbool --bench curves`.
 
 mod common;
 
@@ -20,4 +20,11 @@ fn curves_200k_spheres() -> usize {
 fn curves_2m_spheres() -> usize {
     let (a, b) = &*P2M;
     chain(&intersect(a, b), true).len()
+}
+
+/// The input check run before a boolean: exact self-intersections of one 2M sphere.
+#[divan::bench(sample_count = 5)]
+fn self_intersections_2m_sphere() -> usize {
+    let (a, _) = &*P2M;
+    meshbool::intersect::self_intersections(a).len()
 }

@@ -268,7 +268,10 @@ impl Query<'_> {
         let n = &self.a.nodes[x];
         if n.count > 0 {
             let ts = &self.a.order[n.start as usize..(n.start + n.count) as usize];
-            let boxes: Vec<Box3> = ts.iter().map(|&t| tri_box(self.ma, t)).collect();
+            let mut boxes = [[[0.0; 3]; 2]; LEAF];
+            for (b, &t) in boxes.iter_mut().zip(ts) {
+                *b = tri_box(self.ma, t);
+            }
             let mut out = Vec::new();
             for i in 0..ts.len() {
                 for j in i + 1..ts.len() {
@@ -348,7 +351,10 @@ impl Query<'_> {
     fn leaves(&self, na: &Node, nb: &Node, out: &mut Vec<(u32, u32)>) {
         let ta = &self.a.order[na.start as usize..(na.start + na.count) as usize];
         let tb = &self.b.order[nb.start as usize..(nb.start + nb.count) as usize];
-        let boxes_b: Vec<Box3> = tb.iter().map(|&j| tri_box(self.mb, j)).collect();
+        let mut boxes_b = [[[0.0; 3]; 2]; LEAF];
+        for (b, &j) in boxes_b.iter_mut().zip(tb) {
+            *b = tri_box(self.mb, j);
+        }
         for &i in ta {
             let bi = tri_box(self.ma, i);
             for (&j, bj) in tb.iter().zip(&boxes_b) {

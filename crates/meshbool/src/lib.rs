@@ -43,6 +43,7 @@ pub mod repair;
 pub mod shapes;
 #[cfg(test)]
 mod test_util;
+mod vec3;
 
 pub use edges::EdgeTopology;
 pub use error::{Error, Location, Result};

@@ -10,6 +10,7 @@ use serde::Serialize;
 
 use crate::edges::EdgeTopology;
 use crate::kernel::{orient2d, Point, Sign};
+use crate::vec3::{cross, dot, norm, sub};
 use crate::Aabb;
 use crate::Mesh;
 
@@ -46,22 +47,6 @@ impl Sum {
     }
 }
 
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
 /// Sums `f(corners relative to the bounding-box centre)` over all triangles.
 fn sum_over_triangles(mesh: &Mesh, f: impl Fn([f64; 3], [f64; 3], [f64; 3]) -> f64) -> f64 {
     let Some(b) = mesh.bounds() else { return 0.0 };
@@ -69,7 +54,7 @@ fn sum_over_triangles(mesh: &Mesh, f: impl Fn([f64; 3], [f64; 3], [f64; 3]) -> f
     let mut sum = Sum::default();
     for t in 0..mesh.triangles.len() {
         let [a, b, c] = mesh.corners(t);
-        sum.add(f(sub(a, o), sub(b, o), sub(c, o)));
+        sum.add(f(sub(&a, &o), sub(&b, &o), sub(&c, &o)));
     }
     sum.get()
 }
@@ -78,15 +63,12 @@ fn sum_over_triangles(mesh: &Mesh, f: impl Fn([f64; 3], [f64; 3], [f64; 3]) -> f
 /// outward. Input: a mesh with valid indices. For an open mesh the value depends on the
 /// reference point (the bounding-box centre here) and is not a meaningful volume.
 pub fn signed_volume(mesh: &Mesh) -> f64 {
-    sum_over_triangles(mesh, |a, b, c| dot(a, cross(b, c))) / 6.0
+    sum_over_triangles(mesh, |a, b, c| dot(&a, &cross(&b, &c))) / 6.0
 }
 
 /// Total surface area.
 pub fn area(mesh: &Mesh) -> f64 {
-    sum_over_triangles(mesh, |a, b, c| {
-        let n = cross(sub(b, a), sub(c, a));
-        dot(n, n).sqrt()
-    }) / 2.0
+    sum_over_triangles(mesh, |a, b, c| norm(&cross(&sub(&b, &a), &sub(&c, &a)))) / 2.0
 }
 
 /// Sum of the absolute areas of the triangles projected onto `plane` (for a terrain
@@ -97,7 +79,7 @@ pub fn projected_area(mesh: &Mesh, plane: Plane) -> f64 {
         Plane::YZ => 0,
         Plane::XZ => 1,
     };
-    sum_over_triangles(mesh, |a, b, c| cross(sub(b, a), sub(c, a))[k].abs()) / 2.0
+    sum_over_triangles(mesh, |a, b, c| cross(&sub(&b, &a), &sub(&c, &a))[k].abs()) / 2.0
 }
 
 /// Exactly whether three points are collinear (the triangle has zero area).

@@ -216,44 +216,74 @@ pub fn intersect(a: &Mesh, b: &Mesh) -> Seam {
 /// they share: self-intersections (or coplanar overlaps). Exact. Degenerate triangles are
 /// left out. Sorted `(i, j)` with `i < j`.
 pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
-    use crate::kernel::{orient2d, orient3d_explicit};
+    use crate::kernel::{orient2d, FloatPlane};
+    use crate::vec3::{cross, dot, norm, sub};
+    // The corners of `q` that `p` does not share, all strictly on one side of `p`'s plane
+    // (and at least one of them): then the two meet at most in what they share.
+    let apart = |p: &[[f64; 3]; 3], vp: &[u32; 3], q: &[[f64; 3]; 3], vq: &[u32; 3]| {
+        let plane = FloatPlane::new(p);
+        let mut side = Sign::Zero;
+        for k in 0..3 {
+            if vp.contains(&vq[k]) {
+                continue;
+            }
+            let s = plane.side_exact(p, &q[k]);
+            if s == Sign::Zero || (side != Sign::Zero && s != side) {
+                return false;
+            }
+            side = s;
+        }
+        side != Sign::Zero
+    };
+    // Two triangles sharing an edge whose far vertices lie certainly on opposite sides of
+    // it (seen along the edge) can only meet in that edge, coplanar or not. A floating-
+    // point filter with a margin far above its rounding error: it only ever answers
+    // "certainly unfolded"; anything else goes to the exact tests below. This is what
+    // almost every edge-sharing pair of a smooth or flat surface is, and it spares the
+    // exact orientation test its slow path on planar quads.
+    let unfolded = |p: &[[f64; 3]; 3], vp: &[u32; 3], q: &[[f64; 3]; 3], vq: &[u32; 3]| {
+        let (Some(fp), Some(fq)) = (
+            (0..3).find(|&k| !vq.contains(&vp[k])),
+            (0..3).find(|&k| !vp.contains(&vq[k])),
+        ) else {
+            return false;
+        };
+        let (a, b) = (p[(fp + 1) % 3], p[(fp + 2) % 3]);
+        let e = sub(&b, &a);
+        let (u, v) = (sub(&p[fp], &a), sub(&q[fq], &a));
+        let d = dot(&cross(&e, &u), &cross(&e, &v));
+        let margin = 1e-12 * dot(&e, &e) * norm(&u) * norm(&v);
+        margin.is_finite() && margin > 1e-250 && d < -margin
+    };
     let meets = |i: u32, j: u32| -> bool {
         let (vi, vj) = (m.triangles[i as usize], m.triangles[j as usize]);
         let (pi, pj) = (m.corners(i as usize), m.corners(j as usize));
-        // Cheap exact rejection first: the corners of one triangle that it does not
-        // share with the other all strictly on one side of the other's plane.
-        let apart = |p: &[[f64; 3]; 3], q: &[[f64; 3]; 3], vq: &[u32; 3], vp: &[u32; 3]| {
-            let s: Vec<Sign> = (0..3)
-                .filter(|&k| !vp.contains(&vq[k]))
-                .map(|k| orient3d_explicit(&p[0], &p[1], &p[2], &q[k]))
-                .collect();
-            !s.is_empty() && s[0] != Sign::Zero && s.iter().all(|&x| x == s[0])
-        };
         let shared = (0..3).filter(|&k| vj.contains(&vi[k])).count();
         if shared == 3 {
             return true; // the same triangle twice
         }
-        if shared < 2 && (apart(&pi, &pj, &vj, &vi) || apart(&pj, &pi, &vi, &vj)) {
+        if shared == 2 && unfolded(&pi, &vi, &pj, &vj) {
+            return false;
+        }
+        // Cheap exact rejection first, before any set-up. Sharing an edge, the far vertex
+        // off the other's plane is enough; otherwise one plane must separate.
+        if apart(&pi, &vi, &pj, &vj) || (shared < 2 && apart(&pj, &vj, &pi, &vi)) {
             return false;
         }
         let (Some(x), Some(y)) = (tri(m, i as usize), tri(m, j as usize)) else {
             return false;
         };
         if shared == 2 {
-            // Sharing an edge: they meet elsewhere only when folded flat onto each other:
-            // the other triangle's far vertex in this one's plane, on the same side.
+            // Sharing an edge with the far vertex in this one's plane: they overlap when
+            // it lies on the same side of the shared edge as this one's far vertex.
             let ks: Vec<usize> = (0..3).filter(|&k| y.v.contains(&x.v[k])).collect();
             let far_x = 3 - ks[0] - ks[1];
             let Some(far_y) = (0..3).find(|&k| !x.v.contains(&y.v[k])) else {
                 return true;
             };
-            let w = Point::Explicit(y.p[far_y]);
-            if orient3d_explicit(&x.p[0], &x.p[1], &x.p[2], &y.p[far_y]) != Sign::Zero {
-                return false;
-            }
             let (e0, e1) = (Point::Explicit(x.p[ks[0]]), Point::Explicit(x.p[ks[1]]));
             let sx = orient2d(&e0, &e1, &Point::Explicit(x.p[far_x]), x.axis());
-            return sx == orient2d(&e0, &e1, &w, x.axis());
+            return sx == orient2d(&e0, &e1, &Point::Explicit(y.p[far_y]), x.axis());
         }
         let labels: Vec<Label> = match tritri::intersect(&x, &y) {
             TriTri::None => vec![],

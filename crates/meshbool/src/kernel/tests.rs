@@ -375,3 +375,58 @@ fn extreme_magnitudes_fall_back_to_exact() {
         [0.0, 1e-300, 0.0]
     ));
 }
+
+#[test]
+fn float_plane_filter_never_contradicts_the_exact_sign() {
+    let mut rng = Rng(0x1234_5678_9abc_def1);
+    let e = |p: &[f64; 3]| Point::Explicit(*p);
+    let (mut answered, mut asked) = (0, 0);
+    for offset in [[0.0; 3], UTM] {
+        for scale in [1e-3, 1.0, 1e3] {
+            for _ in 0..200 {
+                let t = [0, 1, 2].map(|_| rng.point(offset, scale));
+                let plane = FloatPlane::new(&t);
+                // A random point, one rounded onto the plane (a + s·u + t·v in floats)
+                // and the latter moved one ulp in each direction.
+                let (s, r) = (rng.unit(), rng.unit());
+                let on: [f64; 3] = std::array::from_fn(|k| {
+                    t[0][k] + s * (t[1][k] - t[0][k]) + r * (t[2][k] - t[0][k])
+                });
+                let mut qs = vec![rng.point(offset, scale), on];
+                for k in 0..3 {
+                    let (mut up, mut down) = (on, on);
+                    up[k] = up[k].next_up();
+                    down[k] = down[k].next_down();
+                    qs.extend([up, down]);
+                }
+                for q in &qs {
+                    let want = oracle_orient3d(&e(&t[0]), &e(&t[1]), &e(&t[2]), &e(q));
+                    asked += 1;
+                    if let Some(got) = plane.side(q) {
+                        answered += 1;
+                        assert_eq!(got, want, "filter: {t:?} {q:?}");
+                    }
+                    assert_eq!(plane.side_exact(&t, q), want, "{t:?} {q:?}");
+                }
+            }
+        }
+    }
+    // Random points are clear-cut: the filter must answer them (1 of every 8 asked).
+    assert!(answered * 8 >= asked, "{answered} of {asked}");
+    // Exactly on an axis plane: never answered, always zero.
+    let t = [[0.0, 0.0, 5.0], [1.0, 0.0, 5.0], [0.0, 1.0, 5.0]];
+    assert_eq!(FloatPlane::new(&t).side(&[0.3, 0.7, 5.0]), None);
+    assert_eq!(
+        FloatPlane::new(&t).side_exact(&t, &[0.3, 0.7, 5.0]),
+        Sign::Zero
+    );
+    // Magnitudes where the bound underflows or overflows: left to the exact test.
+    let tiny = t.map(|p| p.map(|x| x * 1e-200));
+    assert_eq!(FloatPlane::new(&tiny).side(&[0.0, 0.0, 1e-190]), None);
+    let huge = t.map(|p| p.map(|x| x * 1e200));
+    assert_eq!(FloatPlane::new(&huge).side(&[0.0, 0.0, 1e210]), None);
+    assert_eq!(
+        FloatPlane::new(&huge).side_exact(&huge, &[0.0, 0.0, 1e210]),
+        Sign::Positive
+    );
+}
