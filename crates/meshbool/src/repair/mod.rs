@@ -1,20 +1,24 @@
 //! Mesh repair: consistent orientation ([`orient`]), boundary loops and hole capping
-//! ([`cap_holes`]), curtain walls to a floor ([`curtain`]), welding
-//! within a distance ([`weld_within`]), T-junctions ([`resolve_t_junctions`]), duplicate and
-//! anti-parallel triangles ([`remove_duplicates`]). Weld with a
-//! tolerance, T-junctions, degenerate removal, hole capping, stitching and curtains follow
-//! (issue 5).
+//! ([`cap_holes`]), stitching loop pairs ([`stitch`]), curtain walls to a floor
+//! ([`curtain`]), welding within a distance ([`weld_within`]), T-junctions
+//! ([`resolve_t_junctions`]), duplicate and anti-parallel triangles
+//! ([`remove_duplicates`]), degenerate and sliver triangles ([`remove_degenerates`]).
+//! Every step is a function on its own that returns a report of what it did.
 
 mod cap;
 mod curtain;
+mod degenerate;
 mod duplicates;
 mod orient;
+mod stitch;
 mod tjunction;
 mod weld;
 
 pub use cap::{boundary_loops, cap_holes, CapReport};
 pub use curtain::{curtain, CurtainReport};
+pub use degenerate::{remove_degenerates, DegenerateOptions, DegenerateReport};
 pub use duplicates::{remove_duplicates, DuplicateReport};
 pub use orient::{orient, Facing, OrientReport};
+pub use stitch::{stitch, zipper, StitchReport};
 pub use tjunction::{resolve_t_junctions, TJunctionReport};
 pub use weld::{weld_within, WeldReport};
