@@ -8,7 +8,9 @@ use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use meshbool::io::{self, Format};
 use meshbool::measure::{mesh_stats, MeshStats};
-use meshbool::repair::{orient, Facing};
+use meshbool::repair::{
+    self, orient, CloseMode, CloseOptions, DegenerateOptions, Facing, RepairConfig,
+};
 use meshbool::{boolean, intersect, weld_exact, EdgeTopology, Mesh};
 
 #[derive(Parser)]
@@ -98,8 +100,10 @@ enum Command {
         json: bool,
     },
     /// Close open meshes into solids. Modes: `cap` (triangulate every boundary loop,
-    /// non-planar loops too), `curtain` (vertical walls from the boundary down to
-    /// `floor = min z − floor-offset`, floor capped; orient the surface up first).
+    /// non-planar loops too), `stitch` (join pairs of loops with bands of triangles),
+    /// `curtain` (vertical walls from the boundary down to `floor = min z − floor-offset`,
+    /// floor capped; orient the surface up first), `stitch+curtain` (stitch what pairs up,
+    /// curtain the rest).
     Close {
         /// Input mesh.
         input: PathBuf,
@@ -108,22 +112,31 @@ enum Command {
         output: PathBuf,
         /// How to close.
         #[arg(long, value_enum, default_value = "cap")]
-        mode: CloseMode,
+        mode: CloseArg,
         /// Curtain: distance of the floor below the lowest point.
         #[arg(long, default_value_t = 10.0)]
         floor_offset: f64,
+        /// Stitch: the largest gap between two loops that may be bridged (default: any).
+        #[arg(long)]
+        max_gap: Option<f64>,
         /// Print a JSON report on stdout.
         #[arg(long)]
         json: bool,
     },
-    /// Repair steps, in this order: weld within a distance, duplicate removal, T-junctions,
-    /// orientation. Every removed triangle is counted in the report. (More steps are planned.)
+    /// Repair pipeline. Steps, in this order, each only when asked for: weld within a
+    /// distance, duplicate removal, T-junctions, degenerate/sliver removal, orientation
+    /// (on by default: consistent, majority facing), closing, capping small gaps left.
+    /// Every removed triangle is counted in the report. `--config FILE.json` gives the
+    /// whole configuration (the library's `RepairConfig`); flags override it.
     Repair {
         /// Input mesh.
         input: PathBuf,
         /// Output mesh file.
         #[arg(short, long)]
         output: PathBuf,
+        /// A JSON configuration (fields of `RepairConfig`; left-out fields default).
+        #[arg(long)]
+        config: Option<PathBuf>,
         /// Weld vertices closer than this distance (no chaining; see the library docs).
         #[arg(long)]
         weld: Option<f64>,
@@ -133,9 +146,35 @@ enum Command {
         /// Split boundary edges at vertices lying exactly on them (closes T-junction cracks).
         #[arg(long)]
         tjunctions: bool,
-        /// Make orientation consistent, normals up.
+        /// Remove zero-area triangles (exact) by edge collapse or flip, without cracks.
         #[arg(long)]
+        remove_degenerate: bool,
+        /// With --remove-degenerate: also triangles of at most this area.
+        #[arg(long, requires = "remove_degenerate")]
+        min_area: Option<f64>,
+        /// With --remove-degenerate: also triangles whose longest edge over smallest
+        /// height exceeds this (1.15 for equilateral).
+        #[arg(long, requires = "remove_degenerate")]
+        max_aspect: Option<f64>,
+        /// Orientation: consistent, then facing `majority` (default), `z-up`, `outward`;
+        /// `none` skips the step.
+        #[arg(long, value_enum)]
+        orient: Option<OrientArg>,
+        /// Shorthand for `--orient z-up`.
+        #[arg(long, conflicts_with = "orient")]
         z_up: bool,
+        /// Close into a solid: none (default), cap, stitch, curtain, stitch+curtain.
+        #[arg(long, value_enum)]
+        close: Option<CloseArg>,
+        /// Curtain: distance of the floor below the lowest point (default 10).
+        #[arg(long)]
+        floor_offset: Option<f64>,
+        /// Stitch: the largest gap between two loops that may be bridged (default: any).
+        #[arg(long)]
+        max_gap: Option<f64>,
+        /// Finally cap every hole left whose bounding-box diagonal is at most this.
+        #[arg(long)]
+        close_gaps: Option<f64>,
         /// Print a JSON report on stdout.
         #[arg(long)]
         json: bool,
@@ -177,13 +216,45 @@ enum Command {
     },
 }
 
-/// Ways of closing an open mesh.
+/// Ways of closing an open mesh (`repair::CloseMode`).
 #[derive(clap::ValueEnum, Clone, Copy)]
-enum CloseMode {
+enum CloseArg {
+    /// Leave boundaries open.
+    None,
     /// Triangulate every boundary loop.
     Cap,
+    /// Join pairs of boundary loops with bands.
+    Stitch,
     /// Walls down to a floor, then the floor capped.
     Curtain,
+    /// Stitch the loops that pair up, curtain the rest.
+    #[value(name = "stitch+curtain")]
+    StitchCurtain,
+}
+
+impl From<CloseArg> for CloseMode {
+    fn from(c: CloseArg) -> Self {
+        match c {
+            CloseArg::None => CloseMode::None,
+            CloseArg::Cap => CloseMode::Cap,
+            CloseArg::Stitch => CloseMode::Stitch,
+            CloseArg::Curtain => CloseMode::Curtain,
+            CloseArg::StitchCurtain => CloseMode::StitchCurtain,
+        }
+    }
+}
+
+/// Facing after orientation, or no orientation step.
+#[derive(clap::ValueEnum, Clone, Copy)]
+enum OrientArg {
+    /// Skip the orientation step.
+    None,
+    /// Keep the facing most triangles had.
+    Majority,
+    /// Normals up.
+    ZUp,
+    /// Closed components outward.
+    Outward,
 }
 
 /// The operands and output of a boolean command.
@@ -649,34 +720,26 @@ fn run(cli: Cli) -> Result<()> {
             output,
             mode,
             floor_offset,
+            max_gap,
             json,
         } => {
             let mesh = read_welded(&input)?;
-            let (closed, report) = match mode {
-                CloseMode::Cap => {
-                    let (m, r) = meshbool::repair::cap_holes(&mesh);
-                    (m, serde_json::to_value(r)?)
-                }
-                CloseMode::Curtain => {
-                    anyhow::ensure!(
-                        floor_offset.is_finite() && floor_offset >= 0.0,
-                        "--floor-offset must be a finite number >= 0"
-                    );
-                    let (m, r) = meshbool::repair::curtain(&mesh, floor_offset);
-                    (m, serde_json::to_value(r)?)
-                }
+            let opts = CloseOptions {
+                stitch_max_gap: max_gap,
+                floor_offset,
             };
+            let (closed, report) = repair::close(&mesh, mode.into(), &opts)?;
             write_mesh(&output, &closed)?;
             let s = mesh_stats(&closed);
+            let mut v = serde_json::to_value(&report)?;
+            v["closed"] = s.closed.into();
+            v["volume"] = s.volume.into();
+            v["boundary_edges"] = s.boundary_edges.into();
             if json {
-                let mut v = report;
-                v["closed"] = s.closed.into();
-                v["volume"] = s.volume.into();
-                v["boundary_edges"] = s.boundary_edges.into();
                 println!("{}", serde_json::to_string_pretty(&v)?);
             } else {
                 eprintln!(
-                    "wrote {}: {} boundary edges left, closed: {}, volume {} ({report})",
+                    "wrote {}: {} boundary edges left, closed: {}, volume {} ({v})",
                     output.display(),
                     s.boundary_edges,
                     s.closed,
@@ -687,49 +750,83 @@ fn run(cli: Cli) -> Result<()> {
         Command::Repair {
             input,
             output,
+            config,
             weld,
             remove_duplicates,
             tjunctions,
+            remove_degenerate,
+            min_area,
+            max_aspect,
+            orient,
             z_up,
+            close,
+            floor_offset,
+            max_gap,
+            close_gaps,
             json,
         } => {
-            let mut mesh = read_welded(&input)?;
-            let mut report = serde_json::Map::new();
-            report.insert("triangles_in".into(), mesh.triangles.len().into());
-            if let Some(tol) = weld {
-                anyhow::ensure!(
-                    tol.is_finite() && tol >= 0.0,
-                    "--weld must be a finite distance >= 0"
-                );
-                let (m, r) = meshbool::repair::weld_within(&mesh, tol);
-                report.insert("weld".into(), serde_json::to_value(r)?);
-                mesh = m;
+            let mut c: RepairConfig = match &config {
+                Some(path) => {
+                    let text = std::fs::read_to_string(path)
+                        .with_context(|| format!("reading {}", path.display()))?;
+                    serde_json::from_str(&text).with_context(|| {
+                        format!("{}: not a repair configuration", path.display())
+                    })?
+                }
+                None => RepairConfig::default(),
+            };
+            if weld.is_some() {
+                c.weld = weld;
             }
-            if remove_duplicates {
-                let (m, r) = meshbool::repair::remove_duplicates(&mesh);
-                report.insert("duplicates".into(), serde_json::to_value(r)?);
-                mesh = m;
+            c.remove_duplicates |= remove_duplicates;
+            c.tjunctions |= tjunctions;
+            if remove_degenerate {
+                let d = c.degenerate.get_or_insert_with(DegenerateOptions::default);
+                if let Some(a) = min_area {
+                    d.min_area = a;
+                }
+                if max_aspect.is_some() {
+                    d.max_aspect = max_aspect;
+                }
             }
-            if tjunctions {
-                let (m, r) = meshbool::repair::resolve_t_junctions(&mesh);
-                report.insert("tjunctions".into(), serde_json::to_value(r)?);
-                mesh = m;
+            let orient = if z_up { Some(OrientArg::ZUp) } else { orient };
+            if let Some(o) = orient {
+                c.orient = match o {
+                    OrientArg::None => None,
+                    OrientArg::Majority => Some(Facing::Majority),
+                    OrientArg::ZUp => Some(Facing::ZUp),
+                    OrientArg::Outward => Some(Facing::Outward),
+                };
             }
-            if z_up {
-                let (m, r) = orient(&mesh, Facing::ZUp);
-                report.insert("orient".into(), serde_json::to_value(r)?);
-                mesh = m;
+            if let Some(m) = close {
+                c.close = m.into();
             }
+            if let Some(f) = floor_offset {
+                c.close_options.floor_offset = f;
+            }
+            if max_gap.is_some() {
+                c.close_options.stitch_max_gap = max_gap;
+            }
+            if close_gaps.is_some() {
+                c.close_gaps = close_gaps;
+            }
+            let mesh = read_welded(&input)?;
+            let (mesh, report) = repair::repair(&mesh, &c)?;
             write_mesh(&output, &mesh)?;
-            let s = mesh_stats(&mesh);
-            report.insert("triangles_out".into(), s.triangles.into());
-            report.insert("boundary_edges".into(), s.boundary_edges.into());
-            report.insert("inconsistent_edges".into(), s.inconsistent_edges.into());
-            let text = serde_json::to_string_pretty(&report)?;
             if json {
-                println!("{text}");
+                println!("{}", serde_json::to_string_pretty(&report)?);
             } else {
-                eprintln!("wrote {}: {text}", output.display());
+                let (b, a) = (&report.before, &report.after);
+                eprintln!(
+                    "wrote {}: triangles {} -> {}, boundary edges {} -> {}, non-manifold edges {} -> {}, inconsistent edges {} -> {}, degenerate {} -> {}, closed: {}, volume {} (--json for every step)",
+                    output.display(),
+                    b.triangles, a.triangles,
+                    b.boundary_edges, a.boundary_edges,
+                    b.non_manifold_edges, a.non_manifold_edges,
+                    b.inconsistent_edges, a.inconsistent_edges,
+                    b.degenerate_triangles, a.degenerate_triangles,
+                    a.closed, a.volume
+                );
             }
         }
         Command::Orient {

@@ -365,9 +365,9 @@ fn close_cap_turns_an_open_box_into_a_unit_cube() {
     ]);
     assert_eq!(
         (
-            r["loops"].as_u64(),
-            r["capped"].as_u64(),
-            r["triangles_added"].as_u64()
+            r["cap"]["loops"].as_u64(),
+            r["cap"]["capped"].as_u64(),
+            r["cap"]["triangles_added"].as_u64()
         ),
         (Some(1), Some(1), Some(2))
     );
@@ -402,7 +402,7 @@ fn oriented_terrain_curtained_is_a_closed_solid() {
     ]);
     assert_eq!(r["closed"], true);
     assert_eq!(r["boundary_edges"], 0);
-    assert_eq!(r["wall_triangles"], 1120);
+    assert_eq!(r["curtain"]["wall_triangles"], 1120);
     assert!(r["volume"].as_f64().unwrap() > 0.0);
     let info = report(&["info", "--json", out.to_str().unwrap()]);
     assert_eq!(info["inconsistent_edges"], 0);
@@ -438,8 +438,8 @@ fn repair_weld_closes_a_crack() {
     ]);
     assert_eq!(r["weld"]["merged_vertices"], 2);
     assert_eq!(r["weld"]["collapsed_triangles"], 0);
-    assert_eq!(r["boundary_edges"], 6);
-    assert_eq!(r["triangles_out"], 4);
+    assert_eq!(r["after"]["boundary_edges"], 6);
+    assert_eq!(r["after"]["triangles"], 4);
 }
 
 #[test]
@@ -460,9 +460,156 @@ fn repair_tjunctions_closes_a_cube_crack() {
         "--json",
     ]);
     assert_eq!(r["tjunctions"]["edges_split"], 1);
-    assert_eq!(r["boundary_edges"], 0);
+    assert_eq!(r["after"]["boundary_edges"], 0);
     assert_eq!(
         report(&["info", "--json", out.to_str().unwrap()])["volume"],
         1.0
     );
+}
+
+/// A box over `[0, 1]² × [z0, z1]` with its top (`top = false`) or bottom face missing.
+fn open_box(z0: f64, z1: f64, drop_top: bool) -> meshbool::Mesh {
+    let mut m = meshbool::Mesh::cuboid([0.0, 0.0, z0], [1.0, 1.0, z1]);
+    let z = if drop_top { z1 } else { z0 };
+    m.triangles = (0..m.triangles.len())
+        .filter(|&t| !m.corners(t).iter().all(|p| p[2] == z))
+        .map(|t| m.triangles[t])
+        .collect();
+    m
+}
+
+#[test]
+fn close_stitch_joins_two_open_boxes_into_one_cuboid() {
+    let mut m = open_box(0.0, 1.0, true);
+    let top = open_box(2.0, 3.0, false);
+    let off = m.positions.len() as u32;
+    m.positions.extend(&top.positions);
+    m.triangles
+        .extend(top.triangles.iter().map(|t| t.map(|v| v + off)));
+    let input = tmp("two_boxes.obj");
+    meshbool::io::write_path(&input, &m).unwrap();
+    let out = tmp("stitched.obj");
+    let r = report(&[
+        "close",
+        input.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--mode",
+        "stitch",
+        "--json",
+    ]);
+    assert_eq!(r["stitch"]["pairs"], 1);
+    assert_eq!(r["stitch"]["triangles_added"], 8);
+    assert_eq!(r["stitch"]["largest_gap"], 1.0);
+    assert_eq!(r["closed"], true);
+    assert_eq!(r["volume"], 3.0);
+    let info = report(&["info", "--json", out.to_str().unwrap()]);
+    assert_eq!(info["inconsistent_edges"], 0);
+    // Too far apart for the limit: nothing stitched, still open.
+    let r = report(&[
+        "close",
+        input.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--mode",
+        "stitch",
+        "--max-gap",
+        "0.5",
+        "--json",
+    ]);
+    assert_eq!(r["stitch"]["unpaired_loops"], 2);
+    assert_eq!(r["closed"], false);
+}
+
+#[test]
+fn repair_pipeline_orients_and_curtains_the_terrain() {
+    let out = tmp("terrain_solid.ply");
+    let r = report(&[
+        "repair",
+        data("kap_terrain.obj").to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--z-up",
+        "--remove-degenerate",
+        "--close",
+        "curtain",
+        "--floor-offset",
+        "10",
+        "--json",
+    ]);
+    assert_eq!(r["before"]["inconsistent_edges"], 46);
+    assert_eq!(r["orient"]["flipped"], 22);
+    assert_eq!(r["degenerate"]["found"], 0);
+    assert_eq!(r["curtain"], serde_json::Value::Null);
+    assert_eq!(r["close"]["curtain"]["wall_triangles"], 1120);
+    let a = &r["after"];
+    assert_eq!(
+        (
+            &a["boundary_edges"],
+            &a["non_manifold_edges"],
+            &a["inconsistent_edges"],
+            &a["closed"]
+        ),
+        (&0.into(), &0.into(), &0.into(), &true.into())
+    );
+    assert_eq!(
+        a["triangles"],
+        11200 + 1120 + r["close"]["curtain"]["floor_triangles"].as_u64().unwrap()
+    );
+    assert!(a["volume"].as_f64().unwrap() > 0.0);
+}
+
+#[test]
+fn repair_config_file_with_flags_overriding() {
+    // A box missing its top, with a duplicated triangle: the config asks for duplicate
+    // removal, outward orientation and capping; a flag adds an exact weld.
+    let mut m = open_box(0.0, 1.0, true);
+    m.triangles.push(m.triangles[0]);
+    let input = tmp("cfg_in.obj");
+    meshbool::io::write_path(&input, &m).unwrap();
+    let cfg = tmp("repair.json");
+    std::fs::write(
+        &cfg,
+        r#"{"remove_duplicates": true, "close": "cap", "orient": "outward"}"#,
+    )
+    .unwrap();
+    let out = tmp("cfg_out.obj");
+    let r = report(&[
+        "repair",
+        input.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--config",
+        cfg.to_str().unwrap(),
+        "--weld",
+        "0",
+        "--json",
+    ]);
+    assert_eq!(r["duplicates"]["same_orientation_removed"], 1);
+    assert_eq!(r["weld"]["merged_vertices"], 0);
+    assert_eq!(r["close"]["cap"]["capped"], 1);
+    assert_eq!(r["after"]["volume"], 1.0);
+    assert_eq!(r["after"]["closed"], true);
+    // A misspelt field is an error naming the file, exit 1.
+    std::fs::write(&cfg, r#"{"remove_duplicate": true}"#).unwrap();
+    let bad = meshbool(&[
+        "repair",
+        input.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--config",
+        cfg.to_str().unwrap(),
+    ]);
+    assert_eq!(bad.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("repair.json"));
+    // A negative distance is refused.
+    let bad = meshbool(&[
+        "repair",
+        input.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--weld=-1",
+    ]);
+    assert_eq!(bad.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("weld"));
 }

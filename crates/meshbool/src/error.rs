@@ -60,6 +60,9 @@ pub enum Error {
         /// What is wrong.
         message: String,
     },
+    /// A parameter given to an operation is out of its range (a negative distance, NaN).
+    #[error("invalid parameter: {0}")]
+    InvalidParameter(String),
 }
 
 /// `Result` with the library's [`Error`].

@@ -4,6 +4,7 @@ use rustc_hash::FxHashMap;
 use serde::Serialize;
 
 use crate::edges::EdgeTopology;
+use crate::vec3::{cross, norm, sub};
 use crate::Mesh;
 
 /// The closed boundary loops of `mesh`: vertex ids in the direction the adjacent triangles
@@ -93,6 +94,29 @@ pub struct CapReport {
 /// plane of its Newell normal (non-planar loops too) and triangulated by ear clipping
 /// (`earcut`); where that projection folds, a fan is used and counted.
 pub fn cap_holes(mesh: &Mesh) -> (Mesh, CapReport) {
+    cap_loops(mesh, |_| true)
+}
+
+/// [`cap_holes`] for the small holes only: loops whose bounding box has a diagonal of at
+/// most `max_size` (force-closing the gaps left after other repairs, without capping a
+/// terrain's outer rim). The others are left open; `loops − capped` counts them.
+pub fn cap_small_holes(mesh: &Mesh, max_size: f64) -> (Mesh, CapReport) {
+    cap_loops(mesh, |pts| {
+        let (lo, hi) = pts.iter().fold(
+            ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]),
+            |(lo, hi), p| {
+                (
+                    std::array::from_fn(|k| lo[k].min(p[k])),
+                    std::array::from_fn(|k| hi[k].max(p[k])),
+                )
+            },
+        );
+        norm(&sub(&hi, &lo)) <= max_size
+    })
+}
+
+/// Caps the boundary loops whose corner positions `keep` accepts.
+fn cap_loops(mesh: &Mesh, keep: impl Fn(&[[f64; 3]]) -> bool) -> (Mesh, CapReport) {
     let (loops, open) = boundary_loops(mesh);
     let mut out = mesh.clone();
     let mut report = CapReport {
@@ -107,12 +131,12 @@ pub fn cap_holes(mesh: &Mesh) -> (Mesh, CapReport) {
         let poly: Vec<u32> = lp.iter().rev().copied().collect();
         let pts: Vec<[f64; 3]> = poly.iter().map(|&v| mesh.positions[v as usize]).collect();
         let n = pts.len();
-        if n < 3 {
+        if n < 3 || !keep(&pts) {
             continue;
         }
         let (c, nn) = centroid_and_newell_normal(&pts);
         // An orthonormal basis (u, v) of the Newell plane with u x v = normal.
-        let len = (nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]).sqrt();
+        let len = norm(&nn);
         let mut tris: Vec<[u32; 3]> = Vec::new();
         if len > 0.0 {
             let nz = nn.map(|x| x / len);
@@ -121,17 +145,10 @@ pub fn cap_holes(mesh: &Mesh) -> (Mesh, CapReport) {
             } else {
                 [0.0, 1.0, 0.0]
             };
-            let cross = |a: [f64; 3], b: [f64; 3]| {
-                [
-                    a[1] * b[2] - a[2] * b[1],
-                    a[2] * b[0] - a[0] * b[2],
-                    a[0] * b[1] - a[1] * b[0],
-                ]
-            };
-            let u = cross(helper, nz);
-            let ul = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
+            let u = cross(&helper, &nz);
+            let ul = norm(&u);
             let u = u.map(|x| x / ul);
-            let v = cross(nz, u);
+            let v = cross(&nz, &u);
             let flat: Vec<[f64; 2]> = pts
                 .iter()
                 .map(|p| {

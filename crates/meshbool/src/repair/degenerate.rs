@@ -2,7 +2,7 @@
 //! away by collapsing its shortest edge (needles) or by flipping its longest edge into the
 //! neighbour across it (caps), never by simply deleting it from a surface.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::measure::is_degenerate;
 use crate::vec3::{cross, dot, norm, sub};
@@ -10,20 +10,21 @@ use crate::Mesh;
 
 /// Which triangles [`remove_degenerates`] removes. The default removes exactly the
 /// zero-area triangles (decided exactly) and nothing else.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct DegenerateOptions {
     /// Triangles whose area is at most this are removed as well (0: only zero area).
     pub min_area: f64,
     /// Triangles whose aspect — longest edge divided by the smallest height, about 1.15 for
-    /// an equilateral triangle — exceeds this are removed as well (infinity: off).
-    pub max_aspect: f64,
+    /// an equilateral triangle — exceeds this are removed as well (`None`: off).
+    pub max_aspect: Option<f64>,
 }
 
 impl Default for DegenerateOptions {
     fn default() -> Self {
         DegenerateOptions {
             min_area: 0.0,
-            max_aspect: f64::INFINITY,
+            max_aspect: None,
         }
     }
 }
@@ -253,14 +254,17 @@ pub fn remove_degenerates(mesh: &Mesh, opts: &DegenerateOptions) -> (Mesh, Degen
         }
         let area2 = norm(&normal(&p));
         let longest = edge_lengths(&p).into_iter().fold(0.0, f64::max);
-        area2 / 2.0 <= opts.min_area || longest * longest / area2 > opts.max_aspect
+        area2 / 2.0 <= opts.min_area
+            || opts
+                .max_aspect
+                .is_some_and(|m| longest * longest / area2 > m)
     };
     let mut report = DegenerateReport {
         found: mesh.triangles.iter().filter(|t| bad(t)).count(),
         ..DegenerateReport::default()
     };
     // Without thresholds only exact fixes are made: no vertex moves.
-    let may_move = opts.min_area > 0.0 || opts.max_aspect.is_finite();
+    let may_move = opts.min_area > 0.0 || opts.max_aspect.is_some();
     let mut tris: Vec<[u32; 3]> = Vec::with_capacity(mesh.triangles.len());
     for t in &mesh.triangles {
         if t[0] == t[1] || t[1] == t[2] || t[2] == t[0] {
@@ -440,7 +444,7 @@ mod tests {
         let s = uv_sphere([0.0; 3], 1.0, 256, 8);
         let opts = DegenerateOptions {
             min_area: 0.0,
-            max_aspect: 20.0,
+            max_aspect: Some(20.0),
         };
         let (r, rep) = remove_degenerates(&s, &opts);
         closed_consistent(&r);
@@ -518,7 +522,7 @@ mod boolean_output {
         let u = boolean(&a, &b, Op::Union).mesh;
         let opts = DegenerateOptions {
             min_area: 0.0,
-            max_aspect: 30.0,
+            max_aspect: Some(30.0),
         };
         let (r, rep) = remove_degenerates(&u, &opts);
         let s = mesh_stats(&r);

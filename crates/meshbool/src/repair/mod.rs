@@ -10,15 +10,19 @@ mod curtain;
 mod degenerate;
 mod duplicates;
 mod orient;
+mod pipeline;
 mod stitch;
 mod tjunction;
 mod weld;
 
-pub use cap::{boundary_loops, cap_holes, CapReport};
+pub use cap::{boundary_loops, cap_holes, cap_small_holes, CapReport};
 pub use curtain::{curtain, CurtainReport};
 pub use degenerate::{remove_degenerates, DegenerateOptions, DegenerateReport};
 pub use duplicates::{remove_duplicates, DuplicateReport};
 pub use orient::{orient, Facing, OrientReport};
+pub use pipeline::{
+    close, repair, CloseMode, CloseOptions, CloseReport, RepairConfig, RepairReport,
+};
 pub use stitch::{stitch, zipper, StitchReport};
 pub use tjunction::{resolve_t_junctions, TJunctionReport};
 pub use weld::{weld_within, WeldReport};

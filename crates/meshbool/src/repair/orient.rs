@@ -4,13 +4,14 @@
 
 use std::collections::VecDeque;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::edges::EdgeTopology;
 use crate::Mesh;
 
 /// Which way each component should face once it is consistent.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum Facing {
     /// Keep the orientation most of the component's triangles already had (fewest flips).
     Majority,

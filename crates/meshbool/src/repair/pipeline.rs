@@ -1,0 +1,402 @@
+//! The repair pipeline: the repair steps composed in a fixed order under one
+//! configuration, with one report of what every step did.
+
+use serde::{Deserialize, Serialize};
+
+use super::{
+    cap_holes, cap_small_holes, curtain, orient, remove_degenerates, remove_duplicates,
+    resolve_t_junctions, stitch, weld_within, CapReport, CurtainReport, DegenerateOptions,
+    DegenerateReport, DuplicateReport, Facing, OrientReport, StitchReport, TJunctionReport,
+    WeldReport,
+};
+use crate::measure::{mesh_stats, MeshStats};
+use crate::{Error, Mesh};
+
+/// How [`close`] turns an open mesh into a solid.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum CloseMode {
+    /// Leave boundaries open.
+    #[default]
+    None,
+    /// Triangulate every boundary loop ([`cap_holes`]).
+    Cap,
+    /// Join pairs of loops with bands ([`stitch`]); unpaired loops stay open.
+    Stitch,
+    /// Walls from every loop down to a floor, floor capped ([`curtain`]).
+    Curtain,
+    /// Stitch the loops that pair up, curtain the rest.
+    #[serde(rename = "stitch+curtain")]
+    StitchCurtain,
+}
+
+/// Parameters of [`close`] besides the mode.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct CloseOptions {
+    /// Stitch: the largest gap between two loops that may be bridged (`None`: any).
+    pub stitch_max_gap: Option<f64>,
+    /// Curtain: the floor lies this far below the lowest point.
+    pub floor_offset: f64,
+}
+
+impl Default for CloseOptions {
+    fn default() -> Self {
+        CloseOptions {
+            stitch_max_gap: None,
+            floor_offset: 10.0,
+        }
+    }
+}
+
+/// What [`close`] did (the steps its mode ran).
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct CloseReport {
+    /// Capping, for [`CloseMode::Cap`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cap: Option<CapReport>,
+    /// Stitching, for the stitch modes.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stitch: Option<StitchReport>,
+    /// Curtain, for the curtain modes.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub curtain: Option<CurtainReport>,
+}
+
+/// Closes `mesh` as `mode` says. Orient the mesh first (curtains need normals up).
+pub fn close(
+    mesh: &Mesh,
+    mode: CloseMode,
+    opts: &CloseOptions,
+) -> Result<(Mesh, CloseReport), Error> {
+    let offset = opts.floor_offset;
+    if matches!(mode, CloseMode::Curtain | CloseMode::StitchCurtain)
+        && !(offset.is_finite() && offset >= 0.0)
+    {
+        return Err(Error::InvalidParameter(format!(
+            "floor offset must be a finite number >= 0, got {offset}"
+        )));
+    }
+    if let Some(g) = opts.stitch_max_gap {
+        if g.is_nan() || g < 0.0 {
+            return Err(Error::InvalidParameter(format!(
+                "stitch gap must be >= 0, got {g}"
+            )));
+        }
+    }
+    let gap = opts.stitch_max_gap.unwrap_or(f64::INFINITY);
+    let mut report = CloseReport::default();
+    let out = match mode {
+        CloseMode::None => mesh.clone(),
+        CloseMode::Cap => {
+            let (m, r) = cap_holes(mesh);
+            report.cap = Some(r);
+            m
+        }
+        CloseMode::Stitch => {
+            let (m, r) = stitch(mesh, gap);
+            report.stitch = Some(r);
+            m
+        }
+        CloseMode::Curtain => {
+            let (m, r) = curtain(mesh, offset);
+            report.curtain = Some(r);
+            m
+        }
+        CloseMode::StitchCurtain => {
+            let (m, r) = stitch(mesh, gap);
+            report.stitch = Some(r);
+            let (m, r) = curtain(&m, offset);
+            report.curtain = Some(r);
+            m
+        }
+    };
+    Ok((out, report))
+}
+
+/// Which repair steps to run, and how. Steps run in this order: weld, duplicates,
+/// T-junctions, degenerates, orientation, close, close small gaps. The default only makes
+/// orientation consistent (keeping the majority's facing). Reads from and writes to JSON
+/// (the CLI's `--config`): fields left out take their defaults.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct RepairConfig {
+    /// Weld vertices within this distance ([`weld_within`]).
+    pub weld: Option<f64>,
+    /// Remove duplicate triangles; anti-parallel pairs cancel ([`remove_duplicates`]).
+    pub remove_duplicates: bool,
+    /// Split boundary edges at vertices exactly on them ([`resolve_t_junctions`]).
+    pub tjunctions: bool,
+    /// Remove degenerate (and, with thresholds, sliver) triangles ([`remove_degenerates`]).
+    pub degenerate: Option<DegenerateOptions>,
+    /// Make orientation consistent, facing as given ([`orient`]); `None` skips it.
+    pub orient: Option<Facing>,
+    /// Close into a solid ([`close`]).
+    pub close: CloseMode,
+    /// Parameters of the close step.
+    pub close_options: CloseOptions,
+    /// Finally cap every hole left whose bounding-box diagonal is at most this
+    /// ([`cap_small_holes`]).
+    pub close_gaps: Option<f64>,
+}
+
+impl Default for RepairConfig {
+    fn default() -> Self {
+        RepairConfig {
+            weld: None,
+            remove_duplicates: false,
+            tjunctions: false,
+            degenerate: None,
+            orient: Some(Facing::Majority),
+            close: CloseMode::None,
+            close_options: CloseOptions::default(),
+            close_gaps: None,
+        }
+    }
+}
+
+/// What [`repair`] did: the measures before and after and the report of every step that
+/// ran (`None`: not asked for). Every triangle removed is counted in some step's report.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RepairReport {
+    /// The input's measures.
+    pub before: MeshStats,
+    /// Tolerance weld.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub weld: Option<WeldReport>,
+    /// Duplicate removal.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub duplicates: Option<DuplicateReport>,
+    /// T-junction resolution.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tjunctions: Option<TJunctionReport>,
+    /// Degenerate removal.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub degenerate: Option<DegenerateReport>,
+    /// Orientation.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub orient: Option<OrientReport>,
+    /// Closing.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub close: Option<CloseReport>,
+    /// Capping the small holes left.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub close_gaps: Option<CapReport>,
+    /// The result's measures.
+    pub after: MeshStats,
+}
+
+/// Runs the repair steps `config` asks for on `mesh` (valid indices), in the order of
+/// [`RepairConfig`]. Errors only on invalid parameters (negative or non-finite
+/// distances), before any work.
+pub fn repair(mesh: &Mesh, config: &RepairConfig) -> Result<(Mesh, RepairReport), Error> {
+    let distance = |name: &str, x: Option<f64>| match x {
+        Some(d) if !(d.is_finite() && d >= 0.0) => Err(Error::InvalidParameter(format!(
+            "{name} must be a finite distance >= 0, got {d}"
+        ))),
+        _ => Ok(()),
+    };
+    distance("weld", config.weld)?;
+    distance("close_gaps", config.close_gaps)?;
+    if let Some(d) = &config.degenerate {
+        if d.min_area.is_nan() || d.min_area < 0.0 || d.max_aspect.is_some_and(|a| a.is_nan()) {
+            return Err(Error::InvalidParameter(format!(
+                "degenerate thresholds must be numbers >= 0, got {d:?}"
+            )));
+        }
+    }
+    let mut report = RepairReport {
+        before: mesh_stats(mesh),
+        weld: None,
+        duplicates: None,
+        tjunctions: None,
+        degenerate: None,
+        orient: None,
+        close: None,
+        close_gaps: None,
+        after: mesh_stats(&Mesh::default()),
+    };
+    let mut m = mesh.clone();
+    if let Some(tol) = config.weld {
+        let (x, r) = weld_within(&m, tol);
+        (m, report.weld) = (x, Some(r));
+    }
+    if config.remove_duplicates {
+        let (x, r) = remove_duplicates(&m);
+        (m, report.duplicates) = (x, Some(r));
+    }
+    if config.tjunctions {
+        let (x, r) = resolve_t_junctions(&m);
+        (m, report.tjunctions) = (x, Some(r));
+    }
+    if let Some(opts) = &config.degenerate {
+        let (x, r) = remove_degenerates(&m, opts);
+        (m, report.degenerate) = (x, Some(r));
+    }
+    if let Some(facing) = config.orient {
+        let (x, r) = orient(&m, facing);
+        (m, report.orient) = (x, Some(r));
+    }
+    if config.close != CloseMode::None {
+        let (x, r) = close(&m, config.close, &config.close_options)?;
+        (m, report.close) = (x, Some(r));
+    }
+    if let Some(size) = config.close_gaps {
+        let (x, r) = cap_small_holes(&m, size);
+        (m, report.close_gaps) = (x, Some(r));
+    }
+    report.after = mesh_stats(&m);
+    Ok((m, report))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The unit cube broken in every way the pipeline mends: a 1e-4 crack (weld), a
+    /// duplicated triangle and an anti-parallel pair (duplicates), a flipped triangle
+    /// (orientation) and a missing face (cap).
+    fn broken_cube() -> Mesh {
+        let mut m = Mesh::unit_cube();
+        // Crack: a copy of vertex 0 moved by 1e-4, used by the first triangle using 0.
+        let t = m.triangles.iter().position(|t| t.contains(&0)).unwrap_or(0);
+        let p = m.positions[0];
+        m.positions.push([p[0] + 1e-4, p[1], p[2]]);
+        let copy = (m.positions.len() - 1) as u32;
+        for v in &mut m.triangles[t] {
+            if *v == 0 {
+                *v = copy;
+            }
+        }
+        // A missing face: the last two triangles (face of the cube not touching t).
+        let last = m.triangles.len() - 2;
+        m.triangles.truncate(last);
+        // A duplicate, an anti-parallel pair, a flipped triangle.
+        m.triangles.push(m.triangles[1]);
+        let [a, b, c] = m.triangles[2];
+        m.triangles.push([a, b, c]);
+        m.triangles.push([a, c, b]);
+        m.triangles[3] = [m.triangles[3][0], m.triangles[3][2], m.triangles[3][1]];
+        m
+    }
+
+    #[test]
+    fn the_pipeline_mends_a_broken_cube_and_counts_every_step() {
+        let m = broken_cube();
+        let config = RepairConfig {
+            weld: Some(1e-3),
+            remove_duplicates: true,
+            orient: Some(Facing::Outward),
+            close: CloseMode::Cap,
+            ..RepairConfig::default()
+        };
+        let (r, rep) = repair(&m, &config).expect("valid config");
+        assert!(!rep.before.closed);
+        assert!(rep.before.inconsistent_edges > 0);
+        let a = &rep.after;
+        assert_eq!(
+            (
+                a.boundary_edges,
+                a.non_manifold_edges,
+                a.inconsistent_edges,
+                a.closed
+            ),
+            (0, 0, 0, true)
+        );
+        assert_eq!(a.volume, 1.0);
+        assert_eq!(r.triangles.len(), 12);
+        assert_eq!(rep.weld.as_ref().map(|w| w.merged_vertices), Some(1));
+        let d = rep.duplicates.as_ref().expect("ran");
+        assert_eq!(
+            (d.same_orientation_removed, d.anti_parallel_removed),
+            (1, 2)
+        );
+        assert_eq!(rep.orient.as_ref().map(|o| o.flipped), Some(1));
+        let cap = rep
+            .close
+            .as_ref()
+            .and_then(|c| c.cap.clone())
+            .expect("capped");
+        assert_eq!((cap.loops, cap.capped, cap.triangles_added), (1, 1, 2));
+        assert!(rep.tjunctions.is_none() && rep.degenerate.is_none() && rep.close_gaps.is_none());
+    }
+
+    #[test]
+    fn close_gaps_caps_small_holes_only() {
+        // A sphere with one small hole (the fan at the north pole removed: a 16-gon of
+        // radius sin(pi/8), box diagonal about 1.08) and a large one on the side.
+        let s = crate::shapes::uv_sphere([0.0; 3], 1.0, 16, 8);
+        let pole: Vec<usize> = (0..s.triangles.len())
+            .filter(|&t| s.corners(t).iter().any(|p| p[2] == 1.0))
+            .collect();
+        let equator: Vec<usize> = (0..s.triangles.len())
+            .filter(|&t| s.corners(t).iter().all(|p| p[2].abs() < 0.75) && s.corners(t)[0][0] > 0.0)
+            .collect();
+        let mut m = s.clone();
+        m.triangles = (0..s.triangles.len())
+            .filter(|t| !pole.contains(t) && !equator.contains(t))
+            .map(|t| s.triangles[t])
+            .collect();
+        let (_, before) = super::super::boundary_loops(&m);
+        assert_eq!(before, 0);
+        let config = RepairConfig {
+            close_gaps: Some(1.2),
+            ..RepairConfig::default()
+        };
+        let (r, rep) = repair(&m, &config).expect("valid");
+        let cap = rep.close_gaps.expect("ran");
+        assert_eq!((cap.loops, cap.capped), (2, 1));
+        // The large hole stays: its boundary edges are all that is left.
+        assert!(rep.after.boundary_edges > 0);
+        assert_eq!(rep.after.boundary_edges + 16, rep.before.boundary_edges);
+        assert_eq!(r.triangles.len(), m.triangles.len() + 14);
+    }
+
+    #[test]
+    fn invalid_parameters_are_refused_before_any_work() {
+        let m = Mesh::unit_cube();
+        for config in [
+            RepairConfig {
+                weld: Some(-1.0),
+                ..RepairConfig::default()
+            },
+            RepairConfig {
+                weld: Some(f64::NAN),
+                ..RepairConfig::default()
+            },
+            RepairConfig {
+                close_gaps: Some(f64::INFINITY),
+                ..RepairConfig::default()
+            },
+            RepairConfig {
+                close: CloseMode::Curtain,
+                close_options: CloseOptions {
+                    floor_offset: -2.0,
+                    ..CloseOptions::default()
+                },
+                ..RepairConfig::default()
+            },
+        ] {
+            assert!(
+                matches!(repair(&m, &config), Err(Error::InvalidParameter(_))),
+                "{config:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn config_reads_from_json_with_defaults() {
+        let c: RepairConfig = serde_json::from_str(
+            r#"{"weld": 0.01, "close": "stitch+curtain", "close_options": {"floor_offset": 5}}"#,
+        )
+        .expect("parses");
+        assert_eq!(c.weld, Some(0.01));
+        assert_eq!(c.close, CloseMode::StitchCurtain);
+        assert_eq!(c.close_options.floor_offset, 5.0);
+        assert_eq!(c.orient, Some(Facing::Majority));
+        let back: RepairConfig =
+            serde_json::from_str(&serde_json::to_string(&c).expect("writes")).expect("reads");
+        assert_eq!(back, c);
+        assert!(serde_json::from_str::<RepairConfig>(r#"{"wled": 1}"#).is_err());
+    }
+}
