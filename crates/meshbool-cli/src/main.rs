@@ -125,7 +125,8 @@ enum Command {
     },
     /// Repair pipeline. Steps, in this order, each only when asked for: weld within a
     /// distance, duplicate removal, T-junctions, degenerate/sliver removal, orientation
-    /// (on by default: consistent, majority facing), closing, capping small gaps left.
+    /// (on by default: consistent, majority facing), terrain folds, closing, capping
+    /// small gaps left.
     /// Every removed triangle is counted in the report. `--config FILE.json` gives the
     /// whole configuration (the library's `RepairConfig`); flags override it.
     Repair {
@@ -163,6 +164,10 @@ enum Command {
         /// Shorthand for `--orient z-up`.
         #[arg(long, conflicts_with = "orient")]
         z_up: bool,
+        /// Terrain: remove folds (triangles facing down after orienting up) by taking out
+        /// a vertex and re-triangulating in plan view. Needs --z-up.
+        #[arg(long)]
+        remove_folds: bool,
         /// Close into a solid: none (default), cap, stitch, curtain, stitch+curtain.
         #[arg(long, value_enum)]
         close: Option<CloseArg>,
@@ -759,6 +764,7 @@ fn run(cli: Cli) -> Result<()> {
             max_aspect,
             orient,
             z_up,
+            remove_folds,
             close,
             floor_offset,
             max_gap,
@@ -798,6 +804,7 @@ fn run(cli: Cli) -> Result<()> {
                     OrientArg::Outward => Some(Facing::Outward),
                 };
             }
+            c.remove_folds |= remove_folds;
             if let Some(m) = close {
                 c.close = m.into();
             }

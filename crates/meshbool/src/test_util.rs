@@ -16,3 +16,9 @@ impl Rng {
         (self.next() >> 11) as f64 / (1u64 << 53) as f64
     }
 }
+
+/// Reads a mesh shipped in the repository's `data/` folder.
+pub(crate) fn data(name: &str) -> crate::Mesh {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data");
+    crate::io::read_path(dir.join(name)).expect("data file reads")
+}

@@ -67,9 +67,8 @@ fn cubes_with_coplanar_faces() {
 
 #[test]
 fn terrain_cut_by_cylinder_keeps_its_boundary() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data");
-    let t = crate::io::read_path(dir.join("kirra_terrain.obj")).unwrap();
-    let c = crate::io::read_path(dir.join("kirra_cylinder.obj")).unwrap();
+    let t = crate::test_util::data("kirra_terrain.obj");
+    let c = crate::test_util::data("kirra_cylinder.obj");
     let seam = intersect(&t, &c);
     let arr = arrange(&t, &seam, Side::A);
     assert!(arr.failed.is_empty());

@@ -213,10 +213,7 @@ fn provenance_names_sources() {
     assert!(r.provenance.iter().all(|p| p.triangle < 12));
 }
 
-fn data(name: &str) -> Mesh {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data");
-    crate::io::read_path(dir.join(name)).unwrap()
-}
+use crate::test_util::data;
 
 /// Every seam edge of the split terrain has an inside triangle on one side and an outside
 /// triangle on the other; the groups' areas add up to the terrain's area.

@@ -194,14 +194,7 @@ fn sphere_and_its_rotated_copy_shifted_1e9_give_closed_loops() {
     }
 }
 
-fn read(name: &str) -> Mesh {
-    crate::io::read_path(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../../data")
-            .join(name),
-    )
-    .unwrap()
-}
+use crate::test_util::data as read;
 
 #[test]
 fn kirra_terrain_and_cylinder_meet_in_one_closed_loop() {

@@ -99,9 +99,8 @@ mod tests {
 
     #[test]
     fn kirra_terrain_curtained_volume_matches_direct_integral() {
-        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data");
         for name in ["kirra_terrain.obj", "kap_terrain.obj"] {
-            let t = crate::io::read_path(dir.join(name)).unwrap();
+            let t = crate::test_util::data(name);
             let (t, _) = orient(&t, Facing::ZUp);
             let (solid, r) = curtain(&t, 10.0);
             let s = mesh_stats(&solid);

@@ -9,6 +9,7 @@ mod cap;
 mod curtain;
 mod degenerate;
 mod duplicates;
+mod folds;
 mod orient;
 mod pipeline;
 mod stitch;
@@ -19,6 +20,7 @@ pub use cap::{boundary_loops, cap_holes, cap_small_holes, CapReport};
 pub use curtain::{curtain, CurtainReport};
 pub use degenerate::{remove_degenerates, DegenerateOptions, DegenerateReport};
 pub use duplicates::{remove_duplicates, DuplicateReport};
+pub use folds::{remove_folds, FoldReport};
 pub use orient::{orient, Facing, OrientReport};
 pub use pipeline::{
     close, repair, CloseMode, CloseOptions, CloseReport, RepairConfig, RepairReport,

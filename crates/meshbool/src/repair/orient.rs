@@ -153,10 +153,9 @@ mod tests {
 
     #[test]
     fn kirra_terrain_becomes_consistent_and_faces_up() {
-        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data");
         // Exactly vertical triangles: the UTM copy is separately rounded and has one more.
         for (name, vertical) in [("kirra_terrain.obj", 8), ("kap_terrain.obj", 9)] {
-            let t = crate::io::read_path(dir.join(name)).unwrap();
+            let t = crate::test_util::data(name);
             assert_eq!(mesh_stats(&t).inconsistent_edges, 46);
             let (o, r) = orient(&t, Facing::ZUp);
             let s = mesh_stats(&o);

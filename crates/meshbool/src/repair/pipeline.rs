@@ -5,9 +5,9 @@ use serde::{Deserialize, Serialize};
 
 use super::{
     cap_holes, cap_small_holes, curtain, orient, remove_degenerates, remove_duplicates,
-    resolve_t_junctions, stitch, weld_within, CapReport, CurtainReport, DegenerateOptions,
-    DegenerateReport, DuplicateReport, Facing, OrientReport, StitchReport, TJunctionReport,
-    WeldReport,
+    remove_folds, resolve_t_junctions, stitch, weld_within, CapReport, CurtainReport,
+    DegenerateOptions, DegenerateReport, DuplicateReport, Facing, FoldReport, OrientReport,
+    StitchReport, TJunctionReport, WeldReport,
 };
 use crate::measure::{mesh_stats, MeshStats};
 use crate::{Error, Mesh};
@@ -115,7 +115,7 @@ pub fn close(
 }
 
 /// Which repair steps to run, and how. Steps run in this order: weld, duplicates,
-/// T-junctions, degenerates, orientation, close, close small gaps. The default only makes
+/// T-junctions, degenerates, orientation, folds, close, close small gaps. The default only makes
 /// orientation consistent (keeping the majority's facing). Reads from and writes to JSON
 /// (the CLI's `--config`): fields left out take their defaults.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -131,6 +131,9 @@ pub struct RepairConfig {
     pub degenerate: Option<DegenerateOptions>,
     /// Make orientation consistent, facing as given ([`orient`]); `None` skips it.
     pub orient: Option<Facing>,
+    /// Remove the folds of a terrain-like surface ([`remove_folds`]); needs `orient` to be
+    /// [`Facing::ZUp`].
+    pub remove_folds: bool,
     /// Close into a solid ([`close`]).
     pub close: CloseMode,
     /// Parameters of the close step.
@@ -148,6 +151,7 @@ impl Default for RepairConfig {
             tjunctions: false,
             degenerate: None,
             orient: Some(Facing::Majority),
+            remove_folds: false,
             close: CloseMode::None,
             close_options: CloseOptions::default(),
             close_gaps: None,
@@ -176,6 +180,9 @@ pub struct RepairReport {
     /// Orientation.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub orient: Option<OrientReport>,
+    /// Fold removal.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub folds: Option<FoldReport>,
     /// Closing.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub close: Option<CloseReport>,
@@ -198,6 +205,11 @@ pub fn repair(mesh: &Mesh, config: &RepairConfig) -> Result<(Mesh, RepairReport)
     };
     distance("weld", config.weld)?;
     distance("close_gaps", config.close_gaps)?;
+    if config.remove_folds && config.orient != Some(Facing::ZUp) {
+        return Err(Error::InvalidParameter(
+            "fold removal works on a surface oriented up: set orient to z-up".into(),
+        ));
+    }
     if let Some(d) = &config.degenerate {
         if d.min_area.is_nan() || d.min_area < 0.0 || d.max_aspect.is_some_and(|a| a.is_nan()) {
             return Err(Error::InvalidParameter(format!(
@@ -212,6 +224,7 @@ pub fn repair(mesh: &Mesh, config: &RepairConfig) -> Result<(Mesh, RepairReport)
         tjunctions: None,
         degenerate: None,
         orient: None,
+        folds: None,
         close: None,
         close_gaps: None,
         after: mesh_stats(&Mesh::default()),
@@ -236,6 +249,10 @@ pub fn repair(mesh: &Mesh, config: &RepairConfig) -> Result<(Mesh, RepairReport)
     if let Some(facing) = config.orient {
         let (x, r) = orient(&m, facing);
         (m, report.orient) = (x, Some(r));
+    }
+    if config.remove_folds {
+        let (x, r) = remove_folds(&m);
+        (m, report.folds) = (x, Some(r));
     }
     if config.close != CloseMode::None {
         let (x, r) = close(&m, config.close, &config.close_options)?;
@@ -366,6 +383,10 @@ mod tests {
             },
             RepairConfig {
                 close_gaps: Some(f64::INFINITY),
+                ..RepairConfig::default()
+            },
+            RepairConfig {
+                remove_folds: true,
                 ..RepairConfig::default()
             },
             RepairConfig {
