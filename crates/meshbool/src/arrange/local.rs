@@ -13,6 +13,9 @@ const NONE: u32 = u32::MAX;
 pub(crate) struct Local {
     pub(crate) pts: Vec<Point>,
     approx: Vec<[f64; 3]>,
+    /// Per vertex, bit `k` set when it lies on the outer triangle's edge `k` (known from
+    /// the seam labels): three vertices sharing a bit are collinear, no predicate needed.
+    on: Vec<u8>,
     /// Triangles as local vertex indices, counter-clockwise in the normalised frame.
     pub(crate) tris: Vec<[u32; 3]>,
     /// Neighbour across edge k (from corner k to k+1), or NONE on the outer boundary.
@@ -39,6 +42,7 @@ impl Local {
         Local {
             pts: corners.iter().map(|&p| Point::Explicit(p)).collect(),
             approx: corners.to_vec(),
+            on: vec![0b101, 0b011, 0b110],
             tris: vec![[0, 1, 2]],
             nbr: vec![[NONE; 3]],
             fixed: vec![[true; 3]],
@@ -49,6 +53,9 @@ impl Local {
     }
 
     fn orient(&self, a: u32, b: u32, c: u32) -> Sign {
+        if self.on[a as usize] & self.on[b as usize] & self.on[c as usize] != 0 {
+            return Sign::Zero;
+        }
         orient2d(
             &self.pts[a as usize],
             &self.pts[b as usize],
@@ -58,7 +65,10 @@ impl Local {
         .times(self.sign)
     }
 
-    fn orient_pt(&self, a: u32, b: u32, x: &Point) -> Sign {
+    fn orient_pt(&self, a: u32, b: u32, x: &Point, x_on: u8) -> Sign {
+        if self.on[a as usize] & self.on[b as usize] & x_on != 0 {
+            return Sign::Zero;
+        }
         orient2d(&self.pts[a as usize], &self.pts[b as usize], x, self.axis).times(self.sign)
     }
 
@@ -95,8 +105,15 @@ impl Local {
     }
 
     /// Inserts `x` (which must lie in the closed outer triangle) and returns its index; a
-    /// point equal to an existing vertex returns that vertex.
-    pub(crate) fn insert(&mut self, x: Point, approx: [f64; 3]) -> Result<u32, Failed> {
+    /// point equal to an existing vertex returns that vertex. `on_edge`: `Some(k)` when `x`
+    /// is known to lie on the outer triangle's edge `k` (from corner `k` to `k + 1`).
+    pub(crate) fn insert(
+        &mut self,
+        x: Point,
+        approx: [f64; 3],
+        on_edge: Option<usize>,
+    ) -> Result<u32, Failed> {
+        let x_on = on_edge.map_or(0, |k| 1u8 << k);
         let mut t = self.last.min(self.tris.len() as u32 - 1);
         let mut steps = 0usize;
         let mut turn = 0usize;
@@ -106,7 +123,8 @@ impl Local {
                 return Err(Failed("point location did not converge"));
             }
             let v = self.tris[t as usize];
-            let o: [Sign; 3] = std::array::from_fn(|k| self.orient_pt(v[k], v[(k + 1) % 3], &x));
+            let o: [Sign; 3] =
+                std::array::from_fn(|k| self.orient_pt(v[k], v[(k + 1) % 3], &x, x_on));
             // Leave through a negative edge, starting the search at a rotating slot so that
             // the walk cannot cycle.
             turn += 1;
@@ -127,11 +145,13 @@ impl Local {
                 [] => {
                     self.pts.push(x);
                     self.approx.push(approx);
+                    self.on.push(x_on);
                     self.split_face(t, id);
                 }
                 [k] => {
                     self.pts.push(x);
                     self.approx.push(approx);
+                    self.on.push(x_on);
                     self.split_edge(t, *k, id);
                 }
                 // On two edges: it is their shared corner.
@@ -328,11 +348,11 @@ impl Local {
             changed = false;
             for t in 0..self.tris.len() as u32 {
                 for k in 0..3 {
-                    if budget == 0 || !self.flippable(t, k) {
+                    let u = self.nbr[t as usize][k];
+                    if budget == 0 || u == NONE || self.fixed[t as usize][k] {
                         continue;
                     }
                     let v = rot(self.tris[t as usize], k);
-                    let u = self.nbr[t as usize][k];
                     let d = rot(self.tris[u as usize], self.slot_of(u, t))[2];
                     let ic = robust::incircle(
                         xy(self, v[0]),
@@ -343,7 +363,8 @@ impl Local {
                         Sign::Negative => -1.0,
                         _ => 1.0,
                     };
-                    if ic > 0.0 {
+                    // The cheap approximate choice first; the exact test allows it.
+                    if ic > 0.0 && self.flippable(t, k) {
                         self.flip(t, k);
                         budget -= 1;
                         changed = true;

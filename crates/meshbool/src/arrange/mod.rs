@@ -7,7 +7,7 @@
 //! triangle's edge are inserted into both triangles of that edge, so no T-junctions appear.
 
 use rayon::prelude::*;
-use rustc_hash::{FxHashMap, FxHashSet};
+use rustc_hash::FxHashMap;
 
 use crate::intersect::tritri::Tri;
 use crate::intersect::{Feature, Seam};
@@ -31,8 +31,12 @@ pub struct Arranged {
     /// The conforming mesh: the input vertices first (same ids), then one vertex per seam
     /// point that is not an input vertex of this mesh (approximate coordinates).
     pub mesh: Mesh,
-    /// The exact point of every vertex.
-    pub points: Vec<Point>,
+    /// Vertices below this id are the input's (exact as they are); the others were added
+    /// for seam points.
+    pub input_vertices: usize,
+    /// The exact point of every added vertex: vertex `input_vertices + i` is
+    /// `added_points[i]` (see [`Arranged::point`]).
+    pub added_points: Vec<Point>,
     /// For every output triangle, the input triangle it is part of.
     pub parent: Vec<u32>,
     /// For every seam point, its vertex in [`Arranged::mesh`].
@@ -43,6 +47,17 @@ pub struct Arranged {
     /// Input triangles that could not be re-triangulated, with the reason (inconsistent
     /// input, such as a self-intersecting mesh), kept uncut; empty for valid inputs.
     pub failed: Vec<(u32, &'static str)>,
+}
+
+impl Arranged {
+    /// The exact point of vertex `v`.
+    pub fn point(&self, v: u32) -> Point {
+        let v = v as usize;
+        match v.checked_sub(self.input_vertices) {
+            Some(i) => self.added_points[i].clone(),
+            None => Point::Explicit(self.mesh.positions[v]),
+        }
+    }
 }
 
 fn feature(l: &crate::intersect::Label, side: Side) -> Feature {
@@ -57,7 +72,8 @@ fn feature(l: &crate::intersect::Label, side: Side) -> Feature {
 pub fn arrange(mesh: &Mesh, seam: &Seam, side: Side) -> Arranged {
     // Vertex ids of seam points.
     let mut positions = mesh.positions.clone();
-    let mut points: Vec<Point> = mesh.positions.iter().map(|&p| Point::Explicit(p)).collect();
+    let input_vertices = positions.len();
+    let mut added: Vec<Point> = Vec::new();
     let mut face_pts: FxHashMap<u32, Vec<u32>> = FxHashMap::default();
     let mut edge_pts: FxHashMap<(u32, u32), Vec<u32>> = FxHashMap::default();
     let seam_vertex: Vec<u32> = seam
@@ -69,7 +85,7 @@ pub fn arrange(mesh: &Mesh, seam: &Seam, side: Side) -> Arranged {
             f => {
                 let id = positions.len() as u32;
                 positions.push(seam.positions[s]);
-                points.push(seam.exact[s].clone());
+                added.push(seam.exact[s].clone());
                 match f {
                     Feature::Face(t) => face_pts.entry(t).or_default().push(id),
                     Feature::Edge(u, v) => edge_pts.entry((u, v)).or_default().push(id),
@@ -101,20 +117,22 @@ pub fn arrange(mesh: &Mesh, seam: &Seam, side: Side) -> Arranged {
             .or_default()
             .push(seam_edges[src.segment as usize]);
     }
-    let mut cut: FxHashSet<u32> = face_pts.keys().copied().collect();
-    cut.extend(cons.keys().copied());
+    let mut cut: Vec<u32> = face_pts.keys().chain(cons.keys()).copied().collect();
     if !edge_pts.is_empty() {
-        for (t, tri) in mesh.triangles.iter().enumerate() {
-            if (0..3).any(|k| {
-                let (u, v) = (tri[k], tri[(k + 1) % 3]);
-                edge_pts.contains_key(&(u.min(v), u.max(v)))
-            }) {
-                cut.insert(t as u32);
-            }
-        }
+        cut.par_extend(
+            (0..mesh.triangles.len() as u32)
+                .into_par_iter()
+                .filter(|&t| {
+                    let tri = mesh.triangles[t as usize];
+                    (0..3).any(|k| {
+                        let (u, v) = (tri[k], tri[(k + 1) % 3]);
+                        edge_pts.contains_key(&(u.min(v), u.max(v)))
+                    })
+                }),
+        );
     }
-    let mut cut: Vec<u32> = cut.into_iter().collect();
-    cut.sort_unstable();
+    cut.par_sort_unstable();
+    cut.dedup();
 
     type Cut = (u32, Result<Vec<[u32; 3]>, local::Failed>);
     let results: Vec<Cut> = cut
@@ -132,15 +150,20 @@ pub fn arrange(mesh: &Mesh, seam: &Seam, side: Side) -> Arranged {
             }
             let mut ids: Vec<u32> = tri.to_vec();
             let mut run = || -> Result<Vec<[u32; 3]>, local::Failed> {
-                let mut mine: Vec<u32> = face_pts.get(&t).cloned().unwrap_or_default();
+                // Seam points with the outer edge they lie on, if any.
+                let mut mine: Vec<(u32, Option<usize>)> = face_pts
+                    .get(&t)
+                    .map(|p| p.iter().map(|&g| (g, None)).collect())
+                    .unwrap_or_default();
                 for k in 0..3 {
                     let (u, v) = (tri[k], tri[(k + 1) % 3]);
                     if let Some(p) = edge_pts.get(&(u.min(v), u.max(v))) {
-                        mine.extend(p);
+                        mine.extend(p.iter().map(|&g| (g, Some(k))));
                     }
                 }
-                for g in mine {
-                    let l = lt.insert(points[g as usize].clone(), positions[g as usize])?;
+                for (g, on_edge) in mine {
+                    let exact = added[g as usize - input_vertices].clone();
+                    let l = lt.insert(exact, positions[g as usize], on_edge)?;
                     if l as usize == ids.len() {
                         ids.push(g);
                     }
@@ -159,33 +182,40 @@ pub fn arrange(mesh: &Mesh, seam: &Seam, side: Side) -> Arranged {
         })
         .collect();
 
-    let mut replaced: FxHashMap<u32, Vec<[u32; 3]>> = FxHashMap::default();
+    // The output in input order: runs of uncut triangles copied as they are, each cut
+    // one replaced by its pieces (the results come in the sorted order of `cut`).
     let mut failed = Vec::new();
+    let pieces: usize = results
+        .iter()
+        .map(|(_, r)| r.as_ref().map_or(1, Vec::len))
+        .sum();
+    let total = mesh.triangles.len() - results.len() + pieces;
+    let mut triangles = Vec::with_capacity(total);
+    let mut parent = Vec::with_capacity(total);
+    let mut next = 0usize;
     for (t, r) in results {
+        let t = t as usize;
+        triangles.extend_from_slice(&mesh.triangles[next..t]);
+        parent.extend(next as u32..t as u32);
         match r {
-            Ok(tris) => {
-                replaced.insert(t, tris);
-            }
-            Err(local::Failed(why)) => failed.push((t, why)),
-        }
-    }
-    let mut triangles = Vec::with_capacity(mesh.triangles.len() + 2 * replaced.len());
-    let mut parent = Vec::with_capacity(triangles.capacity());
-    for (t, tri) in mesh.triangles.iter().enumerate() {
-        match replaced.get(&(t as u32)) {
-            Some(sub) => {
-                triangles.extend_from_slice(sub);
+            Ok(sub) => {
                 parent.extend(std::iter::repeat_n(t as u32, sub.len()));
+                triangles.extend(sub);
             }
-            None => {
-                triangles.push(*tri);
+            Err(local::Failed(why)) => {
+                failed.push((t as u32, why));
+                triangles.push(mesh.triangles[t]);
                 parent.push(t as u32);
             }
         }
+        next = t + 1;
     }
+    triangles.extend_from_slice(&mesh.triangles[next..]);
+    parent.extend(next as u32..mesh.triangles.len() as u32);
     Arranged {
         mesh: Mesh::new(positions, triangles),
-        points,
+        input_vertices,
+        added_points: added,
         parent,
         seam_vertex,
         seam_edges,

@@ -5,6 +5,7 @@ use crate::measure::{area, mesh_stats, signed_volume};
 use crate::shapes::rigid_motion;
 use crate::shapes::uv_sphere;
 use crate::test_util::Rng;
+use rustc_hash::FxHashSet;
 
 fn edges_of(m: &Mesh) -> FxHashSet<[u32; 2]> {
     let topo = EdgeTopology::new(m);

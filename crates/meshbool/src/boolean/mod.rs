@@ -4,6 +4,8 @@
 //! by the operation's rules → merge into one mesh (seam vertices shared), with the source
 //! of every output triangle.
 
+use rayon::prelude::*;
+
 use crate::arrange::{arrange, Arranged, Side};
 use crate::classify::{classify, Class, Classified, Operand};
 use crate::edges::EdgeTopology;
@@ -135,67 +137,69 @@ pub fn split(a: &Mesh, b: &Mesh) -> Split {
 }
 
 /// Merges chosen triangles of both arrangements into one mesh. `keep_a(t)` / `keep_b(t)`
-/// say whether a triangle is kept and whether it is flipped.
+/// say whether a triangle is kept and whether it is flipped. Triangles come in order (A's,
+/// then B's); vertices are the used ones, A's in A's order, then B's own in B's order.
 pub fn merge(
     s: &Split,
-    keep_a: impl Fn(usize) -> Option<bool>,
-    keep_b: impl Fn(usize) -> Option<bool>,
+    keep_a: impl Fn(usize) -> Option<bool> + Sync,
+    keep_b: impl Fn(usize) -> Option<bool> + Sync,
 ) -> (Mesh, Vec<Provenance>) {
-    let na = s.a.mesh.positions.len() as u32;
+    let (na, nb) = (s.a.mesh.positions.len(), s.b.mesh.positions.len());
     // B's vertex ids in the merged numbering: seam vertices are A's, others follow A's.
-    let mut b_to_merged: Vec<u32> = (0..s.b.mesh.positions.len() as u32)
-        .map(|v| na + v)
-        .collect();
+    let mut b_to_merged: Vec<u32> = (na as u32..(na + nb) as u32).collect();
     for (sp, &vb) in s.b.seam_vertex.iter().enumerate() {
         b_to_merged[vb as usize] = s.a.seam_vertex[sp];
     }
-    let mut triangles = Vec::new();
-    let mut provenance = Vec::new();
-    for (arr, keep, source, map) in [
-        (
-            &s.a,
-            &keep_a as &dyn Fn(usize) -> Option<bool>,
-            Source::A,
-            None,
-        ),
-        (
-            &s.b,
-            &keep_b as &dyn Fn(usize) -> Option<bool>,
-            Source::B,
-            Some(&b_to_merged),
-        ),
-    ] {
-        for (t, tri) in arr.mesh.triangles.iter().enumerate() {
-            let Some(flip) = keep(t) else { continue };
-            let mut v = match map {
-                None => *tri,
-                Some(m) => tri.map(|i| m[i as usize]),
-            };
-            if flip {
-                v.swap(1, 2);
-            }
-            triangles.push(v);
-            provenance.push(Provenance {
-                source,
-                triangle: arr.parent[t],
-                flipped: flip,
+    let chosen = |arr: &Arranged,
+                  keep: &(dyn Fn(usize) -> Option<bool> + Sync),
+                  source: Source,
+                  map: Option<&[u32]>| {
+        (0..arr.mesh.triangles.len())
+            .into_par_iter()
+            .filter_map(|t| {
+                let flip = keep(t)?;
+                let tri = arr.mesh.triangles[t];
+                let mut v = match map {
+                    None => tri,
+                    Some(m) => tri.map(|i| m[i as usize]),
+                };
+                if flip {
+                    v.swap(1, 2);
+                }
+                let p = Provenance {
+                    source,
+                    triangle: arr.parent[t],
+                    flipped: flip,
+                };
+                Some((v, p))
+            })
+            .unzip::<_, _, Vec<_>, Vec<_>>()
+    };
+    let ((mut triangles, mut provenance), (tb, pb)) = rayon::join(
+        || chosen(&s.a, &keep_a, Source::A, None),
+        || chosen(&s.b, &keep_b, Source::B, Some(&b_to_merged)),
+    );
+    triangles.extend(tb);
+    provenance.extend(pb);
+    // Compact: only referenced vertices, in merged-id order.
+    let mut new_id = vec![u32::MAX; na + nb];
+    for &v in triangles.iter().flatten() {
+        new_id[v as usize] = 0;
+    }
+    let mut positions = Vec::new();
+    for (v, id) in new_id.iter_mut().enumerate() {
+        if *id == 0 {
+            *id = positions.len() as u32;
+            positions.push(if v < na {
+                s.a.mesh.positions[v]
+            } else {
+                s.b.mesh.positions[v - na]
             });
         }
     }
-    // Compact: only referenced vertices, in order of first use.
-    let mut positions_all = s.a.mesh.positions.clone();
-    positions_all.extend_from_slice(&s.b.mesh.positions);
-    let mut new_id = vec![u32::MAX; positions_all.len()];
-    let mut positions = Vec::new();
-    for tri in &mut triangles {
-        for v in tri.iter_mut() {
-            if new_id[*v as usize] == u32::MAX {
-                new_id[*v as usize] = positions.len() as u32;
-                positions.push(positions_all[*v as usize]);
-            }
-            *v = new_id[*v as usize];
-        }
-    }
+    triangles
+        .par_iter_mut()
+        .for_each(|t| *t = t.map(|v| new_id[v as usize]));
     (Mesh::new(positions, triangles), provenance)
 }
 

@@ -9,7 +9,7 @@
 //! stops inside the patch), use the generalized winding number of the other mesh.
 
 use rayon::prelude::*;
-use rustc_hash::{FxHashMap, FxHashSet};
+use rustc_hash::FxHashMap;
 
 use crate::arrange::Arranged;
 use crate::edges::EdgeTopology;
@@ -135,31 +135,53 @@ pub fn classify(x: &Operand, y: &Operand, y_closed: bool) -> Classified {
     let (x_in, topo, y_in, ytopo) = (x.input, x.topology, y.input, y.topology);
     let (x, y) = (x.arranged, y.arranged);
     let n = x.mesh.triangles.len();
-    let seam: FxHashSet<[u32; 2]> = x.seam_edges.iter().copied().collect();
-    // Patches: flood over edges that are not seam edges.
-    let mut patch = vec![u32::MAX; n];
-    let mut patches = 0u32;
-    let mut stack = Vec::new();
-    for start in 0..n {
-        if patch[start] != u32::MAX {
+    // Seam edges by edge id (the topology's edges are sorted: binary search each).
+    let mut is_seam = vec![false; topo.edge_count()];
+    for e in &x.seam_edges {
+        if let Ok(i) = topo.edges.binary_search(e) {
+            is_seam[i] = true;
+        }
+    }
+    // Patches: components of the triangles joined across edges that are not seam edges.
+    // Union-find streaming over the edges (cache-friendly, unlike a flood fill over a
+    // mesh whose triangles are not stored in spatial order); numbered in the order of
+    // each patch's first triangle.
+    let mut root: Vec<u32> = (0..n as u32).collect();
+    fn find(root: &mut [u32], mut t: u32) -> u32 {
+        while root[t as usize] != t {
+            let up = root[root[t as usize] as usize];
+            root[t as usize] = up;
+            t = up;
+        }
+        t
+    }
+    for (e, &seam) in is_seam.iter().enumerate() {
+        if seam {
             continue;
         }
-        patch[start] = patches;
-        stack.push(start as u32);
-        while let Some(t) = stack.pop() {
-            for &e in &topo.triangle_edges[t as usize] {
-                if e == EdgeTopology::NO_EDGE || seam.contains(&topo.edges[e as usize]) {
-                    continue;
-                }
-                for u in topo.uses_of(e as usize) {
-                    if patch[u.triangle as usize] == u32::MAX {
-                        patch[u.triangle as usize] = patches;
-                        stack.push(u.triangle);
-                    }
-                }
+        let uses = topo.uses_of(e);
+        let Some(first) = uses.first() else { continue };
+        let mut r0 = find(&mut root, first.triangle);
+        for u in &uses[1..] {
+            let r1 = find(&mut root, u.triangle);
+            if r0 != r1 {
+                // The smaller id becomes the root: roots stay each patch's first triangle.
+                let (lo, hi) = (r0.min(r1), r0.max(r1));
+                root[hi as usize] = lo;
+                r0 = lo;
             }
         }
-        patches += 1;
+    }
+    let mut patch = vec![u32::MAX; n];
+    let mut patches = 0u32;
+    for t in 0..n {
+        let r = find(&mut root, t as u32) as usize;
+        if r == t {
+            patch[t] = patches;
+            patches += 1;
+        } else {
+            patch[t] = patch[r];
+        }
     }
     // Votes from every seam edge use.
     let seam_of_vertex: FxHashMap<u32, u32> = x
@@ -168,9 +190,7 @@ pub fn classify(x: &Operand, y: &Operand, y_closed: bool) -> Classified {
         .enumerate()
         .map(|(s, &v)| (v, s as u32))
         .collect();
-    let seam_edge_ids: Vec<usize> = (0..topo.edge_count())
-        .filter(|&e| seam.contains(&topo.edges[e]))
-        .collect();
+    let seam_edge_ids: Vec<usize> = (0..topo.edge_count()).filter(|&e| is_seam[e]).collect();
     // (patch, triangle, class) for every use of a seam edge.
     let votes: Vec<(u32, u32, Option<Class>)> = seam_edge_ids
         .par_iter()
@@ -189,18 +209,19 @@ pub fn classify(x: &Operand, y: &Operand, y_closed: bool) -> Classified {
                             let tri = y.mesh.triangles[use_.triangle as usize];
                             FanFace {
                                 plane: y_in.corners(y.parent[use_.triangle as usize] as usize),
-                                far: y.points[tri[(use_.corner as usize + 2) % 3] as usize].clone(),
+                                far: y.point(tri[(use_.corner as usize + 2) % 3]),
                             }
                         })
                         .collect()
                 })
                 .unwrap_or_default();
-            let ends = [&x.points[u as usize], &x.points[v as usize]];
+            let (pu, pv) = (x.point(u), x.point(v));
+            let ends = [&pu, &pv];
             topo.uses_of(e)
                 .iter()
                 .map(|use_| {
                     let t = use_.triangle as usize;
-                    let w = &x.points[x.mesh.triangles[t][(use_.corner as usize + 2) % 3] as usize];
+                    let w = &x.point(x.mesh.triangles[t][(use_.corner as usize + 2) % 3]);
                     let own = x_in.corners(x.parent[t] as usize);
                     (patch[t], t as u32, local_class(&own, w, ends, &fan))
                 })
@@ -276,7 +297,7 @@ pub fn classify(x: &Operand, y: &Operand, y_closed: bool) -> Classified {
     while let Some(t) = queue.pop_front() {
         let c = class[t as usize];
         for &e in &topo.triangle_edges[t as usize] {
-            if e == EdgeTopology::NO_EDGE || seam.contains(&topo.edges[e as usize]) {
+            if e == EdgeTopology::NO_EDGE || is_seam[e as usize] {
                 continue;
             }
             for u in topo.uses_of(e as usize) {
