@@ -317,18 +317,29 @@ fn parse_format(s: &str) -> Result<Format, String> {
 }
 
 fn read(path: &Path, from: Option<Format>) -> Result<Mesh> {
-    let run = || -> meshbool::Result<Mesh> {
+    Ok(read_as(path, from)?.0)
+}
+
+/// [`read`], also giving the format the file was read as.
+fn read_as(path: &Path, from: Option<Format>) -> Result<(Mesh, Format)> {
+    let run = || -> meshbool::Result<(Mesh, Format)> {
         let bytes = std::fs::read(path)?;
         let format = io::detect_format(&bytes, from.or_else(|| Format::for_path(path)))
             .ok_or_else(|| meshbool::Error::UnknownFormat(path.display().to_string()))?;
-        io::read_bytes(&bytes, format)
+        Ok((io::read_bytes(&bytes, format)?, format))
     };
     run().with_context(|| format!("reading {}", path.display()))
 }
 
-/// Reads a mesh file and welds exactly equal positions (what every operation expects).
+/// Reads a mesh file and welds exactly equal positions (what every operation expects);
+/// formats whose reader welds already are not welded twice.
 fn read_welded(path: &Path) -> Result<Mesh> {
-    Ok(weld_exact(&read(path, None)?).mesh)
+    let (mesh, format) = read_as(path, None)?;
+    Ok(if format.welds_on_read() {
+        mesh
+    } else {
+        weld_exact(&mesh).mesh
+    })
 }
 
 /// Writes a mesh in the format its file name says, naming the file in any error.
@@ -430,6 +441,19 @@ fn operand(path: &Path, opts: &BoolOpts, assumed: &mut Vec<String>) -> Result<Me
     Ok(mesh)
 }
 
+/// Both operands of a boolean, read and checked side by side ([`operand`]), each with
+/// what was assumed about it.
+type Checked = (Mesh, Vec<String>);
+fn both(a: &Path, b: &Path, opts: &BoolOpts) -> Result<(Checked, Checked)> {
+    let one = |p: &Path| -> Result<Checked> {
+        let mut assumed = Vec::new();
+        let m = operand(p, opts, &mut assumed)?;
+        Ok((m, assumed))
+    };
+    let (ra, rb) = rayon::join(|| one(a), || one(b));
+    Ok((ra?, rb?))
+}
+
 /// Edge counts, volume and area of a result: the part of [`mesh_stats`] a report needs.
 fn result_measures(m: &Mesh) -> (usize, usize, f64, f64) {
     let counts = EdgeTopology::new(m).kind_counts();
@@ -470,15 +494,15 @@ fn run_boolean(args: &OperandArgs, op: boolean::Op) -> Result<()> {
     let (a, b, output, opts) = (&args.a, &args.b, &args.output, &args.opts);
     set_threads(opts.threads)?;
     let mut assumed = Vec::new();
-    let (ma, mb) = (
-        operand(a, opts, &mut assumed)?,
-        operand(b, opts, &mut assumed)?,
-    );
+    let ((ma, assumed_a), (mb, assumed_b)) = both(a, b, opts)?;
+    assumed.extend(assumed_a);
+    assumed.extend(assumed_b);
     let start = std::time::Instant::now();
     let r = boolean::boolean(&ma, &mb, op);
     let seconds = start.elapsed().as_secs_f64();
-    write_mesh(output, &r.mesh)?;
-    let (boundary_edges, non_manifold_edges, volume, area) = result_measures(&r.mesh);
+    let (written, (boundary_edges, non_manifold_edges, volume, area)) =
+        rayon::join(|| write_mesh(output, &r.mesh), || result_measures(&r.mesh));
+    written?;
     if r.degenerate != [0, 0] {
         assumed.push(format!(
             "degenerate (zero-area) triangles where the meshes meet were left out: {} in A, {} in B",
@@ -562,11 +586,8 @@ fn piece_info(file: String, m: &Mesh) -> PieceInfo {
 
 fn run_split(a: &Path, b: &Path, dir: &Path, format: Format, opts: &BoolOpts) -> Result<()> {
     set_threads(opts.threads)?;
-    let mut assumed = Vec::new();
-    let (ma, mb) = (
-        operand(a, opts, &mut assumed)?,
-        operand(b, opts, &mut assumed)?,
-    );
+    let ((ma, mut assumed), (mb, assumed_b)) = both(a, b, opts)?;
+    assumed.extend(assumed_b);
     for w in &assumed {
         eprintln!("warning: {w}");
     }

@@ -90,6 +90,20 @@ impl Format {
             .map(|&(_, f)| f)
     }
 
+    /// True when reading this format already merges exactly equal positions into one
+    /// vertex (formats that store triangles as corner coordinates: STL, DXF 3DFACE, JSON
+    /// soups), so [`crate::weld_exact`] after reading would change nothing.
+    pub fn welds_on_read(self) -> bool {
+        matches!(
+            self,
+            Format::StlBinary
+                | Format::StlAscii
+                | Format::Dxf
+                | Format::JsonSoup
+                | Format::JsonKirra
+        )
+    }
+
     /// The format written for a file name's extension: `.stl` binary STL, `.obj`, `.ply`
     /// binary little-endian, `.dxf`, `.json` JSON soup. `None` for other extensions.
     pub fn for_path(path: impl AsRef<Path>) -> Option<Format> {

@@ -442,3 +442,16 @@ fn writing_invalid_mesh_is_an_error() {
         );
     }
 }
+
+#[test]
+fn welds_on_read_says_exactly_which_readers_weld() {
+    // The unit cube as an unwelded soup (36 vertices): readers that weld give 8.
+    let soup = Mesh::from_soup_unwelded(&Mesh::unit_cube().to_soup());
+    assert_eq!(soup.vertex_count(), 36);
+    for (_, f) in Format::NAMES {
+        let back = read_bytes(&write_to_vec(&soup, f), f).unwrap();
+        let welded = crate::weld_exact(&back).mesh.vertex_count() == back.vertex_count();
+        assert_eq!(f.welds_on_read(), welded, "{f}");
+        assert_eq!(welded, back.vertex_count() == 8, "{f}");
+    }
+}
