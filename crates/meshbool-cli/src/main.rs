@@ -465,6 +465,41 @@ fn result_measures(m: &Mesh) -> (usize, usize, f64, f64) {
     )
 }
 
+/// A spinner with the elapsed time and the current stage on standard error; drawn only
+/// when standard error is a terminal (never into pipes, files or tests). Cleared when
+/// dropped, so an error message never lands after a stale spinner line.
+struct Spinner(indicatif::ProgressBar);
+
+impl Spinner {
+    fn set_message(&self, msg: &'static str) {
+        self.0.set_message(msg);
+    }
+}
+
+impl Drop for Spinner {
+    fn drop(&mut self) {
+        self.0.finish_and_clear();
+    }
+}
+
+fn progress() -> Spinner {
+    let bar = indicatif::ProgressBar::new_spinner();
+    if let Ok(style) = indicatif::ProgressStyle::with_template("{spinner} [{elapsed}] {msg}") {
+        bar.set_style(style);
+    }
+    bar.enable_steady_tick(std::time::Duration::from_millis(120));
+    Spinner(bar)
+}
+
+/// What the input stage does, for the progress display.
+fn checking(opts: &BoolOpts) -> &'static str {
+    if opts.no_self_check {
+        "reading and checking the inputs"
+    } else {
+        "reading the inputs, checking for self-intersections"
+    }
+}
+
 fn set_threads(n: Option<usize>) -> Result<()> {
     if let Some(n) = n {
         rayon::ThreadPoolBuilder::new()
@@ -493,15 +528,19 @@ struct BoolReport {
 fn run_boolean(args: &OperandArgs, op: boolean::Op) -> Result<()> {
     let (a, b, output, opts) = (&args.a, &args.b, &args.output, &args.opts);
     set_threads(opts.threads)?;
+    let bar = progress();
+    bar.set_message(checking(opts));
     let mut assumed = Vec::new();
     let ((ma, assumed_a), (mb, assumed_b)) = both(a, b, opts)?;
     assumed.extend(assumed_a);
     assumed.extend(assumed_b);
     let start = std::time::Instant::now();
-    let r = boolean::boolean(&ma, &mb, op);
+    let r = boolean::boolean_with_progress(&ma, &mb, op, &|s| bar.set_message(s.describe()));
     let seconds = start.elapsed().as_secs_f64();
+    bar.set_message("writing");
     let (written, (boundary_edges, non_manifold_edges, volume, area)) =
         rayon::join(|| write_mesh(output, &r.mesh), || result_measures(&r.mesh));
+    drop(bar);
     written?;
     if r.degenerate != [0, 0] {
         assumed.push(format!(
@@ -586,12 +625,16 @@ fn piece_info(file: String, m: &Mesh) -> PieceInfo {
 
 fn run_split(a: &Path, b: &Path, dir: &Path, format: Format, opts: &BoolOpts) -> Result<()> {
     set_threads(opts.threads)?;
+    let bar = progress();
+    bar.set_message(checking(opts));
     let ((ma, mut assumed), (mb, assumed_b)) = both(a, b, opts)?;
     assumed.extend(assumed_b);
     for w in &assumed {
         eprintln!("warning: {w}");
     }
-    let s = boolean::split(&ma, &mb);
+    bar.set_message("splitting");
+    let s = boolean::split_with_progress(&ma, &mb, &|s| bar.set_message(s.describe()));
+    bar.set_message("writing");
     std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     let ext = Format::NAMES
         .iter()
@@ -639,6 +682,7 @@ fn run_split(a: &Path, b: &Path, dir: &Path, format: Format, opts: &BoolOpts) ->
     };
     let text = serde_json::to_string_pretty(&manifest)?;
     std::fs::write(dir.join("manifest.json"), &text)?;
+    drop(bar);
     if opts.json {
         println!("{text}");
     } else {

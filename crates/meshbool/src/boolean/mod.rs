@@ -101,10 +101,43 @@ pub struct Split {
     pub class_b: Classified,
 }
 
+/// The stages of [`split`] and [`boolean`], as reported to a progress callback
+/// ([`split_with_progress`], [`boolean_with_progress`]) when each begins.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stage {
+    /// Intersection curves (broad phase and exact triangle pairs).
+    Intersect,
+    /// Re-triangulating the cut triangles of both meshes.
+    Arrange,
+    /// Inside/outside classification.
+    Classify,
+    /// Selecting and merging the result.
+    Merge,
+}
+
+impl Stage {
+    /// A short description for progress displays.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Stage::Intersect => "intersecting",
+            Stage::Arrange => "cutting along the seam",
+            Stage::Classify => "classifying inside/outside",
+            Stage::Merge => "merging the result",
+        }
+    }
+}
+
 /// Runs intersection, arrangement and classification of `a` against `b` (both valid and
 /// exactly welded; see [`crate::weld_exact`]).
 pub fn split(a: &Mesh, b: &Mesh) -> Split {
+    split_with_progress(a, b, &|_| {})
+}
+
+/// [`split`], calling `progress` as each stage begins.
+pub fn split_with_progress(a: &Mesh, b: &Mesh, progress: &dyn Fn(Stage)) -> Split {
+    progress(Stage::Intersect);
     let seam = intersect(a, b);
+    progress(Stage::Arrange);
     let (arr_a, arr_b) = rayon::join(|| arrange(a, &seam, Side::A), || arrange(b, &seam, Side::B));
     // Closedness picks the winding-number threshold; the arranged mesh is closed exactly
     // when its input is (cutting keeps every edge's use count).
@@ -123,6 +156,7 @@ pub fn split(a: &Mesh, b: &Mesh) -> Split {
         arranged: &arr_b,
         topology: &topo_b,
     };
+    progress(Stage::Classify);
     let (class_a, class_b) = rayon::join(
         || classify(&oa, &ob, closed_b),
         || classify(&ob, &oa, closed_a),
@@ -206,8 +240,18 @@ pub fn merge(
 /// The boolean `op` of `a` and `b` (both valid, exactly welded, consistently oriented;
 /// closed meshes facing outward, open surfaces with "inside" behind them).
 pub fn boolean(a: &Mesh, b: &Mesh, op: Op) -> BooleanResult {
+    boolean_with_progress(a, b, op, &|_| {})
+}
+
+/// [`boolean`], calling `progress` as each stage begins.
+pub fn boolean_with_progress(
+    a: &Mesh,
+    b: &Mesh,
+    op: Op,
+    progress: &dyn Fn(Stage),
+) -> BooleanResult {
     if op == Op::ReverseDifference {
-        let mut r = boolean(b, a, Op::Difference);
+        let mut r = boolean_with_progress(b, a, Op::Difference, progress);
         for p in &mut r.provenance {
             p.source = match p.source {
                 Source::A => Source::B,
@@ -223,7 +267,8 @@ pub fn boolean(a: &Mesh, b: &Mesh, op: Op) -> BooleanResult {
         }
         return r;
     }
-    let s = split(a, b);
+    let s = split_with_progress(a, b, progress);
+    progress(Stage::Merge);
     let (keep_a, keep_b, flip_b) = rule(op);
     let (mesh, provenance) = merge(
         &s,

@@ -347,3 +347,16 @@ fn split_groups_pick_back_into_the_booleans() {
     assert!((vol(&inter) + vol(&union) - vol(&a) - vol(&b)).abs() < 1e-9);
     assert_eq!(Group::from_name("b_in_a"), Some(Group::BInA));
 }
+
+#[test]
+fn progress_reports_every_stage_in_order() {
+    let a = Mesh::unit_cube();
+    let b = Mesh::cuboid([0.5; 3], [1.5; 3]);
+    let seen = std::sync::Mutex::new(Vec::new());
+    let r = boolean_with_progress(&a, &b, Op::Union, &|s| seen.lock().unwrap().push(s));
+    assert_eq!(
+        *seen.lock().unwrap(),
+        vec![Stage::Intersect, Stage::Arrange, Stage::Classify, Stage::Merge]
+    );
+    assert_eq!(crate::measure::signed_volume(&r.mesh), 2.0 - 0.125);
+}
