@@ -81,6 +81,10 @@ enum Command {
         /// File format of the pieces (obj, ply, ...; f64-exact formats keep seam vertices shared).
         #[arg(long, default_value = "ply", value_parser = parse_format)]
         format: Format,
+        /// Merge components of fewer triangles than this into the nearest larger component
+        /// of the same group (stray fragments); components are numbered largest first.
+        #[arg(long, default_value_t = 0)]
+        merge_small: usize,
         #[command(flatten)]
         opts: BoolOpts,
     },
@@ -603,6 +607,9 @@ struct GroupInfo {
     #[serde(flatten)]
     piece: PieceInfo,
     components: Vec<PieceInfo>,
+    /// Small components merged into larger ones (`--merge-small`).
+    #[serde(default)]
+    merged_small_components: usize,
 }
 
 #[derive(serde::Serialize, serde::Deserialize)]
@@ -623,7 +630,14 @@ fn piece_info(file: String, m: &Mesh) -> PieceInfo {
     }
 }
 
-fn run_split(a: &Path, b: &Path, dir: &Path, format: Format, opts: &BoolOpts) -> Result<()> {
+fn run_split(
+    a: &Path,
+    b: &Path,
+    dir: &Path,
+    format: Format,
+    merge_small: usize,
+    opts: &BoolOpts,
+) -> Result<()> {
     set_threads(opts.threads)?;
     let bar = progress();
     bar.set_message(checking(opts));
@@ -653,17 +667,11 @@ fn run_split(a: &Path, b: &Path, dir: &Path, format: Format, opts: &BoolOpts) ->
             Ok(piece_info(name, m))
         };
         let piece = write(format!("{}.{ext}", g.name()), &mesh)?;
-        let (count, ids) = EdgeTopology::new(&mesh).components();
+        let parts = meshbool::edges::components_merged(&mesh, merge_small);
         let mut components = Vec::new();
-        if count > 1 {
-            for k in 0..count {
-                let tris = mesh
-                    .triangles
-                    .iter()
-                    .zip(&ids)
-                    .filter(|(_, &c)| c as usize == k)
-                    .map(|(t, _)| *t)
-                    .collect();
+        if parts.parts.len() > 1 {
+            for (k, part) in parts.parts.iter().enumerate() {
+                let tris = part.iter().map(|&t| mesh.triangles[t as usize]).collect();
                 let sub = boolean::pick(&[(&Mesh::new(mesh.positions.clone(), tris), false)]);
                 components.push(write(format!("{}.{k}.{ext}", g.name()), &sub)?);
             }
@@ -672,6 +680,7 @@ fn run_split(a: &Path, b: &Path, dir: &Path, format: Format, opts: &BoolOpts) ->
             name: g.name().to_string(),
             piece,
             components,
+            merged_small_components: parts.merged,
         });
     }
     let manifest = Manifest {
@@ -777,8 +786,9 @@ fn run(cli: Cli) -> Result<()> {
             b,
             output,
             format,
+            merge_small,
             opts,
-        } => run_split(&a, &b, &output, format, &opts)?,
+        } => run_split(&a, &b, &output, format, merge_small, &opts)?,
         Command::Pick {
             dir,
             keep,

@@ -615,3 +615,55 @@ fn repair_config_file_with_flags_overriding() {
     assert_eq!(bad.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&bad.stderr).contains("weld"));
 }
+
+#[test]
+fn split_merge_small_joins_stray_components() {
+    // A: a cube. B: a sphere poking out of its top face and a thin box poking out
+    // next to it: B outside A has two components, the sphere cap (many triangles) and
+    // the box top (a handful).
+    let a = write_cube("ms_a.ply", [0.0; 3], [3.0; 3]);
+    let mut b = meshbool::shapes::uv_sphere([1.2, 1.5, 3.0], 0.8, 24, 12);
+    let post = meshbool::Mesh::cuboid([2.5, 2.5, 2.5], [2.7, 2.7, 3.3]);
+    let off = b.positions.len() as u32;
+    b.positions.extend(&post.positions);
+    b.triangles
+        .extend(post.triangles.iter().map(|t| t.map(|v| v + off)));
+    let bp = tmp("ms_b.ply");
+    meshbool::io::write_path(&bp, &b).unwrap();
+    let group = |m: &serde_json::Value, name: &str| -> serde_json::Value {
+        m["groups"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|g| g["name"] == name)
+            .unwrap()
+            .clone()
+    };
+    let split = |dir: &str, extra: &[&str]| {
+        let dir = tmp(dir);
+        let mut args = vec![
+            "split",
+            a.to_str().unwrap(),
+            bp.to_str().unwrap(),
+            "-o",
+            dir.to_str().unwrap(),
+            "--json",
+        ];
+        args.extend(extra);
+        report(&args)
+    };
+    let plain = group(&split("ms_plain", &[]), "b_out_a");
+    let parts = plain["components"].as_array().unwrap();
+    assert_eq!(parts.len(), 2);
+    // Largest first.
+    let (big, small) = (
+        parts[0]["triangles"].as_u64().unwrap(),
+        parts[1]["triangles"].as_u64().unwrap(),
+    );
+    assert!(big > 100 && small < 20, "{big} {small}");
+    assert_eq!(plain["merged_small_components"], 0);
+    let merged = group(&split("ms_merged", &["--merge-small", "20"]), "b_out_a");
+    assert_eq!(merged["components"].as_array().unwrap().len(), 0);
+    assert_eq!(merged["merged_small_components"], 1);
+    assert_eq!(merged["triangles"].as_u64().unwrap(), big + small);
+}

@@ -144,6 +144,13 @@ impl EdgeTopology {
     /// component. Returns the number of components and each triangle's component id;
     /// ids are numbered in order of each component's first triangle.
     pub fn components(&self) -> (usize, Vec<u32>) {
+        self.components_across(|_| true)
+    }
+
+    /// [`EdgeTopology::components`] joining triangles only across the edges `e` for which
+    /// `join(e)` holds (e.g. not across seam edges). Union-find streaming over the edges:
+    /// cache-friendly even when triangles are not stored in spatial order.
+    pub fn components_across(&self, join: impl Fn(usize) -> bool) -> (usize, Vec<u32>) {
         let n = self.triangle_edges.len();
         let mut parent: Vec<u32> = (0..n as u32).collect();
         fn find(parent: &mut [u32], mut x: u32) -> u32 {
@@ -155,6 +162,9 @@ impl EdgeTopology {
             x
         }
         for e in 0..self.edges.len() {
+            if !join(e) {
+                continue;
+            }
             let u = self.uses_of(e);
             for w in u.windows(2) {
                 let (a, b) = (
@@ -181,6 +191,76 @@ impl EdgeTopology {
             .collect();
         (count as usize, out)
     }
+}
+
+/// The components of a mesh as triangle lists ([`components_merged`]).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Components {
+    /// Triangle ids of each component, largest component first (ties: the one whose first
+    /// triangle comes first); ids ascending within a component.
+    pub parts: Vec<Vec<u32>>,
+    /// Components below the size limit that were merged into a larger one.
+    pub merged: usize,
+}
+
+/// The edge-connected components of `mesh`, largest first, with every component of fewer
+/// than `min_triangles` triangles merged into the nearest component that is not small:
+/// the one with a vertex closest to the small component's centroid (the seed library's
+/// stray-fragment clean-up after a split; merged parts are no longer connected). With no
+/// component at or over the limit, nothing is merged. `min_triangles = 0` only sorts.
+pub fn components_merged(mesh: &Mesh, min_triangles: usize) -> Components {
+    let (count, ids) = EdgeTopology::new(mesh).components();
+    let mut parts: Vec<Vec<u32>> = vec![Vec::new(); count];
+    for (t, &c) in ids.iter().enumerate() {
+        parts[c as usize].push(t as u32);
+    }
+    // Stable: equal sizes keep the order of their first triangles.
+    parts.sort_by_key(|p| std::cmp::Reverse(p.len()));
+    let big = parts
+        .iter()
+        .take_while(|p| p.len() >= min_triangles)
+        .count();
+    if big == 0 || big == parts.len() {
+        return Components { parts, merged: 0 };
+    }
+    // Nearest big component to each small one's centroid, by its closest vertex.
+    let small = parts.split_off(big);
+    let vertices_of = |p: &[u32]| {
+        let mut v: Vec<u32> = p.iter().flat_map(|&t| mesh.triangles[t as usize]).collect();
+        v.sort_unstable();
+        v.dedup();
+        v
+    };
+    let big_vertices: Vec<Vec<u32>> = parts.iter().map(|p| vertices_of(p)).collect();
+    let merged = small.len();
+    for p in small {
+        let vs = vertices_of(&p);
+        let c: [f64; 3] = std::array::from_fn(|k| {
+            vs.iter()
+                .map(|&v| mesh.positions[v as usize][k])
+                .sum::<f64>()
+                / vs.len() as f64
+        });
+        let d2 = |v: u32| {
+            let q = mesh.positions[v as usize];
+            (0..3).map(|k| (q[k] - c[k]) * (q[k] - c[k])).sum::<f64>()
+        };
+        let nearest = (0..big)
+            .map(|i| {
+                let d = big_vertices[i]
+                    .iter()
+                    .map(|&v| d2(v))
+                    .fold(f64::INFINITY, f64::min);
+                (d, i)
+            })
+            .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)))
+            .map_or(0, |(_, i)| i);
+        parts[nearest].extend(p);
+    }
+    for p in &mut parts {
+        p.sort_unstable();
+    }
+    Components { parts, merged }
 }
 
 /// Edge counts by kind ([`EdgeTopology::kind_counts`]).
@@ -268,5 +348,61 @@ mod tests {
         let (n, ids) = EdgeTopology::new(&a).components();
         assert_eq!(n, 2);
         assert_eq!(&ids[..4], &[0, 1, 0, 1]);
+    }
+}
+
+#[cfg(test)]
+mod merge_tests {
+    use super::*;
+    use crate::shapes::uv_sphere;
+
+    /// `m` with `other`'s triangles appended (vertices offset).
+    fn with(mut m: Mesh, other: &Mesh) -> Mesh {
+        let off = m.positions.len() as u32;
+        m.positions.extend(&other.positions);
+        m.triangles
+            .extend(other.triangles.iter().map(|t| t.map(|v| v + off)));
+        m
+    }
+
+    fn stray(at: [f64; 3]) -> Mesh {
+        Mesh::new(
+            vec![at, [at[0] + 0.1, at[1], at[2]], [at[0], at[1] + 0.1, at[2]]],
+            vec![[0, 1, 2]],
+        )
+    }
+
+    #[test]
+    fn small_components_join_the_nearest_large_one() {
+        let near = uv_sphere([0.0; 3], 1.0, 8, 4); // 48 triangles
+        let far = uv_sphere([10.0, 0.0, 0.0], 2.0, 10, 5); // 80 triangles
+                                                           // Strays: one just outside the near sphere, one beside the far one.
+        let m = with(
+            with(with(near, &stray([1.2, 0.0, 0.0])), &far),
+            &stray([12.5, 0.0, 0.0]),
+        );
+        let c = components_merged(&m, 0);
+        assert_eq!(
+            c.parts.iter().map(Vec::len).collect::<Vec<_>>(),
+            vec![80, 48, 1, 1]
+        );
+        assert_eq!(c.merged, 0);
+        let c = components_merged(&m, 5);
+        assert_eq!(c.merged, 2);
+        assert_eq!(
+            c.parts.iter().map(Vec::len).collect::<Vec<_>>(),
+            vec![81, 49]
+        );
+        // The near sphere's part holds the stray at x = 1.2 (triangle 48), the far
+        // sphere's the one at x = 12.5 (the last triangle).
+        assert!(c.parts[1].contains(&48));
+        assert!(c.parts[0].contains(&(m.triangles.len() as u32 - 1)));
+        // Every triangle exactly once.
+        let mut all: Vec<u32> = c.parts.concat();
+        all.sort_unstable();
+        assert_eq!(all, (0..m.triangles.len() as u32).collect::<Vec<_>>());
+        // Everything small: nothing to merge into.
+        let c = components_merged(&m, 1000);
+        assert_eq!((c.parts.len(), c.merged), (4, 0));
     }
 }

@@ -356,7 +356,12 @@ fn progress_reports_every_stage_in_order() {
     let r = boolean_with_progress(&a, &b, Op::Union, &|s| seen.lock().unwrap().push(s));
     assert_eq!(
         *seen.lock().unwrap(),
-        vec![Stage::Intersect, Stage::Arrange, Stage::Classify, Stage::Merge]
+        vec![
+            Stage::Intersect,
+            Stage::Arrange,
+            Stage::Classify,
+            Stage::Merge
+        ]
     );
     assert_eq!(crate::measure::signed_volume(&r.mesh), 2.0 - 0.125);
 }

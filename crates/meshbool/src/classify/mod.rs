@@ -142,47 +142,10 @@ pub fn classify(x: &Operand, y: &Operand, y_closed: bool) -> Classified {
             is_seam[i] = true;
         }
     }
-    // Patches: components of the triangles joined across edges that are not seam edges.
-    // Union-find streaming over the edges (cache-friendly, unlike a flood fill over a
-    // mesh whose triangles are not stored in spatial order); numbered in the order of
-    // each patch's first triangle.
-    let mut root: Vec<u32> = (0..n as u32).collect();
-    fn find(root: &mut [u32], mut t: u32) -> u32 {
-        while root[t as usize] != t {
-            let up = root[root[t as usize] as usize];
-            root[t as usize] = up;
-            t = up;
-        }
-        t
-    }
-    for (e, &seam) in is_seam.iter().enumerate() {
-        if seam {
-            continue;
-        }
-        let uses = topo.uses_of(e);
-        let Some(first) = uses.first() else { continue };
-        let mut r0 = find(&mut root, first.triangle);
-        for u in &uses[1..] {
-            let r1 = find(&mut root, u.triangle);
-            if r0 != r1 {
-                // The smaller id becomes the root: roots stay each patch's first triangle.
-                let (lo, hi) = (r0.min(r1), r0.max(r1));
-                root[hi as usize] = lo;
-                r0 = lo;
-            }
-        }
-    }
-    let mut patch = vec![u32::MAX; n];
-    let mut patches = 0u32;
-    for t in 0..n {
-        let r = find(&mut root, t as u32) as usize;
-        if r == t {
-            patch[t] = patches;
-            patches += 1;
-        } else {
-            patch[t] = patch[r];
-        }
-    }
+    // Patches: components of the triangles joined across edges that are not seam edges,
+    // numbered in the order of each patch's first triangle.
+    let (patches, patch) = topo.components_across(|e| !is_seam[e]);
+    let patches = patches as u32;
     // Votes from every seam edge use.
     let seam_of_vertex: FxHashMap<u32, u32> = x
         .seam_vertex
