@@ -102,6 +102,40 @@ fn split_at(n: usize) -> usize {
     (leaves(n) / 2) * LEAF
 }
 
+/// The triangles of `mesh` sorted by the Morton code of their centroids (21 bits per
+/// axis over the mesh's bounding box): spatially coherent order for hierarchies. Empty
+/// for a mesh without triangles.
+pub(crate) fn morton_order(mesh: &Mesh) -> Vec<u32> {
+    let n = mesh.triangles.len();
+    let Some(all) = mesh.bounds() else {
+        return Vec::new();
+    };
+    let scale: [f64; 3] = std::array::from_fn(|k| {
+        let ext = all.max[k] - all.min[k];
+        if ext > 0.0 {
+            ((1u64 << 21) - 1) as f64 / ext
+        } else {
+            0.0
+        }
+    });
+    let mut keyed: Vec<(u64, u32)> = (0..n as u32)
+        .into_par_iter()
+        .map(|t| {
+            let [a, b, c] = mesh.corners(t as usize);
+            let cell = |k: usize| {
+                let centre = (a[k] + b[k] + c[k]) / 3.0 - all.min[k];
+                ((centre * scale[k]).max(0.0) as u64).min((1 << 21) - 1)
+            };
+            (
+                spread(cell(0)) | spread(cell(1)) << 1 | spread(cell(2)) << 2,
+                t,
+            )
+        })
+        .collect();
+    keyed.par_sort_unstable();
+    keyed.into_par_iter().map(|(_, t)| t).collect()
+}
+
 impl Bvh {
     /// Builds the hierarchy of `mesh` (indices must be in range).
     pub fn new(mesh: &Mesh) -> Self {
@@ -109,33 +143,10 @@ impl Bvh {
         if n == 0 {
             return Bvh::default();
         }
-        let Some(all) = mesh.bounds() else {
+        let order = morton_order(mesh);
+        if order.is_empty() {
             return Bvh::default();
-        };
-        let scale: [f64; 3] = std::array::from_fn(|k| {
-            let ext = all.max[k] - all.min[k];
-            if ext > 0.0 {
-                ((1u64 << 21) - 1) as f64 / ext
-            } else {
-                0.0
-            }
-        });
-        let mut keyed: Vec<(u64, u32)> = (0..n as u32)
-            .into_par_iter()
-            .map(|t| {
-                let [a, b, c] = mesh.corners(t as usize);
-                let cell = |k: usize| {
-                    let centre = (a[k] + b[k] + c[k]) / 3.0 - all.min[k];
-                    ((centre * scale[k]).max(0.0) as u64).min((1 << 21) - 1)
-                };
-                (
-                    spread(cell(0)) | spread(cell(1)) << 1 | spread(cell(2)) << 2,
-                    t,
-                )
-            })
-            .collect();
-        keyed.par_sort_unstable();
-        let order: Vec<u32> = keyed.into_par_iter().map(|(_, t)| t).collect();
+        }
         let mut nodes = vec![EMPTY; 2 * leaves(n) - 1];
         Self::build(&mut nodes, 0, 0, &order, mesh);
         Bvh { nodes, order }

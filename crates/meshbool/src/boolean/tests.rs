@@ -365,3 +365,30 @@ fn progress_reports_every_stage_in_order() {
     );
     assert_eq!(crate::measure::signed_volume(&r.mesh), 2.0 - 0.125);
 }
+
+#[test]
+fn seam_stopping_inside_a_patch_is_classified_by_winding_number() {
+    // A: a flat 10 x 10 grid at z = 0. B: a vertical square in the plane y = 0.3 (facing
+    // +y), |x| <= 1, |z| <= 1: its seam on A is the segment from x = -1 to 1, which
+    // stops inside A's single patch. For a flat B the winding number's sign is the side
+    // of its plane, so every triangle of A is behind B (inside) exactly when y < 0.3 —
+    // also far beyond the ends of the seam.
+    let a = crate::shapes::heightfield([-5.0, -5.0], [5.0, 5.0], 20, 20, |_, _| 0.0);
+    let b = Mesh::new(
+        vec![[-1.0, 0.3, -1.0], [1.0, 0.3, -1.0], [1.0, 0.3, 1.0], [-1.0, 0.3, 1.0]],
+        vec![[0, 2, 1], [0, 3, 2]],
+    );
+    // B faces +y: (2 - 0) x (1 - 0) = (2, 0, 2) x (2, 0, 0) has y = 4 > 0.
+    let s = split(&a, &b);
+    assert_eq!(s.class_a.patches, 1);
+    assert_eq!(s.class_a.by_winding, 1);
+    let mut counts = [0usize; 2];
+    for (t, &c) in s.class_a.class.iter().enumerate() {
+        let [p, q, r] = s.a.mesh.corners(t);
+        let y = (p[1] + q[1] + r[1]) / 3.0;
+        let want = if y < 0.3 { Class::Inside } else { Class::Outside };
+        assert_eq!(c, want, "triangle {t} at y = {y}");
+        counts[usize::from(c == Class::Inside)] += 1;
+    }
+    assert!(counts[0] > 100 && counts[1] > 100, "{counts:?}");
+}

@@ -17,6 +17,9 @@ use crate::intersect::tritri::Tri;
 use crate::kernel::{orient2d, orient3d_plane, Point, Sign};
 use crate::Mesh;
 
+mod winding;
+pub use winding::{winding_number, FastWinding};
+
 /// Where a triangle of one mesh lies relative to the other mesh.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Class {
@@ -41,29 +44,6 @@ pub struct Classified {
     pub patches: usize,
     /// Patches classified by winding number (no seam edge, or disagreeing seam edges).
     pub by_winding: usize,
-}
-
-/// Generalized winding number of `mesh` at `p` (Jacobson et al. 2013): 1 inside a closed,
-/// outward-facing mesh, 0 outside; ±1/2 on either side of a large open surface (positive
-/// behind it, where its normals point away).
-pub fn winding_number(mesh: &Mesh, p: [f64; 3]) -> f64 {
-    let total: f64 = (0..mesh.triangles.len())
-        .into_par_iter()
-        .map(|t| {
-            let [a, b, c] = mesh
-                .corners(t)
-                .map(|q| [q[0] - p[0], q[1] - p[1], q[2] - p[2]]);
-            let len = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-            let (la, lb, lc) = (len(a), len(b), len(c));
-            let det = a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
-                + a[2] * (b[0] * c[1] - b[1] * c[0]);
-            let dot = |u: [f64; 3], v: [f64; 3]| u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-            let den = la * lb * lc + dot(a, b) * lc + dot(b, c) * la + dot(c, a) * lb;
-            2.0 * det.atan2(den)
-        })
-        .sum();
-    // det(a, b, c) > 0 when p is behind the triangle: solid angles count positive there.
-    total / (4.0 * std::f64::consts::PI)
 }
 
 /// One triangle of the other mesh's fan around a seam edge: its plane (an input triangle,
@@ -210,71 +190,75 @@ pub fn classify(x: &Operand, y: &Operand, y_closed: bool) -> Classified {
         own_vote.insert(t, combine(v, c).flatten());
     }
     let threshold = if y_closed { 0.5 } else { 0.0 };
-    let centroid = |t: usize| {
+    let centroid = |t: usize| -> [f64; 3] {
         let [a, b, c] = x.mesh.corners(t);
         std::array::from_fn(|k| (a[k] + b[k] + c[k]) / 3.0)
     };
-    let by_wn = |t: usize| {
-        if winding_number(y_in, centroid(t)) > threshold {
-            Class::Inside
-        } else {
-            Class::Outside
-        }
-    };
-    // Patches without a decision: one winding number for a patch without seam edges,
-    // one per triangle where the seam edges disagree.
+    // Patches without a decision: one winding number for a patch without seam edges;
+    // where a patch's seam edges disagree (an open surface's seam stops inside it), the
+    // triangles along the seam keep their own local answer and every other triangle of
+    // the patch gets its own winding number.
     let mut first: Vec<Option<usize>> = vec![None; patches as usize];
     for (t, &p) in patch.iter().enumerate() {
         first[p as usize].get_or_insert(t);
     }
     let mut by_winding = 0;
-    let mut patch_class: Vec<Option<Class>> = vec![None; patches as usize];
-    for p in 0..patches as usize {
-        patch_class[p] = match decided[p] {
+    let mut class: Vec<Option<Class>> = vec![None; n];
+    let mut queries: Vec<usize> = Vec::new();
+    for t in 0..n {
+        let p = patch[t] as usize;
+        class[t] = match decided[p] {
             Some(Some(c)) => Some(c),
             None => {
-                by_winding += 1;
-                Some(by_wn(first[p].expect("patches are not empty")))
+                if first[p] == Some(t) {
+                    by_winding += 1;
+                    queries.push(t);
+                }
+                None
             }
             Some(None) => {
-                by_winding += 1;
-                None
+                if first[p] == Some(t) {
+                    by_winding += 1;
+                }
+                let own = own_vote.get(&(t as u32)).copied().flatten();
+                if own.is_none() {
+                    queries.push(t);
+                }
+                own
             }
         };
     }
-    // Patches whose seam stops inside them: the triangles along the seam keep their local
-    // answer and pass it on through the patch breadth-first, so every other triangle takes
-    // the class of the nearest decided one (deterministic: sources in triangle order).
-    // Per-triangle winding numbers would be O(n·m) here; the hierarchical fast winding
-    // number is the planned replacement for the region beyond the other surface's reach.
-    let mut class: Vec<Option<Class>> = (0..n).map(|t| patch_class[patch[t] as usize]).collect();
-    let mut queue = std::collections::VecDeque::new();
-    for (t, slot) in class.iter_mut().enumerate() {
-        if slot.is_none() {
-            if let Some(Some(c)) = own_vote.get(&(t as u32)) {
-                *slot = Some(*c);
-                queue.push_back(t as u32);
+    // Exact sums while they are cheap, the hierarchy beyond (deterministic either way).
+    let fast =
+        (queries.len() as f64 * y_in.triangles.len() as f64 > 2e7).then(|| FastWinding::new(y_in));
+    let answers: Vec<Class> = queries
+        .par_iter()
+        .map(|&t| {
+            let p = centroid(t);
+            let w = fast
+                .as_ref()
+                .map_or_else(|| winding_number(y_in, p), |f| f.at(p));
+            if w > threshold {
+                Class::Inside
+            } else {
+                Class::Outside
             }
+        })
+        .collect();
+    let mut patch_answer: Vec<Option<Class>> = vec![None; patches as usize];
+    for (&t, c) in queries.iter().zip(answers) {
+        match decided[patch[t] as usize] {
+            None => patch_answer[patch[t] as usize] = Some(c),
+            _ => class[t] = Some(c),
         }
     }
-    while let Some(t) = queue.pop_front() {
-        let c = class[t as usize];
-        for &e in &topo.triangle_edges[t as usize] {
-            if e == EdgeTopology::NO_EDGE || is_seam[e as usize] {
-                continue;
-            }
-            for u in topo.uses_of(e as usize) {
-                if class[u.triangle as usize].is_none() {
-                    class[u.triangle as usize] = c;
-                    queue.push_back(u.triangle);
-                }
-            }
-        }
-    }
-    let class = class
-        .into_par_iter()
+    let class: Vec<Class> = class
+        .into_iter()
         .enumerate()
-        .map(|(t, c)| c.unwrap_or_else(|| by_wn(t)))
+        .map(|(t, c)| {
+            c.or(patch_answer[patch[t] as usize])
+                .expect("every triangle is decided: by its patch, its seam or a winding number")
+        })
         .collect();
     Classified {
         class,
