@@ -524,6 +524,8 @@ struct BoolReport {
     volume: f64,
     area: f64,
     seam_points: usize,
+    /// Result triangles turned over by rounding seam points to f64.
+    rounding_flips: usize,
     failed_triangles: Vec<String>,
     assumed: Vec<String>,
     seconds: f64,
@@ -546,6 +548,12 @@ fn run_boolean(args: &OperandArgs, op: boolean::Op) -> Result<()> {
         rayon::join(|| write_mesh(output, &r.mesh), || result_measures(&r.mesh));
     drop(bar);
     written?;
+    if r.rounding_flips > 0 {
+        assumed.push(format!(
+            "{} result triangles are thinner than f64 rounding of their seam points and turned over when written (exact before rounding)",
+            r.rounding_flips
+        ));
+    }
     if r.degenerate != [0, 0] {
         assumed.push(format!(
             "degenerate (zero-area) triangles where the meshes meet were left out: {} in A, {} in B",
@@ -567,6 +575,7 @@ fn run_boolean(args: &OperandArgs, op: boolean::Op) -> Result<()> {
         volume,
         area,
         seam_points: r.seam_points,
+        rounding_flips: r.rounding_flips,
         failed_triangles: r
             .failed
             .iter()

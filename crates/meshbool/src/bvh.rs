@@ -227,6 +227,7 @@ impl Bvh {
             ma: mesh,
             mb: other_mesh,
             keep: &|_, _| true,
+            par_depth: par_depth(self.len().max(other.len())),
         };
         let mut pairs = q.below(0, 0, 0);
         pairs.par_sort_unstable();
@@ -258,9 +259,17 @@ impl Bvh {
             ma: mesh,
             mb: mesh,
             keep,
+            par_depth: par_depth(self.len()),
         };
         q.within(0, 0)
     }
+}
+
+/// How deep a traversal of a tree over `n` triangles splits into parallel tasks: down to
+/// subtrees of about 16 leaves (and at most 12 levels), so that small meshes do not pay
+/// for thousands of tiny tasks.
+fn par_depth(n: usize) -> u32 {
+    (leaves(n).max(1).ilog2()).saturating_sub(4).min(12)
 }
 
 /// A tree-vs-tree traversal.
@@ -271,6 +280,8 @@ struct Query<'a> {
     mb: &'a Mesh,
     /// Which overlapping pairs to report.
     keep: &'a (dyn Fn(u32, u32) -> bool + Sync),
+    /// Node pairs above this depth are traversed in parallel.
+    par_depth: u32,
 }
 
 impl Query<'_> {
@@ -301,7 +312,7 @@ impl Query<'_> {
             a.extend(b);
             a
         };
-        let mut out = if depth < 12 {
+        let mut out = if depth < self.par_depth {
             let (mut a, b) = rayon::join(go, || self.below(l, r, depth + 1));
             a.extend(b);
             a
@@ -344,7 +355,7 @@ impl Query<'_> {
         } else {
             ((x, y + 1), (x, nb.start as usize))
         };
-        let (mut l, r) = if depth < 12 {
+        let (mut l, r) = if depth < self.par_depth {
             rayon::join(
                 || self.below(p.0, p.1, depth + 1),
                 || self.below(q.0, q.1, depth + 1),

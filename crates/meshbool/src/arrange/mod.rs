@@ -11,7 +11,7 @@ use rustc_hash::FxHashMap;
 
 use crate::intersect::tritri::Tri;
 use crate::intersect::{Feature, Seam};
-use crate::kernel::Point;
+use crate::kernel::{orient2d, Point};
 use crate::Mesh;
 
 mod local;
@@ -47,6 +47,11 @@ pub struct Arranged {
     /// Input triangles that could not be re-triangulated, with the reason (inconsistent
     /// input, such as a self-intersecting mesh), kept uncut; empty for valid inputs.
     pub failed: Vec<(u32, &'static str)>,
+    /// Triangles of [`Arranged::mesh`] (sorted ids) that are correct with their exact
+    /// points but, with seam points rounded to `f64` coordinates, turn over or collapse
+    /// in their input triangle's plane (a sliver thinner than the rounding): the output
+    /// is only as exact as `f64` coordinates allow there.
+    pub rounding_flips: Vec<u32>,
 }
 
 impl Arranged {
@@ -134,7 +139,7 @@ pub fn arrange(mesh: &Mesh, seam: &Seam, side: Side) -> Arranged {
     cut.par_sort_unstable();
     cut.dedup();
 
-    type Cut = (u32, Result<Vec<[u32; 3]>, local::Failed>);
+    type Cut = (u32, Result<(Vec<[u32; 3]>, Vec<bool>), local::Failed>);
     let results: Vec<Cut> = cut
         .par_iter()
         .map(|&t| {
@@ -143,6 +148,7 @@ pub fn arrange(mesh: &Mesh, seam: &Seam, side: Side) -> Arranged {
             let Some(info) = Tri::new(t, tri, corners) else {
                 return (t, Err(local::Failed("degenerate triangle")));
             };
+            let (axis, sign) = (info.axis(), info.sign());
             let mut lt = local::Local::new(corners, info.axis(), info.sign());
             let mut to_local: FxHashMap<u32, u32> = FxHashMap::default();
             for (k, &v) in tri.iter().enumerate() {
@@ -178,16 +184,31 @@ pub fn arrange(mesh: &Mesh, seam: &Seam, side: Side) -> Arranged {
                 lt.improve();
                 Ok(lt.tris.iter().map(|v| v.map(|l| ids[l as usize])).collect())
             };
-            (t, run())
+            // Pieces with rounded seam points that no longer face like their input
+            // triangle (exact test on the rounded coordinates).
+            let flips = |pieces: Vec<[u32; 3]>| {
+                let flipped = pieces
+                    .iter()
+                    .map(|p| {
+                        p.iter().any(|&v| v as usize >= input_vertices) && {
+                            let [a, b, c] = p.map(|v| Point::Explicit(positions[v as usize]));
+                            orient2d(&a, &b, &c, axis) != sign
+                        }
+                    })
+                    .collect();
+                (pieces, flipped)
+            };
+            (t, run().map(flips))
         })
         .collect();
 
     // The output in input order: runs of uncut triangles copied as they are, each cut
     // one replaced by its pieces (the results come in the sorted order of `cut`).
     let mut failed = Vec::new();
+    let mut rounding_flips = Vec::new();
     let pieces: usize = results
         .iter()
-        .map(|(_, r)| r.as_ref().map_or(1, Vec::len))
+        .map(|(_, r)| r.as_ref().map_or(1, |(p, _)| p.len()))
         .sum();
     let total = mesh.triangles.len() - results.len() + pieces;
     let mut triangles = Vec::with_capacity(total);
@@ -198,7 +219,12 @@ pub fn arrange(mesh: &Mesh, seam: &Seam, side: Side) -> Arranged {
         triangles.extend_from_slice(&mesh.triangles[next..t]);
         parent.extend(next as u32..t as u32);
         match r {
-            Ok(sub) => {
+            Ok((sub, flipped)) => {
+                for (k, f) in flipped.into_iter().enumerate() {
+                    if f {
+                        rounding_flips.push((triangles.len() + k) as u32);
+                    }
+                }
                 parent.extend(std::iter::repeat_n(t as u32, sub.len()));
                 triangles.extend(sub);
             }
@@ -220,6 +246,7 @@ pub fn arrange(mesh: &Mesh, seam: &Seam, side: Side) -> Arranged {
         seam_vertex,
         seam_edges,
         failed,
+        rounding_flips,
     }
 }
 

@@ -61,6 +61,9 @@ pub struct BooleanResult {
     /// Triangles that could not be re-triangulated (invalid input), kept uncut: each is
     /// `(source, triangle, reason)`. Empty for valid inputs.
     pub failed: Vec<(Source, u32, &'static str)>,
+    /// Result triangles that turned over or collapsed when their seam points were rounded
+    /// to `f64` coordinates ([`Arranged::rounding_flips`]); 0 in almost every case.
+    pub rounding_flips: usize,
 }
 
 /// Which classes of A and of B an operation keeps, and whether B's are flipped.
@@ -275,6 +278,13 @@ pub fn boolean_with_progress(
         |t| keep_a.contains(&s.class_a.class[t]).then_some(false),
         |t| keep_b.contains(&s.class_b.class[t]).then_some(flip_b),
     );
+    let kept = |arr: &Arranged, cls: &Classified, keep: &[Class]| {
+        arr.rounding_flips
+            .iter()
+            .filter(|&&t| keep.contains(&cls.class[t as usize]))
+            .count()
+    };
+    let rounding_flips = kept(&s.a, &s.class_a, keep_a) + kept(&s.b, &s.class_b, keep_b);
     let failed =
         s.a.failed
             .iter()
@@ -287,6 +297,7 @@ pub fn boolean_with_progress(
         seam_points: s.seam.points.len(),
         degenerate: s.seam.degenerate,
         failed,
+        rounding_flips,
     }
 }
 
