@@ -212,6 +212,28 @@ impl Mesh {
             triangles: self.triangles.iter().map(|&[a, b, c]| [a, c, b]).collect(),
         }
     }
+
+    /// The same mesh without the vertices no triangle uses, the rest renumbered in order of
+    /// first use; also returns how many were dropped. Triangle indices must be valid.
+    pub fn without_unreferenced(self) -> (Mesh, usize) {
+        let mut id = vec![u32::MAX; self.positions.len()];
+        let mut positions = Vec::new();
+        let triangles: Vec<[u32; 3]> = self
+            .triangles
+            .iter()
+            .map(|t| {
+                t.map(|v| {
+                    if id[v as usize] == u32::MAX {
+                        id[v as usize] = positions.len() as u32;
+                        positions.push(self.positions[v as usize]);
+                    }
+                    id[v as usize]
+                })
+            })
+            .collect();
+        let dropped = self.positions.len() - positions.len();
+        (Mesh::new(positions, triangles), dropped)
+    }
 }
 
 /// Hash key of a position: its bit pattern, with `-0.0` folded onto `0.0` so that

@@ -396,24 +396,7 @@ pub fn pick(pieces: &[(&Mesh, bool)]) -> Mesh {
             }
         }));
     }
-    let w = crate::weld_exact(&all).mesh;
-    // Drop vertices no triangle uses.
-    let mut id = vec![u32::MAX; w.positions.len()];
-    let mut positions = Vec::new();
-    let triangles = w
-        .triangles
-        .iter()
-        .map(|t| {
-            t.map(|v| {
-                if id[v as usize] == u32::MAX {
-                    id[v as usize] = positions.len() as u32;
-                    positions.push(w.positions[v as usize]);
-                }
-                id[v as usize]
-            })
-        })
-        .collect();
-    Mesh::new(positions, triangles)
+    crate::weld_exact(&all).mesh.without_unreferenced().0
 }
 
 #[cfg(test)]

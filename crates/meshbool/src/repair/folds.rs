@@ -37,7 +37,8 @@ fn plan_sign(p: &[[f64; 3]; 3]) -> Sign {
 /// in plan view (ear clipping, `earcut`), accepted only if every new triangle faces up
 /// (exact). The hole keeps its boundary, so the surface stays consistently oriented and
 /// its boundary is unchanged. Heights of the remaining vertices do not change; the
-/// removed vertices are lost (counted). Vertical triangles are left alone.
+/// removed vertices are left unreferenced (indices stay valid; see
+/// [`Mesh::without_unreferenced`]). Vertical triangles are left alone.
 pub fn remove_folds(mesh: &Mesh) -> (Mesh, FoldReport) {
     let pos = &mesh.positions;
     let corners = |t: &[u32; 3]| t.map(|v| pos[v as usize]);

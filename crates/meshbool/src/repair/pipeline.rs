@@ -189,6 +189,9 @@ pub struct RepairReport {
     /// Capping the small holes left.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub close_gaps: Option<CapReport>,
+    /// Vertices no triangle uses any more (left by welding, collapses, fold removal or
+    /// in the input), dropped at the end.
+    pub unreferenced_removed: usize,
     /// The result's measures.
     pub after: MeshStats,
 }
@@ -227,6 +230,7 @@ pub fn repair(mesh: &Mesh, config: &RepairConfig) -> Result<(Mesh, RepairReport)
         folds: None,
         close: None,
         close_gaps: None,
+        unreferenced_removed: 0,
         after: mesh_stats(&Mesh::default()),
     };
     let mut m = mesh.clone();
@@ -262,6 +266,7 @@ pub fn repair(mesh: &Mesh, config: &RepairConfig) -> Result<(Mesh, RepairReport)
         let (x, r) = cap_small_holes(&m, size);
         (m, report.close_gaps) = (x, Some(r));
     }
+    (m, report.unreferenced_removed) = m.without_unreferenced();
     report.after = mesh_stats(&m);
     Ok((m, report))
 }
@@ -322,6 +327,7 @@ mod tests {
         );
         assert_eq!(a.volume, 1.0);
         assert_eq!(r.triangles.len(), 12);
+        assert_eq!((r.positions.len(), a.unreferenced_vertices), (8, 0));
         assert_eq!(rep.weld.as_ref().map(|w| w.merged_vertices), Some(1));
         let d = rep.duplicates.as_ref().expect("ran");
         assert_eq!(
@@ -336,6 +342,22 @@ mod tests {
             .expect("capped");
         assert_eq!((cap.loops, cap.capped, cap.triangles_added), (1, 1, 2));
         assert!(rep.tjunctions.is_none() && rep.degenerate.is_none() && rep.close_gaps.is_none());
+    }
+
+    #[test]
+    fn unused_vertices_are_dropped_and_counted() {
+        let mut m = Mesh::unit_cube();
+        m.positions.insert(0, [5.0, 5.0, 5.0]);
+        m.positions.push([7.0, 7.0, 7.0]);
+        for t in &mut m.triangles {
+            *t = t.map(|v| v + 1);
+        }
+        let (r, rep) = repair(&m, &RepairConfig::default()).expect("valid config");
+        assert_eq!(rep.before.unreferenced_vertices, 2);
+        assert_eq!(rep.unreferenced_removed, 2);
+        assert_eq!((r.positions.len(), rep.after.unreferenced_vertices), (8, 0));
+        assert_eq!(rep.after.volume, 1.0);
+        assert!(rep.after.closed);
     }
 
     #[test]
