@@ -4,14 +4,22 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+/// mimalloc keeps freed memory for reuse: a boolean's stages allocate and free large
+/// buffers one after another, which with the system allocator cost a fresh mapping and
+/// kernel page zeroing each time. Version 2 (`v2`), which keeps freed memory longer than 3:
+/// 2M-triangle union file to file 1.9-2.3 -> 1.06-1.08 s, system time 1.3-1.5 -> 0.25 s.
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
+use meshbool::edges::EdgeCounts;
 use meshbool::io::{self, Format};
 use meshbool::measure::{mesh_stats, MeshStats};
 use meshbool::repair::{
     self, orient, CloseMode, CloseOptions, DegenerateOptions, Facing, RepairConfig,
 };
-use meshbool::{boolean, intersect, weld_exact, EdgeTopology, Mesh};
+use meshbool::{boolean, intersect, weld_exact, Mesh};
 
 #[derive(Parser)]
 #[command(
@@ -406,7 +414,7 @@ fn operand(path: &Path, opts: &BoolOpts, assumed: &mut Vec<String>) -> Result<Me
     let force = opts.force;
     let mesh = read_welded(path)?;
     // Only what decides whether inside/outside is well defined: edge kinds (linear time).
-    let counts = EdgeTopology::new(&mesh).kind_counts();
+    let counts = EdgeCounts::of(&mesh);
     let (inconsistent, non_manifold) = (counts.inconsistent, counts.non_manifold);
     let mut problems = Vec::new();
     if inconsistent > 0 {
@@ -460,7 +468,7 @@ fn both(a: &Path, b: &Path, opts: &BoolOpts) -> Result<(Checked, Checked)> {
 
 /// Edge counts, volume and area of a result: the part of [`mesh_stats`] a report needs.
 fn result_measures(m: &Mesh) -> (usize, usize, f64, f64) {
-    let counts = EdgeTopology::new(m).kind_counts();
+    let counts = EdgeCounts::of(m);
     (
         counts.boundary,
         counts.non_manifold,

@@ -276,6 +276,81 @@ pub struct EdgeCounts {
     pub non_manifold: usize,
 }
 
+impl EdgeCounts {
+    /// Counts the edges of `mesh` by kind (indices must be in range), the same counts as
+    /// [`EdgeTopology::kind_counts`] without building the adjacency: what the input checks
+    /// and result reports need, in a fraction of the memory. The vertex range is split
+    /// among the threads; each buckets the half-edges whose lower vertex is in its range
+    /// (a counting sort) and counts the runs of each small bucket sorted by higher vertex.
+    pub fn of(mesh: &Mesh) -> EdgeCounts {
+        use rayon::prelude::*;
+        let nv = mesh.positions.len();
+        let parts = if mesh.triangles.len() < 1 << 16 {
+            1
+        } else {
+            rayon::current_num_threads().clamp(1, 64)
+        };
+        let step = nv.div_ceil(parts).max(1);
+        (0..parts)
+            .into_par_iter()
+            .map(|p| {
+                let (v0, v1) = ((p * step).min(nv), ((p + 1) * step).min(nv));
+                counts_in_range(mesh, v0 as u32, v1 as u32)
+            })
+            .reduce(EdgeCounts::default, |a, b| EdgeCounts {
+                boundary: a.boundary + b.boundary,
+                manifold: a.manifold + b.manifold,
+                inconsistent: a.inconsistent + b.inconsistent,
+                non_manifold: a.non_manifold + b.non_manifold,
+            })
+    }
+}
+
+/// [`EdgeCounts::of`] for the edges whose lower vertex lies in `v0..v1`.
+fn counts_in_range(mesh: &Mesh, v0: u32, v1: u32) -> EdgeCounts {
+    let mut c = EdgeCounts::default();
+    if v0 >= v1 {
+        return c;
+    }
+    let n = (v1 - v0) as usize;
+    let halves = || {
+        mesh.triangles.iter().flat_map(|t| {
+            [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])]
+                .into_iter()
+                .filter(|&(a, b)| a != b && (v0..v1).contains(&a.min(b)))
+        })
+    };
+    let mut start = vec![0u32; n + 1];
+    for (a, b) in halves() {
+        start[(a.min(b) - v0) as usize + 1] += 1;
+    }
+    for i in 0..n {
+        start[i + 1] += start[i];
+    }
+    // Higher vertex and direction in one key, so that a bucket sorts by edge.
+    let mut fill = start.clone();
+    let mut half = vec![0u64; start[n] as usize];
+    for (a, b) in halves() {
+        let lo = (a.min(b) - v0) as usize;
+        half[fill[lo] as usize] = (u64::from(a.max(b)) << 1) | u64::from(a < b);
+        fill[lo] += 1;
+    }
+    drop(fill);
+    for lo in 0..n {
+        let bucket = &mut half[start[lo] as usize..start[lo + 1] as usize];
+        bucket.sort_unstable();
+        for run in bucket.chunk_by(|x, y| x >> 1 == y >> 1) {
+            *match run {
+                [_] => &mut c.boundary,
+                [x, y] if x != y => &mut c.manifold,
+                [_, _] => &mut c.inconsistent,
+                _ => &mut c.non_manifold,
+            } += 1;
+        }
+    }
+    c
+}
+
 /// How an undirected edge is used by the triangles around it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum EdgeKind {
@@ -348,6 +423,34 @@ mod tests {
         let (n, ids) = EdgeTopology::new(&a).components();
         assert_eq!(n, 2);
         assert_eq!(&ids[..4], &[0, 1, 0, 1]);
+    }
+
+    #[test]
+    fn lean_counts_agree_with_the_topology() {
+        // A large sphere (split among threads) broken in every way: a hole (boundary),
+        // flipped triangles (inconsistent), a triangle repeated three times
+        // (non-manifold), a repeated-vertex triangle (its loop edge is not an edge).
+        let mut m = crate::shapes::uv_sphere([0.0; 3], 1.0, 300, 150);
+        assert!(m.triangles.len() > 1 << 16);
+        m.triangles.remove(1000);
+        for t in [5000, 20000, 60000] {
+            let [a, b, c] = m.triangles[t];
+            m.triangles[t] = [a, c, b];
+        }
+        let t = m.triangles[30000];
+        m.triangles.extend([t, t]);
+        m.triangles.push([7, 7, 9]);
+        let want = EdgeTopology::new(&m).kind_counts();
+        assert!(want.boundary > 0 && want.inconsistent > 0 && want.non_manifold > 0);
+        assert_eq!(EdgeCounts::of(&m), want);
+        let cube = EdgeCounts::of(&Mesh::unit_cube());
+        assert_eq!((cube.manifold, cube.boundary), (18, 0));
+        assert_eq!(EdgeCounts::of(&Mesh::default()), EdgeCounts::default());
+        for threads in [1, 3, 7] {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build();
+            let got = pool.expect("pool").install(|| EdgeCounts::of(&m));
+            assert_eq!(got, want, "{threads} threads");
+        }
     }
 }
 

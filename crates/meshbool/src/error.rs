@@ -36,8 +36,10 @@ impl fmt::Display for Location {
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum Error {
-    /// Reading or writing a file failed at the operating-system level.
-    #[error("I/O error: {0}")]
+    /// Reading or writing a file failed at the operating-system level (displayed as the
+    /// operating system's message, which is also the source, so that error chains do not
+    /// repeat it).
+    #[error(transparent)]
     Io(#[from] std::io::Error),
     /// A file's content does not follow its format.
     #[error("malformed {format} at {location}: {message}")]

@@ -197,24 +197,46 @@ fn normal32(m: &Mesh, t: usize) -> [f32; 3] {
 }
 
 pub(super) fn write_binary(out: &mut impl Write, mesh: &Mesh) -> Result<()> {
+    use rayon::prelude::*;
     let n = u32::try_from(mesh.triangles.len()).map_err(|_| {
         Error::invalid(Location::Whole, "binary STL holds at most 2^32-1 triangles")
     })?;
-    let mut o = Out::new(out);
-    let mut head = [b' '; HEADER];
+    let mut head = [b' '; HEADER + 4];
     let label = b"meshbool binary STL";
     head[..label.len()].copy_from_slice(label);
-    o.bytes(&head).bytes(&n.to_le_bytes());
-    for t in 0..mesh.triangles.len() {
-        for x in normal32(mesh, t) {
-            o.bytes(&x.to_le_bytes());
+    head[HEADER..].copy_from_slice(&n.to_le_bytes());
+    out.write_all(&head)?;
+    // Records are independent: blocks are encoded side by side, a batch of them at a
+    // time (memory stays bounded), and written in order.
+    const BLOCK: usize = 1 << 13;
+    let encode = |first: usize| -> Vec<u8> {
+        let end = (first + BLOCK).min(mesh.triangles.len());
+        let mut buf = Vec::with_capacity((end - first) * RECORD);
+        for t in first..end {
+            for x in normal32(mesh, t) {
+                buf.extend_from_slice(&x.to_le_bytes());
+            }
+            for x in mesh.corners(t).into_iter().flatten() {
+                buf.extend_from_slice(&(x as f32).to_le_bytes());
+            }
+            buf.extend_from_slice(&[0, 0]);
         }
-        for x in mesh.corners(t).into_iter().flatten() {
-            o.bytes(&(x as f32).to_le_bytes());
+        buf
+    };
+    let batch = BLOCK * 4 * rayon::current_num_threads().max(1);
+    for start in (0..mesh.triangles.len()).step_by(batch) {
+        let end = (start + batch).min(mesh.triangles.len());
+        let blocks: Vec<Vec<u8>> = (start..end)
+            .step_by(BLOCK)
+            .collect::<Vec<_>>()
+            .into_par_iter()
+            .map(encode)
+            .collect();
+        for b in blocks {
+            out.write_all(&b)?;
         }
-        o.bytes(&[0, 0]).record_done()?;
     }
-    o.finish()
+    Ok(())
 }
 
 pub(super) fn write_ascii(out: &mut impl Write, mesh: &Mesh) -> Result<()> {
