@@ -59,6 +59,9 @@ struct Node {
     moment: [[f64; 3]; 3],
     /// A bound on the distance from `centre` to any corner in the cluster.
     radius: f64,
+    /// Bounding box of the cluster's corners.
+    lo: [f64; 3],
+    hi: [f64; 3],
     /// Range of the cluster in `order`.
     start: u32,
     end: u32,
@@ -144,12 +147,24 @@ impl<'a> FastWinding<'a> {
                 .flat_map(|&t| mesh.corners(t as usize))
                 .map(|p| norm(&sub(&p, &centre)))
                 .fold(0.0, f64::max);
+            let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+            for p in order[start..end]
+                .iter()
+                .flat_map(|&t| mesh.corners(t as usize))
+            {
+                for k in 0..3 {
+                    lo[k] = lo[k].min(p[k]);
+                    hi[k] = hi[k].max(p[k]);
+                }
+            }
             Node {
                 normal,
                 centre,
                 area,
                 moment,
                 radius,
+                lo,
+                hi,
                 start: start as u32,
                 end: end as u32,
                 right: 0,
@@ -176,9 +191,14 @@ impl<'a> FastWinding<'a> {
             } else {
                 l.centre
             };
-            // Every corner lies within a child's radius of the child's centre.
+            // Every corner lies within a child's radius of the child's centre, and in the
+            // box of both children's boxes: the smaller of the two bounds.
+            let lo: [f64; 3] = std::array::from_fn(|k| l.lo[k].min(r.lo[k]));
+            let hi: [f64; 3] = std::array::from_fn(|k| l.hi[k].max(r.hi[k]));
+            let far: [f64; 3] = std::array::from_fn(|k| (centre[k] - lo[k]).max(hi[k] - centre[k]));
             let radius = (norm(&sub(&l.centre, &centre)) + l.radius)
-                .max(norm(&sub(&r.centre, &centre)) + r.radius);
+                .max(norm(&sub(&r.centre, &centre)) + r.radius)
+                .min(norm(&far));
             // Moments moved to the new centre: M + N ⊗ (child centre − centre).
             let moment = std::array::from_fn(|i| {
                 std::array::from_fn(|j| {
@@ -194,6 +214,8 @@ impl<'a> FastWinding<'a> {
                 area,
                 moment,
                 radius,
+                lo,
+                hi,
                 start: start as u32,
                 end: end as u32,
                 right: right_base as u32,
