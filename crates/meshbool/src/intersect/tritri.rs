@@ -89,9 +89,15 @@ impl Tri {
     /// The smallest feature of this (closed) triangle containing `x`, which must lie in
     /// the triangle's plane; `None` when `x` is outside.
     pub fn locate(&self, x: &Point) -> Option<Feature> {
-        let o: [Sign; 3] = std::array::from_fn(|k| {
-            orient2d(&self.corner(k), &self.corner((k + 1) % 3), x, self.axis).times(self.sign)
-        });
+        self.locate_by(std::array::from_fn(|k| {
+            orient2d(&self.corner(k), &self.corner((k + 1) % 3), x, self.axis)
+        }))
+    }
+
+    /// [`Tri::locate`] from the orientations of the point against the edges (edge `k`
+    /// from corner `k` to `k + 1`, projected along [`Tri::axis`]).
+    fn locate_by(&self, o: [Sign; 3]) -> Option<Feature> {
+        let o = o.map(|s| s.times(self.sign));
         if o.contains(&Sign::Negative) {
             return None;
         }
@@ -254,8 +260,18 @@ fn coplanar(a: &Tri, b: &Tri) -> TriTri {
     let mut segments: Vec<[Label; 2]> = Vec::new();
     let mut points: Vec<Label> = Vec::new();
     for (own, other, own_is_a) in [(a, b, true), (b, a, false)] {
+        // Every orientation the clipping needs, once (projected along `other`'s axis):
+        // `other`'s edges against `own`'s corners, `own`'s edges against `other`'s corners.
+        let proj = other.axis;
+        let side = |e: &Tri, m: usize, x: &Tri, k: usize| {
+            orient2d(&e.corner(m), &e.corner((m + 1) % 3), &x.corner(k), proj)
+        };
+        let orients = Orients {
+            other_edges: std::array::from_fn(|m| std::array::from_fn(|k| side(other, m, own, k))),
+            own_edges: std::array::from_fn(|i| std::array::from_fn(|m| side(own, i, other, m))),
+        };
         for i in 0..3 {
-            match clip_edge(own, i, other, own_is_a) {
+            match clip_edge(own, i, other, own_is_a, &orients) {
                 Clip::None => {}
                 Clip::Point(l) => points.push(l),
                 Clip::Segment(mut s) => {
@@ -277,6 +293,14 @@ fn coplanar(a: &Tri, b: &Tri) -> TriTri {
     }
 }
 
+/// Orientations for clipping `own`'s edges against `other` (projected along `other`'s
+/// axis): `other_edges[m][k]` of `own`'s corner `k` against `other`'s edge `m`,
+/// `own_edges[i][m]` of `other`'s corner `m` against `own`'s edge `i`.
+struct Orients {
+    other_edges: [[Sign; 3]; 3],
+    own_edges: [[Sign; 3]; 3],
+}
+
 enum Clip {
     None,
     Point(Label),
@@ -284,7 +308,7 @@ enum Clip {
 }
 
 /// The part of edge `i` of `own` inside the coplanar triangle `other`.
-fn clip_edge(own: &Tri, i: usize, other: &Tri, own_is_a: bool) -> Clip {
+fn clip_edge(own: &Tri, i: usize, other: &Tri, own_is_a: bool, o: &Orients) -> Clip {
     let j = (i + 1) % 3;
     let (p, q) = (own.corner(i), own.corner(j));
     let own_edge = edge(own.v[i], own.v[j]);
@@ -306,7 +330,8 @@ fn clip_edge(own: &Tri, i: usize, other: &Tri, own_is_a: bool) -> Clip {
     let proj = other.axis;
     let mut cands: Vec<(Point, Label)> = Vec::new();
     for (k, x) in [(i, &p), (j, &q)] {
-        if let Some(f) = other.locate(x) {
+        let at = other.locate_by(std::array::from_fn(|m| o.other_edges[m][k]));
+        if let Some(f) = at {
             cands.push((x.clone(), mk(Feature::Vertex(own.v[k]), f)));
         }
     }
@@ -316,16 +341,15 @@ fn clip_edge(own: &Tri, i: usize, other: &Tri, own_is_a: bool) -> Clip {
     };
     for m in 0..3 {
         let w = other.corner(m);
-        if orient2d(&p, &q, &w, proj) == Sign::Zero && between(&w) {
+        if o.own_edges[i][m] == Sign::Zero && between(&w) {
             cands.push((w, mk(own_edge, Feature::Vertex(other.v[m]))));
         }
     }
     for m in 0..3 {
         let n = (m + 1) % 3;
-        let (w0, w1) = (other.corner(m), other.corner(n));
         let crosses = |s: Sign, t: Sign| s.times(t) == Sign::Negative;
-        if crosses(orient2d(&w0, &w1, &p, proj), orient2d(&w0, &w1, &q, proj))
-            && crosses(orient2d(&p, &q, &w0, proj), orient2d(&p, &q, &w1, proj))
+        if crosses(o.other_edges[m][i], o.other_edges[m][j])
+            && crosses(o.own_edges[i][m], o.own_edges[i][n])
         {
             let x = Point::Ssi {
                 p: own.p[i],
