@@ -59,9 +59,6 @@ struct Node {
     moment: [[f64; 3]; 3],
     /// A bound on the distance from `centre` to any corner in the cluster.
     radius: f64,
-    /// Bounding box of the cluster's corners.
-    lo: [f64; 3],
-    hi: [f64; 3],
     /// Range of the cluster in `order`.
     start: u32,
     end: u32,
@@ -101,7 +98,8 @@ impl<'a> FastWinding<'a> {
     }
 
     /// Fills `nodes` (the pre-order subtree over `order[start..end]`, its first node having
-    /// index `base`) and returns its root.
+    /// index `base`) and returns its root with the bounding box of its corners (needed only
+    /// while building, so kept out of the nodes that queries walk).
     fn build(
         mesh: &Mesh,
         order: &[u32],
@@ -109,9 +107,9 @@ impl<'a> FastWinding<'a> {
         end: usize,
         base: usize,
         nodes: &mut [Node],
-    ) -> Node {
+    ) -> (Node, [[f64; 3]; 2]) {
         let n = end - start;
-        let node = if n <= LEAF {
+        let (node, bbox) = if n <= LEAF {
             let (mut normal, mut weighted, mut area) = ([0.0; 3], [0.0; 3], 0.0);
             let tri = |t: u32| {
                 let [a, b, c] = mesh.corners(t as usize);
@@ -157,24 +155,23 @@ impl<'a> FastWinding<'a> {
                     hi[k] = hi[k].max(p[k]);
                 }
             }
-            Node {
+            let node = Node {
                 normal,
                 centre,
                 area,
                 moment,
                 radius,
-                lo,
-                hi,
                 start: start as u32,
                 end: end as u32,
                 right: 0,
-            }
+            };
+            (node, [lo, hi])
         } else {
             let mid = start + n / 2;
             let (_, rest) = nodes.split_at_mut(1);
             let (left, right) = rest.split_at_mut(subtree_nodes(n / 2));
             let right_base = base + 1 + left.len();
-            let (l, r) = if n > 1 << 14 {
+            let ((l, [llo, lhi]), (r, [rlo, rhi])) = if n > 1 << 14 {
                 rayon::join(
                     || Self::build(mesh, order, start, mid, base + 1, left),
                     || Self::build(mesh, order, mid, end, right_base, right),
@@ -193,8 +190,8 @@ impl<'a> FastWinding<'a> {
             };
             // Every corner lies within a child's radius of the child's centre, and in the
             // box of both children's boxes: the smaller of the two bounds.
-            let lo: [f64; 3] = std::array::from_fn(|k| l.lo[k].min(r.lo[k]));
-            let hi: [f64; 3] = std::array::from_fn(|k| l.hi[k].max(r.hi[k]));
+            let lo: [f64; 3] = std::array::from_fn(|k| llo[k].min(rlo[k]));
+            let hi: [f64; 3] = std::array::from_fn(|k| lhi[k].max(rhi[k]));
             let far: [f64; 3] = std::array::from_fn(|k| (centre[k] - lo[k]).max(hi[k] - centre[k]));
             let radius = (norm(&sub(&l.centre, &centre)) + l.radius)
                 .max(norm(&sub(&r.centre, &centre)) + r.radius)
@@ -208,21 +205,20 @@ impl<'a> FastWinding<'a> {
                         + r.normal[i] * (r.centre[j] - centre[j])
                 })
             });
-            Node {
+            let node = Node {
                 normal: std::array::from_fn(|k| l.normal[k] + r.normal[k]),
                 centre,
                 area,
                 moment,
                 radius,
-                lo,
-                hi,
                 start: start as u32,
                 end: end as u32,
                 right: right_base as u32,
-            }
+            };
+            (node, [lo, hi])
         };
         nodes[0] = node;
-        node
+        (node, bbox)
     }
 
     /// The winding number at `p`, approximated far from the surface (relative error of
@@ -232,8 +228,12 @@ impl<'a> FastWinding<'a> {
             return 0.0;
         }
         let mut sum = 0.0;
-        let mut stack = vec![0usize];
-        while let Some(i) = stack.pop() {
+        // The tree is balanced: at most one pending right child per level.
+        let mut stack = [0u32; 64];
+        let mut depth = 1;
+        while depth > 0 {
+            depth -= 1;
+            let i = stack[depth] as usize;
             let n = &self.nodes[i];
             let d = sub(&n.centre, &p);
             let dist = norm(&d);
@@ -254,8 +254,9 @@ impl<'a> FastWinding<'a> {
                     sum += solid_angle(&a, &b, &c, &p);
                 }
             } else {
-                stack.push(n.right as usize);
-                stack.push(i + 1);
+                stack[depth] = n.right;
+                stack[depth + 1] = (i + 1) as u32;
+                depth += 2;
             }
         }
         sum
