@@ -5,13 +5,14 @@
 //! of unconstrained edges for shape (an approximate in-circle test chooses a flip, the exact
 //! orientation test allows it).
 
-use crate::kernel::{orient2d, Point, Sign};
+use crate::kernel::{orient2d_prepared, Point, Prepared, Sign};
 
 const NONE: u32 = u32::MAX;
 
 /// A triangulation of one triangle's interior, vertices given as kernel points.
 pub(crate) struct Local {
-    pub(crate) pts: Vec<Point>,
+    /// The vertices, with interval enclosures for the many predicates on each.
+    pts: Vec<Prepared>,
     approx: Vec<[f64; 3]>,
     /// Per vertex, bit `k` set when it lies on the outer triangle's edge `k` (known from
     /// the seam labels): three vertices sharing a bit are collinear, no predicate needed.
@@ -40,7 +41,10 @@ impl Local {
     /// dropping `axis`; `sign` must be non-zero).
     pub(crate) fn new(corners: [[f64; 3]; 3], axis: usize, sign: Sign) -> Local {
         Local {
-            pts: corners.iter().map(|&p| Point::Explicit(p)).collect(),
+            pts: corners
+                .iter()
+                .map(|&p| Prepared::new(Point::Explicit(p)))
+                .collect(),
             approx: corners.to_vec(),
             on: vec![0b101, 0b011, 0b110],
             tris: vec![[0, 1, 2]],
@@ -56,7 +60,7 @@ impl Local {
         if self.on[a as usize] & self.on[b as usize] & self.on[c as usize] != 0 {
             return Sign::Zero;
         }
-        orient2d(
+        orient2d_prepared(
             &self.pts[a as usize],
             &self.pts[b as usize],
             &self.pts[c as usize],
@@ -65,11 +69,12 @@ impl Local {
         .times(self.sign)
     }
 
-    fn orient_pt(&self, a: u32, b: u32, x: &Point, x_on: u8) -> Sign {
+    fn orient_pt(&self, a: u32, b: u32, x: &Prepared, x_on: u8) -> Sign {
         if self.on[a as usize] & self.on[b as usize] & x_on != 0 {
             return Sign::Zero;
         }
-        orient2d(&self.pts[a as usize], &self.pts[b as usize], x, self.axis).times(self.sign)
+        orient2d_prepared(&self.pts[a as usize], &self.pts[b as usize], x, self.axis)
+            .times(self.sign)
     }
 
     /// Points `t`'s neighbour that pointed to `old` at `new` instead.
@@ -114,6 +119,7 @@ impl Local {
         on_edge: Option<usize>,
     ) -> Result<u32, Failed> {
         let x_on = on_edge.map_or(0, |k| 1u8 << k);
+        let x = Prepared::new(x);
         let mut t = self.last.min(self.tris.len() as u32 - 1);
         let mut steps = 0usize;
         let mut turn = 0usize;
@@ -278,7 +284,11 @@ impl Local {
         // Order along p q by a coordinate in which they differ.
         let k = crate::kernel::longest_axis(&self.approx[p as usize], &self.approx[q as usize]);
         let axis_cmp = |a: u32, b: u32| {
-            crate::kernel::cmp_coord(&self.pts[a as usize], &self.pts[b as usize], k)
+            crate::kernel::cmp_coord(
+                self.pts[a as usize].point(),
+                self.pts[b as usize].point(),
+                k,
+            )
         };
         for v in 0..self.pts.len() as u32 {
             if v != p && v != q && side[v as usize] == Sign::Zero {

@@ -409,6 +409,61 @@ pub fn orient2d(a: &Point, b: &Point, c: &Point, axis: usize) -> Sign {
     decide!(orient2d_rows(a, b, c, axis)).times(w)
 }
 
+/// A point with interval enclosures of its homogeneous coordinates, evaluated once: for
+/// code that asks many predicates about the same points (a triangulation), so that the
+/// interval filter does not rebuild an implicit point's coordinates for every test. The
+/// exact evaluation, where the filter cannot decide, still starts from the point.
+#[derive(Clone, Debug)]
+pub(crate) struct Prepared {
+    point: Point,
+    enclosure: [Interval; 4],
+}
+
+impl Prepared {
+    /// Prepares `point`.
+    pub(crate) fn new(point: Point) -> Prepared {
+        let enclosure = point.homogeneous::<Interval>();
+        Prepared { point, enclosure }
+    }
+
+    /// The point itself.
+    pub(crate) fn point(&self) -> &Point {
+        &self.point
+    }
+
+    /// The sign of `W` (positive for explicit points).
+    fn sign_of_w(&self) -> Sign {
+        match (&self.point, self.enclosure[3].sign()) {
+            (Point::Explicit(_), _) => Sign::Positive,
+            (_, Some(s)) => s,
+            (p, None) => decide!(w_of(p)),
+        }
+    }
+}
+
+/// [`orient2d`] of prepared points: the same exact answer, the interval filter from the
+/// stored enclosures.
+pub(crate) fn orient2d_prepared(a: &Prepared, b: &Prepared, c: &Prepared, axis: usize) -> Sign {
+    if let (Some(pa), Some(pb), Some(pc)) =
+        (a.point.explicit(), b.point.explicit(), c.point.explicit())
+    {
+        if robust_safe(&[&pa, &pb, &pc]) {
+            let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+            let c2 = |p: [f64; 3]| robust::Coord { x: p[i], y: p[j] };
+            return Sign::of_f64(robust::orient2d(c2(pa), c2(pb), c2(pc)));
+        }
+    }
+    let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+    let rows = [a, b, c].map(|p| [p.enclosure[i], p.enclosure[j], p.enclosure[3]]);
+    let det = match det3(rows).sign() {
+        Some(s) => s,
+        None => orient2d_rows::<Dyadic>(&a.point, &b.point, &c.point, axis)
+            .sign()
+            .expect("exact signs are always decided"),
+    };
+    [a, b, c].iter().fold(det, |s, p| s.times(p.sign_of_w()))
+}
+
 /// Exact comparison of coordinate `axis` of two points.
 pub fn cmp_coord(a: &Point, b: &Point, axis: usize) -> Ordering {
     if let (Some(pa), Some(pb)) = (a.explicit(), b.explicit()) {

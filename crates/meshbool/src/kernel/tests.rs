@@ -148,11 +148,12 @@ fn predicates_agree_with_rationals_on_random_points() {
                 orient3d(&pts[0], &pts[1], &pts[2], &pts[3]),
                 oracle_orient3d(&pts[0], &pts[1], &pts[2], &pts[3])
             );
+            let prepared: Vec<Prepared> = pts.iter().cloned().map(Prepared::new).collect();
             for axis in 0..3 {
-                assert_eq!(
-                    orient2d(&pts[0], &pts[1], &pts[2], axis),
-                    oracle_orient2d(&pts[0], &pts[1], &pts[2], axis)
-                );
+                let want = oracle_orient2d(&pts[0], &pts[1], &pts[2], axis);
+                assert_eq!(orient2d(&pts[0], &pts[1], &pts[2], axis), want);
+                let got = orient2d_prepared(&prepared[0], &prepared[1], &prepared[2], axis);
+                assert_eq!(got, want);
             }
         }
     }
@@ -295,9 +296,13 @@ fn coplanar_segment_crossings() {
                 s,
                 axis: 2,
             };
+            let pre = |x: &Point| Prepared::new(x.clone());
             for axis in 0..3 {
                 assert_eq!(orient2d(&e(p), &e(q), &x, axis), Sign::Zero);
                 assert_eq!(orient2d(&e(r), &e(s), &x, axis), Sign::Zero);
+                // Exactly zero: the stored enclosures cannot decide, the exact path must.
+                let z = orient2d_prepared(&pre(&e(p)), &pre(&e(q)), &pre(&x), axis);
+                assert_eq!(z, Sign::Zero);
             }
             // The same point as the crossing of p q with the vertical plane through r s.
             let up = [r[0], r[1], r[2] + 1.0];
