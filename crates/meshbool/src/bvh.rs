@@ -10,7 +10,7 @@
 
 use rayon::prelude::*;
 
-use crate::Mesh;
+use crate::{Aabb, Mesh};
 
 /// Triangles per leaf.
 const LEAF: usize = 4;
@@ -106,6 +106,12 @@ fn split_at(n: usize) -> usize {
 /// axis over the mesh's bounding box): spatially coherent order for hierarchies. Empty
 /// for a mesh without triangles.
 pub(crate) fn morton_order(mesh: &Mesh) -> Vec<u32> {
+    morton_order_within(mesh, None)
+}
+
+/// [`morton_order`] of the triangles whose box meets the closed box `within` (all of
+/// them for `None`). Exact `f64` comparisons, so no triangle touching `within` is left out.
+fn morton_order_within(mesh: &Mesh, within: Option<&Aabb>) -> Vec<u32> {
     let n = mesh.triangles.len();
     let Some(all) = mesh.bounds() else {
         return Vec::new();
@@ -118,8 +124,15 @@ pub(crate) fn morton_order(mesh: &Mesh) -> Vec<u32> {
             0.0
         }
     });
+    let meets = |t: u32| {
+        within.is_none_or(|w| {
+            let [lo, hi] = tri_box(mesh, t);
+            (0..3).all(|k| lo[k] <= w.max[k] && hi[k] >= w.min[k])
+        })
+    };
     let mut keyed: Vec<(u64, u32)> = (0..n as u32)
         .into_par_iter()
+        .filter(|&t| meets(t))
         .map(|t| {
             let [a, b, c] = mesh.corners(t as usize);
             let cell = |k: usize| {
@@ -185,15 +198,22 @@ fn sort_keyed(keyed: &mut Vec<(u64, u32)>) {
 impl Bvh {
     /// Builds the hierarchy of `mesh` (indices must be in range).
     pub fn new(mesh: &Mesh) -> Self {
-        let n = mesh.triangles.len();
-        if n == 0 {
-            return Bvh::default();
-        }
-        let order = morton_order(mesh);
+        Self::over(mesh, morton_order(mesh))
+    }
+
+    /// The hierarchy of only those triangles of `mesh` whose boxes meet the closed box
+    /// `within` (exact comparisons): all a query against a mesh inside `within` can find.
+    /// A boolean of a large terrain and a small pit shell indexes only the terrain near
+    /// the shell.
+    pub fn new_within(mesh: &Mesh, within: &Aabb) -> Self {
+        Self::over(mesh, morton_order_within(mesh, Some(within)))
+    }
+
+    fn over(mesh: &Mesh, order: Vec<u32>) -> Self {
         if order.is_empty() {
             return Bvh::default();
         }
-        let mut nodes = vec![EMPTY; 2 * leaves(n) - 1];
+        let mut nodes = vec![EMPTY; 2 * leaves(order.len()) - 1];
         Self::build(&mut nodes, 0, 0, &order, mesh);
         Bvh { nodes, order }
     }
@@ -479,6 +499,35 @@ mod tests {
         assert!(!want.is_empty());
         assert_eq!(pairs.len(), want.len());
         assert!(pairs == want);
+    }
+
+    #[test]
+    fn trees_within_the_other_box_find_the_same_pairs() {
+        // A small sphere over a large height field: most of the terrain is left out of
+        // its tree; and two cubes that only touch along a face (closed boxes).
+        let terrain = crate::shapes::heightfield([-5.0, -5.0], [5.0, 5.0], 60, 60, |x, y| {
+            0.1 * (x * y).sin()
+        });
+        let ball = uv_sphere([0.3, -0.2, 0.0], 0.7, 20, 10);
+        let touching = (
+            Mesh::unit_cube(),
+            Mesh::cuboid([1.0, 0.2, 0.2], [2.0, 0.8, 0.8]),
+        );
+        for (a, b) in [(terrain, ball), touching] {
+            let (box_a, box_b) = (a.bounds().unwrap(), b.bounds().unwrap());
+            let (wa, wb) = (Bvh::new_within(&a, &box_b), Bvh::new_within(&b, &box_a));
+            let want = Bvh::new(&a).overlapping_pairs(&a, &Bvh::new(&b), &b);
+            assert!(!want.is_empty());
+            assert!(wa.overlapping_pairs(&a, &wb, &b) == want);
+            assert!(wa.len() <= a.triangles.len() && wb.len() <= b.triangles.len());
+        }
+        let terrain = crate::shapes::heightfield([-5.0, -5.0], [5.0, 5.0], 60, 60, |_, _| 0.0);
+        let small = Bvh::new_within(&terrain, &uv_sphere([0.0; 3], 0.5, 8, 4).bounds().unwrap());
+        assert!(
+            small.len() < terrain.triangles.len() / 20,
+            "{}",
+            small.len()
+        );
     }
 
     #[test]

@@ -119,7 +119,11 @@ fn tri(m: &Mesh, t: usize) -> Option<tritri::Tri> {
 /// at the same position would name one point twice and break the curves there.
 /// Degenerate triangles are left out and counted in [`Seam::degenerate`].
 pub fn intersect(a: &Mesh, b: &Mesh) -> Seam {
-    let (ba, bb) = rayon::join(|| Bvh::new(a), || Bvh::new(b));
+    // Each tree holds only the triangles that can meet the other mesh at all.
+    let (Some(box_a), Some(box_b)) = (a.bounds(), b.bounds()) else {
+        return Seam::default();
+    };
+    let (ba, bb) = rayon::join(|| Bvh::new_within(a, &box_b), || Bvh::new_within(b, &box_a));
     let pairs = ba.overlapping_pairs(a, &bb, b);
     // Set up every candidate triangle once (sorted ids, looked up by binary search); the
     // degenerate ones are left out of the test and counted. Degenerate triangles elsewhere
