@@ -386,3 +386,52 @@ fn self_intersections_found_exactly() {
     );
     assert!(self_intersections(&flat).is_empty());
 }
+
+/// A fan around an apex whose rim visits five points in `order` (by index around a
+/// circle), closed underneath by a fan around a second apex so that both apexes are
+/// interior vertices.
+fn double_fan(order: [usize; 5]) -> Mesh {
+    let rim: Vec<[f64; 3]> = (0..5)
+        .map(|k| {
+            let a = std::f64::consts::TAU * k as f64 / 5.0;
+            [a.cos(), a.sin(), 0.0]
+        })
+        .collect();
+    let mut positions = rim;
+    positions.push([0.1, 0.05, 1.0]);
+    positions.push([-0.05, 0.1, -1.0]);
+    let mut triangles = Vec::new();
+    for k in 0..5 {
+        let (p, q) = (order[k] as u32, order[(k + 1) % 5] as u32);
+        triangles.push([5, p, q]);
+        triangles.push([6, q, p]);
+    }
+    Mesh::new(positions, triangles)
+}
+
+#[test]
+fn fans_wound_twice_and_poked_through_are_found() {
+    // Rim in circle order: a double pyramid, no intersections.
+    let once = double_fan([0, 1, 2, 3, 4]);
+    assert!(self_intersections(&once).is_empty());
+    // Rim as a pentagram: each apex fan winds twice around its apex, so triangles of one
+    // fan (sharing the apex, or the apex and a rim edge) overlap one another.
+    let twice = double_fan([0, 2, 4, 1, 3]);
+    let pairs = self_intersections(&twice);
+    assert!(
+        pairs.iter().any(|&(i, j)| {
+            let (a, b) = (twice.triangles[i as usize], twice.triangles[j as usize]);
+            a[0] == 5 && b[0] == 5
+        }),
+        "{pairs:?}"
+    );
+    // A sphere vertex pushed out through the opposite side: its star crosses the surface.
+    let mut poked = uv_sphere([0.0; 3], 1.0, 16, 8);
+    let v = 40;
+    poked.positions[v] = poked.positions[v].map(|x| -1.5 * x);
+    let found = self_intersections(&poked);
+    assert!(found.iter().any(|&(i, j)| {
+        let shares = |t: u32| poked.triangles[t as usize].contains(&(v as u32));
+        shares(i) || shares(j)
+    }));
+}
