@@ -396,12 +396,8 @@ pub fn orient3d(a: &Point, b: &Point, c: &Point, d: &Point) -> Sign {
 /// Exact orientation of three points in the projection dropping coordinate `axis`
 /// (0, 1 or 2): positive when counter-clockwise (see the module conventions).
 pub fn orient2d(a: &Point, b: &Point, c: &Point, axis: usize) -> Sign {
-    if let (Some(pa), Some(pb), Some(pc)) = (a.explicit(), b.explicit(), c.explicit()) {
-        if robust_safe(&[&pa, &pb, &pc]) {
-            let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
-            let c2 = |p: [f64; 3]| robust::Coord { x: p[i], y: p[j] };
-            return Sign::of_f64(robust::orient2d(c2(pa), c2(pb), c2(pc)));
-        }
+    if let Some(s) = orient2d_shewchuk(a, b, c, axis) {
+        return s;
     }
     let w = [a, b, c]
         .iter()
@@ -444,14 +440,8 @@ impl Prepared {
 /// [`orient2d`] of prepared points: the same exact answer, the interval filter from the
 /// stored enclosures.
 pub(crate) fn orient2d_prepared(a: &Prepared, b: &Prepared, c: &Prepared, axis: usize) -> Sign {
-    if let (Some(pa), Some(pb), Some(pc)) =
-        (a.point.explicit(), b.point.explicit(), c.point.explicit())
-    {
-        if robust_safe(&[&pa, &pb, &pc]) {
-            let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
-            let c2 = |p: [f64; 3]| robust::Coord { x: p[i], y: p[j] };
-            return Sign::of_f64(robust::orient2d(c2(pa), c2(pb), c2(pc)));
-        }
+    if let Some(s) = orient2d_shewchuk(&a.point, &b.point, &c.point, axis) {
+        return s;
     }
     let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
     let rows = [a, b, c].map(|p| [p.enclosure[i], p.enclosure[j], p.enclosure[3]]);
@@ -462,6 +452,18 @@ pub(crate) fn orient2d_prepared(a: &Prepared, b: &Prepared, c: &Prepared, axis: 
             .expect("exact signs are always decided"),
     };
     [a, b, c].iter().fold(det, |s, p| s.times(p.sign_of_w()))
+}
+
+/// Shewchuk's adaptive `orient2d` where it is exact: three explicit points whose
+/// coordinates meet [`robust_safe`]; `None` otherwise.
+fn orient2d_shewchuk(a: &Point, b: &Point, c: &Point, axis: usize) -> Option<Sign> {
+    let (pa, pb, pc) = (a.explicit()?, b.explicit()?, c.explicit()?);
+    if !robust_safe(&[&pa, &pb, &pc]) {
+        return None;
+    }
+    let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+    let c2 = |p: [f64; 3]| robust::Coord { x: p[i], y: p[j] };
+    Some(Sign::of_f64(robust::orient2d(c2(pa), c2(pb), c2(pc))))
 }
 
 /// Exact comparison of coordinate `axis` of two points.
