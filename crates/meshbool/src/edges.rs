@@ -41,32 +41,8 @@ impl EdgeTopology {
     /// by the higher vertex.
     pub fn new(mesh: &Mesh) -> Self {
         let nv = mesh.positions.len();
-        // Bucket sizes by lower vertex.
-        let mut start = vec![0u32; nv + 1];
-        for tri in &mesh.triangles {
-            for k in 0..3 {
-                let (a, b) = (tri[k], tri[(k + 1) % 3]);
-                if a != b {
-                    start[a.min(b) as usize + 1] += 1;
-                }
-            }
-        }
-        for v in 0..nv {
-            start[v + 1] += start[v];
-        }
-        // (higher vertex, half-edge id) per bucket, in triangle order.
-        let mut fill = start.clone();
-        let mut half = vec![(0u32, 0u32); start[nv] as usize];
-        for (t, tri) in mesh.triangles.iter().enumerate() {
-            for k in 0..3 {
-                let (a, b) = (tri[k], tri[(k + 1) % 3]);
-                if a != b {
-                    let lo = a.min(b) as usize;
-                    half[fill[lo] as usize] = (a.max(b), (t as u32) * 3 + k as u32);
-                    fill[lo] += 1;
-                }
-            }
-        }
+        // (higher vertex, half-edge id) per lower vertex, in triangle order.
+        let (start, mut half) = bucket_by_lower(mesh, 0, nv as u32, |a, b, h| (a.max(b), h));
         let mut edges = Vec::with_capacity(half.len() / 2 + 1);
         let mut offsets = Vec::with_capacity(half.len() / 2 + 2);
         let mut uses = Vec::with_capacity(half.len());
@@ -306,6 +282,44 @@ impl EdgeCounts {
     }
 }
 
+/// The half-edges of `mesh` whose lower vertex lies in `v0..v1`, bucketed by that vertex
+/// (a counting sort; triangle order within a bucket): `half[start[i]..start[i + 1]]` holds
+/// `entry(a, b, id)` for each half-edge `a → b` with lower vertex `v0 + i`, `id` being
+/// `3 · triangle + corner`. Half-edges from a vertex to itself are left out.
+fn bucket_by_lower<T: Copy + Default>(
+    mesh: &Mesh,
+    v0: u32,
+    v1: u32,
+    entry: impl Fn(u32, u32, u32) -> T,
+) -> (Vec<u32>, Vec<T>) {
+    let n = v1.saturating_sub(v0) as usize;
+    let lower =
+        |a: u32, b: u32| (a != b && (v0..v1).contains(&a.min(b))).then(|| (a.min(b) - v0) as usize);
+    let mut start = vec![0u32; n + 1];
+    for tri in &mesh.triangles {
+        for k in 0..3 {
+            if let Some(lo) = lower(tri[k], tri[(k + 1) % 3]) {
+                start[lo + 1] += 1;
+            }
+        }
+    }
+    for i in 0..n {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let mut half = vec![T::default(); start[n] as usize];
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            if let Some(lo) = lower(a, b) {
+                half[fill[lo] as usize] = entry(a, b, (t as u32) * 3 + k as u32);
+                fill[lo] += 1;
+            }
+        }
+    }
+    (start, half)
+}
+
 /// [`EdgeCounts::of`] for the edges whose lower vertex lies in `v0..v1`.
 fn counts_in_range(mesh: &Mesh, v0: u32, v1: u32) -> EdgeCounts {
     let mut c = EdgeCounts::default();
@@ -313,29 +327,10 @@ fn counts_in_range(mesh: &Mesh, v0: u32, v1: u32) -> EdgeCounts {
         return c;
     }
     let n = (v1 - v0) as usize;
-    let halves = || {
-        mesh.triangles.iter().flat_map(|t| {
-            [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])]
-                .into_iter()
-                .filter(|&(a, b)| a != b && (v0..v1).contains(&a.min(b)))
-        })
-    };
-    let mut start = vec![0u32; n + 1];
-    for (a, b) in halves() {
-        start[(a.min(b) - v0) as usize + 1] += 1;
-    }
-    for i in 0..n {
-        start[i + 1] += start[i];
-    }
     // Higher vertex and direction in one key, so that a bucket sorts by edge.
-    let mut fill = start.clone();
-    let mut half = vec![0u64; start[n] as usize];
-    for (a, b) in halves() {
-        let lo = (a.min(b) - v0) as usize;
-        half[fill[lo] as usize] = (u64::from(a.max(b)) << 1) | u64::from(a < b);
-        fill[lo] += 1;
-    }
-    drop(fill);
+    let (start, mut half) = bucket_by_lower(mesh, v0, v1, |a, b, _| {
+        (u64::from(a.max(b)) << 1) | u64::from(a < b)
+    });
     for lo in 0..n {
         let bucket = &mut half[start[lo] as usize..start[lo + 1] as usize];
         bucket.sort_unstable();
