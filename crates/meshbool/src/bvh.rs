@@ -149,22 +149,23 @@ fn morton_order_within(mesh: &Mesh, within: Option<&Aabb>) -> Vec<u32> {
     keyed.into_par_iter().map(|(_, t)| t).collect()
 }
 
-/// Sorts `(Morton code, triangle)` pairs: one counting-sort pass by the top
-/// [`TOP_BITS`] bits of the 63-bit code, then every bucket sorted by the whole pair in
-/// parallel (buckets are small: the top bits already place a triangle to within ~1/64 of
-/// the box on each axis). The same order as a comparison sort, in a fraction of the time.
+/// Sorts `(Morton code, triangle)` pairs: one counting-sort pass by the top bits of the
+/// 63-bit code (about one bucket per 8 pairs, at most 2¹⁸ buckets: a triangle placed to
+/// within ~1/64 of the box on each axis), then every bucket sorted by the whole pair in
+/// parallel. The same order as a comparison sort, in a fraction of the time; the bucket
+/// count follows the input so that small meshes do not pay for a large table.
 fn sort_keyed(keyed: &mut Vec<(u64, u32)>) {
-    const TOP_BITS: u32 = 18;
     if keyed.len() < 1 << 12 {
         keyed.sort_unstable();
         return;
     }
-    let bucket = |k: u64| (k >> (63 - TOP_BITS)) as usize;
-    let mut start = vec![0u32; (1 << TOP_BITS) + 1];
+    let top_bits = (keyed.len().ilog2() - 3).min(18);
+    let bucket = |k: u64| (k >> (63 - top_bits)) as usize;
+    let mut start = vec![0u32; (1 << top_bits) + 1];
     for &(k, _) in keyed.iter() {
         start[bucket(k) + 1] += 1;
     }
-    for i in 0..1 << TOP_BITS {
+    for i in 0..1 << top_bits {
         start[i + 1] += start[i];
     }
     let mut out = vec![(0u64, 0u32); keyed.len()];
@@ -293,9 +294,8 @@ impl Bvh {
             ma: mesh,
             mb: other_mesh,
             keep: &|_, _| true,
-            par_depth: par_depth(self.len().max(other.len())),
         };
-        let mut pairs = q.below(0, 0, 0);
+        let mut pairs = q.run(Task::Below(0, 0));
         pairs.par_sort_unstable();
         pairs
     }
@@ -325,18 +325,22 @@ impl Bvh {
             ma: mesh,
             mb: mesh,
             keep,
-            par_depth: par_depth(self.len()),
         };
-        q.within(0, 0)
+        q.run(Task::Within(0))
     }
 }
 
-/// How deep a traversal of a tree over `n` triangles splits into parallel tasks: down to
-/// subtrees of about 16 leaves (and at most 12 levels), so that small meshes do not pay
-/// for thousands of tiny tasks.
-fn par_depth(n: usize) -> u32 {
-    (leaves(n).max(1).ilog2()).saturating_sub(4).min(12)
+/// A unit of traversal work: the pairs inside one subtree (a self-query), or the pairs
+/// between two subtrees.
+#[derive(Clone, Copy, Debug)]
+enum Task {
+    Within(u32),
+    Below(u32, u32),
 }
+
+/// Node pairs handed out as parallel tasks: enough for load balance on many cores, few
+/// enough that a small query is not split into tasks smaller than their overhead.
+const TASKS: usize = 256;
 
 /// A tree-vs-tree traversal.
 struct Query<'a> {
@@ -346,97 +350,119 @@ struct Query<'a> {
     mb: &'a Mesh,
     /// Which overlapping pairs to report.
     keep: &'a (dyn Fn(u32, u32) -> bool + Sync),
-    /// Node pairs above this depth are traversed in parallel.
-    par_depth: u32,
 }
 
 impl Query<'_> {
-    /// Pairs inside the subtree of node `x` (a self-query: `a` and `b` are the same tree).
-    fn within(&self, x: usize, depth: u32) -> Vec<(u32, u32)> {
-        let n = &self.a.nodes[x];
-        if n.count > 0 {
-            let ts = &self.a.order[n.start as usize..(n.start + n.count) as usize];
-            let mut boxes = [[[0.0; 3]; 2]; LEAF];
-            for (b, &t) in boxes.iter_mut().zip(ts) {
-                *b = tri_box(self.ma, t);
+    /// Every reported pair under `root`: the task is expanded breadth-first into a
+    /// frontier of up to [`TASKS`] independent tasks, each then traversed depth-first on
+    /// its own (parallel) with an explicit stack into one vector; the vectors are joined
+    /// once at the end. No allocation per node pair.
+    fn run(&self, root: Task) -> Vec<(u32, u32)> {
+        let mut out = Vec::new();
+        let mut frontier = vec![root];
+        while frontier.len() < TASKS && !frontier.is_empty() {
+            let mut next = Vec::with_capacity(2 * frontier.len());
+            for t in frontier {
+                self.expand(t, &mut next, &mut out);
             }
-            let mut out = Vec::new();
-            for i in 0..ts.len() {
-                for j in i + 1..ts.len() {
-                    let (p, q) = (ts[i].min(ts[j]), ts[i].max(ts[j]));
-                    if overlaps(&boxes[i], &boxes[j]) && (self.keep)(p, q) {
-                        out.push((p, q));
-                    }
-                }
+            frontier = next;
+            // Little work in all (a small mesh): finish on this thread.
+            if frontier.len() < 4 && self.a.len() + self.b.len() < 1 << 12 {
+                break;
             }
-            return out;
         }
-        let (l, r) = (x + 1, n.start as usize);
-        let go = || {
-            let (mut a, b) =
-                rayon::join(|| self.within(l, depth + 1), || self.within(r, depth + 1));
-            a.extend(b);
-            a
-        };
-        let mut out = if depth < self.par_depth {
-            let (mut a, b) = rayon::join(go, || self.below(l, r, depth + 1));
-            a.extend(b);
-            a
+        let parts: Vec<Vec<(u32, u32)>> = if frontier.len() < 4 {
+            let mut v = Vec::new();
+            for t in frontier {
+                self.traverse(t, &mut v);
+            }
+            vec![v]
         } else {
-            let mut a = self.within(l, depth + 1);
-            a.extend(self.within(r, depth + 1));
-            a.extend(self.below(l, r, depth + 1));
-            a
+            frontier
+                .into_par_iter()
+                .map(|t| {
+                    let mut v = Vec::new();
+                    self.traverse(t, &mut v);
+                    v
+                })
+                .collect()
         };
-        for p in &mut out {
-            *p = (p.0.min(p.1), p.0.max(p.1));
+        out.reserve(parts.iter().map(Vec::len).sum());
+        for p in parts {
+            out.extend(p);
         }
         out
     }
 
-    fn below(&self, x: usize, y: usize, depth: u32) -> Vec<(u32, u32)> {
-        let (na, nb) = (&self.a.nodes[x], &self.b.nodes[y]);
-        if !overlaps_f(&na.bbox, &nb.bbox) {
-            return Vec::new();
-        }
-        let split_a = match (na.count > 0, nb.count > 0) {
-            (true, true) => {
-                let mut out = Vec::new();
-                self.leaves(na, nb, &mut out);
-                return out;
+    /// One step of the traversal: the sub-tasks of `task` go to `next`, pairs of leaves
+    /// are tested and their pairs go to `out`.
+    #[inline]
+    fn expand(&self, task: Task, next: &mut Vec<Task>, out: &mut Vec<(u32, u32)>) {
+        match task {
+            Task::Within(x) => {
+                let n = &self.a.nodes[x as usize];
+                if n.count > 0 {
+                    self.leaf_within(n, out);
+                } else {
+                    let (l, r) = (x + 1, n.start);
+                    next.extend([Task::Within(l), Task::Within(r), Task::Below(l, r)]);
+                }
             }
-            (false, true) => true,
-            (true, false) => false,
-            (false, false) => {
-                let vol = |n: &Node| {
-                    (0..3)
-                        .map(|k| f64::from(n.bbox[1][k] - n.bbox[0][k]))
-                        .product::<f64>()
+            Task::Below(x, y) => {
+                let (na, nb) = (&self.a.nodes[x as usize], &self.b.nodes[y as usize]);
+                if !overlaps_f(&na.bbox, &nb.bbox) {
+                    return;
+                }
+                let split_a = match (na.count > 0, nb.count > 0) {
+                    (true, true) => {
+                        self.leaves(na, nb, out);
+                        return;
+                    }
+                    (false, true) => true,
+                    (true, false) => false,
+                    (false, false) => {
+                        let vol =
+                            |n: &Node| (0..3).map(|k| n.bbox[1][k] - n.bbox[0][k]).product::<f32>();
+                        vol(na) >= vol(nb)
+                    }
                 };
-                vol(na) >= vol(nb)
+                if split_a {
+                    next.extend([Task::Below(x + 1, y), Task::Below(na.start, y)]);
+                } else {
+                    next.extend([Task::Below(x, y + 1), Task::Below(x, nb.start)]);
+                }
             }
-        };
-        let (p, q) = if split_a {
-            ((x + 1, y), (na.start as usize, y))
-        } else {
-            ((x, y + 1), (x, nb.start as usize))
-        };
-        let (mut l, r) = if depth < self.par_depth {
-            rayon::join(
-                || self.below(p.0, p.1, depth + 1),
-                || self.below(q.0, q.1, depth + 1),
-            )
-        } else {
-            (
-                self.below(p.0, p.1, depth + 1),
-                self.below(q.0, q.1, depth + 1),
-            )
-        };
-        l.extend(r);
-        l
+        }
     }
 
+    /// Traverses `task` depth-first on this thread.
+    fn traverse(&self, task: Task, out: &mut Vec<(u32, u32)>) {
+        let mut stack = vec![task];
+        while let Some(t) = stack.pop() {
+            self.expand(t, &mut stack, out);
+        }
+    }
+
+    /// Pairs among the triangles of one leaf (a self-query).
+    fn leaf_within(&self, n: &Node, out: &mut Vec<(u32, u32)>) {
+        let ts = &self.a.order[n.start as usize..(n.start + n.count) as usize];
+        let mut boxes = [[[0.0; 3]; 2]; LEAF];
+        for (b, &t) in boxes.iter_mut().zip(ts) {
+            *b = tri_box(self.ma, t);
+        }
+        for i in 0..ts.len() {
+            for j in i + 1..ts.len() {
+                let (p, q) = (ts[i].min(ts[j]), ts[i].max(ts[j]));
+                if overlaps(&boxes[i], &boxes[j]) && (self.keep)(p, q) {
+                    out.push((p, q));
+                }
+            }
+        }
+    }
+
+    /// Pairs between two leaves; in a self-query reported as `(min, max)`.
     fn leaves(&self, na: &Node, nb: &Node, out: &mut Vec<(u32, u32)>) {
+        let same = std::ptr::eq(self.a, self.b);
         let ta = &self.a.order[na.start as usize..(na.start + na.count) as usize];
         let tb = &self.b.order[nb.start as usize..(nb.start + nb.count) as usize];
         let mut boxes_b = [[[0.0; 3]; 2]; LEAF];
@@ -447,7 +473,7 @@ impl Query<'_> {
             let bi = tri_box(self.ma, i);
             for (&j, bj) in tb.iter().zip(&boxes_b) {
                 if overlaps(&bi, bj) && (self.keep)(i.min(j), i.max(j)) {
-                    out.push((i, j));
+                    out.push(if same { (i.min(j), i.max(j)) } else { (i, j) });
                 }
             }
         }

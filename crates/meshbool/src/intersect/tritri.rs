@@ -10,8 +10,8 @@
 use std::cmp::Ordering;
 
 use crate::kernel::{
-    cmp_coord, longest_axis, normals_cross_sign, orient2d, orient3d_explicit, same_point, Point,
-    Sign,
+    cmp_coord_prepared, longest_axis, normals_cross_sign, orient2d, orient2d_prepared,
+    orient2d_safe, orient3d_explicit, robust_safe, same_point_prepared, Point, Prepared, Sign,
 };
 
 /// A vertex, edge or face of one mesh, by its vertex / triangle ids (edges sorted).
@@ -51,6 +51,9 @@ pub struct Tri {
     /// A projection axis in which the triangle is not degenerate, and its orientation there.
     axis: usize,
     sign: Sign,
+    /// The corners meet the conditions of Shewchuk's predicates (see `kernel`), so their
+    /// orientations skip the per-call checks.
+    safe: bool,
 }
 
 impl Tri {
@@ -68,6 +71,7 @@ impl Tri {
                 p,
                 axis,
                 sign,
+                safe: robust_safe(&[&p[0], &p[1], &p[2]]),
             })
         })
     }
@@ -89,8 +93,15 @@ impl Tri {
     /// The smallest feature of this (closed) triangle containing `x`, which must lie in
     /// the triangle's plane; `None` when `x` is outside.
     pub fn locate(&self, x: &Point) -> Option<Feature> {
+        self.locate_prepared(&Prepared::new(x.clone()))
+    }
+
+    /// [`Tri::locate`] of a prepared point (its interval enclosure computed once for
+    /// the three orientations).
+    fn locate_prepared(&self, x: &Prepared) -> Option<Feature> {
+        let c = self.p.map(|p| Prepared::new(Point::Explicit(p)));
         self.locate_by(std::array::from_fn(|k| {
-            orient2d(&self.corner(k), &self.corner((k + 1) % 3), x, self.axis)
+            orient2d_prepared(&c[k], &c[(k + 1) % 3], x, self.axis)
         }))
     }
 
@@ -145,8 +156,9 @@ pub enum TriTri {
 }
 
 /// A point on the other triangle's plane, with the feature of its own triangle it lies on.
+/// Prepared: it is compared along the planes' line and located several times.
 struct OnPlane {
-    point: Point,
+    point: Prepared,
     own: Feature,
 }
 
@@ -157,7 +169,7 @@ fn on_plane(t: &Tri, s: [Sign; 3], o: &Tri) -> Vec<OnPlane> {
     for (i, side) in s.iter().enumerate() {
         if *side == Sign::Zero {
             out.push(OnPlane {
-                point: t.corner(i),
+                point: Prepared::new(t.corner(i)),
                 own: Feature::Vertex(t.v[i]),
             });
         }
@@ -166,13 +178,13 @@ fn on_plane(t: &Tri, s: [Sign; 3], o: &Tri) -> Vec<OnPlane> {
         let j = (i + 1) % 3;
         if s[i].times(s[j]) == Sign::Negative {
             out.push(OnPlane {
-                point: Point::Lpi {
+                point: Prepared::new(Point::Lpi {
                     p: t.p[i],
                     q: t.p[j],
                     a: o.p[0],
                     b: o.p[1],
                     c: o.p[2],
-                },
+                }),
                 own: edge(t.v[i], t.v[j]),
             });
         }
@@ -214,7 +226,7 @@ pub fn intersect(a: &Tri, b: &Tri) -> TriTri {
         return TriTri::None; // parallel distinct planes cannot get here; stay safe
     };
     let sorted = |mut v: Vec<OnPlane>| {
-        v.sort_by(|x, y| cmp_coord(&x.point, &y.point, axis));
+        v.sort_by(|x, y| cmp_coord_prepared(&x.point, &y.point, axis));
         v
     };
     let ia = sorted(on_plane(a, sa, b));
@@ -224,22 +236,22 @@ pub fn intersect(a: &Tri, b: &Tri) -> TriTri {
     };
     let (a_hi, b_hi) = (ia.last().unwrap_or(a_lo), ib.last().unwrap_or(b_lo));
     // Overlap of the two collinear intervals: [later start, earlier end].
-    let lo_from_a = cmp_coord(&a_lo.point, &b_lo.point, axis) != Ordering::Less;
-    let hi_from_a = cmp_coord(&a_hi.point, &b_hi.point, axis) != Ordering::Greater;
+    let lo_from_a = cmp_coord_prepared(&a_lo.point, &b_lo.point, axis) != Ordering::Less;
+    let hi_from_a = cmp_coord_prepared(&a_hi.point, &b_hi.point, axis) != Ordering::Greater;
     let lo = if lo_from_a { a_lo } else { b_lo };
     let hi = if hi_from_a { a_hi } else { b_hi };
-    if cmp_coord(&lo.point, &hi.point, axis) == Ordering::Greater {
+    if cmp_coord_prepared(&lo.point, &hi.point, axis) == Ordering::Greater {
         return TriTri::None;
     }
     let label = |x: &OnPlane, from_a: bool| -> Option<Label> {
         Some(if from_a {
             Label {
                 a: x.own,
-                b: b.locate(&x.point)?,
+                b: b.locate_prepared(&x.point)?,
             }
         } else {
             Label {
-                a: a.locate(&x.point)?,
+                a: a.locate_prepared(&x.point)?,
                 b: x.own,
             }
         })
@@ -248,7 +260,7 @@ pub fn intersect(a: &Tri, b: &Tri) -> TriTri {
         debug_assert!(false, "an overlap end lies outside a triangle");
         return TriTri::None;
     };
-    if l0 == l1 || same_point(&lo.point, &hi.point) {
+    if l0 == l1 || same_point_prepared(&lo.point, &hi.point) {
         TriTri::Point(l0)
     } else {
         TriTri::Segment([l0, l1])
@@ -263,8 +275,13 @@ fn coplanar(a: &Tri, b: &Tri) -> TriTri {
         // Every orientation the clipping needs, once (projected along `other`'s axis):
         // `other`'s edges against `own`'s corners, `own`'s edges against `other`'s corners.
         let proj = other.axis;
+        let safe = own.safe && other.safe;
         let side = |e: &Tri, m: usize, x: &Tri, k: usize| {
-            orient2d(&e.corner(m), &e.corner((m + 1) % 3), &x.corner(k), proj)
+            if safe {
+                orient2d_safe(&e.p[m], &e.p[(m + 1) % 3], &x.p[k], proj)
+            } else {
+                orient2d(&e.corner(m), &e.corner((m + 1) % 3), &x.corner(k), proj)
+            }
         };
         let orients = Orients {
             other_edges: std::array::from_fn(|m| std::array::from_fn(|k| side(other, m, own, k))),
@@ -310,7 +327,7 @@ enum Clip {
 /// The part of edge `i` of `own` inside the coplanar triangle `other`.
 fn clip_edge(own: &Tri, i: usize, other: &Tri, own_is_a: bool, o: &Orients) -> Clip {
     let j = (i + 1) % 3;
-    let (p, q) = (own.corner(i), own.corner(j));
+    let (p, q) = (Prepared::new(own.corner(i)), Prepared::new(own.corner(j)));
     let own_edge = edge(own.v[i], own.v[j]);
     let mk = |own_f: Feature, other_f: Feature| {
         if own_is_a {
@@ -328,19 +345,22 @@ fn clip_edge(own: &Tri, i: usize, other: &Tri, own_is_a: bool, o: &Orients) -> C
     // Along the edge, order by its longest coordinate (non-zero: the corners differ there).
     let axis = longest_axis(&own.p[i], &own.p[j]);
     let proj = other.axis;
-    let mut cands: Vec<(Point, Label)> = Vec::new();
+    let mut cands: Vec<(Prepared, Label)> = Vec::new();
     for (k, x) in [(i, &p), (j, &q)] {
         let at = other.locate_by(std::array::from_fn(|m| o.other_edges[m][k]));
         if let Some(f) = at {
             cands.push((x.clone(), mk(Feature::Vertex(own.v[k]), f)));
         }
     }
-    let between = |w: &Point| {
-        let (a, b) = (cmp_coord(&p, w, axis), cmp_coord(w, &q, axis));
+    let between = |w: &Prepared| {
+        let (a, b) = (
+            cmp_coord_prepared(&p, w, axis),
+            cmp_coord_prepared(w, &q, axis),
+        );
         a != Ordering::Equal && a == b
     };
     for m in 0..3 {
-        let w = other.corner(m);
+        let w = Prepared::new(other.corner(m));
         if o.own_edges[i][m] == Sign::Zero && between(&w) {
             cands.push((w, mk(own_edge, Feature::Vertex(other.v[m]))));
         }
@@ -351,22 +371,22 @@ fn clip_edge(own: &Tri, i: usize, other: &Tri, own_is_a: bool, o: &Orients) -> C
         if crosses(o.other_edges[m][i], o.other_edges[m][j])
             && crosses(o.own_edges[i][m], o.own_edges[i][n])
         {
-            let x = Point::Ssi {
+            let x = Prepared::new(Point::Ssi {
                 p: own.p[i],
                 q: own.p[j],
                 r: other.p[m],
                 s: other.p[n],
                 axis: proj as u8,
-            };
+            });
             cands.push((x, mk(own_edge, edge(other.v[m], other.v[n]))));
         }
     }
-    cands.sort_by(|x, y| cmp_coord(&x.0, &y.0, axis));
+    cands.sort_by(|x, y| cmp_coord_prepared(&x.0, &y.0, axis));
     match cands.as_slice() {
         [] => Clip::None,
         [only] => Clip::Point(only.1),
         [first, .., last] => {
-            if same_point(&first.0, &last.0) {
+            if same_point_prepared(&first.0, &last.0) {
                 Clip::Point(first.1)
             } else {
                 Clip::Segment([first.1, last.1])

@@ -303,7 +303,7 @@ pub fn orient3d_plane(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &Point) -> Si
 /// they assume no overflow or underflow. With every coordinate zero or of magnitude in
 /// `[2^-200, 2^200]`, all differences and their error terms are multiples of `2^-252` and
 /// below `2^201`, so products of three stay in the normal range.
-fn robust_safe(points: &[&[f64; 3]]) -> bool {
+pub(crate) fn robust_safe(points: &[&[f64; 3]]) -> bool {
     const LO: f64 = 6.223_015_277_861_142e-61; // 2^-200
     const HI: f64 = 1.606_938_044_258_990_3e60; // 2^200
     points
@@ -317,10 +317,19 @@ fn plane_side_explicit<T: Num>(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f6
 }
 
 /// [`orient3d_plane`] for four input points: Shewchuk's adaptive exact predicate where its
-/// assumptions hold, the kernel's interval/exact evaluation otherwise.
+/// assumptions hold, the kernel's interval/exact evaluation otherwise. Where the floating-
+/// point filter cannot decide (points on or next to one plane), coordinates that are short
+/// binary fractions of one scale (grids, CAD data) are decided in integer arithmetic
+/// ([`orient3d_fixed`]) before Shewchuk's expansion arithmetic.
 pub fn orient3d_explicit(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> Sign {
     if !robust_safe(&[a, b, c, d]) {
         return decide!(plane_side_explicit(a, b, c, d));
+    }
+    if let Some(s) = orient3d_filter(a, b, c, d) {
+        return s;
+    }
+    if let Some(s) = orient3d_fixed(a, b, c, d) {
+        return s;
     }
     let c3 = |p: &[f64; 3]| robust::Coord3D {
         x: p[0],
@@ -329,6 +338,105 @@ pub fn orient3d_explicit(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3])
     };
     // robust's orient3d is positive when d is below (opposite to our convention).
     Sign::of_f64(robust::orient3d(c3(a), c3(b), c3(c), c3(d))).reversed()
+}
+
+/// The floating-point stage of Shewchuk's `orient3d` (its first error bound, for inputs
+/// that meet [`robust_safe`]): the sign where the rounded determinant is certain.
+fn orient3d_filter(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> Option<Sign> {
+    // Shewchuk's o3derrboundA = (7 + 56ε)ε with ε = 2⁻⁵³.
+    const BOUND: f64 = (7.0 + 56.0 * f64::EPSILON / 2.0) * (f64::EPSILON / 2.0);
+    let [u, v, w] = [b, c, d].map(|p| [p[0] - a[0], p[1] - a[1], p[2] - a[2]]);
+    // ((b − a) × (c − a)) · (d − a), as Shewchuk groups it.
+    let (uyvz, uzvy) = (u[1] * v[2], u[2] * v[1]);
+    let (uzvx, uxvz) = (u[2] * v[0], u[0] * v[2]);
+    let (uxvy, uyvx) = (u[0] * v[1], u[1] * v[0]);
+    let det = w[0] * (uyvz - uzvy) + w[1] * (uzvx - uxvz) + w[2] * (uxvy - uyvx);
+    let permanent = (uyvz.abs() + uzvy.abs()) * w[0].abs()
+        + (uzvx.abs() + uxvz.abs()) * w[1].abs()
+        + (uxvy.abs() + uyvx.abs()) * w[2].abs();
+    let bound = BOUND * permanent;
+    if det > bound {
+        Some(Sign::Positive)
+    } else if -det > bound {
+        Some(Sign::Negative)
+    } else {
+        None
+    }
+}
+
+/// Exact `orient3d` in integer arithmetic where the coordinates allow it: every
+/// coordinate an integer multiple of one power of two `2^e`, below `2^(e + 62)`, and every
+/// difference from `a` below `2^(e + 41)` in magnitude. Then the determinant, in units of
+/// `2^(3e)`, is below 2¹²⁶ and computed exactly in `i128`. `None` otherwise. Coordinates of
+/// grids and most CAD models qualify; this is the answer for points exactly on a plane,
+/// which floating-point filters cannot give.
+fn orient3d_fixed(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> Option<Sign> {
+    let all = [a, b, c, d];
+    // Exponents of the lowest set bit and of a bound on the magnitude.
+    let (mut low, mut high) = (i32::MAX, i32::MIN);
+    for &x in all.iter().flat_map(|p| p.iter()) {
+        if x == 0.0 {
+            continue;
+        }
+        let bits = x.to_bits();
+        let biased = ((bits >> 52) & 0x7ff) as i32;
+        if biased == 0 || biased == 0x7ff {
+            return None; // subnormal or not finite
+        }
+        let mantissa = (bits & ((1 << 52) - 1)) | (1 << 52);
+        let e = biased - 1075; // x = ±mantissa · 2^e
+        low = low.min(e + mantissa.trailing_zeros() as i32);
+        high = high.max(e + 53);
+    }
+    if low == i32::MAX {
+        return Some(Sign::Zero); // all coordinates zero
+    }
+    if high - low > 62 {
+        return None;
+    }
+    // Each coordinate as an integer in units of 2^low (exact shifts).
+    let int = |x: f64| -> i64 {
+        if x == 0.0 {
+            return 0;
+        }
+        let bits = x.to_bits();
+        let e = ((bits >> 52) & 0x7ff) as i32 - 1075;
+        let mantissa = ((bits & ((1 << 52) - 1)) | (1 << 52)) as i64;
+        let shifted = if e >= low {
+            mantissa << (e - low)
+        } else {
+            mantissa >> (low - e)
+        };
+        if x < 0.0 {
+            -shifted
+        } else {
+            shifted
+        }
+    };
+    let [ia, ib, ic, id] = all.map(|p| p.map(int));
+    const LIMIT: i64 = 1 << 41;
+    let mut diffs = [[0i64; 3]; 3];
+    for (row, p) in diffs.iter_mut().zip([ib, ic, id]) {
+        for k in 0..3 {
+            let x = p[k] - ia[k]; // both below 2^62: no overflow
+            if x.abs() >= LIMIT {
+                return None;
+            }
+            row[k] = x;
+        }
+    }
+    let [u, v, w] = diffs.map(|r| r.map(i128::from));
+    let n = [
+        u[1] * v[2] - u[2] * v[1],
+        u[2] * v[0] - u[0] * v[2],
+        u[0] * v[1] - u[1] * v[0],
+    ];
+    let det = n[0] * w[0] + n[1] * w[1] + n[2] * w[2];
+    Some(match det.cmp(&0) {
+        Ordering::Greater => Sign::Positive,
+        Ordering::Less => Sign::Negative,
+        Ordering::Equal => Sign::Zero,
+    })
 }
 
 /// A triangle's plane prepared for many side tests against explicit points: a floating-
@@ -454,6 +562,27 @@ pub(crate) fn orient2d_prepared(a: &Prepared, b: &Prepared, c: &Prepared, axis: 
     [a, b, c].iter().fold(det, |s, p| s.times(p.sign_of_w()))
 }
 
+/// [`cmp_coord`] of prepared points: the same exact answer, the interval filter from the
+/// stored enclosures.
+pub(crate) fn cmp_coord_prepared(a: &Prepared, b: &Prepared, axis: usize) -> Ordering {
+    if let (Some(pa), Some(pb)) = (a.point.explicit(), b.point.explicit()) {
+        return pa[axis].partial_cmp(&pb[axis]).unwrap_or(Ordering::Equal);
+    }
+    let (ea, eb) = (&a.enclosure, &b.enclosure);
+    let diff = match ea[axis].mul(&eb[3]).sub(&eb[axis].mul(&ea[3])).sign() {
+        Some(s) => s,
+        None => coord_diff::<Dyadic>(&a.point, &b.point, axis)
+            .sign()
+            .expect("exact signs are always decided"),
+    };
+    (diff.times(a.sign_of_w()).times(b.sign_of_w()) as i8).cmp(&0)
+}
+
+/// [`same_point`] of prepared points.
+pub(crate) fn same_point_prepared(a: &Prepared, b: &Prepared) -> bool {
+    (0..3).all(|k| cmp_coord_prepared(a, b, k) == Ordering::Equal)
+}
+
 /// Shewchuk's adaptive `orient2d` where it is exact: three explicit points whose
 /// coordinates meet [`robust_safe`]; `None` otherwise.
 fn orient2d_shewchuk(a: &Point, b: &Point, c: &Point, axis: usize) -> Option<Sign> {
@@ -464,6 +593,17 @@ fn orient2d_shewchuk(a: &Point, b: &Point, c: &Point, axis: usize) -> Option<Sig
     let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
     let c2 = |p: [f64; 3]| robust::Coord { x: p[i], y: p[j] };
     Some(Sign::of_f64(robust::orient2d(c2(pa), c2(pb), c2(pc))))
+}
+
+/// [`orient2d`] of three input points whose coordinates are known to meet [`robust_safe`]
+/// (checked once per triangle by callers that ask many orientations of the same corners):
+/// Shewchuk's adaptive predicate without the per-call checks.
+#[inline]
+pub(crate) fn orient2d_safe(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], axis: usize) -> Sign {
+    debug_assert!(robust_safe(&[a, b, c]));
+    let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+    let c2 = |p: &[f64; 3]| robust::Coord { x: p[i], y: p[j] };
+    Sign::of_f64(robust::orient2d(c2(a), c2(b), c2(c)))
 }
 
 /// Exact comparison of coordinate `axis` of two points.

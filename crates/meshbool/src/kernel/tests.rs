@@ -154,7 +154,15 @@ fn predicates_agree_with_rationals_on_random_points() {
                 assert_eq!(orient2d(&pts[0], &pts[1], &pts[2], axis), want);
                 let got = orient2d_prepared(&prepared[0], &prepared[1], &prepared[2], axis);
                 assert_eq!(got, want);
+                let want = oracle_point(&pts[0])[axis].cmp(&oracle_point(&pts[1])[axis]);
+                assert_eq!(cmp_coord(&pts[0], &pts[1], axis), want);
+                assert_eq!(cmp_coord_prepared(&prepared[0], &prepared[1], axis), want);
             }
+            assert!(same_point_prepared(&prepared[2], &prepared[2]));
+            assert_eq!(
+                same_point_prepared(&prepared[0], &prepared[1]),
+                oracle_point(&pts[0]) == oracle_point(&pts[1])
+            );
         }
     }
 }
@@ -314,11 +322,19 @@ fn coplanar_segment_crossings() {
                 c: up,
             };
             assert!(same_point(&x, &lpi), "{x:?}");
+            // The same point by two constructions: every coordinate exactly equal, which
+            // the stored enclosures cannot decide either.
+            assert!(same_point_prepared(&pre(&x), &pre(&lpi)), "{x:?}");
             assert_eq!(oracle_point(&x), oracle_point(&lpi));
             let other = Point::Explicit(pt(&mut rng));
             for axis in 0..3 {
                 let want = oracle_point(&x)[axis].cmp(&oracle_point(&other)[axis]);
                 assert_eq!(cmp_coord(&x, &other, axis), want);
+                assert_eq!(cmp_coord_prepared(&pre(&x), &pre(&other), axis), want);
+                assert_eq!(
+                    cmp_coord_prepared(&pre(&other), &pre(&x), axis),
+                    want.reverse()
+                );
             }
         }
     }
@@ -433,5 +449,58 @@ fn float_plane_filter_never_contradicts_the_exact_sign() {
     assert_eq!(
         FloatPlane::new(&huge).side_exact(&huge, &[0.0, 0.0, 1e210]),
         Sign::Positive
+    );
+}
+
+/// The integer path of `orient3d_explicit` on grid points (short binary fractions, also
+/// offset to UTM-sized dyadic coordinates): decided exactly, exact zeros included (points
+/// built on the plane of the first three), and refused where the coordinates do not fit.
+#[test]
+fn fixed_point_orient3d_agrees_with_rationals() {
+    let mut rng = Rng(0x5eed);
+    for (offset, step) in [(0.0, 1.0 / 16.0), (524_288.0, 1.0 / 64.0), (-3.0, 0.25)] {
+        let grid = |rng: &mut Rng| -> [f64; 3] {
+            std::array::from_fn(|_| offset + step * ((rng.next() % 2001) as f64 - 1000.0))
+        };
+        let (mut zeros, mut decided) = (0, 0);
+        for i in 0..2000 {
+            let (a, b, c) = (grid(&mut rng), grid(&mut rng), grid(&mut rng));
+            let d = if i % 2 == 0 {
+                // On the plane of a b c: a + s (b − a) + t (c − a), s and t small integers.
+                let (s, t) = ((rng.next() % 7) as f64 - 3.0, (rng.next() % 7) as f64 - 3.0);
+                std::array::from_fn(|k| a[k] + s * (b[k] - a[k]) + t * (c[k] - a[k]))
+            } else {
+                grid(&mut rng)
+            };
+            let e = |p: [f64; 3]| Point::Explicit(p);
+            let want = oracle_orient3d(&e(a), &e(b), &e(c), &e(d));
+            let got = orient3d_fixed(&a, &b, &c, &d).expect("grid coordinates fit");
+            assert_eq!(got, want, "{a:?} {b:?} {c:?} {d:?}");
+            assert_eq!(orient3d_explicit(&a, &b, &c, &d), want);
+            if let Some(s) = orient3d_filter(&a, &b, &c, &d) {
+                assert_eq!(s, want);
+                decided += 1;
+            }
+            zeros += usize::from(want == Sign::Zero);
+        }
+        assert!(zeros >= 1000, "{zeros}");
+        assert!(decided > 0 && decided <= 2000 - zeros);
+    }
+    // Full-precision coordinates do not fit: left to the expansion arithmetic.
+    let p = |x: f64| [x, 2.0 * x, 0.1];
+    assert_eq!(
+        orient3d_fixed(&p(0.1), &p(0.3), &p(0.7), &[1.0, 1.0, 1.0]),
+        None
+    );
+    // Spans wider than 2^41 between differences: refused, not wrong.
+    let far = [2f64.powi(45), 0.0, 0.0];
+    let unit = [1.0 / 1024.0, 0.0, 0.0];
+    assert_eq!(
+        orient3d_fixed(&[0.0; 3], &far, &unit, &[0.0, 1.0, 0.0]),
+        None
+    );
+    assert_eq!(
+        orient3d_fixed(&[0.0; 3], &[0.0; 3], &[0.0; 3], &[0.0; 3]),
+        Some(Sign::Zero)
     );
 }
