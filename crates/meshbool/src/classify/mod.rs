@@ -231,20 +231,18 @@ pub fn classify(x: &Operand, y: &Operand, y_closed: bool) -> Classified {
     // Exact sums while they are cheap, the hierarchy beyond (deterministic either way).
     let fast =
         (queries.len() as f64 * y_in.triangles.len() as f64 > 2e7).then(|| FastWinding::new(y_in));
-    let answers: Vec<Class> = queries
-        .par_iter()
-        .map(|&t| {
-            let p = centroid(t);
-            let w = fast
-                .as_ref()
-                .map_or_else(|| winding_number(y_in, p), |f| f.at(p));
-            if w > threshold {
-                Class::Inside
-            } else {
-                Class::Outside
-            }
-        })
-        .collect();
+    let points: Vec<[f64; 3]> = queries.iter().map(|&t| centroid(t)).collect();
+    let winding: Vec<f64> = match &fast {
+        Some(f) => f.at_many(&points),
+        None => points.iter().map(|&p| winding_number(y_in, p)).collect(),
+    };
+    let answers = winding.into_iter().map(|w| {
+        if w > threshold {
+            Class::Inside
+        } else {
+            Class::Outside
+        }
+    });
     let mut patch_answer: Vec<Option<Class>> = vec![None; patches as usize];
     for (&t, c) in queries.iter().zip(answers) {
         match decided[patch[t] as usize] {

@@ -13,27 +13,33 @@ use crate::bvh::morton_order;
 use crate::vec3::{cross, dot, norm, sub};
 use crate::Mesh;
 
-/// Signed solid angle of triangle `abc` seen from `p`, over 4π (van Oosterom–Strackee):
-/// positive when `p` is behind the triangle (its normal points away from `p`).
-fn solid_angle(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], p: &[f64; 3]) -> f64 {
+/// `atan2` of van Oosterom–Strackee's formula for the solid angle of triangle `abc` seen
+/// from `p`: the solid angle is twice this; positive when `p` is behind the triangle (its
+/// normal points away from `p`).
+#[inline]
+fn half_solid_angle(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], p: &[f64; 3]) -> f64 {
     let (a, b, c) = (sub(a, p), sub(b, p), sub(c, p));
     let (la, lb, lc) = (norm(&a), norm(&b), norm(&c));
     let det = dot(&a, &cross(&b, &c));
     let den = la * lb * lc + dot(&a, &b) * lc + dot(&b, &c) * la + dot(&c, &a) * lb;
-    2.0 * det.atan2(den) / (4.0 * std::f64::consts::PI)
+    det.atan2(den)
 }
+
+/// Half solid angles summed, to a winding number: Ω / 4π = 2 · half / 4π.
+const HALF_ANGLE_TO_WINDING: f64 = 1.0 / (2.0 * std::f64::consts::PI);
 
 /// Generalized winding number of `mesh` at `p`: 1 inside a closed, outward-facing mesh, 0
 /// outside; ±1/2 on either side of a large open surface (positive behind it, where its
 /// normals point away). Exact sum over all triangles (in floating point), in parallel.
 pub fn winding_number(mesh: &Mesh, p: [f64; 3]) -> f64 {
-    (0..mesh.triangles.len())
+    let half: f64 = (0..mesh.triangles.len())
         .into_par_iter()
         .map(|t| {
             let [a, b, c] = mesh.corners(t);
-            solid_angle(&a, &b, &c, &p)
+            half_solid_angle(&a, &b, &c, &p)
         })
-        .sum()
+        .sum();
+    half * HALF_ANGLE_TO_WINDING
 }
 
 /// Triangles per leaf of [`FastWinding`].
@@ -47,23 +53,40 @@ const LEAF: usize = 8;
 /// ever decides a threshold (1/2 closed, 0 open), never topology.
 const BETA: f64 = 2.5;
 
+/// A cluster as the queries read it, kept small (80 bytes) because every query walks
+/// hundreds of them: the centre in `f64` (queries subtract it from input coordinates,
+/// which may be UTM-sized), the expansion's coefficients in `f32` (each far-field term is
+/// itself an approximation good to a few per cent; `f32` adds 1e-7 of it).
 #[derive(Clone, Copy, Debug, Default)]
 struct Node {
-    /// Area-weighted normal sum (half the cross products).
-    normal: [f64; 3],
     /// Area-weighted centroid.
     centre: [f64; 3],
-    /// Total area.
-    area: f64,
-    /// Second moment about `centre`: Σ area-normal ⊗ (triangle centroid − centre).
-    moment: [[f64; 3]; 3],
-    /// A bound on the distance from `centre` to any corner in the cluster.
-    radius: f64,
+    /// `(BETA · radius)²`: the query is in the far field beyond this squared distance.
+    far2: f64,
+    /// Area-weighted normal sum (half the cross products).
+    normal: [f32; 3],
+    /// Symmetric part of the second moment about `centre` (Σ area-normal ⊗ (triangle
+    /// centroid − centre)): xx, yy, zz, xy, xz, yz. Only it enters the expansion.
+    moment: [f32; 6],
     /// Range of the cluster in `order`.
     start: u32,
     end: u32,
     /// Right child (left child follows the node); 0 for a leaf.
     right: u32,
+}
+
+/// What building a subtree needs from its children: the full-precision sums and bounds.
+#[derive(Clone, Copy, Debug)]
+struct Sums {
+    normal: [f64; 3],
+    centre: [f64; 3],
+    area: f64,
+    /// Σ area-normal ⊗ (triangle centroid − centre).
+    moment: [[f64; 3]; 3],
+    /// A bound on the distance from `centre` to any corner in the cluster.
+    radius: f64,
+    /// Bounding box of the corners.
+    bbox: [[f64; 3]; 2],
 }
 
 /// Nodes of the subtree over `n` triangles.
@@ -98,8 +121,7 @@ impl<'a> FastWinding<'a> {
     }
 
     /// Fills `nodes` (the pre-order subtree over `order[start..end]`, its first node having
-    /// index `base`) and returns its root with the bounding box of its corners (needed only
-    /// while building, so kept out of the nodes that queries walk).
+    /// index `base`) and returns the sums of its root.
     fn build(
         mesh: &Mesh,
         order: &[u32],
@@ -107,9 +129,9 @@ impl<'a> FastWinding<'a> {
         end: usize,
         base: usize,
         nodes: &mut [Node],
-    ) -> (Node, [[f64; 3]; 2]) {
+    ) -> Sums {
         let n = end - start;
-        let (node, bbox) = if n <= LEAF {
+        let (sums, right) = if n <= LEAF {
             let (mut normal, mut weighted, mut area) = ([0.0; 3], [0.0; 3], 0.0);
             let tri = |t: u32| {
                 let [a, b, c] = mesh.corners(t as usize);
@@ -140,38 +162,36 @@ impl<'a> FastWinding<'a> {
                     }
                 }
             }
-            let radius = order[start..end]
-                .iter()
-                .flat_map(|&t| mesh.corners(t as usize))
+            let corners = || {
+                order[start..end]
+                    .iter()
+                    .flat_map(|&t| mesh.corners(t as usize))
+            };
+            let radius = corners()
                 .map(|p| norm(&sub(&p, &centre)))
                 .fold(0.0, f64::max);
             let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-            for p in order[start..end]
-                .iter()
-                .flat_map(|&t| mesh.corners(t as usize))
-            {
+            for p in corners() {
                 for k in 0..3 {
                     lo[k] = lo[k].min(p[k]);
                     hi[k] = hi[k].max(p[k]);
                 }
             }
-            let node = Node {
+            let sums = Sums {
                 normal,
                 centre,
                 area,
                 moment,
                 radius,
-                start: start as u32,
-                end: end as u32,
-                right: 0,
+                bbox: [lo, hi],
             };
-            (node, [lo, hi])
+            (sums, 0)
         } else {
             let mid = start + n / 2;
             let (_, rest) = nodes.split_at_mut(1);
             let (left, right) = rest.split_at_mut(subtree_nodes(n / 2));
             let right_base = base + 1 + left.len();
-            let ((l, [llo, lhi]), (r, [rlo, rhi])) = if n > 1 << 14 {
+            let (l, r) = if n > 1 << 14 {
                 rayon::join(
                     || Self::build(mesh, order, start, mid, base + 1, left),
                     || Self::build(mesh, order, mid, end, right_base, right),
@@ -190,8 +210,8 @@ impl<'a> FastWinding<'a> {
             };
             // Every corner lies within a child's radius of the child's centre, and in the
             // box of both children's boxes: the smaller of the two bounds.
-            let lo: [f64; 3] = std::array::from_fn(|k| llo[k].min(rlo[k]));
-            let hi: [f64; 3] = std::array::from_fn(|k| lhi[k].max(rhi[k]));
+            let lo: [f64; 3] = std::array::from_fn(|k| l.bbox[0][k].min(r.bbox[0][k]));
+            let hi: [f64; 3] = std::array::from_fn(|k| l.bbox[1][k].max(r.bbox[1][k]));
             let far: [f64; 3] = std::array::from_fn(|k| (centre[k] - lo[k]).max(hi[k] - centre[k]));
             let radius = (norm(&sub(&l.centre, &centre)) + l.radius)
                 .max(norm(&sub(&r.centre, &centre)) + r.radius)
@@ -205,20 +225,35 @@ impl<'a> FastWinding<'a> {
                         + r.normal[i] * (r.centre[j] - centre[j])
                 })
             });
-            let node = Node {
+            let sums = Sums {
                 normal: std::array::from_fn(|k| l.normal[k] + r.normal[k]),
                 centre,
                 area,
                 moment,
                 radius,
-                start: start as u32,
-                end: end as u32,
-                right: right_base as u32,
+                bbox: [lo, hi],
             };
-            (node, [lo, hi])
+            (sums, right_base as u32)
         };
-        nodes[0] = node;
-        (node, bbox)
+        let m = &sums.moment;
+        let sym = |i: usize, j: usize| ((m[i][j] + m[j][i]) / 2.0) as f32;
+        nodes[0] = Node {
+            centre: sums.centre,
+            far2: (BETA * sums.radius).powi(2),
+            normal: sums.normal.map(|x| x as f32),
+            moment: [
+                sym(0, 0),
+                sym(1, 1),
+                sym(2, 2),
+                sym(0, 1),
+                sym(0, 2),
+                sym(1, 2),
+            ],
+            start: start as u32,
+            end: end as u32,
+            right,
+        };
+        sums
     }
 
     /// The winding number at `p`, approximated far from the surface (relative error of
@@ -227,7 +262,8 @@ impl<'a> FastWinding<'a> {
         if self.nodes.is_empty() {
             return 0.0;
         }
-        let mut sum = 0.0;
+        // Far field times 4π, and half solid angles, summed apart and scaled once.
+        let (mut far, mut half) = (0.0, 0.0);
         // The tree is balanced: at most one pending right child per level.
         let mut stack = [0u32; 64];
         let mut depth = 1;
@@ -236,22 +272,24 @@ impl<'a> FastWinding<'a> {
             let i = stack[depth] as usize;
             let n = &self.nodes[i];
             let d = sub(&n.centre, &p);
-            let dist = norm(&d);
-            if dist > BETA * n.radius {
-                // Second-order far field of (1/4π) ∫ n · (x − p) / |x − p|³ with
-                // x = c + y, d = c − p:  (N·d + tr M) / |d|³ − 3 dᵀM d / |d|⁵.
-                let m = &n.moment;
-                let trace = m[0][0] + m[1][1] + m[2][2];
-                let dmd: f64 = (0..3)
-                    .map(|i| d[i] * (0..3).map(|j| m[i][j] * d[j]).sum::<f64>())
-                    .sum();
-                let d2 = dist * dist;
-                sum += ((dot(&n.normal, &d) + trace) / (d2 * dist) - 3.0 * dmd / (d2 * d2 * dist))
-                    / (4.0 * std::f64::consts::PI);
+            let d2 = dot(&d, &d);
+            if d2 > n.far2 {
+                // Second-order far field of ∫ n · (x − p) / |x − p|³ with x = c + y,
+                // d = c − p:  (N·d + tr M) / |d|³ − 3 dᵀM d / |d|⁵ (only M's symmetric
+                // part enters).
+                let [xx, yy, zz, xy, xz, yz] = n.moment.map(f64::from);
+                let dmd = d[0] * d[0] * xx
+                    + d[1] * d[1] * yy
+                    + d[2] * d[2] * zz
+                    + 2.0 * (d[0] * d[1] * xy + d[0] * d[2] * xz + d[1] * d[2] * yz);
+                let nd = dot(&n.normal.map(f64::from), &d);
+                let r = 1.0 / d2.sqrt();
+                let inv3 = r * r * r;
+                far += ((nd + xx + yy + zz) - 3.0 * dmd * r * r) * inv3;
             } else if n.right == 0 {
                 for &t in &self.order[n.start as usize..n.end as usize] {
                     let [a, b, c] = self.mesh.corners(t as usize);
-                    sum += solid_angle(&a, &b, &c, &p);
+                    half += half_solid_angle(&a, &b, &c, &p);
                 }
             } else {
                 stack[depth] = n.right;
@@ -259,8 +297,140 @@ impl<'a> FastWinding<'a> {
                 depth += 2;
             }
         }
-        sum
+        far / (4.0 * std::f64::consts::PI) + half * HALF_ANGLE_TO_WINDING
     }
+
+    /// [`FastWinding::at`] of many points, the same values bit for bit. Points are taken
+    /// in groups of up to 64 neighbours (Morton order) that walk the tree together: each
+    /// node is read once per group, every point of the group still decides near or far by
+    /// its own distance (a bit mask of the points still descending), and its terms are
+    /// added in the same order as a walk of its own. Reading a node is what a lone walk
+    /// waits on; the group shares it. Parallel over groups.
+    pub fn at_many(&self, points: &[[f64; 3]]) -> Vec<f64> {
+        const GROUP: usize = 64;
+        if self.nodes.is_empty() {
+            return vec![0.0; points.len()];
+        }
+        let order = morton_order_of_points(points);
+        let groups: Vec<(usize, [f64; GROUP])> = order
+            .par_chunks(GROUP)
+            .enumerate()
+            .map(|(g, ids)| {
+                let mut pts = [[0.0; 3]; GROUP];
+                for (p, &i) in pts.iter_mut().zip(ids) {
+                    *p = points[i as usize];
+                }
+                (g, self.group(&pts[..ids.len()]))
+            })
+            .collect();
+        let mut out = vec![0.0; points.len()];
+        for (g, values) in groups {
+            for (k, &i) in order[g * GROUP..].iter().take(GROUP).enumerate() {
+                out[i as usize] = values[k];
+            }
+        }
+        out
+    }
+
+    /// Winding numbers of up to 64 points in one walk (see [`FastWinding::at_many`]).
+    fn group(&self, pts: &[[f64; 3]]) -> [f64; 64] {
+        let (mut far, mut half) = ([0.0f64; 64], [0.0f64; 64]);
+        let all = if pts.len() == 64 {
+            u64::MAX
+        } else {
+            (1u64 << pts.len()) - 1
+        };
+        // Depth-first as in `at`: at most one pending right child per level.
+        let mut stack = [(0u32, 0u64); 64];
+        stack[0] = (0, all);
+        let mut depth = 1;
+        while depth > 0 {
+            depth -= 1;
+            let (i, mask) = stack[depth];
+            let n = &self.nodes[i as usize];
+            let [xx, yy, zz, xy, xz, yz] = n.moment.map(f64::from);
+            let normal = n.normal.map(f64::from);
+            let (mut near, mut m) = (0u64, mask);
+            while m != 0 {
+                let k = m.trailing_zeros() as usize;
+                m &= m - 1;
+                let d = sub(&n.centre, &pts[k]);
+                let d2 = dot(&d, &d);
+                if d2 > n.far2 {
+                    let dmd = d[0] * d[0] * xx
+                        + d[1] * d[1] * yy
+                        + d[2] * d[2] * zz
+                        + 2.0 * (d[0] * d[1] * xy + d[0] * d[2] * xz + d[1] * d[2] * yz);
+                    let r = 1.0 / d2.sqrt();
+                    let inv3 = r * r * r;
+                    far[k] += ((dot(&normal, &d) + xx + yy + zz) - 3.0 * dmd * r * r) * inv3;
+                } else {
+                    near |= 1 << k;
+                }
+            }
+            if near == 0 {
+                continue;
+            }
+            if n.right == 0 {
+                for &t in &self.order[n.start as usize..n.end as usize] {
+                    let [a, b, c] = self.mesh.corners(t as usize);
+                    let mut m = near;
+                    while m != 0 {
+                        let k = m.trailing_zeros() as usize;
+                        m &= m - 1;
+                        half[k] += half_solid_angle(&a, &b, &c, &pts[k]);
+                    }
+                }
+            } else {
+                stack[depth] = (n.right, near);
+                stack[depth + 1] = (i + 1, near);
+                depth += 2;
+            }
+        }
+        std::array::from_fn(|k| {
+            far[k] / (4.0 * std::f64::consts::PI) + half[k] * HALF_ANGLE_TO_WINDING
+        })
+    }
+}
+
+/// Indices of `points` in Morton order of their positions (10 bits per axis over their
+/// bounding box): neighbours in space become neighbours in the list.
+fn morton_order_of_points(points: &[[f64; 3]]) -> Vec<u32> {
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for p in points {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let scale: [f64; 3] = std::array::from_fn(|k| {
+        let ext = hi[k] - lo[k];
+        if ext > 0.0 {
+            1023.0 / ext
+        } else {
+            0.0
+        }
+    });
+    let spread = |x: u32| -> u32 {
+        let mut x = x & 0x3ff;
+        x = (x | x << 16) & 0x0300_00ff;
+        x = (x | x << 8) & 0x0300_f00f;
+        x = (x | x << 4) & 0x030c_30c3;
+        (x | x << 2) & 0x0924_9249
+    };
+    let mut keyed: Vec<(u32, u32)> = points
+        .par_iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let cell = |k: usize| (((p[k] - lo[k]) * scale[k]).max(0.0) as u32).min(1023);
+            (
+                spread(cell(0)) | spread(cell(1)) << 1 | spread(cell(2)) << 2,
+                i as u32,
+            )
+        })
+        .collect();
+    keyed.par_sort_unstable();
+    keyed.into_iter().map(|(_, i)| i).collect()
 }
 
 #[cfg(test)]
@@ -287,6 +457,38 @@ mod tests {
             }
         }
         assert!(worst < 0.03, "worst difference {worst}");
+    }
+
+    #[test]
+    fn many_points_at_once_give_the_same_values_bit_for_bit() {
+        let mut rng = Rng(13);
+        let meshes = [
+            torus([0.0; 3], 2.0, 0.6, 48, 24),
+            heightfield([-2.0, -2.0], [2.0, 2.0], 30, 30, |x, y| 0.2 * x * y),
+        ];
+        for m in &meshes {
+            let fast = FastWinding::new(m);
+            // Scattered points, points clustered near the surface, and a count that
+            // leaves a partial last group.
+            let mut pts: Vec<[f64; 3]> = (0..300)
+                .map(|_| std::array::from_fn(|_| 6.0 * (rng.unit() - 0.5)))
+                .collect();
+            pts.extend((0..157).map(|_| {
+                let [a, b, c] = m.corners((rng.next() % m.triangles.len() as u64) as usize);
+                let (u, v) = (rng.unit() / 2.0, rng.unit() / 2.0);
+                std::array::from_fn(|k| a[k] + u * (b[k] - a[k]) + v * (c[k] - a[k]) + 1e-3)
+            }));
+            let many = fast.at_many(&pts);
+            assert_eq!(many.len(), pts.len());
+            for (p, w) in pts.iter().zip(&many) {
+                assert_eq!(w.to_bits(), fast.at(*p).to_bits(), "{p:?}");
+            }
+        }
+        assert!(FastWinding::new(&meshes[0]).at_many(&[]).is_empty());
+        assert_eq!(
+            FastWinding::new(&Mesh::default()).at_many(&[[0.0; 3]]),
+            vec![0.0]
+        );
     }
 
     #[test]
