@@ -80,6 +80,9 @@ pub struct Bvh {
     nodes: Vec<Node>,
     /// Triangle ids in leaf order.
     order: Vec<u32>,
+    /// Triangle boxes in leaf order, in `f32` rounded outward: leaf pairs test these
+    /// (contiguous, no indirection) and confirm an overlap on the exact boxes.
+    boxes: Vec<Box3f>,
 }
 
 /// Spreads the low 21 bits of `x` to every third bit.
@@ -214,44 +217,56 @@ impl Bvh {
         if order.is_empty() {
             return Bvh::default();
         }
+        let boxes: Vec<Box3f> = order
+            .par_iter()
+            .map(|&t| {
+                let [lo, hi] = tri_box(mesh, t);
+                [lo.map(down), hi.map(up)]
+            })
+            .collect();
         let mut nodes = vec![EMPTY; 2 * leaves(order.len()) - 1];
-        Self::build(&mut nodes, 0, 0, &order, mesh);
-        Bvh { nodes, order }
+        Self::build(&mut nodes, 0, 0, &boxes);
+        Bvh {
+            nodes,
+            order,
+            boxes,
+        }
     }
 
-    /// Fills `nodes` (the pre-order subtree of `order`, whose first node has index `base`
-    /// and whose first triangle is at `offset` in the whole order) and returns its box.
-    fn build(nodes: &mut [Node], base: usize, offset: usize, order: &[u32], mesh: &Mesh) -> Box3f {
-        if order.len() <= LEAF {
-            let b = order[1..].iter().fold(tri_box(mesh, order[0]), |b, &t| {
-                let c = tri_box(mesh, t);
-                [
-                    std::array::from_fn(|k| b[0][k].min(c[0][k])),
-                    std::array::from_fn(|k| b[1][k].max(c[1][k])),
-                ]
-            });
-            let bbox = [b[0].map(down), b[1].map(up)];
+    /// Fills `nodes` (the pre-order subtree over the triangles whose boxes are `boxes`,
+    /// the first at `offset` in the whole order; its first node has index `base`) and
+    /// returns its box. Leaf boxes are unions of the outward-rounded triangle boxes, which
+    /// is the outward rounding of the exact union (rounding is monotone).
+    fn build(nodes: &mut [Node], base: usize, offset: usize, boxes: &[Box3f]) -> Box3f {
+        let union = |b: Box3f, c: &Box3f| -> Box3f {
+            [
+                std::array::from_fn(|k| b[0][k].min(c[0][k])),
+                std::array::from_fn(|k| b[1][k].max(c[1][k])),
+            ]
+        };
+        if boxes.len() <= LEAF {
+            let bbox = boxes[1..].iter().fold(boxes[0], union);
             nodes[0] = Node {
                 bbox,
                 start: offset as u32,
-                count: order.len() as u32,
+                count: boxes.len() as u32,
             };
             return bbox;
         }
-        let mid = split_at(order.len());
+        let mid = split_at(boxes.len());
         let (head, rest) = nodes.split_at_mut(1);
         let (left, right) = rest.split_at_mut(2 * leaves(mid) - 1);
-        let (lo, hi) = order.split_at(mid);
+        let (lo, hi) = boxes.split_at(mid);
         let right_base = base + 1 + left.len();
-        let (bl, br) = if order.len() > 1 << 14 {
+        let (bl, br) = if boxes.len() > 1 << 14 {
             rayon::join(
-                || Self::build(left, base + 1, offset, lo, mesh),
-                || Self::build(right, right_base, offset + mid, hi, mesh),
+                || Self::build(left, base + 1, offset, lo),
+                || Self::build(right, right_base, offset + mid, hi),
             )
         } else {
             (
-                Self::build(left, base + 1, offset, lo, mesh),
-                Self::build(right, right_base, offset + mid, hi, mesh),
+                Self::build(left, base + 1, offset, lo),
+                Self::build(right, right_base, offset + mid, hi),
             )
         };
         let bbox = [
@@ -294,6 +309,7 @@ impl Bvh {
             ma: mesh,
             mb: other_mesh,
             keep: &|_, _| true,
+            exact: true,
         };
         let mut pairs = q.run(Task::Below(0, 0));
         pairs.par_sort_unstable();
@@ -325,6 +341,31 @@ impl Bvh {
             ma: mesh,
             mb: mesh,
             keep,
+            exact: true,
+        };
+        q.run(Task::Within(0))
+    }
+
+    /// Like [`Bvh::self_pairs_where`], but the candidates are the pairs whose boxes overlap
+    /// once rounded outward to `f32`: every pair of [`Bvh::self_pairs`] and possibly a few
+    /// whose boxes only come within `f32` rounding of each other. For a `keep` that is an
+    /// exact test of its own (such as a triangle–triangle intersection test), which then
+    /// spares the exact box comparison of every candidate.
+    pub fn self_candidates_where(
+        &self,
+        mesh: &Mesh,
+        keep: &(dyn Fn(u32, u32) -> bool + Sync),
+    ) -> Vec<(u32, u32)> {
+        if self.is_empty() {
+            return Vec::new();
+        }
+        let q = Query {
+            a: self,
+            b: self,
+            ma: mesh,
+            mb: mesh,
+            keep,
+            exact: false,
         };
         q.run(Task::Within(0))
     }
@@ -350,6 +391,8 @@ struct Query<'a> {
     mb: &'a Mesh,
     /// Which overlapping pairs to report.
     keep: &'a (dyn Fn(u32, u32) -> bool + Sync),
+    /// Confirm each overlap of rounded boxes on the exact boxes.
+    exact: bool,
 }
 
 impl Query<'_> {
@@ -445,34 +488,40 @@ impl Query<'_> {
 
     /// Pairs among the triangles of one leaf (a self-query).
     fn leaf_within(&self, n: &Node, out: &mut Vec<(u32, u32)>) {
-        let ts = &self.a.order[n.start as usize..(n.start + n.count) as usize];
-        let mut boxes = [[[0.0; 3]; 2]; LEAF];
-        for (b, &t) in boxes.iter_mut().zip(ts) {
-            *b = tri_box(self.ma, t);
-        }
+        let range = n.start as usize..(n.start + n.count) as usize;
+        let (ts, bs) = (&self.a.order[range.clone()], &self.a.boxes[range]);
         for i in 0..ts.len() {
             for j in i + 1..ts.len() {
                 let (p, q) = (ts[i].min(ts[j]), ts[i].max(ts[j]));
-                if overlaps(&boxes[i], &boxes[j]) && (self.keep)(p, q) {
+                if overlaps_f(&bs[i], &bs[j])
+                    && (!self.exact || overlaps(&tri_box(self.ma, p), &tri_box(self.ma, q)))
+                    && (self.keep)(p, q)
+                {
                     out.push((p, q));
                 }
             }
         }
     }
 
-    /// Pairs between two leaves; in a self-query reported as `(min, max)`.
+    /// Pairs between two leaves; in a self-query reported as `(min, max)`. The rounded
+    /// boxes filter, the exact boxes decide.
     fn leaves(&self, na: &Node, nb: &Node, out: &mut Vec<(u32, u32)>) {
         let same = std::ptr::eq(self.a, self.b);
-        let ta = &self.a.order[na.start as usize..(na.start + na.count) as usize];
-        let tb = &self.b.order[nb.start as usize..(nb.start + nb.count) as usize];
-        let mut boxes_b = [[[0.0; 3]; 2]; LEAF];
-        for (b, &j) in boxes_b.iter_mut().zip(tb) {
-            *b = tri_box(self.mb, j);
-        }
-        for &i in ta {
-            let bi = tri_box(self.ma, i);
-            for (&j, bj) in tb.iter().zip(&boxes_b) {
-                if overlaps(&bi, bj) && (self.keep)(i.min(j), i.max(j)) {
+        let ra = na.start as usize..(na.start + na.count) as usize;
+        let rb = nb.start as usize..(nb.start + nb.count) as usize;
+        let (ta, ba) = (&self.a.order[ra.clone()], &self.a.boxes[ra]);
+        let (tb, bb) = (&self.b.order[rb.clone()], &self.b.boxes[rb]);
+        for (&i, bi) in ta.iter().zip(ba) {
+            let mut exact_i = None;
+            for (&j, bj) in tb.iter().zip(bb) {
+                if !overlaps_f(bi, bj) {
+                    continue;
+                }
+                let confirmed = !self.exact || {
+                    let ei = *exact_i.get_or_insert_with(|| tri_box(self.ma, i));
+                    overlaps(&ei, &tri_box(self.mb, j))
+                };
+                if confirmed && (self.keep)(i.min(j), i.max(j)) {
                     out.push(if same { (i.min(j), i.max(j)) } else { (i, j) });
                 }
             }
@@ -583,6 +632,27 @@ mod tests {
         }
         assert_eq!(got.len(), want.len());
         assert!(got == want);
+        // The rounded-box candidates hold every exact pair, and the others have boxes
+        // that come within f32 rounding (here |x| ≤ 1: 2⁻²³) of each other.
+        let cand = Bvh::new(&m).self_candidates_where(&m, &|_, _| true);
+        assert!(want.iter().all(|p| cand.contains(p)));
+        for &(i, j) in &cand {
+            let (a, b) = (tri_box(&m, i), tri_box(&m, j));
+            let gap = (0..3)
+                .map(|k| (a[0][k] - b[1][k]).max(b[0][k] - a[1][k]))
+                .fold(f64::NEG_INFINITY, f64::max);
+            assert!(i < j && gap < 2f64.powi(-22), "{i} {j} {gap}");
+        }
+        // Boxes 1e-12 apart: not an exact pair, but a candidate after rounding to f32.
+        let mut soup = Mesh::cuboid([0.0; 3], [1.0; 3]).to_soup();
+        soup.extend(Mesh::cuboid([1.0 + 1e-12, 0.0, 0.0], [2.0, 1.0, 1.0]).to_soup());
+        let pair = Mesh::from_soup(&soup);
+        let bvh = Bvh::new(&pair);
+        let exact = bvh.self_pairs(&pair);
+        let cands = bvh.self_candidates_where(&pair, &|_, _| true);
+        assert!(exact.iter().all(|p| cands.contains(p)));
+        assert!(cands.iter().any(|&(i, j)| (i < 12) != (j < 12)));
+        assert!(exact.iter().all(|&(i, j)| (i < 12) == (j < 12)));
     }
 
     #[test]

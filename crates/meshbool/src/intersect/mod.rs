@@ -300,7 +300,7 @@ pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
         labels.iter().any(|l| l.a != l.b)
     };
     let mut found: Vec<(u32, u32)> = Bvh::new(m)
-        .self_pairs_where(m, &meets)
+        .self_candidates_where(m, &meets)
         .into_iter()
         .map(|(i, j)| (i.min(j), i.max(j)))
         .collect();
