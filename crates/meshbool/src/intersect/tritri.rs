@@ -11,7 +11,7 @@ use std::cmp::Ordering;
 
 use crate::kernel::{
     cmp_coord_prepared, longest_axis, normals_cross_sign, orient2d, orient2d_prepared,
-    orient2d_safe, orient3d_explicit, robust_safe, same_point_prepared, Point, Prepared, Sign,
+    orient2d_safe, orient3d_sides, robust_safe, same_point_prepared, Point, Prepared, Sign,
 };
 
 /// A vertex, edge or face of one mesh, by its vertex / triangle ids (edges sorted).
@@ -194,16 +194,14 @@ fn on_plane(t: &Tri, s: [Sign; 3], o: &Tri) -> Vec<OnPlane> {
 
 /// Intersects triangles `a` (mesh A) and `b` (mesh B) exactly.
 pub fn intersect(a: &Tri, b: &Tri) -> TriTri {
-    let sa =
-        a.p.map(|p| orient3d_explicit(&b.p[0], &b.p[1], &b.p[2], &p));
+    let sa = orient3d_sides(&b.p, &a.p);
     if sa[0] != Sign::Zero && sa[0] == sa[1] && sa[1] == sa[2] {
         return TriTri::None;
     }
     if sa == [Sign::Zero; 3] {
         return coplanar(a, b);
     }
-    let sb =
-        b.p.map(|p| orient3d_explicit(&a.p[0], &a.p[1], &a.p[2], &p));
+    let sb = orient3d_sides(&a.p, &b.p);
     if sb[0] != Sign::Zero && sb[0] == sb[1] && sb[1] == sb[2] {
         return TriTri::None;
     }
@@ -324,10 +322,20 @@ enum Clip {
     Segment([Label; 2]),
 }
 
-/// The part of edge `i` of `own` inside the coplanar triangle `other`.
+/// A point where a clipped edge may start or end: an input corner, or where the edge
+/// crosses edge `m` of the other triangle.
+#[derive(Clone, Copy)]
+enum Cand {
+    Corner([f64; 3]),
+    Crossing(usize),
+}
+
+/// The part of edge `i` of `own` inside the coplanar triangle `other`: the first and the
+/// last of the candidate points along the edge (the corners of `own` inside `other`,
+/// corners of `other` on the edge, crossings with `other`'s edges), ties going to the
+/// earlier candidate for the first and the later for the last.
 fn clip_edge(own: &Tri, i: usize, other: &Tri, own_is_a: bool, o: &Orients) -> Clip {
     let j = (i + 1) % 3;
-    let (p, q) = (Prepared::new(own.corner(i)), Prepared::new(own.corner(j)));
     let own_edge = edge(own.v[i], own.v[j]);
     let mk = |own_f: Feature, other_f: Feature| {
         if own_is_a {
@@ -345,48 +353,89 @@ fn clip_edge(own: &Tri, i: usize, other: &Tri, own_is_a: bool, o: &Orients) -> C
     // Along the edge, order by its longest coordinate (non-zero: the corners differ there).
     let axis = longest_axis(&own.p[i], &own.p[j]);
     let proj = other.axis;
-    let mut cands: Vec<(Prepared, Label)> = Vec::new();
-    for (k, x) in [(i, &p), (j, &q)] {
-        let at = other.locate_by(std::array::from_fn(|m| o.other_edges[m][k]));
-        if let Some(f) = at {
-            cands.push((x.clone(), mk(Feature::Vertex(own.v[k]), f)));
-        }
-    }
-    let between = |w: &Prepared| {
-        let (a, b) = (
-            cmp_coord_prepared(&p, w, axis),
-            cmp_coord_prepared(w, &q, axis),
-        );
-        a != Ordering::Equal && a == b
-    };
-    for m in 0..3 {
-        let w = Prepared::new(other.corner(m));
-        if o.own_edges[i][m] == Sign::Zero && between(&w) {
-            cands.push((w, mk(own_edge, Feature::Vertex(other.v[m]))));
-        }
-    }
-    for m in 0..3 {
+    // Crossings with the other triangle's edges, prepared once for the comparisons (boxed:
+    // a prepared point is some 200 bytes, and most edges cross nothing).
+    let crosses = |s: Sign, t: Sign| s.times(t) == Sign::Negative;
+    let crossing: [Option<Box<Prepared>>; 3] = std::array::from_fn(|m| {
         let n = (m + 1) % 3;
-        let crosses = |s: Sign, t: Sign| s.times(t) == Sign::Negative;
-        if crosses(o.other_edges[m][i], o.other_edges[m][j])
-            && crosses(o.own_edges[i][m], o.own_edges[i][n])
-        {
-            let x = Prepared::new(Point::Ssi {
+        (crosses(o.other_edges[m][i], o.other_edges[m][j])
+            && crosses(o.own_edges[i][m], o.own_edges[i][n]))
+        .then(|| {
+            Box::new(Prepared::new(Point::Ssi {
                 p: own.p[i],
                 q: own.p[j],
                 r: other.p[m],
                 s: other.p[n],
                 axis: proj as u8,
-            });
-            cands.push((x, mk(own_edge, edge(other.v[m], other.v[n]))));
+            }))
+        })
+    });
+    let prepared = |c: Cand| match c {
+        Cand::Corner(p) => Prepared::new(Point::Explicit(p)),
+        Cand::Crossing(m) => *crossing[m].clone().expect("a candidate crossing exists"),
+    };
+    let cmp = |x: Cand, y: Cand| match (x, y) {
+        // Input coordinates are finite (validated meshes): the order is total.
+        (Cand::Corner(p), Cand::Corner(q)) => {
+            p[axis].partial_cmp(&q[axis]).unwrap_or(Ordering::Equal)
+        }
+        (Cand::Crossing(m), Cand::Crossing(n)) => match (&crossing[m], &crossing[n]) {
+            (Some(a), Some(b)) => cmp_coord_prepared(a, b, axis),
+            _ => unreachable!("candidate crossings exist"),
+        },
+        _ => cmp_coord_prepared(&prepared(x), &prepared(y), axis),
+    };
+    let mut ends: Option<((Cand, Label), (Cand, Label))> = None;
+    let mut count = 0;
+    let mut add = |c: Cand, l: Label| {
+        count += 1;
+        match &mut ends {
+            None => ends = Some(((c, l), (c, l))),
+            Some((first, last)) => {
+                if cmp(c, first.0) == Ordering::Less {
+                    *first = (c, l);
+                }
+                if cmp(c, last.0) != Ordering::Less {
+                    *last = (c, l);
+                }
+            }
+        }
+    };
+    for k in [i, j] {
+        let at = other.locate_by(std::array::from_fn(|m| o.other_edges[m][k]));
+        if let Some(f) = at {
+            add(Cand::Corner(own.p[k]), mk(Feature::Vertex(own.v[k]), f));
         }
     }
-    cands.sort_by(|x, y| cmp_coord_prepared(&x.0, &y.0, axis));
-    match cands.as_slice() {
-        [] => Clip::None,
-        [only] => Clip::Point(only.1),
-        [first, .., last] => {
-            if same_point_prepared(&first.0, &last.0) {
+    let (pa, qa) = (own.p[i][axis], own.p[j][axis]);
+    for m in 0..3 {
+        // On the edge's line and strictly between its ends.
+        let w = other.p[m][axis];
+        if o.own_edges[i][m] == Sign::Zero && ((pa < w && w < qa) || (qa < w && w < pa)) {
+            add(
+                Cand::Corner(other.p[m]),
+                mk(own_edge, Feature::Vertex(other.v[m])),
+            );
+        }
+    }
+    for (m, x) in crossing.iter().enumerate() {
+        if x.is_some() {
+            let n = (m + 1) % 3;
+            add(
+                Cand::Crossing(m),
+                mk(own_edge, edge(other.v[m], other.v[n])),
+            );
+        }
+    }
+    match (count, ends) {
+        (_, None) => Clip::None,
+        (1, Some((only, _))) => Clip::Point(only.1),
+        (_, Some((first, last))) => {
+            let same = match (first.0, last.0) {
+                (Cand::Corner(p), Cand::Corner(q)) => p == q,
+                (x, y) => same_point_prepared(&prepared(x), &prepared(y)),
+            };
+            if same {
                 Clip::Point(first.1)
             } else {
                 Clip::Segment([first.1, last.1])

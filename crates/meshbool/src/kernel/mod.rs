@@ -371,10 +371,17 @@ fn orient3d_filter(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> Op
 /// grids and most CAD models qualify; this is the answer for points exactly on a plane,
 /// which floating-point filters cannot give.
 fn orient3d_fixed(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> Option<Sign> {
-    let all = [a, b, c, d];
+    orient3d_fixed_many(&[*a, *b, *c], std::slice::from_ref(d)).map(|s| s[0])
+}
+
+/// [`orient3d_fixed`] of up to three points against one plane, with one common scale: all
+/// of them or none (`None` when any coordinate does not fit).
+fn orient3d_fixed_many(t: &[[f64; 3]; 3], ds: &[[f64; 3]]) -> Option<[Sign; 3]> {
+    debug_assert!(ds.len() <= 3);
+    let coords = || t.iter().chain(ds).flat_map(|p| p.iter().copied());
     // Exponents of the lowest set bit and of a bound on the magnitude.
     let (mut low, mut high) = (i32::MAX, i32::MIN);
-    for &x in all.iter().flat_map(|p| p.iter()) {
+    for x in coords() {
         if x == 0.0 {
             continue;
         }
@@ -389,7 +396,7 @@ fn orient3d_fixed(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> Opt
         high = high.max(e + 53);
     }
     if low == i32::MAX {
-        return Some(Sign::Zero); // all coordinates zero
+        return Some([Sign::Zero; 3]); // all coordinates zero
     }
     if high - low > 62 {
         return None;
@@ -413,29 +420,85 @@ fn orient3d_fixed(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> Opt
             shifted
         }
     };
-    let [ia, ib, ic, id] = all.map(|p| p.map(int));
     const LIMIT: i64 = 1 << 41;
-    let mut diffs = [[0i64; 3]; 3];
-    for (row, p) in diffs.iter_mut().zip([ib, ic, id]) {
+    let ia = t[0].map(int);
+    // Differences from `a`, each below 2^41 (both ends below 2^62: no overflow).
+    let diff = |p: &[f64; 3]| -> Option<[i128; 3]> {
+        let mut out = [0i128; 3];
         for k in 0..3 {
-            let x = p[k] - ia[k]; // both below 2^62: no overflow
+            let x = int(p[k]) - ia[k];
             if x.abs() >= LIMIT {
                 return None;
             }
-            row[k] = x;
+            out[k] = i128::from(x);
         }
-    }
-    let [u, v, w] = diffs.map(|r| r.map(i128::from));
+        Some(out)
+    };
+    let (u, v) = (diff(&t[1])?, diff(&t[2])?);
     let n = [
         u[1] * v[2] - u[2] * v[1],
         u[2] * v[0] - u[0] * v[2],
         u[0] * v[1] - u[1] * v[0],
     ];
-    let det = n[0] * w[0] + n[1] * w[1] + n[2] * w[2];
-    Some(match det.cmp(&0) {
-        Ordering::Greater => Sign::Positive,
-        Ordering::Less => Sign::Negative,
-        Ordering::Equal => Sign::Zero,
+    let mut out = [Sign::Zero; 3];
+    for (o, d) in out.iter_mut().zip(ds) {
+        let w = diff(d)?;
+        *o = match (n[0] * w[0] + n[1] * w[1] + n[2] * w[2]).cmp(&0) {
+            Ordering::Greater => Sign::Positive,
+            Ordering::Less => Sign::Negative,
+            Ordering::Equal => Sign::Zero,
+        };
+    }
+    Some(out)
+}
+
+/// [`orient3d_explicit`] of the three corners `ds` of one triangle against the plane of
+/// another, `t`: the same exact signs, with the work the three share done once (the
+/// filter's products of the plane's edges; one common scale for the integer path).
+pub fn orient3d_sides(t: &[[f64; 3]; 3], ds: &[[f64; 3]; 3]) -> [Sign; 3] {
+    let [a, b, c] = t;
+    if !robust_safe(&[a, b, c, &ds[0], &ds[1], &ds[2]]) {
+        return ds.map(|d| orient3d_explicit(a, b, c, &d));
+    }
+    // The filter of `orient3d_filter`, the plane's products computed once.
+    const BOUND: f64 = (7.0 + 56.0 * f64::EPSILON / 2.0) * (f64::EPSILON / 2.0);
+    let [u, v] = [b, c].map(|p| [p[0] - a[0], p[1] - a[1], p[2] - a[2]]);
+    let (uyvz, uzvy) = (u[1] * v[2], u[2] * v[1]);
+    let (uzvx, uxvz) = (u[2] * v[0], u[0] * v[2]);
+    let (uxvy, uyvx) = (u[0] * v[1], u[1] * v[0]);
+    let (n0, n1, n2) = (uyvz - uzvy, uzvx - uxvz, uxvy - uyvx);
+    let (p0, p1, p2) = (
+        uyvz.abs() + uzvy.abs(),
+        uzvx.abs() + uxvz.abs(),
+        uxvy.abs() + uyvx.abs(),
+    );
+    let filtered = ds.map(|d| {
+        let w = [d[0] - a[0], d[1] - a[1], d[2] - a[2]];
+        let det = w[0] * n0 + w[1] * n1 + w[2] * n2;
+        let bound = BOUND * (p0 * w[0].abs() + p1 * w[1].abs() + p2 * w[2].abs());
+        if det > bound {
+            Some(Sign::Positive)
+        } else if -det > bound {
+            Some(Sign::Negative)
+        } else {
+            None
+        }
+    });
+    if let [Some(x), Some(y), Some(z)] = filtered {
+        return [x, y, z];
+    }
+    if let Some(s) = orient3d_fixed_many(t, ds) {
+        return s;
+    }
+    std::array::from_fn(|k| {
+        filtered[k].unwrap_or_else(|| {
+            let c3 = |p: &[f64; 3]| robust::Coord3D {
+                x: p[0],
+                y: p[1],
+                z: p[2],
+            };
+            Sign::of_f64(robust::orient3d(c3(a), c3(b), c3(c), c3(&ds[k]))).reversed()
+        })
     })
 }
 

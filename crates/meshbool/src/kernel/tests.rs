@@ -504,3 +504,59 @@ fn fixed_point_orient3d_agrees_with_rationals() {
         Some(Sign::Zero)
     );
 }
+
+/// Three corners against one plane at once: the same exact signs as one at a time, on
+/// grid points (integer path, exact zeros), random UTM points (Shewchuk), coordinates out
+/// of Shewchuk's range (interval/exact path), and mixtures.
+#[test]
+fn sides_of_three_points_agree_with_single_tests() {
+    let mut rng = Rng(0xface);
+    let grid = |rng: &mut Rng, offset: f64| -> [f64; 3] {
+        std::array::from_fn(|_| offset + ((rng.next() % 33) as f64 - 16.0) / 8.0)
+    };
+    let mut zeros = 0;
+    for i in 0..3000 {
+        let (t, ds): ([[f64; 3]; 3], [[f64; 3]; 3]) = match i % 4 {
+            0 => (
+                std::array::from_fn(|_| grid(&mut rng, 0.0)),
+                std::array::from_fn(|_| grid(&mut rng, 0.0)),
+            ),
+            1 => {
+                // Coplanar corners: on the plane z = x / 2 - y / 4 + offset.
+                let on = |rng: &mut Rng| {
+                    let [x, y, _] = grid(rng, 1024.0);
+                    [x, y, x / 2.0 - y / 4.0 + 3.0]
+                };
+                (
+                    std::array::from_fn(|_| on(&mut rng)),
+                    std::array::from_fn(|_| on(&mut rng)),
+                )
+            }
+            2 => (
+                std::array::from_fn(|_| rng.point(UTM, 10.0)),
+                std::array::from_fn(|_| rng.point(UTM, 10.0)),
+            ),
+            _ => (
+                std::array::from_fn(|_| rng.point([0.0; 3], 1e-210)),
+                std::array::from_fn(|k| {
+                    if k == 0 {
+                        [0.0; 3]
+                    } else {
+                        rng.point([0.0; 3], 1e-210)
+                    }
+                }),
+            ),
+        };
+        let want = ds.map(|d| orient3d_explicit(&t[0], &t[1], &t[2], &d));
+        let e = |p: [f64; 3]| Point::Explicit(p);
+        for k in 0..3 {
+            assert_eq!(
+                want[k],
+                oracle_orient3d(&e(t[0]), &e(t[1]), &e(t[2]), &e(ds[k]))
+            );
+        }
+        assert_eq!(orient3d_sides(&t, &ds), want, "{t:?} {ds:?}");
+        zeros += want.iter().filter(|s| **s == Sign::Zero).count();
+    }
+    assert!(zeros > 2000, "{zeros}");
+}
