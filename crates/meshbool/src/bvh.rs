@@ -332,18 +332,7 @@ impl Bvh {
         mesh: &Mesh,
         keep: &(dyn Fn(u32, u32) -> bool + Sync),
     ) -> Vec<(u32, u32)> {
-        if self.is_empty() {
-            return Vec::new();
-        }
-        let q = Query {
-            a: self,
-            b: self,
-            ma: mesh,
-            mb: mesh,
-            keep,
-            exact: true,
-        };
-        q.run(Task::Within(0))
+        self.self_query(mesh, keep, true)
     }
 
     /// Like [`Bvh::self_pairs_where`], but the candidates are the pairs whose boxes overlap
@@ -356,6 +345,16 @@ impl Bvh {
         mesh: &Mesh,
         keep: &(dyn Fn(u32, u32) -> bool + Sync),
     ) -> Vec<(u32, u32)> {
+        self.self_query(mesh, keep, false)
+    }
+
+    /// The self-traversal, confirming rounded-box overlaps on the exact boxes or not.
+    fn self_query(
+        &self,
+        mesh: &Mesh,
+        keep: &(dyn Fn(u32, u32) -> bool + Sync),
+        exact: bool,
+    ) -> Vec<(u32, u32)> {
         if self.is_empty() {
             return Vec::new();
         }
@@ -365,7 +364,7 @@ impl Bvh {
             ma: mesh,
             mb: mesh,
             keep,
-            exact: false,
+            exact,
         };
         q.run(Task::Within(0))
     }

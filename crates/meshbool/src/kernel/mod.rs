@@ -325,12 +325,64 @@ pub fn orient3d_explicit(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3])
     if !robust_safe(&[a, b, c, d]) {
         return decide!(plane_side_explicit(a, b, c, d));
     }
-    if let Some(s) = orient3d_filter(a, b, c, d) {
+    if let Some(s) = PlaneFilter::new(a, b, c).side(d) {
         return s;
     }
     if let Some(s) = orient3d_fixed(a, b, c, d) {
         return s;
     }
+    orient3d_robust(a, b, c, d)
+}
+
+/// The floating-point stage of Shewchuk's `orient3d` (its first error bound, for inputs
+/// that meet [`robust_safe`]) for one plane `a b c` and any number of points: the plane's
+/// products are computed once.
+struct PlaneFilter {
+    a: [f64; 3],
+    /// `(b − a) × (c − a)` as rounded, grouped as Shewchuk groups it.
+    n: [f64; 3],
+    /// The permanents bounding each component's products.
+    p: [f64; 3],
+}
+
+impl PlaneFilter {
+    fn new(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3]) -> Self {
+        let [u, v] = [b, c].map(|p| [p[0] - a[0], p[1] - a[1], p[2] - a[2]]);
+        let (uyvz, uzvy) = (u[1] * v[2], u[2] * v[1]);
+        let (uzvx, uxvz) = (u[2] * v[0], u[0] * v[2]);
+        let (uxvy, uyvx) = (u[0] * v[1], u[1] * v[0]);
+        PlaneFilter {
+            a: *a,
+            n: [uyvz - uzvy, uzvx - uxvz, uxvy - uyvx],
+            p: [
+                uyvz.abs() + uzvy.abs(),
+                uzvx.abs() + uxvz.abs(),
+                uxvy.abs() + uyvx.abs(),
+            ],
+        }
+    }
+
+    /// The sign of `((b − a) × (c − a)) · (d − a)` where the rounded value is certain.
+    fn side(&self, d: &[f64; 3]) -> Option<Sign> {
+        // Shewchuk's o3derrboundA = (7 + 56ε)ε with ε = 2⁻⁵³.
+        const BOUND: f64 = (7.0 + 56.0 * f64::EPSILON / 2.0) * (f64::EPSILON / 2.0);
+        let (a, n, p) = (&self.a, &self.n, &self.p);
+        let w = [d[0] - a[0], d[1] - a[1], d[2] - a[2]];
+        let det = w[0] * n[0] + w[1] * n[1] + w[2] * n[2];
+        let bound = BOUND * (p[0] * w[0].abs() + p[1] * w[1].abs() + p[2] * w[2].abs());
+        if det > bound {
+            Some(Sign::Positive)
+        } else if -det > bound {
+            Some(Sign::Negative)
+        } else {
+            None
+        }
+    }
+}
+
+/// Shewchuk's adaptive `orient3d` (inputs meeting [`robust_safe`]) in this module's sign
+/// convention.
+fn orient3d_robust(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> Sign {
     let c3 = |p: &[f64; 3]| robust::Coord3D {
         x: p[0],
         y: p[1],
@@ -338,30 +390,6 @@ pub fn orient3d_explicit(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3])
     };
     // robust's orient3d is positive when d is below (opposite to our convention).
     Sign::of_f64(robust::orient3d(c3(a), c3(b), c3(c), c3(d))).reversed()
-}
-
-/// The floating-point stage of Shewchuk's `orient3d` (its first error bound, for inputs
-/// that meet [`robust_safe`]): the sign where the rounded determinant is certain.
-fn orient3d_filter(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> Option<Sign> {
-    // Shewchuk's o3derrboundA = (7 + 56ε)ε with ε = 2⁻⁵³.
-    const BOUND: f64 = (7.0 + 56.0 * f64::EPSILON / 2.0) * (f64::EPSILON / 2.0);
-    let [u, v, w] = [b, c, d].map(|p| [p[0] - a[0], p[1] - a[1], p[2] - a[2]]);
-    // ((b − a) × (c − a)) · (d − a), as Shewchuk groups it.
-    let (uyvz, uzvy) = (u[1] * v[2], u[2] * v[1]);
-    let (uzvx, uxvz) = (u[2] * v[0], u[0] * v[2]);
-    let (uxvy, uyvx) = (u[0] * v[1], u[1] * v[0]);
-    let det = w[0] * (uyvz - uzvy) + w[1] * (uzvx - uxvz) + w[2] * (uxvy - uyvx);
-    let permanent = (uyvz.abs() + uzvy.abs()) * w[0].abs()
-        + (uzvx.abs() + uxvz.abs()) * w[1].abs()
-        + (uxvy.abs() + uyvx.abs()) * w[2].abs();
-    let bound = BOUND * permanent;
-    if det > bound {
-        Some(Sign::Positive)
-    } else if -det > bound {
-        Some(Sign::Negative)
-    } else {
-        None
-    }
 }
 
 /// Exact `orient3d` in integer arithmetic where the coordinates allow it: every
@@ -460,46 +488,15 @@ pub fn orient3d_sides(t: &[[f64; 3]; 3], ds: &[[f64; 3]; 3]) -> [Sign; 3] {
     if !robust_safe(&[a, b, c, &ds[0], &ds[1], &ds[2]]) {
         return ds.map(|d| orient3d_explicit(a, b, c, &d));
     }
-    // The filter of `orient3d_filter`, the plane's products computed once.
-    const BOUND: f64 = (7.0 + 56.0 * f64::EPSILON / 2.0) * (f64::EPSILON / 2.0);
-    let [u, v] = [b, c].map(|p| [p[0] - a[0], p[1] - a[1], p[2] - a[2]]);
-    let (uyvz, uzvy) = (u[1] * v[2], u[2] * v[1]);
-    let (uzvx, uxvz) = (u[2] * v[0], u[0] * v[2]);
-    let (uxvy, uyvx) = (u[0] * v[1], u[1] * v[0]);
-    let (n0, n1, n2) = (uyvz - uzvy, uzvx - uxvz, uxvy - uyvx);
-    let (p0, p1, p2) = (
-        uyvz.abs() + uzvy.abs(),
-        uzvx.abs() + uxvz.abs(),
-        uxvy.abs() + uyvx.abs(),
-    );
-    let filtered = ds.map(|d| {
-        let w = [d[0] - a[0], d[1] - a[1], d[2] - a[2]];
-        let det = w[0] * n0 + w[1] * n1 + w[2] * n2;
-        let bound = BOUND * (p0 * w[0].abs() + p1 * w[1].abs() + p2 * w[2].abs());
-        if det > bound {
-            Some(Sign::Positive)
-        } else if -det > bound {
-            Some(Sign::Negative)
-        } else {
-            None
-        }
-    });
+    let plane = PlaneFilter::new(a, b, c);
+    let filtered = ds.map(|d| plane.side(&d));
     if let [Some(x), Some(y), Some(z)] = filtered {
         return [x, y, z];
     }
     if let Some(s) = orient3d_fixed_many(t, ds) {
         return s;
     }
-    std::array::from_fn(|k| {
-        filtered[k].unwrap_or_else(|| {
-            let c3 = |p: &[f64; 3]| robust::Coord3D {
-                x: p[0],
-                y: p[1],
-                z: p[2],
-            };
-            Sign::of_f64(robust::orient3d(c3(a), c3(b), c3(c), c3(&ds[k]))).reversed()
-        })
-    })
+    std::array::from_fn(|k| filtered[k].unwrap_or_else(|| orient3d_robust(a, b, c, &ds[k])))
 }
 
 /// A triangle's plane prepared for many side tests against explicit points: a floating-

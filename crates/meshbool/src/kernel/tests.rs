@@ -477,7 +477,7 @@ fn fixed_point_orient3d_agrees_with_rationals() {
             let got = orient3d_fixed(&a, &b, &c, &d).expect("grid coordinates fit");
             assert_eq!(got, want, "{a:?} {b:?} {c:?} {d:?}");
             assert_eq!(orient3d_explicit(&a, &b, &c, &d), want);
-            if let Some(s) = orient3d_filter(&a, &b, &c, &d) {
+            if let Some(s) = PlaneFilter::new(&a, &b, &c).side(&d) {
                 assert_eq!(s, want);
                 decided += 1;
             }
