@@ -262,50 +262,15 @@ impl<'a> FastWinding<'a> {
         if self.nodes.is_empty() {
             return 0.0;
         }
-        // Far field times 4π, and half solid angles, summed apart and scaled once.
-        let (mut far, mut half) = (0.0, 0.0);
-        // The tree is balanced: at most one pending right child per level.
-        let mut stack = [0u32; 64];
-        let mut depth = 1;
-        while depth > 0 {
-            depth -= 1;
-            let i = stack[depth] as usize;
-            let n = &self.nodes[i];
-            let d = sub(&n.centre, &p);
-            let d2 = dot(&d, &d);
-            if d2 > n.far2 {
-                // Second-order far field of ∫ n · (x − p) / |x − p|³ with x = c + y,
-                // d = c − p:  (N·d + tr M) / |d|³ − 3 dᵀM d / |d|⁵ (only M's symmetric
-                // part enters).
-                let [xx, yy, zz, xy, xz, yz] = n.moment.map(f64::from);
-                let dmd = d[0] * d[0] * xx
-                    + d[1] * d[1] * yy
-                    + d[2] * d[2] * zz
-                    + 2.0 * (d[0] * d[1] * xy + d[0] * d[2] * xz + d[1] * d[2] * yz);
-                let nd = dot(&n.normal.map(f64::from), &d);
-                let r = 1.0 / d2.sqrt();
-                let inv3 = r * r * r;
-                far += ((nd + xx + yy + zz) - 3.0 * dmd * r * r) * inv3;
-            } else if n.right == 0 {
-                for &t in &self.order[n.start as usize..n.end as usize] {
-                    let [a, b, c] = self.mesh.corners(t as usize);
-                    half += half_solid_angle(&a, &b, &c, &p);
-                }
-            } else {
-                stack[depth] = n.right;
-                stack[depth + 1] = (i + 1) as u32;
-                depth += 2;
-            }
-        }
-        far / (4.0 * std::f64::consts::PI) + half * HALF_ANGLE_TO_WINDING
+        self.group(&[p])[0]
     }
 
     /// [`FastWinding::at`] of many points, the same values bit for bit. Points are taken
     /// in groups of up to 64 neighbours (Morton order) that walk the tree together: each
     /// node is read once per group, every point of the group still decides near or far by
     /// its own distance (a bit mask of the points still descending), and its terms are
-    /// added in the same order as a walk of its own. Reading a node is what a lone walk
-    /// waits on; the group shares it. Parallel over groups.
+    /// added in the same order as a walk of its own (a group of one). Reading a node is
+    /// what a lone walk waits on; the group shares it. Parallel over groups.
     pub fn at_many(&self, points: &[[f64; 3]]) -> Vec<f64> {
         const GROUP: usize = 64;
         if self.nodes.is_empty() {
@@ -357,6 +322,9 @@ impl<'a> FastWinding<'a> {
                 let d = sub(&n.centre, &pts[k]);
                 let d2 = dot(&d, &d);
                 if d2 > n.far2 {
+                    // Second-order far field of ∫ n · (x − p) / |x − p|³ with x = c + y,
+                    // d = c − p: (N·d + tr M) / |d|³ − 3 dᵀM d / |d|⁵ (only M's
+                    // symmetric part enters); times 4π, scaled at the end.
                     let dmd = d[0] * d[0] * xx
                         + d[1] * d[1] * yy
                         + d[2] * d[2] * zz
