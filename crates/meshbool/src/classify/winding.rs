@@ -99,7 +99,7 @@ fn subtree_nodes(n: usize) -> usize {
 }
 
 /// A hierarchy for fast winding-number queries against one mesh: cost grows with the log
-/// of the triangle count far from the surface, exact sums near it (within [`BETA`]
+/// of the triangle count far from the surface, exact sums near it (within `BETA`
 /// cluster radii).
 pub struct FastWinding<'a> {
     mesh: &'a Mesh,

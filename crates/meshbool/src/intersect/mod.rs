@@ -1,5 +1,5 @@
 //! Intersection of two meshes: the seam (every point and segment where their surfaces
-//! meet, found exactly), and the seam chained into polylines ([`curves`]).
+//! meet, found exactly), and the seam chained into polylines (`curves`).
 //!
 //! Pipeline position: broad phase ([`crate::bvh`]) → exact triangle–triangle tests
 //! ([`tritri`]) → seam points named by [`Label`]s (so the same point reached from several

@@ -4,8 +4,8 @@
 //! Nothing outside this module compares floats to decide topology. Every point has exact
 //! homogeneous coordinates `(X, Y, Z, W)`, polynomials in input `f64` coordinates without
 //! division. A predicate is the sign of a polynomial in those; it is evaluated first in
-//! interval arithmetic ([`interval`]), and only where the interval contains zero again with
-//! exact dyadic numbers ([`exact`]). The answer is always the exact sign.
+//! interval arithmetic (`interval`), and only where the interval contains zero again with
+//! exact dyadic numbers (`exact`). The answer is always the exact sign.
 //!
 //! Conventions: `orient3d(a, b, c, d)` is positive when `d` lies on the side of the plane
 //! `abc` that its normal `(b − a) × (c − a)` points to; `orient2d(a, b, c, axis)` is positive
@@ -320,7 +320,7 @@ fn plane_side_explicit<T: Num>(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f6
 /// assumptions hold, the kernel's interval/exact evaluation otherwise. Where the floating-
 /// point filter cannot decide (points on or next to one plane), coordinates that are short
 /// binary fractions of one scale (grids, CAD data) are decided in integer arithmetic
-/// ([`orient3d_fixed`]) before Shewchuk's expansion arithmetic.
+/// (`orient3d_fixed`) before Shewchuk's expansion arithmetic.
 pub fn orient3d_explicit(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> Sign {
     if !robust_safe(&[a, b, c, d]) {
         return decide!(plane_side_explicit(a, b, c, d));
