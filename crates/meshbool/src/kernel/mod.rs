@@ -402,6 +402,14 @@ fn orient3d_fixed(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> Opt
     orient3d_fixed_many(&[*a, *b, *c], std::slice::from_ref(d)).map(|s| s[0])
 }
 
+/// A normal `f64` as `(mantissa, e)` with `|x| = mantissa · 2^e`, the mantissa's implicit
+/// leading bit included (53 bits).
+fn split(x: f64) -> (u64, i32) {
+    let bits = x.to_bits();
+    let mantissa = (bits & ((1 << 52) - 1)) | (1 << 52);
+    (mantissa, ((bits >> 52) & 0x7ff) as i32 - 1075)
+}
+
 /// [`orient3d_fixed`] of up to three points against one plane, with one common scale: all
 /// of them or none (`None` when any coordinate does not fit).
 fn orient3d_fixed_many(t: &[[f64; 3]; 3], ds: &[[f64; 3]]) -> Option<[Sign; 3]> {
@@ -413,13 +421,10 @@ fn orient3d_fixed_many(t: &[[f64; 3]; 3], ds: &[[f64; 3]]) -> Option<[Sign; 3]> 
         if x == 0.0 {
             continue;
         }
-        let bits = x.to_bits();
-        let biased = ((bits >> 52) & 0x7ff) as i32;
-        if biased == 0 || biased == 0x7ff {
+        if !x.is_normal() {
             return None; // subnormal or not finite
         }
-        let mantissa = (bits & ((1 << 52) - 1)) | (1 << 52);
-        let e = biased - 1075; // x = ±mantissa · 2^e
+        let (mantissa, e) = split(x);
         low = low.min(e + mantissa.trailing_zeros() as i32);
         high = high.max(e + 53);
     }
@@ -434,9 +439,8 @@ fn orient3d_fixed_many(t: &[[f64; 3]; 3], ds: &[[f64; 3]]) -> Option<[Sign; 3]> 
         if x == 0.0 {
             return 0;
         }
-        let bits = x.to_bits();
-        let e = ((bits >> 52) & 0x7ff) as i32 - 1075;
-        let mantissa = ((bits & ((1 << 52) - 1)) | (1 << 52)) as i64;
+        let (mantissa, e) = split(x);
+        let mantissa = mantissa as i64;
         let shifted = if e >= low {
             mantissa << (e - low)
         } else {
@@ -647,12 +651,7 @@ pub(crate) fn same_point_prepared(a: &Prepared, b: &Prepared) -> bool {
 /// coordinates meet [`robust_safe`]; `None` otherwise.
 fn orient2d_shewchuk(a: &Point, b: &Point, c: &Point, axis: usize) -> Option<Sign> {
     let (pa, pb, pc) = (a.explicit()?, b.explicit()?, c.explicit()?);
-    if !robust_safe(&[&pa, &pb, &pc]) {
-        return None;
-    }
-    let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
-    let c2 = |p: [f64; 3]| robust::Coord { x: p[i], y: p[j] };
-    Some(Sign::of_f64(robust::orient2d(c2(pa), c2(pb), c2(pc))))
+    robust_safe(&[&pa, &pb, &pc]).then(|| orient2d_safe(&pa, &pb, &pc, axis))
 }
 
 /// [`orient2d`] of three input points whose coordinates are known to meet [`robust_safe`]
