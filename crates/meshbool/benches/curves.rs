@@ -28,3 +28,22 @@ fn self_intersections_2m_sphere() -> usize {
     let (a, _) = &*P2M;
     meshbool::intersect::self_intersections(a).len()
 }
+
+/// Candidate pairs of the 2M spheres from the grid broad phase (what `intersect` uses for
+/// inputs this large).
+#[divan::bench(sample_count = 10)]
+fn broad_phase_2m_spheres_grid() -> usize {
+    let (a, b) = &*P2M;
+    meshbool::broad::overlapping_pairs(a, b).len()
+}
+
+/// The same pairs from two trees, each over the triangles meeting the other mesh's box
+/// (what `intersect` uses for small inputs).
+#[divan::bench(sample_count = 10)]
+fn broad_phase_2m_spheres_trees() -> usize {
+    use meshbool::bvh::Bvh;
+    let (a, b) = &*P2M;
+    let (box_a, box_b) = (a.bounds().unwrap(), b.bounds().unwrap());
+    let (ta, tb) = rayon::join(|| Bvh::new_within(a, &box_b), || Bvh::new_within(b, &box_a));
+    ta.overlapping_pairs(a, &tb, b).len()
+}

@@ -16,13 +16,14 @@ use crate::{Aabb, Mesh};
 const LEAF: usize = 4;
 
 /// An axis-aligned box as `[min, max]`.
-type Box3 = [[f64; 3]; 2];
+pub(crate) type Box3 = [[f64; 3]; 2];
 
 /// A box in `f32`, rounded outward so that it contains the `f64` box it was made from.
-type Box3f = [[f32; 3]; 2];
+pub(crate) type Box3f = [[f32; 3]; 2];
 
+/// Whether two closed boxes overlap (touching counts).
 #[inline]
-fn overlaps(a: &Box3, b: &Box3) -> bool {
+pub(crate) fn overlaps(a: &Box3, b: &Box3) -> bool {
     (0..3).all(|k| a[0][k] <= b[1][k] && b[0][k] <= a[1][k])
 }
 
@@ -49,12 +50,18 @@ fn up(x: f64) -> f32 {
     }
 }
 
-fn tri_box(m: &Mesh, t: u32) -> Box3 {
+/// The exact box of triangle `t` of `m`.
+pub(crate) fn tri_box(m: &Mesh, t: u32) -> Box3 {
     let [a, b, c] = m.corners(t as usize);
     [
         std::array::from_fn(|k| a[k].min(b[k]).min(c[k])),
         std::array::from_fn(|k| a[k].max(b[k]).max(c[k])),
     ]
+}
+
+/// `b` in `f32`, rounded outward (the result contains `b`).
+pub(crate) fn round_out(b: &Box3) -> Box3f {
+    [b[0].map(down), b[1].map(up)]
 }
 
 /// A node in pre-order layout: its left child follows it, `right` is the right child.
@@ -219,10 +226,7 @@ impl Bvh {
         }
         let boxes: Vec<Box3f> = order
             .par_iter()
-            .map(|&t| {
-                let [lo, hi] = tri_box(mesh, t);
-                [lo.map(down), hi.map(up)]
-            })
+            .map(|&t| round_out(&tri_box(mesh, t)))
             .collect();
         let mut nodes = vec![EMPTY; 2 * leaves(order.len()) - 1];
         Self::build(&mut nodes, 0, 0, &boxes);

@@ -30,6 +30,7 @@
 
 pub mod arrange;
 pub mod boolean;
+pub mod broad;
 pub mod bvh;
 pub mod classify;
 pub mod edges;

@@ -110,6 +110,12 @@ pub fn label_point(l: &Label, a: &Mesh, b: &Mesh) -> Point {
     }
 }
 
+/// From this many triangles in both meshes together, candidate pairs come from
+/// [`crate::broad`] (a pass over each mesh, then work only near the other mesh); below, from
+/// two trees ([`Bvh`]), which cost less to set up. Both give the same sorted pairs. Measured
+/// crossover: about 50k triangles per sphere (BENCHMARKS.md).
+const GRID_FROM: usize = 100_000;
+
 fn tri(m: &Mesh, t: usize) -> Option<tritri::Tri> {
     tritri::Tri::new(t as u32, m.triangles[t], m.corners(t))
 }
@@ -119,12 +125,16 @@ fn tri(m: &Mesh, t: usize) -> Option<tritri::Tri> {
 /// at the same position would name one point twice and break the curves there.
 /// Degenerate triangles are left out and counted in [`Seam::degenerate`].
 pub fn intersect(a: &Mesh, b: &Mesh) -> Seam {
-    // Each tree holds only the triangles that can meet the other mesh at all.
-    let (Some(box_a), Some(box_b)) = (a.bounds(), b.bounds()) else {
-        return Seam::default();
+    let pairs = if a.triangles.len() + b.triangles.len() >= GRID_FROM {
+        crate::broad::overlapping_pairs(a, b)
+    } else {
+        // Each tree holds only the triangles that can meet the other mesh at all.
+        let (Some(box_a), Some(box_b)) = (a.bounds(), b.bounds()) else {
+            return Seam::default();
+        };
+        let (ba, bb) = rayon::join(|| Bvh::new_within(a, &box_b), || Bvh::new_within(b, &box_a));
+        ba.overlapping_pairs(a, &bb, b)
     };
-    let (ba, bb) = rayon::join(|| Bvh::new_within(a, &box_b), || Bvh::new_within(b, &box_a));
-    let pairs = ba.overlapping_pairs(a, &bb, b);
     // Set up every candidate triangle once (sorted ids, looked up by binary search); the
     // degenerate ones are left out of the test and counted. Degenerate triangles elsewhere
     // cannot touch the other mesh and change nothing.

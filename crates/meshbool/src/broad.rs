@@ -1,0 +1,566 @@
+//! Broad phase between two meshes: every pair of triangles, one from each mesh, whose boxes
+//! overlap, found by cutting up the region where both meshes are.
+//!
+//! First a coarse grid over the common box of the two meshes: each mesh marks the cells its
+//! triangles' boxes reach (one streaming pass over its triangles), and only the cells both
+//! meshes reach are kept. Where two surfaces cross along a curve, that is a thin band of
+//! cells around the curve, so the rest of both meshes is never touched again; a tree over
+//! each whole mesh ([`crate::bvh`]) sorts and stores every triangle instead. The triangles
+//! in kept cells are then sorted out per cell by halving it across its longest side again
+//! and again; each half keeps the triangles of both meshes whose boxes meet it and shrinks
+//! to the box both of its lists still cover, and a half that holds triangles of only one
+//! mesh is dropped.
+//!
+//! Exactness: cells and cuts only route triangles, by boxes that contain the exact ones
+//! (outward-rounded `f32`), so no triangle is lost on the way to a piece it meets; every
+//! reported pair is confirmed on the exact `f64` boxes. A pair whose boxes overlap is
+//! reported once: in the grid cell that holds the lowest corner of the boxes'
+//! intersection (cells partition space by a monotone function of the coordinates) and there
+//! in the one final piece whose half-open region (closed below, open above along every cut)
+//! holds that corner.
+
+use rayon::prelude::*;
+
+use crate::bvh::{overlaps, round_out, tri_box, Box3, Box3f};
+use crate::Mesh;
+
+/// Stop cutting when a piece has at most this many candidate pairs.
+const LEAF_PAIRS: usize = 64;
+
+/// Stop cutting after this many cuts (a guard; pieces that do not separate stop earlier).
+const MAX_DEPTH: u32 = 60;
+
+/// Pieces with more triangles than this are cut on both threads.
+const PARALLEL: usize = 1 << 12;
+
+/// At most this many grid cells along an axis (below 2¹⁰: ranges pack into 10-bit fields).
+const MAX_CELLS: f64 = 128.0;
+
+/// Grid cells are about this many typical triangle sizes wide.
+const CELL_TRIANGLES: f64 = 2.0;
+
+/// A grid over the common box. Cell `c` along axis `k` holds the coordinates `x` with
+/// `index(x, k) == c`, a monotone function of `x`, so the cells partition space (points
+/// outside the box belong to the outermost cells) and a box `[lo, hi]` meets exactly the
+/// cells `index(lo)..=index(hi)`.
+struct Grid {
+    lo: [f64; 3],
+    scale: [f64; 3],
+    dims: [u32; 3],
+}
+
+impl Grid {
+    /// A grid over `common` with cells a few times as wide as the typical triangle of `a`
+    /// and `b` (the median box side of a sample), at most [`MAX_CELLS`] per axis.
+    fn new(common: &Box3, a: &Mesh, b: &Mesh) -> Grid {
+        let ext: [f64; 3] = std::array::from_fn(|k| common[1][k] - common[0][k]);
+        let longest = ext.iter().copied().fold(0.0, f64::max);
+        let mut sizes: Vec<f64> = [a, b]
+            .iter()
+            .flat_map(|m| {
+                let n = m.triangles.len();
+                let step = (n / 512).max(1);
+                (0..n).step_by(step).map(move |t| {
+                    let [lo, hi] = tri_box(m, t as u32);
+                    (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max)
+                })
+            })
+            .collect();
+        sizes.sort_by(f64::total_cmp);
+        let typical = sizes.get(sizes.len() / 2).copied().unwrap_or(0.0);
+        let width = (CELL_TRIANGLES * typical).max(longest / MAX_CELLS);
+        let dims = std::array::from_fn(|k| {
+            if width > 0.0 && ext[k] > 0.0 {
+                (ext[k] / width).ceil().clamp(1.0, MAX_CELLS) as u32
+            } else {
+                1
+            }
+        });
+        Grid {
+            lo: common[0],
+            scale: std::array::from_fn(|k| {
+                if ext[k] > 0.0 {
+                    f64::from(dims[k]) / ext[k]
+                } else {
+                    0.0
+                }
+            }),
+            dims,
+        }
+    }
+
+    #[inline]
+    fn index(&self, x: f64, k: usize) -> u32 {
+        // Truncation of a non-negative value is its floor; `as` saturates (and takes the
+        // NaN that finite input never gives to 0).
+        let c = ((x - self.lo[k]) * self.scale[k]).max(0.0);
+        (c as u32).min(self.dims[k] - 1)
+    }
+
+    /// The cells a box meets, per axis as `[first, last]`.
+    #[inline]
+    fn range(&self, b: &Box3) -> [[u32; 2]; 3] {
+        [0, 1, 2].map(|k| [self.index(b[0][k], k), self.index(b[1][k], k)])
+    }
+
+    /// A range in one word, 10 bits per bound.
+    #[inline]
+    fn pack(r: &[[u32; 2]; 3]) -> u64 {
+        r.iter().flatten().fold(0, |w, &c| (w << 10) | u64::from(c))
+    }
+
+    /// The range [`Grid::pack`] packed.
+    #[inline]
+    fn unpack(w: u64) -> [[u32; 2]; 3] {
+        let at = |i: u32| ((w >> (10 * (5 - i))) & 0x3ff) as u32;
+        [[at(0), at(1)], [at(2), at(3)], [at(4), at(5)]]
+    }
+
+    fn cells(&self) -> usize {
+        self.dims.iter().map(|&d| d as usize).product()
+    }
+
+    #[inline]
+    fn id(&self, c: [u32; 3]) -> usize {
+        let [x, y, z] = c.map(|v| v as usize);
+        let [nx, ny, _] = self.dims.map(|v| v as usize);
+        x + nx * (y + ny * z)
+    }
+
+    /// Calls `f` with every cell id of `range`.
+    #[inline]
+    fn each(&self, range: &[[u32; 2]; 3], mut f: impl FnMut(usize)) {
+        for z in range[2][0]..=range[2][1] {
+            for y in range[1][0]..=range[1][1] {
+                for x in range[0][0]..=range[0][1] {
+                    f(self.id([x, y, z]));
+                }
+            }
+        }
+    }
+
+    /// The cell holding `p`.
+    fn cell_of(&self, p: &[f64; 3]) -> usize {
+        self.id(std::array::from_fn(|k| self.index(p[k], k)))
+    }
+}
+
+/// No cell: the triangle's box misses the common box.
+const NOWHERE: u64 = u64::MAX;
+
+/// The cells each triangle of `m` reaches, packed ([`Grid::pack`]; [`NOWHERE`] for a
+/// triangle whose box misses `common`), and the set of all of them as bits.
+fn reached(m: &Mesh, common: &Box3, grid: &Grid) -> (Vec<u64>, Vec<u64>) {
+    let ranges: Vec<u64> = (0..m.triangles.len() as u32)
+        .into_par_iter()
+        .map(|t| {
+            let e = tri_box(m, t);
+            if overlaps(&e, common) {
+                Grid::pack(&grid.range(&e))
+            } else {
+                NOWHERE
+            }
+        })
+        .collect();
+    let words = grid.cells().div_ceil(64);
+    let bits = ranges
+        .par_iter()
+        .with_min_len(1 << 14)
+        .fold(
+            || (vec![0u64; words], NOWHERE),
+            |(mut bits, last), &r| {
+                // Neighbouring triangles mostly reach the same cells.
+                if r != NOWHERE && r != last {
+                    grid.each(&Grid::unpack(r), |c| bits[c / 64] |= 1 << (c % 64));
+                }
+                (bits, r)
+            },
+        )
+        .map(|(bits, _)| bits)
+        .reduce(
+            || vec![0u64; words],
+            |mut x, y| {
+                x.iter_mut().zip(y).for_each(|(w, v)| *w |= v);
+                x
+            },
+        );
+    (ranges, bits)
+}
+
+/// One mesh's part in the search: the triangles that reach a kept cell, with their
+/// rounded boxes (local index `i` is triangle `ids[i]`, ids ascending), and the pairs
+/// `(cell, local index)` sorted.
+struct Part<'a> {
+    mesh: &'a Mesh,
+    ids: Vec<u32>,
+    boxes: Vec<Box3f>,
+    items: Vec<(u32, u32)>,
+}
+
+impl<'a> Part<'a> {
+    /// The triangles of `mesh` that reach a cell of `keep` (`ranges` from [`reached`]).
+    fn new(mesh: &'a Mesh, ranges: &[u64], grid: &Grid, keep: &[u64]) -> Self {
+        let kept = |c: usize| keep[c / 64] >> (c % 64) & 1 == 1;
+        let mut found: Vec<(u32, u32)> = ranges
+            .par_iter()
+            .enumerate()
+            .with_min_len(1 << 12)
+            .fold(Vec::new, |mut out, (t, &r)| {
+                if r != NOWHERE {
+                    grid.each(&Grid::unpack(r), |c| {
+                        if kept(c) {
+                            out.push((c as u32, t as u32));
+                        }
+                    });
+                }
+                out
+            })
+            .reduce(Vec::new, |mut x, mut y| {
+                x.append(&mut y);
+                x
+            });
+        let mut ids: Vec<u32> = found.iter().map(|&(_, t)| t).collect();
+        ids.par_sort_unstable();
+        ids.dedup();
+        let boxes = ids
+            .par_iter()
+            .map(|&t| round_out(&tri_box(mesh, t)))
+            .collect();
+        for f in &mut found {
+            f.1 = ids.binary_search(&f.1).unwrap_or_default() as u32;
+        }
+        found.par_sort_unstable();
+        Part {
+            mesh,
+            ids,
+            boxes,
+            items: found,
+        }
+    }
+
+    /// The union of the rounded boxes of the triangles `list`.
+    fn bound(&self, list: &[u32]) -> Box3 {
+        let mut b = [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]];
+        for &i in list {
+            let c = &self.boxes[i as usize];
+            for k in 0..3 {
+                b[0][k] = b[0][k].min(f64::from(c[0][k]));
+                b[1][k] = b[1][k].max(f64::from(c[1][k]));
+            }
+        }
+        b
+    }
+
+    /// The triangles of `list` whose rounded boxes meet `lo..=hi` along `axis`.
+    fn within(&self, list: &[u32], axis: usize, lo: f64, hi: f64) -> Vec<u32> {
+        list.iter()
+            .copied()
+            .filter(|&i| {
+                let c = &self.boxes[i as usize];
+                f64::from(c[0][axis]) <= hi && f64::from(c[1][axis]) >= lo
+            })
+            .collect()
+    }
+
+    /// The local indices of the triangles in cell `c`.
+    fn in_cell(&self, c: u32) -> Vec<u32> {
+        let from = self.items.partition_point(|&(x, _)| x < c);
+        self.items[from..]
+            .iter()
+            .take_while(|&&(x, _)| x == c)
+            .map(|&(_, i)| i)
+            .collect()
+    }
+}
+
+/// The box of the positions of `m` (unreferenced vertices included: a larger box only
+/// lets more triangles take part, never fewer).
+fn position_bounds(m: &Mesh) -> Option<Box3> {
+    m.positions
+        .par_iter()
+        .fold(
+            || None,
+            |b: Option<Box3>, p| {
+                Some(match b {
+                    None => [*p, *p],
+                    Some([lo, hi]) => [
+                        std::array::from_fn(|k| lo[k].min(p[k])),
+                        std::array::from_fn(|k| hi[k].max(p[k])),
+                    ],
+                })
+            },
+        )
+        .reduce(
+            || None,
+            |x, y| match (x, y) {
+                (None, b) | (b, None) => b,
+                (Some([l0, h0]), Some([l1, h1])) => Some([
+                    std::array::from_fn(|k| l0[k].min(l1[k])),
+                    std::array::from_fn(|k| h0[k].max(h1[k])),
+                ]),
+            },
+        )
+}
+
+/// Every pair `(triangle of a, triangle of b)` whose exact boxes overlap (closed boxes:
+/// touching counts), sorted. Degenerate triangles take part like any other. Indices must be
+/// in range. Parallel.
+pub fn overlapping_pairs(a: &Mesh, b: &Mesh) -> Vec<(u32, u32)> {
+    if a.triangles.is_empty() || b.triangles.is_empty() {
+        return Vec::new();
+    }
+    let (Some(ba), Some(bb)) = rayon::join(|| position_bounds(a), || position_bounds(b)) else {
+        return Vec::new();
+    };
+    let common: Box3 = [
+        std::array::from_fn(|k| ba[0][k].max(bb[0][k])),
+        std::array::from_fn(|k| ba[1][k].min(bb[1][k])),
+    ];
+    if (0..3).any(|k| common[0][k] > common[1][k]) {
+        return Vec::new();
+    }
+    let grid = Grid::new(&common, a, b);
+    let ((ra, bits_a), (rb, bits_b)) =
+        rayon::join(|| reached(a, &common, &grid), || reached(b, &common, &grid));
+    let keep: Vec<u64> = bits_a.iter().zip(&bits_b).map(|(x, y)| x & y).collect();
+    let (pa, pb) = rayon::join(
+        || Part::new(a, &ra, &grid, &keep),
+        || Part::new(b, &rb, &grid, &keep),
+    );
+    let mut cells: Vec<u32> = pa.items.iter().map(|&(c, _)| c).collect();
+    cells.dedup();
+    let own = [[f64::NEG_INFINITY; 3], [f64::INFINITY; 3]];
+    let mut pairs: Vec<(u32, u32)> = cells
+        .par_iter()
+        .flat_map_iter(|&c| {
+            let (la, lb) = (pa.in_cell(c), pb.in_cell(c));
+            let at = Place {
+                grid: &grid,
+                cell: c as usize,
+                own,
+            };
+            let mut out = Vec::new();
+            cut(&pa, &la, &pb, &lb, common, at, 0, &mut out);
+            out
+        })
+        .collect();
+    pairs.par_sort_unstable();
+    pairs
+}
+
+/// Which corner points a piece reports pairs for: those in grid cell `cell` and in `own`
+/// (closed below, open above).
+#[derive(Clone, Copy)]
+struct Place<'g> {
+    grid: &'g Grid,
+    cell: usize,
+    own: Box3,
+}
+
+impl Place<'_> {
+    fn holds(&self, p: &[f64; 3]) -> bool {
+        (0..3).all(|k| self.own[0][k] <= p[k] && p[k] < self.own[1][k])
+            && self.grid.cell_of(p) == self.cell
+    }
+}
+
+/// The pairs of triangles `la` of `a` and `lb` of `b` (local indices) whose exact boxes
+/// overlap, the lowest corner of their intersection lying in `at`, searched within the
+/// closed box `cell` (which holds every such corner), added to `out`.
+#[allow(clippy::too_many_arguments)]
+fn cut(
+    a: &Part,
+    la: &[u32],
+    b: &Part,
+    lb: &[u32],
+    cell: Box3,
+    at: Place,
+    depth: u32,
+    out: &mut Vec<(u32, u32)>,
+) {
+    if la.is_empty() || lb.is_empty() {
+        return;
+    }
+    // Shrink to what both lists cover.
+    let (ca, cb) = (a.bound(la), b.bound(lb));
+    let cell: Box3 = [
+        std::array::from_fn(|k| cell[0][k].max(ca[0][k]).max(cb[0][k])),
+        std::array::from_fn(|k| cell[1][k].min(ca[1][k]).min(cb[1][k])),
+    ];
+    if (0..3).any(|k| cell[0][k] > cell[1][k]) {
+        return;
+    }
+    let axis = (0..3)
+        .max_by(|&i, &j| (cell[1][i] - cell[0][i]).total_cmp(&(cell[1][j] - cell[0][j])))
+        .unwrap_or(0);
+    let (lo, hi) = (cell[0][axis], cell[1][axis]);
+    let mid = lo + (hi - lo) / 2.0;
+    if la.len() * lb.len() <= LEAF_PAIRS || depth >= MAX_DEPTH || !(lo < mid && mid < hi) {
+        return leaf(a, la, b, lb, &at, out);
+    }
+    let lists = |from: f64, to: f64| (a.within(la, axis, from, to), b.within(lb, axis, from, to));
+    let (below, above) = (lists(lo, mid), lists(mid, hi));
+    // A cut that leaves more pairs to test than it started with separates nothing (many
+    // triangles of both meshes through one spot): test the pairs here.
+    if below.0.len() * below.1.len() + above.0.len() * above.1.len() > la.len() * lb.len() {
+        return leaf(a, la, b, lb, &at, out);
+    }
+    let half = |(ha, hb): (Vec<u32>, Vec<u32>), is_below: bool, out: &mut Vec<(u32, u32)>| {
+        let (mut c, mut o) = (cell, at);
+        if is_below {
+            c[1][axis] = mid;
+            o.own[1][axis] = mid;
+        } else {
+            c[0][axis] = mid;
+            o.own[0][axis] = mid;
+        }
+        cut(a, &ha, b, &hb, c, o, depth + 1, out);
+    };
+    if la.len() + lb.len() > PARALLEL {
+        let mut more = Vec::new();
+        rayon::join(|| half(below, true, out), || half(above, false, &mut more));
+        out.append(&mut more);
+    } else {
+        half(below, true, out);
+        half(above, false, out);
+    }
+}
+
+/// Every pair of `la × lb` whose exact boxes overlap with the lowest corner of their
+/// intersection in `at`, as triangle ids, added to `out`.
+fn leaf(a: &Part, la: &[u32], b: &Part, lb: &[u32], at: &Place, out: &mut Vec<(u32, u32)>) {
+    let exact_b: Vec<Box3> = lb
+        .iter()
+        .map(|&j| tri_box(b.mesh, b.ids[j as usize]))
+        .collect();
+    for &i in la {
+        let ra = &a.boxes[i as usize];
+        let mut ea: Option<Box3> = None;
+        for (&j, eb) in lb.iter().zip(&exact_b) {
+            let rb = &b.boxes[j as usize];
+            if !(0..3).all(|k| ra[0][k] <= rb[1][k] && rb[0][k] <= ra[1][k]) {
+                continue;
+            }
+            let ea = ea.get_or_insert_with(|| tri_box(a.mesh, a.ids[i as usize]));
+            if !overlaps(ea, eb) {
+                continue;
+            }
+            let corner = std::array::from_fn(|k| ea[0][k].max(eb[0][k]));
+            if at.holds(&corner) {
+                out.push((a.ids[i as usize], b.ids[j as usize]));
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shapes;
+
+    fn brute(a: &Mesh, b: &Mesh) -> Vec<(u32, u32)> {
+        let mut out = Vec::new();
+        for i in 0..a.triangles.len() as u32 {
+            let ea = tri_box(a, i);
+            for j in 0..b.triangles.len() as u32 {
+                if overlaps(&ea, &tri_box(b, j)) {
+                    out.push((i, j));
+                }
+            }
+        }
+        out
+    }
+
+    /// The pairs equal brute force; returns how many there are.
+    fn check(a: &Mesh, b: &Mesh) -> usize {
+        let got = overlapping_pairs(a, b);
+        let want = brute(a, b);
+        assert_eq!(got.len(), want.len());
+        assert!(got == want);
+        got.len()
+    }
+
+    #[test]
+    fn pairs_are_the_brute_force_pairs_under_rigid_motions() {
+        let ball = shapes::uv_sphere([0.0; 3], 1.0, 24, 12);
+        let ring = shapes::torus([0.0; 3], 1.0, 0.3, 24, 10);
+        let mut found = 0;
+        for k in 0..12 {
+            let t = f64::from(k);
+            let moved = shapes::rigid_motion(
+                &ball,
+                [t.sin(), 1.0, t.cos()],
+                0.37 * t,
+                [0.1 * t - 0.6, 0.05 * t, -0.03 * t],
+            );
+            found += check(&ball, &moved);
+            found += check(&ring, &moved);
+        }
+        assert!(found > 1000, "{found}");
+    }
+
+    #[test]
+    fn touching_identical_and_coplanar_meshes() {
+        let cube = Mesh::unit_cube();
+        // Touching along a face (closed boxes), identical, shifted on a face, apart.
+        let touching = Mesh::cuboid([1.0, 0.2, 0.2], [2.0, 0.8, 0.8]);
+        assert!(check(&cube, &touching) > 0);
+        assert!(check(&cube, &cube) > 12);
+        let grid = shapes::heightfield([0.0, 0.0], [1.0, 1.0], 16, 16, |_, _| 0.0);
+        let shifted = shapes::rigid_motion(&grid, [0.0, 0.0, 1.0], 0.0, [0.25, 0.125, 0.0]);
+        assert!(check(&grid, &grid) > 2 * 16 * 16);
+        assert!(check(&grid, &shifted) > 0);
+        let apart = shapes::rigid_motion(&grid, [0.0, 0.0, 1.0], 0.0, [0.0, 0.0, 1e-9]);
+        assert_eq!(check(&grid, &apart), 0);
+        assert!(overlapping_pairs(&grid, &Mesh::default()).is_empty());
+    }
+
+    #[test]
+    fn shared_fans_and_utm_coordinates() {
+        // Both meshes have a fan of 200 triangles around the same poles: pieces there
+        // never separate and end at the depth limit.
+        let a = shapes::uv_sphere([0.0; 3], 1.0, 200, 6);
+        let b = shapes::rigid_motion(&a, [0.0, 0.0, 1.0], 0.01, [0.0; 3]);
+        assert!(check(&a, &b) > 2 * 200 * 200);
+        // Far from the origin the rounded boxes are much larger than the triangles.
+        let at = [512_345.5, 7_123_456.25, 250.0];
+        let terrain = shapes::heightfield(
+            [at[0] - 50.0, at[1] - 50.0],
+            [at[0] + 50.0, at[1] + 50.0],
+            40,
+            40,
+            |x, y| at[2] + ((x - at[0]) * 0.1).sin() * ((y - at[1]) * 0.1).cos(),
+        );
+        let ball = shapes::uv_sphere(at, 20.0, 16, 8);
+        assert!(check(&terrain, &ball) > 0);
+    }
+
+    #[test]
+    fn large_inputs_give_the_trees_pairs() {
+        // Above the size where `intersect` switches from trees to the grid: the same
+        // sorted pairs, for crossing and for identical meshes.
+        use crate::bvh::Bvh;
+        let a = shapes::uv_sphere([0.0; 3], 1.0, 300, 200);
+        let b = shapes::rigid_motion(&a, [0.0, 0.0, 1.0], 0.1, [0.5, 0.0, 0.0]);
+        assert!(a.triangles.len() + b.triangles.len() >= 100_000);
+        for (x, y) in [(&a, &b), (&a, &a)] {
+            let trees = Bvh::new(x).overlapping_pairs(x, &Bvh::new(y), y);
+            let got = overlapping_pairs(x, y);
+            assert!(!got.is_empty());
+            assert!(got == trees);
+        }
+    }
+
+    #[test]
+    fn degenerate_triangles_take_part() {
+        let cube = Mesh::unit_cube();
+        let mut flat = Mesh::cuboid([0.5, 0.5, 0.5], [1.5, 1.5, 1.5]);
+        let p = flat.positions.len() as u32;
+        flat.positions.push([0.5, 0.5, 1.0]);
+        flat.positions.push([0.7, 0.5, 1.0]);
+        // A zero-area sliver and a point triangle, both on the cube's top face.
+        flat.triangles.push([p, p + 1, p + 1]);
+        flat.triangles.push([p, p, p]);
+        assert!(check(&cube, &flat) > 0);
+    }
+}
