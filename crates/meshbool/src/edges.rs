@@ -127,37 +127,58 @@ impl EdgeTopology {
     /// `join(e)` holds (e.g. not across seam edges). Union-find streaming over the edges:
     /// cache-friendly even when triangles are not stored in spatial order.
     pub fn components_across(&self, join: impl Fn(usize) -> bool) -> (usize, Vec<u32>) {
-        let n = self.triangle_edges.len();
-        let mut parent: Vec<u32> = (0..n as u32).collect();
-        fn find(parent: &mut [u32], mut x: u32) -> u32 {
-            while parent[x as usize] != x {
-                let up = parent[parent[x as usize] as usize];
-                parent[x as usize] = up;
-                x = up;
-            }
-            x
-        }
+        let mut roots = Roots::new(self.triangle_edges.len());
         for e in 0..self.edges.len() {
-            if !join(e) {
-                continue;
-            }
-            let u = self.uses_of(e);
-            for w in u.windows(2) {
-                let (a, b) = (
-                    find(&mut parent, w[0].triangle),
-                    find(&mut parent, w[1].triangle),
-                );
-                if a != b {
-                    // Keep the lower id as root so that labels follow triangle order.
-                    parent[a.max(b) as usize] = a.min(b);
-                }
+            if join(e) {
+                roots.join_all(self.uses_of(e));
             }
         }
+        roots.labels()
+    }
+}
+
+/// Union-find over triangles (path halving; the lower id stays the root, so that labels
+/// can follow triangle order).
+struct Roots {
+    parent: Vec<u32>,
+}
+
+impl Roots {
+    fn new(n: usize) -> Self {
+        Roots {
+            parent: (0..n as u32).collect(),
+        }
+    }
+
+    fn find(&mut self, mut x: u32) -> u32 {
+        let parent = &mut self.parent;
+        while parent[x as usize] != x {
+            let up = parent[parent[x as usize] as usize];
+            parent[x as usize] = up;
+            x = up;
+        }
+        x
+    }
+
+    /// Puts the triangles of all `uses` into one component.
+    fn join_all(&mut self, uses: &[EdgeUse]) {
+        for w in uses.windows(2) {
+            let (a, b) = (self.find(w[0].triangle), self.find(w[1].triangle));
+            if a != b {
+                self.parent[a.max(b) as usize] = a.min(b);
+            }
+        }
+    }
+
+    /// The number of components and each triangle's component, numbered in order of each
+    /// component's first triangle.
+    fn labels(mut self) -> (usize, Vec<u32>) {
+        let n = self.parent.len();
         let mut label = vec![u32::MAX; n];
         let mut count = 0u32;
         let out = (0..n as u32)
             .map(|t| {
-                let r = find(&mut parent, t) as usize;
+                let r = self.find(t) as usize;
                 if label[r] == u32::MAX {
                     label[r] = count;
                     count += 1;
@@ -166,6 +187,92 @@ impl EdgeTopology {
             })
             .collect();
         (count as usize, out)
+    }
+}
+
+/// What the boolean's classification needs of an arranged mesh's edges, without the full
+/// adjacency of [`EdgeTopology`] (a fraction of its memory and time on large meshes): the
+/// patches (components joined across every edge but the seam edges), the uses of the seam
+/// edges, and whether the mesh is closed.
+#[derive(Clone, Debug, Default)]
+pub struct SeamTopology {
+    /// The seam edges that are edges of the mesh, as `[lo, hi]` (`lo < hi`), sorted.
+    pub edges: Vec<[u32; 2]>,
+    offsets: Vec<u32>,
+    uses: Vec<EdgeUse>,
+    /// Number of patches.
+    pub patches: usize,
+    /// Patch of every triangle, numbered in order of each patch's first triangle (the
+    /// numbering of [`EdgeTopology::components_across`]).
+    pub patch: Vec<u32>,
+    closed: bool,
+}
+
+impl SeamTopology {
+    /// The seam structure of `mesh` (indices must be in range) cut along `seam` (vertex
+    /// pairs, in any order; pairs that are not edges of the mesh are ignored).
+    pub fn new(mesh: &Mesh, seam: &[[u32; 2]]) -> Self {
+        let nv = mesh.positions.len();
+        let mut seam: Vec<[u32; 2]> = seam.iter().map(|&[u, v]| [u.min(v), u.max(v)]).collect();
+        seam.sort_unstable();
+        seam.dedup();
+        let mut on_seam = vec![false; nv];
+        for &[u, _] in &seam {
+            on_seam[u as usize] = true;
+        }
+        // (higher vertex, half-edge id) per lower vertex, as one sortable word.
+        let (start, mut half) = bucket_by_lower(mesh, 0, nv as u32, |a, b, h| {
+            (u64::from(a.max(b)) << 32) | u64::from(h)
+        });
+        let mut out = SeamTopology {
+            closed: !half.is_empty(),
+            ..SeamTopology::default()
+        };
+        let mut roots = Roots::new(mesh.triangles.len());
+        let mut run: Vec<EdgeUse> = Vec::new();
+        for lo in 0..nv {
+            let bucket = &mut half[start[lo] as usize..start[lo + 1] as usize];
+            bucket.sort_unstable();
+            let mut rest = &*bucket;
+            while let Some(&first) = rest.first() {
+                let hi = (first >> 32) as u32;
+                let n = rest.iter().take_while(|&&w| (w >> 32) as u32 == hi).count();
+                run.clear();
+                run.extend(rest[..n].iter().map(|&w| {
+                    let h = w as u32;
+                    let (t, k) = (h / 3, (h % 3) as usize);
+                    EdgeUse {
+                        triangle: t,
+                        corner: k as u8,
+                        forward: mesh.triangles[t as usize][k] as usize == lo,
+                    }
+                }));
+                out.closed &= n == 2;
+                let edge = [lo as u32, hi];
+                if on_seam[lo] && seam.binary_search(&edge).is_ok() {
+                    out.edges.push(edge);
+                    out.offsets.push(out.uses.len() as u32);
+                    out.uses.extend_from_slice(&run);
+                } else {
+                    roots.join_all(&run);
+                }
+                rest = &rest[n..];
+            }
+        }
+        out.offsets.push(out.uses.len() as u32);
+        (out.patches, out.patch) = roots.labels();
+        out
+    }
+
+    /// The uses of seam edge `e` (an index into [`SeamTopology::edges`]), in triangle order.
+    pub fn uses_of(&self, e: usize) -> &[EdgeUse] {
+        &self.uses[self.offsets[e] as usize..self.offsets[e + 1] as usize]
+    }
+
+    /// True when every edge of the mesh has exactly two uses and there is at least one
+    /// edge ([`EdgeTopology::is_closed`]).
+    pub fn is_closed(&self) -> bool {
+        self.closed
     }
 }
 
@@ -446,6 +553,65 @@ mod tests {
             let got = pool.expect("pool").install(|| EdgeCounts::of(&m));
             assert_eq!(got, want, "{threads} threads");
         }
+    }
+
+    /// [`SeamTopology`] of `m` cut along `seam` against the same from the full adjacency.
+    fn seam_topology_matches(m: &Mesh, seam: &[[u32; 2]]) -> SeamTopology {
+        let full = EdgeTopology::new(m);
+        let is_seam = |e: usize| {
+            let [u, v] = full.edges[e];
+            seam.iter().any(|s| *s == [u, v] || *s == [v, u])
+        };
+        let got = SeamTopology::new(m, seam);
+        let (n, patch) = full.components_across(|e| !is_seam(e));
+        assert_eq!((got.patches, &got.patch), (n, &patch));
+        let edges: Vec<usize> = (0..full.edge_count()).filter(|&e| is_seam(e)).collect();
+        assert_eq!(got.edges.len(), edges.len());
+        for (k, &e) in edges.iter().enumerate() {
+            assert_eq!(got.edges[k], full.edges[e]);
+            assert_eq!(got.uses_of(k), full.uses_of(e));
+        }
+        assert_eq!(got.is_closed(), full.is_closed());
+        got
+    }
+
+    #[test]
+    fn seam_topology_agrees_with_the_full_adjacency() {
+        // A closed sphere cut along a ring of edges (two patches), given in both
+        // directions, twice, and with pairs that are not edges.
+        let m = crate::shapes::uv_sphere([0.0; 3], 1.0, 24, 12);
+        let full = EdgeTopology::new(&m);
+        let z = |v: u32| m.positions[v as usize][2];
+        let ring: Vec<[u32; 2]> = full
+            .edges
+            .iter()
+            .filter(|&&[u, v]| z(u) == z(v) && z(u).abs() < 1e-12)
+            .map(|&[u, v]| [v, u])
+            .collect();
+        assert_eq!(ring.len(), 24);
+        let mut seam = ring.clone();
+        seam.extend(&ring);
+        seam.extend([[0, 0], [3, 200]]);
+        let cut = seam_topology_matches(&m, &seam);
+        assert_eq!((cut.patches, cut.is_closed()), (2, true));
+        assert_eq!(seam_topology_matches(&m, &[]).patches, 1);
+        // Broken: a hole, flipped triangles, a triangle used three times (its edges are
+        // non-manifold), a repeated-vertex triangle; seam edges among them.
+        let mut b = m.clone();
+        b.triangles.remove(100);
+        b.triangles[50].swap(1, 2);
+        let t = b.triangles[200];
+        b.triangles.extend([t, t]);
+        b.triangles.push([7, 7, 9]);
+        let mut seam = ring;
+        seam.extend([
+            [t[0], t[1]],
+            [7, 9],
+            [b.triangles[50][0], b.triangles[50][1]],
+        ]);
+        let open = seam_topology_matches(&b, &seam);
+        assert!(!open.is_closed());
+        assert!(!seam_topology_matches(&Mesh::default(), &[]).is_closed());
     }
 }
 

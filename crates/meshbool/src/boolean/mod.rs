@@ -8,7 +8,7 @@ use rayon::prelude::*;
 
 use crate::arrange::{arrange, Arranged, Side};
 use crate::classify::{classify, Class, Classified, Operand};
-use crate::edges::EdgeTopology;
+use crate::edges::SeamTopology;
 use crate::intersect::{intersect, Seam};
 use crate::Mesh;
 
@@ -145,8 +145,8 @@ pub fn split_with_progress(a: &Mesh, b: &Mesh, progress: &dyn Fn(Stage)) -> Spli
     // Closedness picks the winding-number threshold; the arranged mesh is closed exactly
     // when its input is (cutting keeps every edge's use count).
     let (topo_a, topo_b) = rayon::join(
-        || EdgeTopology::new(&arr_a.mesh),
-        || EdgeTopology::new(&arr_b.mesh),
+        || SeamTopology::new(&arr_a.mesh, &arr_a.seam_edges),
+        || SeamTopology::new(&arr_b.mesh, &arr_b.seam_edges),
     );
     let (closed_a, closed_b) = (topo_a.is_closed(), topo_b.is_closed());
     let oa = Operand {

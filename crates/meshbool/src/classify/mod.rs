@@ -12,7 +12,7 @@ use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
 use crate::arrange::Arranged;
-use crate::edges::EdgeTopology;
+use crate::edges::SeamTopology;
 use crate::intersect::tritri::Tri;
 use crate::kernel::{orient2d, orient3d_plane, Point, Sign};
 use crate::Mesh;
@@ -105,8 +105,8 @@ pub struct Operand<'a> {
     pub input: &'a Mesh,
     /// Its arrangement along the seam.
     pub arranged: &'a Arranged,
-    /// `EdgeTopology::new(&arranged.mesh)`.
-    pub topology: &'a EdgeTopology,
+    /// `SeamTopology::new(&arranged.mesh, &arranged.seam_edges)`.
+    pub topology: &'a SeamTopology,
 }
 
 /// Classifies the triangles of `x` against the other mesh `y` (both arranged along the same
@@ -115,17 +115,9 @@ pub fn classify(x: &Operand, y: &Operand, y_closed: bool) -> Classified {
     let (x_in, topo, y_in, ytopo) = (x.input, x.topology, y.input, y.topology);
     let (x, y) = (x.arranged, y.arranged);
     let n = x.mesh.triangles.len();
-    // Seam edges by edge id (the topology's edges are sorted: binary search each).
-    let mut is_seam = vec![false; topo.edge_count()];
-    for e in &x.seam_edges {
-        if let Ok(i) = topo.edges.binary_search(e) {
-            is_seam[i] = true;
-        }
-    }
     // Patches: components of the triangles joined across edges that are not seam edges,
     // numbered in the order of each patch's first triangle.
-    let (patches, patch) = topo.components_across(|e| !is_seam[e]);
-    let patches = patches as u32;
+    let (patches, patch) = (topo.patches as u32, &topo.patch);
     // Votes from every seam edge use.
     let seam_of_vertex: FxHashMap<u32, u32> = x
         .seam_vertex
@@ -133,11 +125,10 @@ pub fn classify(x: &Operand, y: &Operand, y_closed: bool) -> Classified {
         .enumerate()
         .map(|(s, &v)| (v, s as u32))
         .collect();
-    let seam_edge_ids: Vec<usize> = (0..topo.edge_count()).filter(|&e| is_seam[e]).collect();
     // (patch, triangle, class) for every use of a seam edge.
-    let votes: Vec<(u32, u32, Option<Class>)> = seam_edge_ids
-        .par_iter()
-        .flat_map_iter(|&e| {
+    let votes: Vec<(u32, u32, Option<Class>)> = (0..topo.edges.len())
+        .into_par_iter()
+        .flat_map_iter(|e| {
             let [u, v] = topo.edges[e];
             let (su, sv) = (seam_of_vertex[&u], seam_of_vertex[&v]);
             let (yu, yv) = (y.seam_vertex[su as usize], y.seam_vertex[sv as usize]);
@@ -260,7 +251,7 @@ pub fn classify(x: &Operand, y: &Operand, y_closed: bool) -> Classified {
         .collect();
     Classified {
         class,
-        patch,
+        patch: patch.clone(),
         patches: patches as usize,
         by_winding,
     }
