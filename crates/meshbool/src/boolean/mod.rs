@@ -181,20 +181,53 @@ pub fn merge(
     keep_a: impl Fn(usize) -> Option<bool> + Sync,
     keep_b: impl Fn(usize) -> Option<bool> + Sync,
 ) -> (Mesh, Vec<Provenance>) {
+    use std::sync::atomic::{AtomicBool, Ordering::Relaxed};
+    /// Triangles (and vertices) per piece of parallel work.
+    const CHUNK: usize = 1 << 14;
     let (na, nb) = (s.a.mesh.positions.len(), s.b.mesh.positions.len());
     // B's vertex ids in the merged numbering: seam vertices are A's, others follow A's.
     let mut b_to_merged: Vec<u32> = (na as u32..(na + nb) as u32).collect();
     for (sp, &vb) in s.b.seam_vertex.iter().enumerate() {
         b_to_merged[vb as usize] = s.a.seam_vertex[sp];
     }
-    let chosen = |arr: &Arranged,
-                  keep: &(dyn Fn(usize) -> Option<bool> + Sync),
-                  source: Source,
-                  map: Option<&[u32]>| {
-        (0..arr.mesh.triangles.len())
-            .into_par_iter()
-            .filter_map(|t| {
-                let flip = keep(t)?;
+    type Keep<'k> = &'k (dyn Fn(usize) -> Option<bool> + Sync);
+    let sides: [(&Arranged, Keep, Source, Option<&[u32]>); 2] = [
+        (&s.a, &keep_a, Source::A, None),
+        (&s.b, &keep_b, Source::B, Some(&b_to_merged)),
+    ];
+    // Pieces of both meshes in output order; each writes its kept triangles into its own
+    // slice of the output, found from the counts of the pieces before it.
+    let pieces: Vec<(usize, std::ops::Range<usize>)> = sides
+        .iter()
+        .enumerate()
+        .flat_map(|(k, side)| {
+            let n = side.0.mesh.triangles.len();
+            (0..n)
+                .step_by(CHUNK)
+                .map(move |t| (k, t..(t + CHUNK).min(n)))
+        })
+        .collect();
+    let counts: Vec<usize> = pieces
+        .par_iter()
+        .map(|(k, r)| r.clone().filter(|&t| (sides[*k].1)(t).is_some()).count())
+        .collect();
+    let total: usize = counts.iter().sum();
+    let mut triangles = vec![[0u32; 3]; total];
+    let none = Provenance {
+        source: Source::A,
+        triangle: 0,
+        flipped: false,
+    };
+    let mut provenance = vec![none; total];
+    let used: Vec<AtomicBool> = (0..na + nb).map(|_| AtomicBool::new(false)).collect();
+    split_by(&mut triangles, &counts)
+        .into_par_iter()
+        .zip(split_by(&mut provenance, &counts))
+        .zip(&pieces)
+        .for_each(|((tris, prov), (k, range))| {
+            let (arr, keep, source, map) = sides[*k];
+            let kept = range.clone().filter_map(|t| Some((t, keep(t)?)));
+            for ((t, flip), (out, p)) in kept.zip(tris.iter_mut().zip(prov.iter_mut())) {
                 let tri = arr.mesh.triangles[t];
                 let mut v = match map {
                     None => tri,
@@ -203,41 +236,71 @@ pub fn merge(
                 if flip {
                     v.swap(1, 2);
                 }
-                let p = Provenance {
+                for &i in &v {
+                    used[i as usize].store(true, Relaxed);
+                }
+                *out = v;
+                *p = Provenance {
                     source,
                     triangle: arr.parent[t],
                     flipped: flip,
                 };
-                Some((v, p))
-            })
-            .unzip::<_, _, Vec<_>, Vec<_>>()
-    };
-    let ((mut triangles, mut provenance), (tb, pb)) = rayon::join(
-        || chosen(&s.a, &keep_a, Source::A, None),
-        || chosen(&s.b, &keep_b, Source::B, Some(&b_to_merged)),
-    );
-    triangles.extend(tb);
-    provenance.extend(pb);
-    // Compact: only referenced vertices, in merged-id order.
-    let mut new_id = vec![u32::MAX; na + nb];
-    for &v in triangles.iter().flatten() {
-        new_id[v as usize] = 0;
-    }
-    let mut positions = Vec::new();
-    for (v, id) in new_id.iter_mut().enumerate() {
-        if *id == 0 {
-            *id = positions.len() as u32;
-            positions.push(if v < na {
-                s.a.mesh.positions[v]
-            } else {
-                s.b.mesh.positions[v - na]
-            });
+            }
+        });
+    // Compact: only referenced vertices, in merged-id order (the same two-pass split).
+    let position = |v: usize| {
+        if v < na {
+            s.a.mesh.positions[v]
+        } else {
+            s.b.mesh.positions[v - na]
         }
-    }
+    };
+    let used_in: Vec<usize> = used
+        .par_chunks(CHUNK)
+        .map(|c| c.iter().filter(|u| u.load(Relaxed)).count())
+        .collect();
+    let mut positions = vec![[0.0; 3]; used_in.iter().sum()];
+    let mut first = 0u32;
+    let starts: Vec<u32> = used_in
+        .iter()
+        .map(|&n| {
+            first += n as u32;
+            first - n as u32
+        })
+        .collect();
+    let mut new_id = vec![u32::MAX; na + nb];
+    new_id
+        .par_chunks_mut(CHUNK)
+        .zip(split_by(&mut positions, &used_in))
+        .enumerate()
+        .for_each(|(c, (ids, pos))| {
+            let mut next = 0;
+            for (j, id) in ids.iter_mut().enumerate() {
+                let v = c * CHUNK + j;
+                if used[v].load(Relaxed) {
+                    *id = starts[c] + next as u32;
+                    pos[next] = position(v);
+                    next += 1;
+                }
+            }
+        });
     triangles
         .par_iter_mut()
         .for_each(|t| *t = t.map(|v| new_id[v as usize]));
     (Mesh::new(positions, triangles), provenance)
+}
+
+/// `v` cut into consecutive slices of the given lengths (which must add up to at most its
+/// length).
+fn split_by<'v, T>(mut v: &'v mut [T], lengths: &[usize]) -> Vec<&'v mut [T]> {
+    lengths
+        .iter()
+        .map(|&n| {
+            let (head, rest) = std::mem::take(&mut v).split_at_mut(n);
+            v = rest;
+            head
+        })
+        .collect()
 }
 
 /// The boolean `op` of `a` and `b` (both valid, exactly welded, consistently oriented;
