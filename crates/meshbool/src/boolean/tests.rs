@@ -441,3 +441,21 @@ fn rounding_flips_are_counted_exactly() {
     let r = boolean(&a, &c, Op::Union);
     assert_eq!((r.rounding_flips, count_rounding_flips(&r, &a, &c)), (0, 0));
 }
+
+#[test]
+fn large_spheres_take_the_large_input_paths() {
+    // Above the size where candidate pairs come from the grid broad phase, and many
+    // merge pieces: the same closedness and volume identities; the intersection lies
+    // between the two-sphere lens volume and each sphere.
+    let a = uv_sphere([0.0; 3], 1.0, 300, 200);
+    let b = rigid_motion(&a, [0.0, 0.0, 1.0], 0.1, [0.5, 0.0, 0.0]);
+    assert!(a.triangles.len() + b.triangles.len() >= 200_000);
+    let [u, i, _, _] = check(&a, &b, 1e-9);
+    // Exact lens of two unit balls 0.5 apart: π (4 + d)(2 − d)² / 12.
+    let lens = std::f64::consts::PI * 4.5 * 1.5 * 1.5 / 12.0;
+    assert!((i - lens).abs() < 2e-3 * lens, "{i} vs {lens}");
+    assert!(u > vol(&a) && i < vol(&a));
+    let r = boolean(&a, &b, Op::Union);
+    let s = split(&a, &b);
+    assert!(r.seam_points > 1000 && s.a.mesh.triangles.len() > a.triangles.len());
+}
