@@ -124,15 +124,22 @@ pub fn arrange(mesh: &Mesh, seam: &Seam, side: Side) -> Arranged {
     }
     let mut cut: Vec<u32> = face_pts.keys().chain(cons.keys()).copied().collect();
     if !edge_pts.is_empty() {
+        // Only a triangle with two corners on such edges can have one: check that first.
+        let mut ends = vec![false; positions.len()];
+        for &(u, v) in edge_pts.keys() {
+            ends[u as usize] = true;
+            ends[v as usize] = true;
+        }
         cut.par_extend(
             (0..mesh.triangles.len() as u32)
                 .into_par_iter()
                 .filter(|&t| {
                     let tri = mesh.triangles[t as usize];
-                    (0..3).any(|k| {
-                        let (u, v) = (tri[k], tri[(k + 1) % 3]);
-                        edge_pts.contains_key(&(u.min(v), u.max(v)))
-                    })
+                    tri.iter().filter(|&&v| ends[v as usize]).count() >= 2
+                        && (0..3).any(|k| {
+                            let (u, v) = (tri[k], tri[(k + 1) % 3]);
+                            edge_pts.contains_key(&(u.min(v), u.max(v)))
+                        })
                 }),
         );
     }
