@@ -50,8 +50,9 @@ struct Grid {
 }
 
 impl Grid {
-    /// A grid over `common` with cells a few times as wide as the typical triangle of `a`
-    /// and `b` (the median box side of a sample), at most [`MAX_CELLS`] per axis.
+    /// A grid over `common` with cells about [`CELL_TRIANGLES`] times as wide as the
+    /// typical triangle of `a` and `b` (the median longest box side of a sample), at most
+    /// [`MAX_CELLS`] per axis.
     fn new(common: &Box3, a: &Mesh, b: &Mesh) -> Grid {
         let ext: [f64; 3] = std::array::from_fn(|k| common[1][k] - common[0][k]);
         let longest = ext.iter().copied().fold(0.0, f64::max);
@@ -69,9 +70,12 @@ impl Grid {
         sizes.sort_by(f64::total_cmp);
         let typical = sizes.get(sizes.len() / 2).copied().unwrap_or(0.0);
         let width = (CELL_TRIANGLES * typical).max(longest / MAX_CELLS);
+        // Extents that overflow to infinity get one cell (and scale 0: every coordinate
+        // then has index 0, as `NaN.max(0.0)` is 0).
         let dims = std::array::from_fn(|k| {
-            if width > 0.0 && ext[k] > 0.0 {
-                (ext[k] / width).ceil().clamp(1.0, MAX_CELLS) as u32
+            let n = ext[k] / width;
+            if n.is_finite() && n > 0.0 {
+                n.ceil().clamp(1.0, MAX_CELLS) as u32
             } else {
                 1
             }
@@ -79,7 +83,7 @@ impl Grid {
         Grid {
             lo: common[0],
             scale: std::array::from_fn(|k| {
-                if ext[k] > 0.0 {
+                if ext[k].is_finite() && ext[k] > 0.0 {
                     f64::from(dims[k]) / ext[k]
                 } else {
                     0.0
@@ -339,6 +343,8 @@ pub fn overlapping_pairs(a: &Mesh, b: &Mesh) -> Vec<(u32, u32)> {
                 cell: c as usize,
                 own,
             };
+            // Searched within the common box, not the cell's own box: rounding may put a
+            // corner the cell holds just outside the box its bounds describe.
             let mut out = Vec::new();
             cut(&pa, &la, &pb, &lb, common, at, 0, &mut out);
             out
@@ -549,6 +555,22 @@ mod tests {
             assert!(!got.is_empty());
             assert!(got == trees);
         }
+    }
+
+    #[test]
+    fn extents_beyond_f64_range() {
+        // The common box is wider than the largest f64: one cell per axis, no panic.
+        let tri = |x: f64| {
+            Mesh::new(
+                vec![[x, 0.0, 0.0], [0.0, x, 0.0], [0.0, 0.0, x]],
+                vec![[0, 1, 2]],
+            )
+        };
+        let (a, b) = (tri(1e308), tri(-1e308));
+        let mut both = a.clone();
+        both.positions.extend(&b.positions);
+        both.triangles.push([3, 4, 5]);
+        assert_eq!(check(&both, &both), 4);
     }
 
     #[test]
