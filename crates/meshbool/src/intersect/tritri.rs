@@ -269,22 +269,38 @@ pub fn intersect(a: &Tri, b: &Tri) -> TriTri {
 fn coplanar(a: &Tri, b: &Tri) -> TriTri {
     let mut segments: Vec<[Label; 2]> = Vec::new();
     let mut points: Vec<Label> = Vec::new();
+    let mut previous: Option<Orients> = None;
     for (own, other, own_is_a) in [(a, b, true), (b, a, false)] {
         // Every orientation the clipping needs, once (projected along `other`'s axis):
         // `other`'s edges against `own`'s corners, `own`'s edges against `other`'s corners.
+        // When both triangles project along the same axis, the second direction asks the
+        // first one's questions with the roles swapped.
         let proj = other.axis;
-        let safe = own.safe && other.safe;
-        let side = |e: &Tri, m: usize, x: &Tri, k: usize| {
-            if safe {
-                orient2d_safe(&e.p[m], &e.p[(m + 1) % 3], &x.p[k], proj)
-            } else {
-                orient2d(&e.corner(m), &e.corner((m + 1) % 3), &x.corner(k), proj)
+        let orients = match previous {
+            Some(o) if a.axis == b.axis => Orients {
+                other_edges: o.own_edges,
+                own_edges: o.other_edges,
+            },
+            _ => {
+                let safe = own.safe && other.safe;
+                let side = |e: &Tri, m: usize, x: &Tri, k: usize| {
+                    if safe {
+                        orient2d_safe(&e.p[m], &e.p[(m + 1) % 3], &x.p[k], proj)
+                    } else {
+                        orient2d(&e.corner(m), &e.corner((m + 1) % 3), &x.corner(k), proj)
+                    }
+                };
+                Orients {
+                    other_edges: std::array::from_fn(|m| {
+                        std::array::from_fn(|k| side(other, m, own, k))
+                    }),
+                    own_edges: std::array::from_fn(|i| {
+                        std::array::from_fn(|m| side(own, i, other, m))
+                    }),
+                }
             }
         };
-        let orients = Orients {
-            other_edges: std::array::from_fn(|m| std::array::from_fn(|k| side(other, m, own, k))),
-            own_edges: std::array::from_fn(|i| std::array::from_fn(|m| side(own, i, other, m))),
-        };
+        previous = Some(orients);
         for i in 0..3 {
             match clip_edge(own, i, other, own_is_a, &orients) {
                 Clip::None => {}
@@ -311,6 +327,7 @@ fn coplanar(a: &Tri, b: &Tri) -> TriTri {
 /// Orientations for clipping `own`'s edges against `other` (projected along `other`'s
 /// axis): `other_edges[m][k]` of `own`'s corner `k` against `other`'s edge `m`,
 /// `own_edges[i][m]` of `other`'s corner `m` against `own`'s edge `i`.
+#[derive(Clone, Copy)]
 struct Orients {
     other_edges: [[Sign; 3]; 3],
     own_edges: [[Sign; 3]; 3],
