@@ -15,6 +15,19 @@ pub struct EdgeUse {
     pub forward: bool,
 }
 
+impl EdgeUse {
+    /// The use by half-edge `h` (`3 · triangle + corner`) of `mesh` of an edge whose lower
+    /// vertex is `lo`.
+    fn of(mesh: &Mesh, lo: usize, h: u32) -> EdgeUse {
+        let (t, k) = (h / 3, (h % 3) as usize);
+        EdgeUse {
+            triangle: t,
+            corner: k as u8,
+            forward: mesh.triangles[t as usize][k] as usize == lo,
+        }
+    }
+}
+
 /// Undirected edges of a mesh and the triangles incident to each (compressed rows).
 ///
 /// Edges are sorted by their vertex pair. Edges from a triangle to itself that repeats a
@@ -57,13 +70,9 @@ impl EdgeTopology {
                     offsets.push(uses.len() as u32);
                     edges.push([lo as u32, hi]);
                 }
-                let (t, k) = (h / 3, (h % 3) as usize);
-                triangle_edges[t as usize][k] = (edges.len() - 1) as u32;
-                uses.push(EdgeUse {
-                    triangle: t,
-                    corner: k as u8,
-                    forward: mesh.triangles[t as usize][k] as usize == lo,
-                });
+                let u = EdgeUse::of(mesh, lo, h);
+                triangle_edges[u.triangle as usize][u.corner as usize] = (edges.len() - 1) as u32;
+                uses.push(u);
             }
         }
         offsets.push(uses.len() as u32);
@@ -238,15 +247,7 @@ impl SeamTopology {
                 let hi = (first >> 32) as u32;
                 let n = rest.iter().take_while(|&&w| (w >> 32) as u32 == hi).count();
                 run.clear();
-                run.extend(rest[..n].iter().map(|&w| {
-                    let h = w as u32;
-                    let (t, k) = (h / 3, (h % 3) as usize);
-                    EdgeUse {
-                        triangle: t,
-                        corner: k as u8,
-                        forward: mesh.triangles[t as usize][k] as usize == lo,
-                    }
-                }));
+                run.extend(rest[..n].iter().map(|&w| EdgeUse::of(mesh, lo, w as u32)));
                 out.closed &= n == 2;
                 let edge = [lo as u32, hi];
                 if on_seam[lo] && seam.binary_search(&edge).is_ok() {
