@@ -14,6 +14,7 @@ use crate::kernel::{cross_sign, Point, Sign};
 use crate::Mesh;
 
 mod curves;
+mod fans;
 pub mod tritri;
 
 pub use curves::{chain, Polyline};
@@ -226,10 +227,73 @@ pub fn intersect(a: &Mesh, b: &Mesh) -> Seam {
     seam.positions = seam.exact.par_iter().map(Point::approx).collect();
     seam
 }
+
 /// Pairs of triangles of one mesh that meet anywhere other than in the vertices and edges
 /// they share: self-intersections (or coplanar overlaps). Exact. Degenerate triangles are
 /// left out. Sorted `(i, j)` with `i < j`.
 pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
+    let (fan_ok, bvh) = rayon::join(|| fans::certified(m), || Bvh::new(m));
+    let meets = |i: u32, j: u32| -> bool {
+        let (vi, vj) = (m.triangles[i as usize], m.triangles[j as usize]);
+        let shared = (0..3).filter(|&k| vj.contains(&vi[k])).count();
+        if shared == 3 {
+            return true; // the same triangle twice
+        }
+        if shared > 0 && vi.iter().any(|v| vj.contains(v) && fan_ok[*v as usize]) {
+            return false; // both around a vertex whose fan is certified
+        }
+        meets_beyond_shared(m, i, j, shared)
+    };
+    let mut found: Vec<(u32, u32)> = bvh
+        .self_candidates_where(m, &meets)
+        .into_iter()
+        .map(|(i, j)| (i.min(j), i.max(j)))
+        .collect();
+    found.par_sort_unstable();
+    found
+}
+
+/// Whether an edge-cross-edge axis certainly separates triangles `p` and `q`: the
+/// separating-axis test in floating point, answering only "certainly apart". Any vector
+/// is a valid axis (the one computed from rounded edges is just some direction); what
+/// must be certain is that the exact projections, onto it, of the corners (taken
+/// relative to `p[0]`, which moves neither) leave a gap. Each computed projection is
+/// within 4 ulp of |axis|₁ · (largest relative coordinate) of the exact one; the gap must
+/// exceed 1e-13 times that product, over 50 times the two projections' errors together. For pairs whose planes do not separate them:
+/// mostly neighbours across nearly planar quads, where rounded coordinates put a corner
+/// of each a hair over the other's plane.
+fn separated(p: &[[f64; 3]; 3], q: &[[f64; 3]; 3]) -> bool {
+    use crate::vec3::{cross, dot, sub};
+    let o = p[0];
+    let (p, q) = (p.map(|x| sub(&x, &o)), q.map(|x| sub(&x, &o)));
+    let scale = p
+        .iter()
+        .chain(&q)
+        .flat_map(|x| x.iter())
+        .fold(0.0f64, |s, x| s.max(x.abs()));
+    let edges = |t: &[[f64; 3]; 3]| [sub(&t[1], &t[0]), sub(&t[2], &t[1]), sub(&t[0], &t[2])];
+    let (ep, eq) = (edges(&p), edges(&q));
+    for a in ep.iter().flat_map(|u| eq.iter().map(move |v| cross(u, v))) {
+        let margin = 1e-13 * (a[0].abs() + a[1].abs() + a[2].abs()) * scale;
+        if !(margin.is_finite() && margin > 1e-250) {
+            continue;
+        }
+        let range = |t: &[[f64; 3]; 3]| {
+            let s = t.map(|x| dot(&a, &x));
+            (s[0].min(s[1]).min(s[2]), s[0].max(s[1]).max(s[2]))
+        };
+        let ((p_lo, p_hi), (q_lo, q_hi)) = (range(&p), range(&q));
+        if p_hi + margin < q_lo || q_hi + margin < p_lo {
+            return true;
+        }
+    }
+    false
+}
+
+/// Whether triangles `i` and `j` of `m`, which share `shared` (< 3) vertices, meet
+/// anywhere else than in those vertices and the edge between them. Exact.
+#[inline(never)]
+fn meets_beyond_shared(m: &Mesh, i: u32, j: u32, shared: usize) -> bool {
     use crate::kernel::{orient2d, FloatPlane};
     use crate::vec3::{cross, dot, norm, sub};
     // The corners of `q` that `p` does not share, all strictly on one side of `p`'s plane
@@ -269,53 +333,43 @@ pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
         let margin = 1e-12 * dot(&e, &e) * norm(&u) * norm(&v);
         margin.is_finite() && margin > 1e-250 && d < -margin
     };
-    let meets = |i: u32, j: u32| -> bool {
-        let (vi, vj) = (m.triangles[i as usize], m.triangles[j as usize]);
-        let (pi, pj) = (m.corners(i as usize), m.corners(j as usize));
-        let shared = (0..3).filter(|&k| vj.contains(&vi[k])).count();
-        if shared == 3 {
-            return true; // the same triangle twice
-        }
-        if shared == 2 && unfolded(&pi, &vi, &pj, &vj) {
-            return false;
-        }
-        // Cheap exact rejection first, before any set-up. Sharing an edge, the far vertex
-        // off the other's plane is enough; otherwise one plane must separate.
-        if apart(&pi, &vi, &pj, &vj) || (shared < 2 && apart(&pj, &vj, &pi, &vi)) {
-            return false;
-        }
-        let (Some(x), Some(y)) = (tri(m, i as usize), tri(m, j as usize)) else {
-            return false;
-        };
-        if shared == 2 {
-            // Sharing an edge with the far vertex in this one's plane: they overlap when
-            // it lies on the same side of the shared edge as this one's far vertex.
-            let ks: Vec<usize> = (0..3).filter(|&k| y.v.contains(&x.v[k])).collect();
-            let far_x = 3 - ks[0] - ks[1];
-            let Some(far_y) = (0..3).find(|&k| !x.v.contains(&y.v[k])) else {
-                return true;
-            };
-            let (e0, e1) = (Point::Explicit(x.p[ks[0]]), Point::Explicit(x.p[ks[1]]));
-            let sx = orient2d(&e0, &e1, &Point::Explicit(x.p[far_x]), x.axis());
-            return sx == orient2d(&e0, &e1, &Point::Explicit(y.p[far_y]), x.axis());
-        }
-        let labels: Vec<Label> = match tritri::intersect(&x, &y) {
-            TriTri::None => vec![],
-            TriTri::Point(l) => vec![l],
-            TriTri::Segment(s) => s.to_vec(),
-            TriTri::Coplanar { segments, points } => {
-                segments.into_iter().flatten().chain(points).collect()
-            }
-        };
-        labels.iter().any(|l| l.a != l.b)
+    let (vi, vj) = (m.triangles[i as usize], m.triangles[j as usize]);
+    let (pi, pj) = (m.corners(i as usize), m.corners(j as usize));
+    if shared == 2 && unfolded(&pi, &vi, &pj, &vj) {
+        return false;
+    }
+    // Cheap exact rejection first, before any set-up. Sharing an edge, the far vertex
+    // off the other's plane is enough; otherwise one plane must separate.
+    if apart(&pi, &vi, &pj, &vj) || (shared < 2 && apart(&pj, &vj, &pi, &vi)) {
+        return false;
+    }
+    if shared == 0 && separated(&pi, &pj) {
+        return false;
+    }
+    let (Some(x), Some(y)) = (tri(m, i as usize), tri(m, j as usize)) else {
+        return false;
     };
-    let mut found: Vec<(u32, u32)> = Bvh::new(m)
-        .self_candidates_where(m, &meets)
-        .into_iter()
-        .map(|(i, j)| (i.min(j), i.max(j)))
-        .collect();
-    found.par_sort_unstable();
-    found
+    if shared == 2 {
+        // Sharing an edge with the far vertex in this one's plane: they overlap when
+        // it lies on the same side of the shared edge as this one's far vertex.
+        let ks: Vec<usize> = (0..3).filter(|&k| y.v.contains(&x.v[k])).collect();
+        let far_x = 3 - ks[0] - ks[1];
+        let Some(far_y) = (0..3).find(|&k| !x.v.contains(&y.v[k])) else {
+            return true;
+        };
+        let (e0, e1) = (Point::Explicit(x.p[ks[0]]), Point::Explicit(x.p[ks[1]]));
+        let sx = orient2d(&e0, &e1, &Point::Explicit(x.p[far_x]), x.axis());
+        return sx == orient2d(&e0, &e1, &Point::Explicit(y.p[far_y]), x.axis());
+    }
+    let labels: Vec<Label> = match tritri::intersect(&x, &y) {
+        TriTri::None => vec![],
+        TriTri::Point(l) => vec![l],
+        TriTri::Segment(s) => s.to_vec(),
+        TriTri::Coplanar { segments, points } => {
+            segments.into_iter().flatten().chain(points).collect()
+        }
+    };
+    labels.iter().any(|l| l.a != l.b)
 }
 
 #[cfg(test)]

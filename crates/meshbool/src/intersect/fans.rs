@@ -1,0 +1,347 @@
+//! Vertex fans certified free of self-intersection: a cheap local proof, per vertex, that
+//! no two triangles around the vertex meet anywhere but in the vertex and the edges they
+//! share. The self-intersection check then skips every pair of triangles sharing such a
+//! vertex (on a smooth mesh most of its candidate pairs) without looking at their corners.
+//!
+//! The proof: the triangles around `v` form one disk (or half-disk) fan, each edge at `v`
+//! used once in each direction, and seen along one coordinate axis (the one nearest the
+//! fan's mean normal) every fan triangle keeps its orientation and the fan's wedges at
+//! `v` turn around it less than once (open fan) or exactly once (closed fan). The
+//! projection maps each triangle one-to-one onto its wedge, and wedges of triangles that
+//! are not neighbours in the fan meet only at `v`, neighbours' only along the image of
+//! their shared edge; so the triangles themselves meet only in `v` or in the shared edge.
+//!
+//! Every sign is an exact `orient2d` in that projection (a floating-point filter with an
+//! exact fallback), so the certificate is exact: a fan it cannot vouch for (a sharp
+//! corner whose triangles face more than 90 degrees apart, a fold, a non-manifold vertex)
+//! is simply not certified, and the pairs around it go to the exact tests.
+
+use std::sync::atomic::AtomicU32;
+use std::sync::atomic::Ordering::Relaxed;
+
+use rayon::prelude::*;
+
+use crate::kernel::{orient2d, orient2d_safe, robust_safe, Point, Sign};
+use crate::vec3::{cross, sub};
+use crate::Mesh;
+
+/// For every vertex of `m`, whether its fan is certified (see the module text). Vertices
+/// on no triangle are certified trivially (nothing to skip).
+pub(crate) fn certified(m: &Mesh) -> Vec<bool> {
+    let nv = m.positions.len();
+    if m.triangles.len() > (u32::MAX / 3) as usize {
+        // Corner numbers would not fit in 32 bits: certify nothing (all pairs exact).
+        return vec![false; nv];
+    }
+    // The corners at each vertex, gathered in parallel: counts, offsets, then each corner
+    // claims a slot. The order within a vertex's slots varies from run to run; the fan is
+    // sorted before use.
+    let count: Vec<AtomicU32> = (0..nv).map(|_| AtomicU32::new(0)).collect();
+    m.triangles.par_iter().for_each(|t| {
+        for &v in t {
+            count[v as usize].fetch_add(1, Relaxed);
+        }
+    });
+    let mut start = Vec::with_capacity(nv + 1);
+    let mut sum = 0u32;
+    start.push(0);
+    for c in &count {
+        sum += c.load(Relaxed);
+        start.push(sum);
+    }
+    let cursor: Vec<AtomicU32> = start[..nv].iter().map(|&s| AtomicU32::new(s)).collect();
+    // Each slot holds a corner: 3 × triangle + corner.
+    let slots: Vec<AtomicU32> = (0..sum).map(|_| AtomicU32::new(0)).collect();
+    m.triangles.par_iter().enumerate().for_each(|(i, t)| {
+        for (k, &v) in t.iter().enumerate() {
+            let at = cursor[v as usize].fetch_add(1, Relaxed);
+            slots[at as usize].store(3 * i as u32 + k as u32, Relaxed);
+        }
+    });
+    (0..nv)
+        .into_par_iter()
+        .map_init(Scratch::default, |s, v| {
+            let fan = &slots[start[v] as usize..start[v + 1] as usize];
+            s.certify(m, v as u32, fan)
+        })
+        .collect()
+}
+
+/// Per-thread buffers for one fan.
+#[derive(Default)]
+struct Scratch {
+    /// The fan's (from, to) corner pairs sorted by `from`.
+    sorted: Vec<[u32; 2]>,
+    /// The fan's `to` corners, sorted.
+    ends: Vec<u32>,
+    /// The fan's rim vertices in order.
+    rim: Vec<u32>,
+    /// Their positions.
+    pts: Vec<[f64; 3]>,
+}
+
+impl Scratch {
+    /// Whether the fan `fan` (the two other corners of each triangle at `v`, in the
+    /// triangle's order) is certified.
+    fn certify(&mut self, m: &Mesh, v: u32, fan: &[AtomicU32]) -> bool {
+        self.sorted.clear();
+        self.sorted.extend(fan.iter().map(|s| {
+            let c = s.load(Relaxed) as usize;
+            let (t, k) = (m.triangles[c / 3], c % 3);
+            [t[(k + 1) % 3], t[(k + 2) % 3]]
+        }));
+        if fan.len() <= 1 {
+            return self.sorted.iter().all(|&[a, b]| a != v && b != v && a != b);
+        }
+        if !self.chain(v) {
+            return false;
+        }
+        let closed = self.rim.len() == self.sorted.len();
+        let p = m.positions[v as usize];
+        // The fan's mean normal (area-weighted): the axis it is closest to, and which way.
+        self.pts.clear();
+        self.pts
+            .extend(self.rim.iter().map(|&w| m.positions[w as usize]));
+        let mut n = [0.0; 3];
+        let wedges = if closed {
+            self.pts.len()
+        } else {
+            self.pts.len() - 1
+        };
+        for i in 0..wedges {
+            let (a, b) = (self.pts[i], self.pts[(i + 1) % self.pts.len()]);
+            let c = cross(&sub(&a, &p), &sub(&b, &p));
+            n = [n[0] + c[0], n[1] + c[1], n[2] + c[2]];
+        }
+        let Some(axis) = (0..3)
+            .filter(|&k| n[k].is_finite() && n[k] != 0.0)
+            .max_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()))
+        else {
+            return false;
+        };
+        let flip = if n[axis] > 0.0 {
+            Sign::Positive
+        } else {
+            Sign::Negative
+        };
+        self.turns_once(p, axis, flip, closed)
+    }
+
+    /// Orders the fan into `rim`: each triangle (v, a, b) leads from `a` to `b`, and the
+    /// next one starts at `b`. False unless the fan is one chain (open: from the one `a`
+    /// no triangle ends at, rim has a vertex more than the fan has triangles) or one cycle
+    /// through all of it, with no edge at `v` used twice in the same direction.
+    fn chain(&mut self, v: u32) -> bool {
+        self.sorted.sort_unstable();
+        let fan_len = self.sorted.len();
+        self.ends.clear();
+        self.ends.extend(self.sorted.iter().map(|e| e[1]));
+        self.ends.sort_unstable();
+        let repeated = |xs: &[u32]| xs.windows(2).any(|w| w[0] == w[1]);
+        if self.sorted.iter().any(|&[a, b]| a == v || b == v || a == b)
+            || self.sorted.windows(2).any(|w| w[0][0] == w[1][0])
+            || repeated(&self.ends)
+        {
+            return false;
+        }
+        // Starts and ends are each distinct: following `next` never branches. An open
+        // fan has exactly one start that is no end.
+        let mut first = self.sorted[0][0];
+        let mut opens = 0;
+        for e in &self.sorted {
+            if self.ends.binary_search(&e[0]).is_err() {
+                first = e[0];
+                opens += 1;
+            }
+        }
+        if opens > 1 {
+            return false;
+        }
+        let sorted = &self.sorted;
+        let next = |a: u32| {
+            sorted
+                .binary_search_by_key(&a, |e| e[0])
+                .ok()
+                .map(|i| sorted[i][1])
+        };
+        self.rim.clear();
+        let mut at = first;
+        self.rim.push(at);
+        for _ in 0..fan_len {
+            match next(at) {
+                // A closed walk back at its start before using every triangle: more
+                // than one cycle.
+                Some(_) if opens == 0 && self.rim.len() > 1 && at == first => return false,
+                Some(b) => {
+                    at = b;
+                    self.rim.push(b);
+                }
+                None => return false,
+            }
+        }
+        if opens == 0 {
+            // One cycle through every triangle: back at the start, which is not repeated.
+            self.rim.pop();
+            at == first
+        } else {
+            // The walk from the open start cannot revisit a vertex (ends are distinct and
+            // the start is no end), so it used every triangle.
+            true
+        }
+    }
+
+    /// Whether, seen along `axis` (from its `flip` side), the wedges at `p` between
+    /// consecutive rim vertices each turn counter-clockwise and together turn around `p`
+    /// exactly once (closed) or less than once (open). With `s_i` the orientation of
+    /// (p, E_i, E_0) for rim vertex E_i: a wedge passes over E_0's direction exactly
+    /// where `s` goes from + to −, which must happen nowhere before the (closed) fan's
+    /// last wedge returns to E_0; a rim vertex in E_0's own direction is a full turn.
+    /// (`s` = 0 opposite E_0 is a half turn: a wedge, under 180 degrees, cannot reach
+    /// E_0's direction from there, nor arrive there from beyond it.)
+    fn turns_once(&self, p: [f64; 3], axis: usize, flip: Sign, closed: bool) -> bool {
+        let pts = &self.pts;
+        // Shewchuk's predicate directly where its range holds for the whole fan (almost
+        // always), the kernel's general one otherwise.
+        let safe = robust_safe(&[&p]) && pts.iter().all(|q| robust_safe(&[q]));
+        let orient = |i: usize, j: usize| {
+            if safe {
+                orient2d_safe(&p, &pts[i], &pts[j], axis)
+            } else {
+                let e = |q: &[f64; 3]| Point::Explicit(*q);
+                orient2d(&e(&p), &e(&pts[i]), &e(&pts[j]), axis)
+            }
+            .times(flip)
+        };
+        let n = self.rim.len();
+        let wedges = if closed { n } else { n - 1 };
+        if (0..wedges).any(|i| orient(i, (i + 1) % n) != Sign::Positive) {
+            return false;
+        }
+        // A coordinate of the projection plane along which E_0 leaves `p` (it does: the
+        // first wedge is not degenerate).
+        let e0 = pts[0];
+        let Some(c) = [(axis + 1) % 3, (axis + 2) % 3]
+            .into_iter()
+            .find(|&c| e0[c] != p[c])
+        else {
+            return false;
+        };
+        let mut prev = Sign::Negative; // s_1, by the first wedge
+        for (i, e) in pts.iter().enumerate().skip(2) {
+            let s = orient(i, 0);
+            if s == Sign::Zero {
+                // On E_0's line: in its direction when on the same side along `c`.
+                if (e[c] > p[c]) == (e0[c] > p[c]) {
+                    return false;
+                }
+            }
+            if prev == Sign::Positive && s == Sign::Negative {
+                return false;
+            }
+            prev = s;
+        }
+        true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shapes::{heightfield, torus, uv_sphere};
+
+    /// A closed fan around an apex over `rim` (points in the plane z = 0, in the given
+    /// order), the apex at `apex`; vertex 0 is the apex.
+    fn fan(apex: [f64; 3], rim: &[[f64; 2]], closed: bool) -> Mesh {
+        let mut positions = vec![apex];
+        positions.extend(rim.iter().map(|p| [p[0], p[1], 0.0]));
+        let n = rim.len() as u32;
+        let wedges = if closed { n } else { n - 1 };
+        let triangles = (0..wedges).map(|k| [0, 1 + k, 1 + (k + 1) % n]).collect();
+        Mesh::new(positions, triangles)
+    }
+
+    fn circle(angles_deg: &[f64]) -> Vec<[f64; 2]> {
+        angles_deg
+            .iter()
+            .map(|a| [a.to_radians().cos(), a.to_radians().sin()])
+            .collect()
+    }
+
+    #[test]
+    fn smooth_and_flat_fans_are_certified() {
+        for m in [
+            uv_sphere([0.0; 3], 1.0, 24, 12),
+            torus([0.0; 3], 2.0, 0.5, 24, 12),
+            heightfield([0.0, 0.0], [1.0, 1.0], 6, 5, |x, y| 0.1 * x * y),
+        ] {
+            let ok = certified(&m);
+            let bad: Vec<usize> = (0..ok.len()).filter(|&v| !ok[v]).collect();
+            assert!(bad.is_empty(), "{bad:?} of {}", ok.len());
+        }
+        // Closed fans: a low cone, a flat one, one with a wedge of nearly 180 degrees.
+        let regular = circle(&[0.0, 72.0, 144.0, 216.0, 288.0]);
+        assert!(certified(&fan([0.0, 0.0, 0.2], &regular, true))[0]);
+        assert!(certified(&fan([0.0, 0.0, 0.0], &regular, true))[0]);
+        let wide = circle(&[0.0, 179.0, 270.0]);
+        assert!(certified(&fan([0.0, 0.0, 0.0], &wide, true))[0]);
+        // Open fans turning less than once, up to nearly all the way round.
+        let open = circle(&[0.0, 90.0, 180.0, 270.0, 350.0]);
+        assert!(certified(&fan([0.0, 0.0, 0.1], &open, false))[0]);
+        // Huge and tiny coordinates, far from the origin: still decided.
+        for (scale, offset) in [(1e-150, 0.0), (1e120, 0.0), (1.0, 5e6)] {
+            let mut m = fan([0.0, 0.0, 0.2], &regular, true);
+            for p in &mut m.positions {
+                *p = p.map(|x| x * scale + offset);
+            }
+            assert!(certified(&m)[0], "{scale} {offset}");
+        }
+    }
+
+    #[test]
+    fn fans_that_overlap_or_may_are_not_certified() {
+        // A rim visiting the circle as a pentagram: every wedge is under 180 degrees but
+        // the fan winds twice.
+        let twice = circle(&[0.0, 144.0, 288.0, 72.0, 216.0]);
+        assert!(!certified(&fan([0.0, 0.0, 0.2], &twice, true))[0]);
+        assert!(!certified(&fan([0.0, 0.0, 0.0], &twice, true))[0]);
+        // An open fan going past a full turn (a spiral ramp seen from above), and one
+        // ending exactly where it began.
+        let past = circle(&[0.0, 100.0, 200.0, 300.0, 40.0]);
+        assert!(!certified(&fan([0.0, 0.0, 0.1], &past, false))[0]);
+        let full = circle(&[0.0, 120.0, 240.0, 0.0]);
+        let mut m = fan([0.0, 0.0, 0.1], &full, false);
+        m.positions[4][2] = 0.5;
+        assert!(!certified(&m)[0]);
+        // A flat fan with one wedge folded over its neighbour.
+        let folded = circle(&[0.0, 90.0, 60.0, 180.0, 270.0]);
+        assert!(!certified(&fan([0.0, 0.0, 0.0], &folded, true))[0]);
+        let regular = circle(&[0.0, 72.0, 144.0, 216.0, 288.0]);
+        // Not one fan: two cones sharing their apex, a triangle used twice, a repeated
+        // corner, an edge used twice in the same direction.
+        let mut cones = fan([0.0; 3], &regular, true);
+        let n = cones.positions.len() as u32;
+        cones
+            .positions
+            .extend(regular.iter().map(|p| [p[0], p[1], 1.0]));
+        cones
+            .triangles
+            .extend((0..5).map(|k| [0, n + (k + 1) % 5, n + k]));
+        assert!(!certified(&cones)[0]);
+        let mut doubled = fan([0.0, 0.0, 0.2], &regular, true);
+        doubled.triangles.push(doubled.triangles[0]);
+        assert!(!certified(&doubled)[0]);
+        let mut repeated = fan([0.0, 0.0, 0.2], &regular, true);
+        repeated.triangles[2] = [0, 3, 3];
+        assert!(!certified(&repeated)[0]);
+        let mut flipped = fan([0.0, 0.0, 0.2], &regular, true);
+        flipped.triangles[1] = [0, 3, 2];
+        assert!(!certified(&flipped)[0]);
+        // A zero-area wedge.
+        let mut thin = fan([0.0, 0.0, 0.0], &regular, true);
+        thin.positions[2] = thin.positions[1];
+        assert!(!certified(&thin)[0]);
+        // A cube's corners: their three faces are 90 degrees apart, so no axis sees all
+        // of them face on (left to the exact pair tests, not wrongly certified).
+        assert!(certified(&Mesh::unit_cube()).iter().all(|&ok| !ok));
+    }
+}
