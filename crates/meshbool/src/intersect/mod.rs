@@ -230,7 +230,9 @@ pub fn intersect(a: &Mesh, b: &Mesh) -> Seam {
 
 /// Pairs of triangles of one mesh that meet anywhere other than in the vertices and edges
 /// they share: self-intersections (or coplanar overlaps). Exact. Degenerate triangles are
-/// left out. Sorted `(i, j)` with `i < j`.
+/// left out. Sorted `(i, j)` with `i < j`. Pairs around a vertex whose fan is certified
+/// free of overlaps (`fans`, almost every vertex of a smooth mesh) are settled by their
+/// vertex ids; the rest by the exact pair test.
 pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
     let (fan_ok, bvh) = rayon::join(|| fans::certified(m), || Bvh::new(m));
     let meets = |i: u32, j: u32| -> bool {
@@ -259,9 +261,9 @@ pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
 /// must be certain is that the exact projections, onto it, of the corners (taken
 /// relative to `p[0]`, which moves neither) leave a gap. Each computed projection is
 /// within 4 ulp of |axis|₁ · (largest relative coordinate) of the exact one; the gap must
-/// exceed 1e-13 times that product, over 50 times the two projections' errors together. For pairs whose planes do not separate them:
-/// mostly neighbours across nearly planar quads, where rounded coordinates put a corner
-/// of each a hair over the other's plane.
+/// exceed 1e-13 times that product, over 50 times the two projections' errors together.
+/// For pairs whose planes do not separate them: mostly neighbours across nearly planar
+/// quads, where rounded coordinates put a corner of each a hair over the other's plane.
 fn separated(p: &[[f64; 3]; 3], q: &[[f64; 3]; 3]) -> bool {
     use crate::vec3::{cross, dot, sub};
     let o = p[0];
