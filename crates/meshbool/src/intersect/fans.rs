@@ -81,8 +81,8 @@ struct Scratch {
 }
 
 impl Scratch {
-    /// Whether the fan `fan` (the two other corners of each triangle at `v`, in the
-    /// triangle's order) is certified.
+    /// Whether the fan of `v` is certified; `fan` holds its corners (3 × triangle +
+    /// corner) in any order.
     fn certify(&mut self, m: &Mesh, v: u32, fan: &[AtomicU32]) -> bool {
         self.sorted.clear();
         self.sorted.extend(fan.iter().map(|s| {
@@ -96,19 +96,15 @@ impl Scratch {
         if !self.chain(v) {
             return false;
         }
-        let closed = self.rim.len() == self.sorted.len();
         let p = m.positions[v as usize];
         // The fan's mean normal (area-weighted): the axis it is closest to, and which way.
         self.pts.clear();
         self.pts
             .extend(self.rim.iter().map(|&w| m.positions[w as usize]));
         let mut n = [0.0; 3];
-        let wedges = if closed {
-            self.pts.len()
-        } else {
-            self.pts.len() - 1
-        };
-        for i in 0..wedges {
+        // One wedge per triangle; only a closed fan's last one wraps to the first rim
+        // vertex (an open fan's rim has a vertex more).
+        for i in 0..self.sorted.len() {
             let (a, b) = (self.pts[i], self.pts[(i + 1) % self.pts.len()]);
             let c = cross(&sub(&a, &p), &sub(&b, &p));
             n = [n[0] + c[0], n[1] + c[1], n[2] + c[2]];
@@ -124,7 +120,7 @@ impl Scratch {
         } else {
             Sign::Negative
         };
-        self.turns_once(p, axis, flip, closed)
+        self.turns_once(p, axis, flip)
     }
 
     /// Orders the fan into `rim`: each triangle (v, a, b) leads from `a` to `b`, and the
@@ -198,7 +194,7 @@ impl Scratch {
     /// last wedge returns to E_0; a rim vertex in E_0's own direction is a full turn.
     /// (`s` = 0 opposite E_0 is a half turn: a wedge, under 180 degrees, cannot reach
     /// E_0's direction from there, nor arrive there from beyond it.)
-    fn turns_once(&self, p: [f64; 3], axis: usize, flip: Sign, closed: bool) -> bool {
+    fn turns_once(&self, p: [f64; 3], axis: usize, flip: Sign) -> bool {
         let pts = &self.pts;
         // Shewchuk's predicate directly where its range holds for the whole fan (almost
         // always), the kernel's general one otherwise.
@@ -213,8 +209,8 @@ impl Scratch {
             .times(flip)
         };
         let n = self.rim.len();
-        let wedges = if closed { n } else { n - 1 };
-        if (0..wedges).any(|i| orient(i, (i + 1) % n) != Sign::Positive) {
+        // One wedge per fan triangle (see `certify`).
+        if (0..self.sorted.len()).any(|i| orient(i, (i + 1) % n) != Sign::Positive) {
             return false;
         }
         // A coordinate of the projection plane along which E_0 leaves `p` (it does: the
@@ -249,8 +245,9 @@ mod tests {
     use super::*;
     use crate::shapes::{heightfield, torus, uv_sphere};
 
-    /// A closed fan around an apex over `rim` (points in the plane z = 0, in the given
-    /// order), the apex at `apex`; vertex 0 is the apex.
+    /// A fan (closed, or open from the first rim point to the last) around an apex at
+    /// `apex` over `rim` (points in the plane z = 0, in the given order); vertex 0 is
+    /// the apex.
     fn fan(apex: [f64; 3], rim: &[[f64; 2]], closed: bool) -> Mesh {
         let mut positions = vec![apex];
         positions.extend(rim.iter().map(|p| [p[0], p[1], 0.0]));
