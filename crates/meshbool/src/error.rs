@@ -3,7 +3,7 @@
 
 use std::fmt;
 
-use crate::io::Format;
+use crate::format::Format;
 
 /// Where in an input something went wrong.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -35,6 +35,7 @@ pub mod bvh;
 pub mod classify;
 pub mod edges;
 mod error;
+mod format;
 pub mod intersect;
 pub mod io;
 pub mod kernel;

@@ -1,0 +1,114 @@
+//! File formats: the [`Format`] enum, its names and how a file name maps to one. Below
+//! both [`crate::io`] (which reads and writes them) and [`crate::Error`] (which names the
+//! format of malformed content), so that neither depends on the other.
+
+use std::fmt;
+use std::path::Path;
+use std::str::FromStr;
+
+/// A file format (with its encoding, where a format has several).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Format {
+    /// Binary STL (`f32` coordinates).
+    StlBinary,
+    /// ASCII STL.
+    StlAscii,
+    /// Wavefront OBJ (`v`/`f`; polygons are triangulated as fans on read).
+    Obj,
+    /// ASCII PLY.
+    PlyAscii,
+    /// Binary little-endian PLY (written with `double` positions).
+    PlyBinaryLe,
+    /// Binary big-endian PLY.
+    PlyBinaryBe,
+    /// ASCII DXF: read 3DFACE entities and polyface meshes, written as 3DFACE.
+    Dxf,
+    /// JSON soup `[{"v0":{"x":..,"y":..,"z":..},"v1":..,"v2":..}, ..]`.
+    JsonSoup,
+    /// Kirra's JSON: `[{"vertices":[{"x":..,"y":..,"z":..}, x3]}, ..]`.
+    JsonKirra,
+}
+
+impl fmt::Display for Format {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Format::StlBinary => "binary STL",
+            Format::StlAscii => "ASCII STL",
+            Format::Obj => "OBJ",
+            Format::PlyAscii => "ASCII PLY",
+            Format::PlyBinaryLe => "binary little-endian PLY",
+            Format::PlyBinaryBe => "binary big-endian PLY",
+            Format::Dxf => "DXF",
+            Format::JsonSoup => "JSON soup",
+            Format::JsonKirra => "Kirra JSON",
+        })
+    }
+}
+
+impl Format {
+    /// All formats, with the names [`Format::from_name`] accepts.
+    pub const NAMES: [(&'static str, Format); 9] = [
+        ("stl", Format::StlBinary),
+        ("stl-ascii", Format::StlAscii),
+        ("obj", Format::Obj),
+        ("ply", Format::PlyBinaryLe),
+        ("ply-ascii", Format::PlyAscii),
+        ("ply-be", Format::PlyBinaryBe),
+        ("dxf", Format::Dxf),
+        ("json", Format::JsonSoup),
+        ("kirra-json", Format::JsonKirra),
+    ];
+
+    /// The format for a name such as `stl`, `stl-ascii`, `ply-ascii`, `kirra-json` (case-insensitive).
+    pub fn from_name(name: &str) -> Option<Format> {
+        let name = name.to_ascii_lowercase();
+        Self::NAMES
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|&(_, f)| f)
+    }
+
+    /// True when reading this format already merges exactly equal positions into one
+    /// vertex (formats that store triangles as corner coordinates: STL, DXF 3DFACE, JSON
+    /// soups), so [`crate::weld_exact`] after reading would change nothing.
+    pub fn welds_on_read(self) -> bool {
+        matches!(
+            self,
+            Format::StlBinary
+                | Format::StlAscii
+                | Format::Dxf
+                | Format::JsonSoup
+                | Format::JsonKirra
+        )
+    }
+
+    /// The format written for a file name's extension: `.stl` binary STL, `.obj`, `.ply`
+    /// binary little-endian, `.dxf`, `.json` JSON soup. `None` for other extensions.
+    pub fn for_path(path: impl AsRef<Path>) -> Option<Format> {
+        let ext = path.as_ref().extension()?.to_str()?.to_ascii_lowercase();
+        Some(match ext.as_str() {
+            "stl" => Format::StlBinary,
+            "obj" => Format::Obj,
+            "ply" => Format::PlyBinaryLe,
+            "dxf" => Format::Dxf,
+            "json" => Format::JsonSoup,
+            _ => return None,
+        })
+    }
+}
+
+impl FromStr for Format {
+    type Err = crate::Error;
+
+    /// [`Format::from_name`], with an error listing the known names.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Format::from_name(s).ok_or_else(|| {
+            let names: Vec<_> = Format::NAMES.iter().map(|(n, _)| *n).collect();
+            crate::Error::InvalidParameter(format!(
+                "unknown format {s:?}; one of: {}",
+                names.join(", ")
+            ))
+        })
+    }
+}
