@@ -2,6 +2,7 @@
 //! the library panics on user input.
 
 use std::fmt;
+use std::path::{Path, PathBuf};
 
 use crate::format::Format;
 
@@ -65,6 +66,25 @@ pub enum Error {
     /// A parameter given to an operation is out of its range (a negative distance, NaN).
     #[error("invalid parameter: {0}")]
     InvalidParameter(String),
+    /// An operand of a boolean, split or curves failed its checks ([`crate::ops::Checks`]):
+    /// inside and outside would be ambiguous. Set `force` to take the input as given.
+    #[error("{name}: {}; inside/outside would be ambiguous. Repair the input, or force the operation to take it as given", problems.join(", "))]
+    Operand {
+        /// The operand's name (its file, or `A` / `B`).
+        name: String,
+        /// What was found, one phrase each ("46 inconsistently oriented edges").
+        problems: Vec<String>,
+    },
+    /// Reading or writing a file failed; the message names the file, then the cause.
+    #[error("{action} {}: {error}", path.display())]
+    File {
+        /// What was being done: "reading", "writing", "creating".
+        action: &'static str,
+        /// The file.
+        path: PathBuf,
+        /// What went wrong.
+        error: Box<Error>,
+    },
 }
 
 /// `Result` with the library's [`Error`].
@@ -79,10 +99,39 @@ impl Error {
         }
     }
 
+    /// This error, as met while `action` ("reading", "writing") the file at `path`.
+    pub fn in_file(self, action: &'static str, path: &Path) -> Self {
+        Error::File {
+            action,
+            path: path.to_path_buf(),
+            error: Box::new(self),
+        }
+    }
+
     pub(crate) fn invalid(location: Location, message: impl Into<String>) -> Self {
         Error::InvalidMesh {
             location,
             message: message.into(),
         }
     }
+}
+
+/// The item of `all` whose `name` is `s` (ignoring ASCII case), or an error naming `what`
+/// was asked for and listing the names: the `FromStr` of the library's named enums.
+pub(crate) fn parse_name<T: Copy>(
+    s: &str,
+    all: &[T],
+    name: impl Fn(T) -> &'static str,
+    what: &str,
+) -> Result<T> {
+    all.iter()
+        .copied()
+        .find(|&x| name(x).eq_ignore_ascii_case(s))
+        .ok_or_else(|| {
+            let names: Vec<&str> = all.iter().map(|&x| name(x)).collect();
+            Error::InvalidParameter(format!(
+                "unknown {what} {s:?}; one of: {}",
+                names.join(", ")
+            ))
+        })
 }

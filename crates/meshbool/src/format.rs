@@ -60,6 +60,14 @@ impl Format {
         ("kirra-json", Format::JsonKirra),
     ];
 
+    /// The format's name in [`Format::NAMES`] (`stl`, `stl-ascii`, `obj`, ...).
+    pub fn name(self) -> &'static str {
+        Format::NAMES
+            .iter()
+            .find(|(_, f)| *f == self)
+            .map_or("", |(n, _)| n)
+    }
+
     /// The format for a name such as `stl`, `stl-ascii`, `ply-ascii`, `kirra-json` (case-insensitive).
     pub fn from_name(name: &str) -> Option<Format> {
         let name = name.to_ascii_lowercase();
@@ -83,6 +91,17 @@ impl Format {
         )
     }
 
+    /// The file name extension of the format: `stl`, `obj`, `ply`, `dxf`, `json`.
+    pub fn extension(self) -> &'static str {
+        match self {
+            Format::StlBinary | Format::StlAscii => "stl",
+            Format::Obj => "obj",
+            Format::PlyAscii | Format::PlyBinaryLe | Format::PlyBinaryBe => "ply",
+            Format::Dxf => "dxf",
+            Format::JsonSoup | Format::JsonKirra => "json",
+        }
+    }
+
     /// The format written for a file name's extension: `.stl` binary STL, `.obj`, `.ply`
     /// binary little-endian, `.dxf`, `.json` JSON soup. `None` for other extensions.
     pub fn for_path(path: impl AsRef<Path>) -> Option<Format> {
@@ -103,12 +122,7 @@ impl FromStr for Format {
 
     /// [`Format::from_name`], with an error listing the known names.
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Format::from_name(s).ok_or_else(|| {
-            let names: Vec<_> = Format::NAMES.iter().map(|(n, _)| *n).collect();
-            crate::Error::InvalidParameter(format!(
-                "unknown format {s:?}; one of: {}",
-                names.join(", ")
-            ))
-        })
+        let formats = Format::NAMES.map(|(_, f)| f);
+        crate::error::parse_name(s, &formats, Format::name, "format")
     }
 }

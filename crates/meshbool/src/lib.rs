@@ -41,13 +41,16 @@ pub mod io;
 pub mod kernel;
 pub mod measure;
 mod mesh;
+pub mod ops;
 pub mod repair;
 pub mod shapes;
 #[cfg(test)]
 mod test_util;
 mod vec3;
 
+pub use boolean::Op;
 pub use edges::EdgeTopology;
 pub use error::{Error, Location, Result};
+pub use format::Format;
 pub(crate) use mesh::Welder;
 pub use mesh::{weld_exact, Aabb, Mesh, Welded};

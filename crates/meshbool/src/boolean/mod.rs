@@ -4,7 +4,11 @@
 //! by the operation's rules → merge into one mesh (seam vertices shared), with the source
 //! of every output triangle.
 
+use std::fmt;
+use std::str::FromStr;
+
 use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
 
 use crate::arrange::{arrange, Arranged, Side};
 use crate::classify::{classify, Class, Classified, Operand};
@@ -12,8 +16,11 @@ use crate::edges::SeamTopology;
 use crate::intersect::{intersect, Seam};
 use crate::Mesh;
 
-/// A boolean operation.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+/// A boolean operation. Written (and parsed, [`FromStr`]) as `union`, `intersection`,
+/// `difference`, `reverse-difference`; parsing also takes the reference library's
+/// `intersect` and `subtract`, and `_` for `-`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum Op {
     /// A ∪ B.
     Union,
@@ -25,8 +32,46 @@ pub enum Op {
     ReverseDifference,
 }
 
+impl Op {
+    /// Every operation.
+    pub const ALL: [Op; 4] = [
+        Op::Union,
+        Op::Intersection,
+        Op::Difference,
+        Op::ReverseDifference,
+    ];
+
+    /// The operation's name (`union`, `intersection`, `difference`, `reverse-difference`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Op::Union => "union",
+            Op::Intersection => "intersection",
+            Op::Difference => "difference",
+            Op::ReverseDifference => "reverse-difference",
+        }
+    }
+}
+
+impl fmt::Display for Op {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Op {
+    type Err = crate::Error;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.to_ascii_lowercase().replace('_', "-").as_str() {
+            "intersect" => Ok(Op::Intersection),
+            "subtract" => Ok(Op::Difference),
+            name => crate::error::parse_name(name, &Op::ALL, Op::name, "operation"),
+        }
+    }
+}
+
 /// Which input an output triangle comes from.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum Source {
     /// The first operand.
     A,
@@ -108,6 +153,8 @@ pub struct Split {
 /// ([`split_with_progress`], [`boolean_with_progress`]) when each begins.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Stage {
+    /// Checking the inputs (validity, orientation, self-intersections).
+    Check,
     /// Intersection curves (broad phase and exact triangle pairs).
     Intersect,
     /// Re-triangulating the cut triangles of both meshes.
@@ -122,6 +169,7 @@ impl Stage {
     /// A short description for progress displays.
     pub fn describe(self) -> &'static str {
         match self {
+            Stage::Check => "checking the inputs",
             Stage::Intersect => "intersecting",
             Stage::Arrange => "cutting along the seam",
             Stage::Classify => "classifying inside/outside",
@@ -364,8 +412,16 @@ pub fn boolean_with_progress(
     }
 }
 
+impl fmt::Display for Stage {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.describe())
+    }
+}
+
 /// The groups of split-and-pick: each mesh's triangles by their class against the other.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+/// Written (and parsed, [`FromStr`]) by [`Group::name`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
 pub enum Group {
     /// A's part inside B (behind B for an open B).
     AInB,
@@ -417,6 +473,7 @@ impl Group {
         Group::ALL.into_iter().find(|g| g.name() == name)
     }
 
+    /// The side and class of the group's triangles.
     fn side_and_class(self) -> (Source, Class) {
         match self {
             Group::AInB => (Source::A, Class::Inside),
@@ -428,6 +485,20 @@ impl Group {
             Group::BOnASame => (Source::B, Class::CoplanarSame),
             Group::BOnAOpposite => (Source::B, Class::CoplanarOpposite),
         }
+    }
+}
+
+impl fmt::Display for Group {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Group {
+    type Err = crate::Error;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        crate::error::parse_name(s, &Group::ALL, Group::name, "group")
     }
 }
 

@@ -29,17 +29,7 @@ impl Polyline {
 
     /// Length, measured on the approximate point coordinates.
     pub fn length(&self, seam: &Seam) -> f64 {
-        let n = self.points.len();
-        let steps = if self.closed { n } else { n.saturating_sub(1) };
-        (0..steps)
-            .map(|k| {
-                let (p, q) = (
-                    seam.positions[self.points[k] as usize],
-                    seam.positions[self.points[(k + 1) % n] as usize],
-                );
-                ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt()
-            })
-            .sum()
+        self.to_xyz(seam).length()
     }
 }
 

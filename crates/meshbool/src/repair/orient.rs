@@ -22,6 +22,34 @@ pub enum Facing {
     Outward,
 }
 
+impl Facing {
+    /// Every facing.
+    pub const ALL: [Facing; 3] = [Facing::Majority, Facing::ZUp, Facing::Outward];
+
+    /// The facing's name: `majority`, `z-up`, `outward`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Facing::Majority => "majority",
+            Facing::ZUp => "z-up",
+            Facing::Outward => "outward",
+        }
+    }
+}
+
+impl std::fmt::Display for Facing {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for Facing {
+    type Err = crate::Error;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        crate::error::parse_name(s, &Facing::ALL, Facing::name, "facing")
+    }
+}
+
 /// What [`orient`] did.
 #[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
 pub struct OrientReport {

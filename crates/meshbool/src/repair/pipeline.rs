@@ -30,6 +30,42 @@ pub enum CloseMode {
     StitchCurtain,
 }
 
+impl CloseMode {
+    /// Every mode.
+    pub const ALL: [CloseMode; 5] = [
+        CloseMode::None,
+        CloseMode::Cap,
+        CloseMode::Stitch,
+        CloseMode::Curtain,
+        CloseMode::StitchCurtain,
+    ];
+
+    /// The mode's name: `none`, `cap`, `stitch`, `curtain`, `stitch+curtain`.
+    pub fn name(self) -> &'static str {
+        match self {
+            CloseMode::None => "none",
+            CloseMode::Cap => "cap",
+            CloseMode::Stitch => "stitch",
+            CloseMode::Curtain => "curtain",
+            CloseMode::StitchCurtain => "stitch+curtain",
+        }
+    }
+}
+
+impl std::fmt::Display for CloseMode {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for CloseMode {
+    type Err = Error;
+
+    fn from_str(s: &str) -> Result<Self, Error> {
+        crate::error::parse_name(s, &CloseMode::ALL, CloseMode::name, "close mode")
+    }
+}
+
 /// Parameters of [`close`] besides the mode.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]

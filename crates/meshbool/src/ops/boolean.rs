@@ -1,0 +1,167 @@
+//! Booleans at the front door: union, intersection, difference (both ways) of two inputs,
+//! with the report the CLI prints.
+
+use std::time::Instant;
+
+use serde::Serialize;
+
+use super::{Checks, Input, Measures, OperandReport, RunOptions, SCHEMA};
+use crate::boolean::{boolean_with_progress, Op, Provenance, Source};
+use crate::{Mesh, Result};
+
+/// Options of [`boolean`].
+#[derive(Clone, Debug, Default)]
+pub struct BooleanOptions {
+    /// Checks of inputs given as meshes (operands made earlier keep theirs).
+    pub checks: Checks,
+    /// Threads and progress.
+    pub run: RunOptions,
+}
+
+/// An input triangle that could not be cut along the seam (inconsistent input, such as a
+/// self-intersecting mesh taken as given) and was kept whole.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct FailedTriangle {
+    /// The input it belongs to.
+    pub source: Source,
+    /// Its index in that input.
+    pub triangle: u32,
+    /// Why.
+    pub reason: &'static str,
+}
+
+/// The result of [`boolean`]: the mesh, where each of its triangles comes from, and what
+/// was found and assumed on the way.
+#[derive(Clone, Debug)]
+pub struct BooleanOutput {
+    /// The operation.
+    pub op: Op,
+    /// The result (seam vertices shared between the parts of A and B, unreferenced
+    /// vertices removed).
+    pub mesh: Mesh,
+    /// The origin of every triangle of `mesh`.
+    pub provenance: Vec<Provenance>,
+    /// What the checks found in A and B.
+    pub operands: [OperandReport; 2],
+    /// Points of the intersection curves.
+    pub seam_points: usize,
+    /// Zero-area triangles of A and of B where the meshes meet, left out of the
+    /// intersection.
+    pub degenerate: [usize; 2],
+    /// Input triangles kept uncut; empty for valid inputs.
+    pub failed: Vec<FailedTriangle>,
+    /// Result triangles that turn over when their seam points are rounded to `f64`
+    /// (exact before rounding); 0 in almost every case.
+    pub rounding_flips: usize,
+    /// Time of the boolean itself (not of checking the inputs), in seconds.
+    pub seconds: f64,
+}
+
+/// What [`BooleanOutput::report`] tells: the JSON of `meshbool union|intersection|difference
+/// --json`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BooleanReport {
+    /// [`SCHEMA`].
+    pub schema: u32,
+    /// The operation.
+    pub operation: Op,
+    /// Measures of the result.
+    #[serde(flatten)]
+    pub result: Measures,
+    /// Points of the intersection curves.
+    pub seam_points: usize,
+    /// [`BooleanOutput::rounding_flips`].
+    pub rounding_flips: usize,
+    /// Triangles kept uncut, one line each.
+    pub failed_triangles: Vec<String>,
+    /// What the result assumes: skipped checks, problems taken as given, rounding and
+    /// left-out degenerate triangles, one line each.
+    pub assumed: Vec<String>,
+    /// What the checks found in A and B.
+    pub operands: [OperandReport; 2],
+    /// [`BooleanOutput::seconds`].
+    pub seconds: f64,
+}
+
+impl BooleanOutput {
+    /// What the result assumes, one line each (see [`BooleanReport::assumed`]).
+    pub fn assumed(&self) -> Vec<String> {
+        let mut lines: Vec<String> = self.operands.iter().flat_map(|o| o.assumed()).collect();
+        if self.rounding_flips > 0 {
+            lines.push(format!(
+                "{} result triangles are thinner than f64 rounding of their seam points and turned over when written (exact before rounding)",
+                self.rounding_flips
+            ));
+        }
+        if self.degenerate != [0, 0] {
+            lines.push(format!(
+                "degenerate (zero-area) triangles where the meshes meet were left out: {} in A, {} in B",
+                self.degenerate[0], self.degenerate[1]
+            ));
+        }
+        lines
+    }
+
+    /// The triangles kept uncut, one line each.
+    pub fn failed_lines(&self) -> Vec<String> {
+        self.failed
+            .iter()
+            .map(|f| format!("{:?} triangle {}: {}", f.source, f.triangle, f.reason))
+            .collect()
+    }
+
+    /// The report, with the result's measures (which take a pass over the mesh).
+    pub fn report(&self) -> BooleanReport {
+        BooleanReport {
+            schema: SCHEMA,
+            operation: self.op,
+            result: Measures::of(&self.mesh),
+            seam_points: self.seam_points,
+            rounding_flips: self.rounding_flips,
+            failed_triangles: self.failed_lines(),
+            assumed: self.assumed(),
+            operands: self.operands.clone(),
+            seconds: self.seconds,
+        }
+    }
+}
+
+/// The boolean `op` of `a` and `b`: meshes, checked as `opts.checks` say (named `A` and
+/// `B`), or [`super::Operand`]s. Closed meshes must face outward; open surfaces have
+/// "inside" behind them (the side their normals point away from).
+///
+/// Errors: an invalid mesh, an operand failing its checks, a thread count out of range.
+pub fn boolean<'a>(
+    a: impl Into<Input<'a>>,
+    b: impl Into<Input<'a>>,
+    op: Op,
+    opts: &BooleanOptions,
+) -> Result<BooleanOutput> {
+    let (a, b) = (a.into(), b.into());
+    opts.run.install(|| {
+        opts.run.stage(crate::boolean::Stage::Check);
+        let (a, b) = Input::both(a, b, &opts.checks)?;
+        let start = Instant::now();
+        let r = boolean_with_progress(a.mesh(), b.mesh(), op, &|s| opts.run.stage(s));
+        let seconds = start.elapsed().as_secs_f64();
+        Ok(BooleanOutput {
+            op,
+            mesh: r.mesh,
+            provenance: r.provenance,
+            operands: [a.report().clone(), b.report().clone()],
+            seam_points: r.seam_points,
+            degenerate: r.degenerate,
+            failed: r
+                .failed
+                .into_iter()
+                .map(|(source, triangle, reason)| FailedTriangle {
+                    source,
+                    triangle,
+                    reason,
+                })
+                .collect(),
+            rounding_flips: r.rounding_flips,
+            seconds,
+        })
+    })?
+}

@@ -1,0 +1,214 @@
+//! The front door: one function per command, shared by every front end (the `meshbool`
+//! command-line tool, the Python and JavaScript packages, and Rust code calling the library).
+//!
+//! Each function takes its inputs and an options struct and returns an output: the result
+//! mesh (or meshes) with what was found, assumed and measured. Each output's `report()` is
+//! a serialisable struct whose JSON is exactly what the CLI prints with `--json`
+//! (documented with every key in `docs/json.md`; [`SCHEMA`] is its version).
+//!
+//! | command | function | output | report |
+//! |---|---|---|---|
+//! | `union`, `intersection`, `difference` | [`boolean`] | [`BooleanOutput`] | [`BooleanReport`] |
+//! | `split` | [`split`] | [`SplitOutput`] | [`SplitReport`] (the split's `manifest.json`) |
+//! | `pick` | [`pick`], [`SplitOutput::pick`], [`pick_dir`] | [`PickOutput`] | [`PickReport`] |
+//! | `curves` | [`curves`] | [`CurvesOutput`] | [`CurvesReport`] |
+//! | `info` | [`info`] | [`MeshStats`](crate::measure::MeshStats) | [`InfoReport`] |
+//! | `orient` | [`orient`] | [`OrientOutput`] | [`OrientCommandReport`] |
+//! | `close` | [`close`] | [`CloseOutput`] | [`CloseCommandReport`] |
+//! | `repair` | [`repair`] | [`RepairOutput`] | [`RepairCommandReport`] |
+//! | `convert` | [`read`], [`write()`] | | |
+//!
+//! Inputs are plain [`Mesh`]es, checked at the door: invalid indices or non-finite
+//! coordinates are an [`Error`], never a panic. Functions of two meshes take anything that
+//! is an [`Input`]: a `&Mesh`, checked and exactly welded on the way in as their options'
+//! [`Checks`] say, or an [`Operand`] made earlier (checked once, usable many times; the
+//! CLI reads its files as operands named by their paths).
+//!
+//! ```
+//! use meshbool::ops::{boolean, BooleanOptions};
+//! use meshbool::{Mesh, Op};
+//!
+//! let a = Mesh::unit_cube();
+//! let b = Mesh::cuboid([0.5; 3], [1.5; 3]);
+//! let out = boolean(&a, &b, Op::Union, &BooleanOptions::default())?;
+//! let report = out.report();
+//! assert_eq!(report.result.volume, 1.875);
+//! assert!(report.result.closed);
+//! # Ok::<(), meshbool::Error>(())
+//! ```
+
+use std::fmt;
+use std::path::Path;
+use std::sync::Arc;
+
+use serde::Serialize;
+
+use crate::boolean::Stage;
+use crate::edges::EdgeCounts;
+use crate::measure::{area, signed_volume};
+use crate::{Error, Format, Mesh, Result};
+
+mod boolean;
+mod curves;
+mod operand;
+mod single;
+mod split;
+
+pub use boolean::{boolean, BooleanOptions, BooleanOutput, BooleanReport, FailedTriangle};
+pub use curves::{curves, CurvesOptions, CurvesOutput, CurvesReport};
+pub use operand::{Checks, Input, Operand, OperandReport, SelfIntersections};
+pub use single::{
+    close, info, orient, repair, CloseCommandReport, CloseOutput, InfoReport, OrientCommandReport,
+    OrientOutput, RepairCommandReport, RepairOutput,
+};
+pub use split::{
+    pick, pick_dir, split, GroupInfo, GroupPieces, PickOutput, PickReport, PieceInfo, PieceSpec,
+    SplitOptions, SplitOutput, SplitReport,
+};
+
+/// The version of the JSON reports (the `schema` key of every report). Raised when a key
+/// is removed or changes meaning; new keys may appear within a version.
+pub const SCHEMA: u32 = 1;
+
+/// A progress callback: called with each [`Stage`] as it begins, on the calling thread.
+#[derive(Clone)]
+pub struct Progress(Arc<dyn Fn(Stage) + Send + Sync>);
+
+impl Progress {
+    /// A callback from a closure.
+    pub fn new(f: impl Fn(Stage) + Send + Sync + 'static) -> Self {
+        Progress(Arc::new(f))
+    }
+
+    pub(crate) fn report(this: &Option<Progress>, stage: Stage) {
+        if let Some(p) = this {
+            (p.0)(stage);
+        }
+    }
+}
+
+impl fmt::Debug for Progress {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("Progress(..)")
+    }
+}
+
+/// How an operation runs: worker threads and progress reporting. Shared by the options of
+/// every command.
+#[derive(Clone, Debug, Default)]
+pub struct RunOptions {
+    /// Worker threads (`None`: rayon's current pool, by default one thread per core).
+    /// `Some(n)` runs the call in a pool of its own of `n` threads (1 to
+    /// [`RunOptions::MAX_THREADS`]); a call already running in a pool of `n` threads uses it.
+    pub threads: Option<usize>,
+    /// Called as each stage begins.
+    pub progress: Option<Progress>,
+}
+
+impl RunOptions {
+    /// The most worker threads a call may ask for.
+    pub const MAX_THREADS: usize = 1024;
+
+    /// Runs `f` under these options' thread count (see [`RunOptions::threads`]).
+    /// Errors when the count is out of range or the pool cannot be started.
+    pub fn install<R: Send>(&self, f: impl FnOnce() -> R + Send) -> Result<R> {
+        with_threads(self.threads, f)
+    }
+
+    fn stage(&self, stage: Stage) {
+        Progress::report(&self.progress, stage);
+    }
+}
+
+/// Runs `f` in a pool of `threads` worker threads (`None`: the current pool). A call
+/// already on a worker of a pool that size runs directly. Errors when `threads` is 0 or
+/// over [`RunOptions::MAX_THREADS`], or when the threads cannot be started.
+pub fn with_threads<R: Send>(threads: Option<usize>, f: impl FnOnce() -> R + Send) -> Result<R> {
+    let Some(n) = threads else { return Ok(f()) };
+    if !(1..=RunOptions::MAX_THREADS).contains(&n) {
+        return Err(Error::InvalidParameter(format!(
+            "threads must be between 1 and {}, got {n}",
+            RunOptions::MAX_THREADS
+        )));
+    }
+    if rayon::current_thread_index().is_some() && rayon::current_num_threads() == n {
+        return Ok(f());
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(n)
+        .build()
+        .map_err(|e| Error::InvalidParameter(format!("cannot start {n} threads: {e}")))?;
+    Ok(pool.install(f))
+}
+
+/// The measures of a result mesh that every report carries: counts, closedness, volume
+/// and area. Cheaper than [`MeshStats`](crate::measure::MeshStats) (edge kinds are counted without building the
+/// adjacency).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Measures {
+    /// Triangles.
+    pub triangles: usize,
+    /// Vertices (the result's vertices are all used).
+    pub vertices: usize,
+    /// Edges used by one triangle.
+    pub boundary_edges: usize,
+    /// Edges used by more than two triangles.
+    pub non_manifold_edges: usize,
+    /// True when the mesh has triangles and neither boundary nor non-manifold edges.
+    pub closed: bool,
+    /// Signed volume (meaningful when closed).
+    pub volume: f64,
+    /// Surface area.
+    pub area: f64,
+}
+
+impl Measures {
+    /// Measures `mesh` (valid indices).
+    pub fn of(mesh: &Mesh) -> Measures {
+        let counts = EdgeCounts::of(mesh);
+        Measures {
+            triangles: mesh.triangles.len(),
+            vertices: mesh.positions.len(),
+            boundary_edges: counts.boundary,
+            non_manifold_edges: counts.non_manifold,
+            closed: !mesh.is_empty() && counts.boundary == 0 && counts.non_manifold == 0,
+            volume: signed_volume(mesh),
+            area: area(mesh),
+        }
+    }
+}
+
+/// Reads a mesh file: the format from `from`, else from the name and the content
+/// ([`crate::io::detect_format`]). Errors name the file. The mesh is as the file has it
+/// (welded only where the format stores corners per triangle).
+pub fn read(path: impl AsRef<Path>, from: Option<Format>) -> Result<(Mesh, Format)> {
+    let path = path.as_ref();
+    let run = || -> Result<(Mesh, Format)> {
+        let bytes = std::fs::read(path)?;
+        let format = crate::io::detect_format(&bytes, from.or_else(|| Format::for_path(path)))
+            .ok_or_else(|| Error::UnknownFormat(path.display().to_string()))?;
+        Ok((crate::io::read_bytes(&bytes, format)?, format))
+    };
+    run().map_err(|e| e.in_file("reading", path))
+}
+
+/// Writes `mesh` to a file in `format`, or the format the file's name says. Errors name
+/// the file.
+pub fn write(path: impl AsRef<Path>, mesh: &Mesh, format: Option<Format>) -> Result<()> {
+    let path = path.as_ref();
+    let format = match format.or_else(|| Format::for_path(path)) {
+        Some(f) => f,
+        None => return Err(Error::UnknownFormat(path.display().to_string())),
+    };
+    crate::io::write_path_as(path, mesh, format).map_err(|e| e.in_file("writing", path))
+}
+
+/// The exactly welded copy of a valid mesh (what every operation expects), as an error
+/// where the mesh breaks the data model.
+fn checked_welded(mesh: &Mesh) -> Result<Mesh> {
+    mesh.validate()?;
+    Ok(crate::weld_exact(mesh).mesh)
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,266 @@
+//! Operands: meshes checked at the door. A boolean needs to know inside from outside; an
+//! operand is a valid, exactly welded mesh with what its checks found (orientation,
+//! manifoldness, self-intersections), refused when inside/outside would be ambiguous
+//! unless the caller forces it.
+
+use std::borrow::Cow;
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+
+use crate::edges::EdgeCounts;
+use crate::intersect::self_intersections;
+use crate::{weld_exact, Error, Mesh, Result};
+
+/// What to check of an operand, and what to do when a check finds a problem.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Checks {
+    /// Count inconsistently oriented and non-manifold edges (linear time).
+    pub edges: bool,
+    /// Look for self-intersecting triangle pairs (exact; on large meshes it costs about as
+    /// much as the boolean). Turn off only for inputs known to be clean: the report then
+    /// says they were not checked.
+    pub self_intersections: bool,
+    /// Proceed when a check finds a problem, taking the input as given; the problems are
+    /// listed in the report's `assumed`. Without it they are an [`Error::Operand`].
+    pub force: bool,
+}
+
+impl Default for Checks {
+    /// Every check, nothing forced.
+    fn default() -> Self {
+        Checks {
+            edges: true,
+            self_intersections: true,
+            force: false,
+        }
+    }
+}
+
+impl Checks {
+    /// No checks (the mesh is still validated and welded): for operations that do not
+    /// depend on inside and outside, such as intersection curves.
+    pub const NONE: Checks = Checks {
+        edges: false,
+        self_intersections: false,
+        force: true,
+    };
+}
+
+/// What the checks found in an operand.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct OperandReport {
+    /// The operand's name: its file, or `A` / `B`.
+    pub name: String,
+    /// Triangles.
+    pub triangles: usize,
+    /// Vertices after the exact weld.
+    pub vertices: usize,
+    /// Edges used twice in the same direction; `None`: not checked.
+    pub inconsistent_edges: Option<usize>,
+    /// Edges used by more than two triangles; `None`: not checked.
+    pub non_manifold_edges: Option<usize>,
+    /// Self-intersecting triangle pairs; `None`: not checked.
+    pub self_intersections: Option<SelfIntersections>,
+    /// True when problems were found and taken as given ([`Checks::force`]).
+    pub forced: bool,
+}
+
+/// The self-intersections found in an operand.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SelfIntersections {
+    /// Pairs of triangles that meet other than in shared vertices and edges.
+    pub pairs: usize,
+    /// The first pair (triangle ids of the welded mesh), if any.
+    pub first: Option<[u32; 2]>,
+    /// The centroid of the first pair's first triangle, to find it.
+    pub near: Option<[f64; 3]>,
+}
+
+impl OperandReport {
+    /// What makes inside/outside ambiguous, one phrase each; empty for a clean operand.
+    pub fn problems(&self) -> Vec<String> {
+        let mut problems = Vec::new();
+        if let Some(n @ 1..) = self.inconsistent_edges {
+            problems.push(format!("{n} inconsistently oriented edges"));
+        }
+        if let Some(n @ 1..) = self.non_manifold_edges {
+            problems.push(format!("{n} non-manifold edges"));
+        }
+        if let Some(SelfIntersections {
+            pairs,
+            first: Some([i, j]),
+            near: Some(near),
+        }) = &self.self_intersections
+        {
+            problems.push(format!(
+                "{pairs} self-intersecting triangle pairs (first: triangles {i} and {j}, near {near:?})"
+            ));
+        }
+        problems
+    }
+
+    /// What a result built on this operand assumes: checks that were skipped and problems
+    /// taken as given, one line each, naming the operand.
+    pub fn assumed(&self) -> Vec<String> {
+        let mut lines = Vec::new();
+        if self.inconsistent_edges.is_none() {
+            lines.push(format!(
+                "{}: not checked for inconsistent orientation or non-manifold edges",
+                self.name
+            ));
+        }
+        if self.self_intersections.is_none() {
+            lines.push(format!("{}: not checked for self-intersections", self.name));
+        }
+        let problems = self.problems();
+        if !problems.is_empty() {
+            lines.push(format!(
+                "{}: {} (input taken as given)",
+                self.name,
+                problems.join(", ")
+            ));
+        }
+        lines
+    }
+}
+
+/// A mesh checked for a boolean, split or curves: valid (finite coordinates, indices in
+/// range), exactly welded, and either free of what its [`Checks`] look for or forced.
+#[derive(Clone, Debug)]
+pub struct Operand {
+    mesh: Mesh,
+    report: OperandReport,
+}
+
+impl Operand {
+    /// Checks `mesh` as `checks` say, naming it `name` in reports and errors. Errors:
+    /// [`Error::InvalidMesh`] when the mesh breaks the data model, [`Error::Operand`] when
+    /// a check finds a problem and `checks.force` is off.
+    pub fn new(name: impl Into<String>, mesh: &Mesh, checks: &Checks) -> Result<Operand> {
+        mesh.validate()?;
+        Operand::checked(name.into(), weld_exact(mesh).mesh, checks)
+    }
+
+    /// Reads a mesh file ([`super::read`]) and checks it as [`Operand::new`] does, named by
+    /// its path. Formats that weld on read are not welded twice.
+    pub fn read(path: impl AsRef<Path>, checks: &Checks) -> Result<Operand> {
+        let path = path.as_ref();
+        let (mesh, format) = super::read(path, None)?;
+        let mesh = if format.welds_on_read() {
+            mesh
+        } else {
+            weld_exact(&mesh).mesh
+        };
+        Operand::checked(path.display().to_string(), mesh, checks)
+    }
+
+    /// Reads and checks two files side by side ([`Operand::read`]).
+    pub fn read_pair(
+        a: impl AsRef<Path> + Sync,
+        b: impl AsRef<Path> + Sync,
+        checks: &Checks,
+    ) -> Result<(Operand, Operand)> {
+        let (a, b) = rayon::join(|| Operand::read(&a, checks), || Operand::read(&b, checks));
+        Ok((a?, b?))
+    }
+
+    /// Checks a valid, welded mesh.
+    fn checked(name: String, mesh: Mesh, checks: &Checks) -> Result<Operand> {
+        let counts = checks.edges.then(|| EdgeCounts::of(&mesh));
+        let self_intersections = checks.self_intersections.then(|| {
+            let found = self_intersections(&mesh);
+            let first = found.first().map(|&(i, j)| [i, j]);
+            SelfIntersections {
+                pairs: found.len(),
+                first,
+                near: first.map(|[i, _]| {
+                    let [a, b, c] = mesh.corners(i as usize);
+                    std::array::from_fn(|k| (a[k] + b[k] + c[k]) / 3.0)
+                }),
+            }
+        });
+        let mut report = OperandReport {
+            name,
+            triangles: mesh.triangles.len(),
+            vertices: mesh.positions.len(),
+            inconsistent_edges: counts.map(|c| c.inconsistent),
+            non_manifold_edges: counts.map(|c| c.non_manifold),
+            self_intersections,
+            forced: false,
+        };
+        let problems = report.problems();
+        if !problems.is_empty() {
+            if !checks.force {
+                return Err(Error::Operand {
+                    name: report.name,
+                    problems,
+                });
+            }
+            report.forced = true;
+        }
+        Ok(Operand { mesh, report })
+    }
+
+    /// The checked, welded mesh.
+    pub fn mesh(&self) -> &Mesh {
+        &self.mesh
+    }
+
+    /// What the checks found.
+    pub fn report(&self) -> &OperandReport {
+        &self.report
+    }
+
+    /// The operand's name.
+    pub fn name(&self) -> &str {
+        &self.report.name
+    }
+
+    /// The welded mesh, giving up the report.
+    pub fn into_mesh(self) -> Mesh {
+        self.mesh
+    }
+}
+
+/// An input of a function of two meshes: a mesh, checked on the way in, or an operand
+/// checked before.
+#[derive(Clone, Copy, Debug)]
+pub enum Input<'a> {
+    /// A mesh, checked with the call's [`Checks`] and named `A` or `B`.
+    Mesh(&'a Mesh),
+    /// An operand, used as it is.
+    Operand(&'a Operand),
+}
+
+impl<'a> From<&'a Mesh> for Input<'a> {
+    fn from(m: &'a Mesh) -> Self {
+        Input::Mesh(m)
+    }
+}
+
+impl<'a> From<&'a Operand> for Input<'a> {
+    fn from(o: &'a Operand) -> Self {
+        Input::Operand(o)
+    }
+}
+
+impl<'a> Input<'a> {
+    fn operand(self, name: &str, checks: &Checks) -> Result<Cow<'a, Operand>> {
+        Ok(match self {
+            Input::Mesh(m) => Cow::Owned(Operand::new(name, m, checks)?),
+            Input::Operand(o) => Cow::Borrowed(o),
+        })
+    }
+
+    /// Both inputs as operands (`A` and `B`), checked side by side.
+    pub(crate) fn both(
+        a: Input<'a>,
+        b: Input<'a>,
+        checks: &Checks,
+    ) -> Result<(Cow<'a, Operand>, Cow<'a, Operand>)> {
+        let (a, b) = rayon::join(|| a.operand("A", checks), || b.operand("B", checks));
+        Ok((a?, b?))
+    }
+}

@@ -1,0 +1,160 @@
+//! Commands on one mesh at the front door: measures (`info`), orientation, closing and the
+//! repair pipeline. Each validates its input; orientation, closing and repair also weld it
+//! exactly first (what their edge walks expect), as the CLI always did on reading.
+
+use serde::Serialize;
+
+use super::{checked_welded, Measures, SCHEMA};
+use crate::measure::{mesh_stats, MeshStats};
+use crate::repair::{
+    self, CloseMode, CloseOptions, CloseReport, Facing, OrientReport, RepairConfig, RepairReport,
+};
+use crate::{Mesh, Result};
+
+/// The JSON of `meshbool info --json` for one file (an array of them for several).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct InfoReport {
+    /// [`SCHEMA`].
+    pub schema: u32,
+    /// The file measured.
+    pub file: String,
+    /// Every measure.
+    #[serde(flatten)]
+    pub stats: MeshStats,
+}
+
+impl InfoReport {
+    /// The report of `stats` measured on `file`.
+    pub fn new(file: impl Into<String>, stats: MeshStats) -> Self {
+        InfoReport {
+            schema: SCHEMA,
+            file: file.into(),
+            stats,
+        }
+    }
+}
+
+/// Measures a mesh as it is (no weld): counts, edge kinds, components, volume, areas,
+/// bounding box. Errors only when the mesh breaks the data model.
+pub fn info(mesh: &Mesh) -> Result<MeshStats> {
+    mesh.validate()?;
+    Ok(mesh_stats(mesh))
+}
+
+/// The result of [`orient()`].
+#[derive(Clone, Debug)]
+pub struct OrientOutput {
+    /// The oriented mesh.
+    pub mesh: Mesh,
+    /// What was flipped.
+    pub orient: OrientReport,
+}
+
+/// The JSON of `meshbool orient --json`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct OrientCommandReport {
+    /// [`SCHEMA`].
+    pub schema: u32,
+    /// What was flipped.
+    #[serde(flatten)]
+    pub orient: OrientReport,
+}
+
+impl OrientOutput {
+    /// The report.
+    pub fn report(&self) -> OrientCommandReport {
+        OrientCommandReport {
+            schema: SCHEMA,
+            orient: self.orient.clone(),
+        }
+    }
+}
+
+/// Makes orientation consistent and faces each component as `facing` says
+/// ([`repair::orient`]), on the exactly welded mesh.
+pub fn orient(mesh: &Mesh, facing: Facing) -> Result<OrientOutput> {
+    let (mesh, orient) = repair::orient(&checked_welded(mesh)?, facing);
+    Ok(OrientOutput { mesh, orient })
+}
+
+/// The result of [`close()`].
+#[derive(Clone, Debug)]
+pub struct CloseOutput {
+    /// The closed mesh.
+    pub mesh: Mesh,
+    /// What the closing steps did.
+    pub close: CloseReport,
+}
+
+/// The JSON of `meshbool close --json`: what the steps did and the result's measures.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CloseCommandReport {
+    /// [`SCHEMA`].
+    pub schema: u32,
+    /// The steps' reports (`cap`, `stitch`, `curtain`; those that ran).
+    #[serde(flatten)]
+    pub close: CloseReport,
+    /// Edges used by one triangle, left open.
+    pub boundary_edges: usize,
+    /// True when the result has triangles and neither boundary nor non-manifold edges.
+    pub closed: bool,
+    /// The result's signed volume.
+    pub volume: f64,
+}
+
+impl CloseOutput {
+    /// The report, with the result's measures.
+    pub fn report(&self) -> CloseCommandReport {
+        let m = Measures::of(&self.mesh);
+        CloseCommandReport {
+            schema: SCHEMA,
+            close: self.close.clone(),
+            boundary_edges: m.boundary_edges,
+            closed: m.closed,
+            volume: m.volume,
+        }
+    }
+}
+
+/// Closes the exactly welded mesh as `mode` says ([`repair::close`]): capping holes,
+/// stitching loop pairs, curtain walls to a floor. Orient a surface up before a curtain.
+pub fn close(mesh: &Mesh, mode: CloseMode, opts: &CloseOptions) -> Result<CloseOutput> {
+    let (mesh, close) = repair::close(&checked_welded(mesh)?, mode, opts)?;
+    Ok(CloseOutput { mesh, close })
+}
+
+/// The result of [`repair()`].
+#[derive(Clone, Debug)]
+pub struct RepairOutput {
+    /// The repaired mesh.
+    pub mesh: Mesh,
+    /// Measures before and after and what every step did.
+    pub repair: RepairReport,
+}
+
+/// The JSON of `meshbool repair --json`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RepairCommandReport {
+    /// [`SCHEMA`].
+    pub schema: u32,
+    /// Measures before and after and what every step did.
+    #[serde(flatten)]
+    pub repair: RepairReport,
+}
+
+impl RepairOutput {
+    /// The report.
+    pub fn report(&self) -> RepairCommandReport {
+        RepairCommandReport {
+            schema: SCHEMA,
+            repair: self.repair.clone(),
+        }
+    }
+}
+
+/// Runs the repair pipeline `config` asks for ([`repair::repair`]) on the exactly welded
+/// mesh.
+pub fn repair(mesh: &Mesh, config: &RepairConfig) -> Result<RepairOutput> {
+    let (mesh, repair) = repair::repair(&checked_welded(mesh)?, config)?;
+    Ok(RepairOutput { mesh, repair })
+}

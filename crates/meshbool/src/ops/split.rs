@@ -1,0 +1,394 @@
+//! Split-and-pick at the front door: both inputs cut along their intersection into groups
+//! (A in B, A out of B, B in A, B out of A, and the coplanar groups), each group into its
+//! connected components; any set of pieces, each optionally flipped, merged back into one
+//! welded mesh. A split can be written as a directory (one file per group and component
+//! and a `manifest.json`, [`SplitReport`]) and picked from there later.
+
+use std::fmt;
+use std::path::Path;
+use std::str::FromStr;
+use std::time::Instant;
+
+use serde::{Deserialize, Serialize};
+
+use super::{Checks, Input, OperandReport, RunOptions, SCHEMA};
+use crate::boolean::{split_with_progress, Group, Provenance, Stage};
+use crate::edges::components_merged;
+use crate::measure::{area, mesh_stats, signed_volume, MeshStats};
+use crate::{Error, Format, Mesh, Result};
+
+/// Options of [`split`].
+#[derive(Clone, Debug, Default)]
+pub struct SplitOptions {
+    /// Checks of inputs given as meshes.
+    pub checks: Checks,
+    /// Components of fewer triangles than this are merged into the nearest larger
+    /// component of their group (stray fragments); 0 keeps every component.
+    pub merge_small: usize,
+    /// Threads and progress.
+    pub run: RunOptions,
+}
+
+/// One non-empty group of a split, with its connected components.
+#[derive(Clone, Debug)]
+pub struct GroupPieces {
+    /// Which group.
+    pub group: Group,
+    /// The group's triangles (vertices compacted; seam vertices bit-identical to the other
+    /// groups').
+    pub mesh: Mesh,
+    /// The origin of every triangle of `mesh`.
+    pub provenance: Vec<Provenance>,
+    /// The connected components, largest first, each its own mesh; empty when the group is
+    /// one component (the group's mesh is then its component 0).
+    pub components: Vec<Mesh>,
+    /// Small components merged into larger ones ([`SplitOptions::merge_small`]).
+    pub merged_small: usize,
+}
+
+/// The result of [`split`].
+#[derive(Clone, Debug)]
+pub struct SplitOutput {
+    /// What the checks found in A and B.
+    pub operands: [OperandReport; 2],
+    /// Points of the intersection curves.
+    pub seam_points: usize,
+    /// The non-empty groups, in the order of [`Group::ALL`].
+    pub groups: Vec<GroupPieces>,
+    /// Time of the split and the components, in seconds.
+    pub seconds: f64,
+}
+
+/// A group's mesh or one of its components, in a [`SplitReport`].
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PieceInfo {
+    /// The file it is written to, relative to the split's directory.
+    pub file: String,
+    /// Triangles.
+    pub triangles: usize,
+    /// Surface area.
+    pub area: f64,
+    /// Signed volume (of an open piece: relative to the piece's own box centre).
+    pub volume: f64,
+}
+
+/// A group in a [`SplitReport`].
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct GroupInfo {
+    /// The group (`a_in_b`, ...).
+    pub name: Group,
+    /// The whole group.
+    #[serde(flatten)]
+    pub piece: PieceInfo,
+    /// Its components, largest first; empty when it is one component.
+    pub components: Vec<PieceInfo>,
+    /// Small components merged into larger ones.
+    #[serde(default)]
+    pub merged_small_components: usize,
+}
+
+/// What a split holds: the JSON of `meshbool split --json`, and the `manifest.json` of a
+/// split's directory.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SplitReport {
+    /// [`SCHEMA`] (0 in manifests written before reports had a version).
+    #[serde(default)]
+    pub schema: u32,
+    /// The name of A (its file).
+    pub a: String,
+    /// The name of B.
+    pub b: String,
+    /// Points of the intersection curves.
+    pub seam_points: usize,
+    /// The non-empty groups.
+    pub groups: Vec<GroupInfo>,
+    /// What the split assumes (skipped checks, problems taken as given), one line each.
+    #[serde(default)]
+    pub assumed: Vec<String>,
+}
+
+/// Splits `a` and `b` along their intersection into groups and components. Inputs as for
+/// [`super::boolean`].
+pub fn split<'a>(
+    a: impl Into<Input<'a>>,
+    b: impl Into<Input<'a>>,
+    opts: &SplitOptions,
+) -> Result<SplitOutput> {
+    let (a, b) = (a.into(), b.into());
+    opts.run.install(|| {
+        opts.run.stage(Stage::Check);
+        let (a, b) = Input::both(a, b, &opts.checks)?;
+        let start = Instant::now();
+        let s = split_with_progress(a.mesh(), b.mesh(), &|s| opts.run.stage(s));
+        opts.run.stage(Stage::Merge);
+        let mut groups = Vec::new();
+        for group in Group::ALL {
+            let (mesh, provenance) = s.group(group);
+            if mesh.is_empty() {
+                continue;
+            }
+            let parts = components_merged(&mesh, opts.merge_small);
+            let components = if parts.parts.len() > 1 {
+                parts
+                    .parts
+                    .iter()
+                    .map(|part| {
+                        let tris = part.iter().map(|&t| mesh.triangles[t as usize]).collect();
+                        crate::boolean::pick(&[(&Mesh::new(mesh.positions.clone(), tris), false)])
+                    })
+                    .collect()
+            } else {
+                Vec::new()
+            };
+            groups.push(GroupPieces {
+                group,
+                mesh,
+                provenance,
+                components,
+                merged_small: parts.merged,
+            });
+        }
+        Ok(SplitOutput {
+            operands: [a.report().clone(), b.report().clone()],
+            seam_points: s.seam.points.len(),
+            groups,
+            seconds: start.elapsed().as_secs_f64(),
+        })
+    })?
+}
+
+fn piece_info(file: String, m: &Mesh) -> PieceInfo {
+    PieceInfo {
+        file,
+        triangles: m.triangles.len(),
+        area: area(m),
+        volume: signed_volume(m),
+    }
+}
+
+impl SplitOutput {
+    /// What the split holds, with the file names [`SplitOutput::write_dir`] gives the
+    /// pieces in `format`.
+    pub fn report(&self, format: Format) -> SplitReport {
+        let ext = format.extension();
+        SplitReport {
+            schema: SCHEMA,
+            a: self.operands[0].name.clone(),
+            b: self.operands[1].name.clone(),
+            seam_points: self.seam_points,
+            groups: self
+                .groups
+                .iter()
+                .map(|g| GroupInfo {
+                    name: g.group,
+                    piece: piece_info(format!("{}.{ext}", g.group), &g.mesh),
+                    components: g
+                        .components
+                        .iter()
+                        .enumerate()
+                        .map(|(k, c)| piece_info(format!("{}.{k}.{ext}", g.group), c))
+                        .collect(),
+                    merged_small_components: g.merged_small,
+                })
+                .collect(),
+            assumed: self.operands.iter().flat_map(|o| o.assumed()).collect(),
+        }
+    }
+
+    /// Writes every group and component to `dir` (created if needed) in `format`, then
+    /// `manifest.json` (the returned report).
+    pub fn write_dir(&self, dir: impl AsRef<Path>, format: Format) -> Result<SplitReport> {
+        let dir = dir.as_ref();
+        std::fs::create_dir_all(dir).map_err(|e| Error::from(e).in_file("creating", dir))?;
+        let report = self.report(format);
+        for (g, info) in self.groups.iter().zip(&report.groups) {
+            super::write(dir.join(&info.piece.file), &g.mesh, Some(format))?;
+            for (c, ci) in g.components.iter().zip(&info.components) {
+                super::write(dir.join(&ci.file), c, Some(format))?;
+            }
+        }
+        let manifest = dir.join("manifest.json");
+        let text = serde_json::to_string_pretty(&report)
+            .map_err(|e| Error::InvalidParameter(e.to_string()))?;
+        std::fs::write(&manifest, text)
+            .map_err(|e| Error::from(e).in_file("writing", &manifest))?;
+        Ok(report)
+    }
+
+    /// Merges the pieces `specs` names, each flipped where it says so, into one welded
+    /// mesh. A piece may be named once.
+    pub fn pick(&self, specs: &[PieceSpec]) -> Result<PickOutput> {
+        let pieces = resolve(specs, |group| {
+            let g = self.groups.iter().find(|g| g.group == group)?;
+            Some((&g.mesh, &g.components[..]))
+        })?;
+        Ok(pick(&pieces))
+    }
+}
+
+/// The pieces `specs` name, with their flips: `lookup` gives a group's whole piece and its
+/// components (empty when the group is one component, which is then its component 0).
+/// Refuses a group not in the split, a component out of range, and a list naming a piece
+/// twice or a group and one of its components (their triangles would be doubled).
+fn resolve<'g, T>(
+    specs: &[PieceSpec],
+    lookup: impl Fn(Group) -> Option<(&'g T, &'g [T])>,
+) -> Result<Vec<(&'g T, bool)>> {
+    let mut taken: Vec<(Group, Option<usize>, &PieceSpec)> = Vec::new();
+    let mut pieces = Vec::new();
+    for spec in specs {
+        let (whole, components) = lookup(spec.group).ok_or_else(|| {
+            Error::InvalidParameter(format!(
+                "{:?}: no group {:?} in this split",
+                spec.to_string(),
+                spec.group.name()
+            ))
+        })?;
+        // The component a spec names, `None` for the whole group.
+        let key = spec.component.filter(|_| !components.is_empty());
+        let piece = match key {
+            None if spec.component.unwrap_or(0) == 0 => whole,
+            None => return Err(few_components(spec, 1)),
+            Some(k) => components
+                .get(k)
+                .ok_or_else(|| few_components(spec, components.len()))?,
+        };
+        if let Some((_, _, earlier)) = taken
+            .iter()
+            .find(|(g, k, _)| *g == spec.group && (*k == key || k.is_none() || key.is_none()))
+        {
+            return Err(Error::InvalidParameter(format!(
+                "{:?} overlaps {:?}: a piece may be picked once",
+                spec.to_string(),
+                earlier.to_string()
+            )));
+        }
+        taken.push((spec.group, key, spec));
+        pieces.push((piece, spec.flip));
+    }
+    Ok(pieces)
+}
+
+fn few_components(spec: &PieceSpec, n: usize) -> Error {
+    Error::InvalidParameter(format!(
+        "{:?}: group {} has {} components",
+        spec.to_string(),
+        spec.group,
+        n
+    ))
+}
+
+/// A piece of a split to keep: a group, optionally one of its components, optionally
+/// flipped. Written `GROUP[#COMPONENT][:flip]`, e.g. `a_out_b`, `a_in_b#2`, `b_in_a:flip`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct PieceSpec {
+    /// The group.
+    pub group: Group,
+    /// A component of the group (largest first); `None`: the whole group.
+    pub component: Option<usize>,
+    /// Reverse the piece's orientation.
+    pub flip: bool,
+}
+
+impl fmt::Display for PieceSpec {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.group)?;
+        if let Some(k) = self.component {
+            write!(f, "#{k}")?;
+        }
+        if self.flip {
+            f.write_str(":flip")?;
+        }
+        Ok(())
+    }
+}
+
+impl FromStr for PieceSpec {
+    type Err = Error;
+
+    fn from_str(spec: &str) -> Result<Self> {
+        let (body, flip) = match spec.strip_suffix(":flip") {
+            Some(b) => (b, true),
+            None => (spec, false),
+        };
+        let (name, component) =
+            match body.split_once('#') {
+                Some((n, c)) => (
+                    n,
+                    Some(c.parse::<usize>().map_err(|_| {
+                        Error::InvalidParameter(format!("bad component in {spec:?}"))
+                    })?),
+                ),
+                None => (body, None),
+            };
+        let group = name.parse::<Group>().map_err(|_| {
+            Error::InvalidParameter(format!(
+                "{spec:?}: no group {name:?} (groups: {})",
+                Group::ALL.map(Group::name).join(", ")
+            ))
+        })?;
+        Ok(PieceSpec {
+            group,
+            component,
+            flip,
+        })
+    }
+}
+
+/// The result of a pick: one welded mesh.
+#[derive(Clone, Debug)]
+pub struct PickOutput {
+    /// The merged pieces, exactly equal positions welded, unreferenced vertices dropped.
+    pub mesh: Mesh,
+}
+
+/// The JSON of `meshbool pick --json`: the merged mesh's measures.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PickReport {
+    /// [`SCHEMA`].
+    pub schema: u32,
+    /// Every measure of the result ([`mesh_stats`]).
+    #[serde(flatten)]
+    pub stats: MeshStats,
+}
+
+impl PickOutput {
+    /// The report: every measure of the merged mesh.
+    pub fn report(&self) -> PickReport {
+        PickReport {
+            schema: SCHEMA,
+            stats: mesh_stats(&self.mesh),
+        }
+    }
+}
+
+/// Merges meshes into one, each flipped where its flag says, welding exactly equal
+/// positions: the "pick" of split-and-pick (pieces of one split share their seam vertices
+/// bit for bit). Meshes must be valid ([`Mesh::validate`]).
+pub fn pick(pieces: &[(&Mesh, bool)]) -> PickOutput {
+    PickOutput {
+        mesh: crate::boolean::pick(pieces),
+    }
+}
+
+/// Picks from a split's directory ([`SplitOutput::write_dir`]): reads its manifest and the
+/// pieces `specs` names, and merges them as [`SplitOutput::pick`] does.
+pub fn pick_dir(dir: impl AsRef<Path>, specs: &[PieceSpec]) -> Result<PickOutput> {
+    let dir = dir.as_ref();
+    let path = dir.join("manifest.json");
+    let bytes = std::fs::read(&path).map_err(|e| Error::from(e).in_file("reading", &path))?;
+    let manifest: SplitReport = serde_json::from_slice(&bytes).map_err(|e| {
+        Error::InvalidParameter(format!("not a meshbool split manifest ({e})"))
+            .in_file("reading", &path)
+    })?;
+    let files = resolve(specs, |group| {
+        let g = manifest.groups.iter().find(|g| g.name == group)?;
+        Some((&g.piece, &g.components[..]))
+    })?;
+    let meshes = files
+        .into_iter()
+        .map(|(piece, flip)| Ok((super::read(dir.join(&piece.file), None)?.0, flip)))
+        .collect::<Result<Vec<_>>>()?;
+    let refs: Vec<(&Mesh, bool)> = meshes.iter().map(|(m, f)| (m, *f)).collect();
+    Ok(pick(&refs))
+}

@@ -1,0 +1,309 @@
+use std::sync::{Arc, Mutex};
+
+use super::*;
+use crate::boolean::{Group, Op};
+use crate::measure::signed_volume;
+use crate::repair::{CloseMode, Facing};
+use crate::test_util::data;
+
+fn cubes() -> (Mesh, Mesh) {
+    (Mesh::unit_cube(), Mesh::cuboid([0.5; 3], [1.5; 3]))
+}
+
+/// Two cubes overlapping in one mesh.
+fn self_intersecting() -> Mesh {
+    let (mut m, other) = cubes();
+    let n = m.positions.len() as u32;
+    m.positions.extend(&other.positions);
+    m.triangles
+        .extend(other.triangles.iter().map(|t| t.map(|v| v + n)));
+    m
+}
+
+#[test]
+fn boolean_of_meshes_satisfies_the_volume_identities() {
+    let (a, b) = cubes();
+    let vol = |op| {
+        let out = boolean(&a, &b, op, &BooleanOptions::default()).unwrap();
+        let r = out.report();
+        assert!(r.result.closed, "{op}");
+        assert_eq!(r.result.volume, signed_volume(&out.mesh));
+        assert_eq!(r.operation, op);
+        assert!(r.assumed.is_empty(), "{op}: {:?}", r.assumed);
+        r.result.volume
+    };
+    let (u, i, d, rd) = (
+        vol(Op::Union),
+        vol(Op::Intersection),
+        vol(Op::Difference),
+        vol(Op::ReverseDifference),
+    );
+    assert_eq!(u + i, 2.0);
+    assert_eq!(d, 1.0 - i);
+    assert_eq!(rd, 1.0 - i);
+    assert_eq!(i, 0.125);
+}
+
+#[test]
+fn invalid_meshes_are_errors_at_the_door() {
+    let (a, _) = cubes();
+    let mut bad_index = a.clone();
+    bad_index.triangles[3][1] = 99;
+    let mut nan = a.clone();
+    nan.positions[2][0] = f64::NAN;
+    for bad in [&bad_index, &nan] {
+        let opts = BooleanOptions::default();
+        assert!(matches!(
+            boolean(bad, &a, Op::Union, &opts),
+            Err(Error::InvalidMesh { .. })
+        ));
+        assert!(matches!(
+            boolean(&a, bad, Op::Union, &opts),
+            Err(Error::InvalidMesh { .. })
+        ));
+        assert!(split(bad, &a, &SplitOptions::default()).is_err());
+        assert!(curves(&a, bad, &CurvesOptions::default()).is_err());
+        assert!(info(bad).is_err());
+        assert!(orient(bad, Facing::Majority).is_err());
+        assert!(close(bad, CloseMode::Cap, &Default::default()).is_err());
+        assert!(repair(bad, &Default::default()).is_err());
+        assert!(Operand::new("x", bad, &Checks::NONE).is_err());
+    }
+}
+
+#[test]
+fn operands_with_problems_are_refused_unless_forced() {
+    let terrain = data("kirra_terrain.obj");
+    let cylinder = data("kirra_cylinder.obj");
+    let err = boolean(
+        &terrain,
+        &cylinder,
+        Op::Difference,
+        &BooleanOptions::default(),
+    )
+    .unwrap_err();
+    let Error::Operand { name, problems } = &err else {
+        panic!("{err}")
+    };
+    assert_eq!(name, "A");
+    assert_eq!(problems, &["46 inconsistently oriented edges"]);
+    let opts = BooleanOptions {
+        checks: Checks {
+            force: true,
+            ..Checks::default()
+        },
+        ..BooleanOptions::default()
+    };
+    let out = boolean(&terrain, &cylinder, Op::Difference, &opts).unwrap();
+    assert!(out.operands[0].forced);
+    assert!(!out.operands[1].forced);
+    assert_eq!(
+        out.assumed(),
+        ["A: 46 inconsistently oriented edges (input taken as given)"]
+    );
+    assert_eq!(out.report().result.boundary_edges, 560);
+
+    // A self-intersecting operand names its first pair.
+    let m = self_intersecting();
+    let err = Operand::new("two cubes", &m, &Checks::default()).unwrap_err();
+    let pairs = crate::intersect::self_intersections(&crate::weld_exact(&m).mesh).len();
+    assert!(pairs > 0);
+    assert!(
+        err.to_string().starts_with(&format!(
+            "two cubes: {pairs} self-intersecting triangle pairs (first: triangles"
+        )),
+        "{err}"
+    );
+    // Skipped checks are assumptions too.
+    let unchecked = Checks {
+        self_intersections: false,
+        ..Checks::default()
+    };
+    let o = Operand::new("two cubes", &m, &unchecked).unwrap();
+    assert_eq!(
+        o.report().assumed(),
+        ["two cubes: not checked for self-intersections"]
+    );
+    assert!(Operand::new("none", &m, &Checks::NONE).is_ok());
+}
+
+#[test]
+fn operands_are_welded_and_reusable() {
+    let (a, b) = cubes();
+    let soup = Mesh::from_soup_unwelded(&a.to_soup());
+    let oa = Operand::new("soup", &soup, &Checks::default()).unwrap();
+    assert_eq!(oa.mesh().positions.len(), 8);
+    assert_eq!(oa.report().vertices, 8);
+    let ob = Operand::new("b", &b, &Checks::default()).unwrap();
+    let opts = BooleanOptions::default();
+    let u = boolean(&oa, &ob, Op::Union, &opts).unwrap();
+    let i = boolean(&oa, &ob, Op::Intersection, &opts).unwrap();
+    assert_eq!(u.operands[0].name, "soup");
+    assert_eq!(
+        signed_volume(&u.mesh) + signed_volume(&i.mesh),
+        2.0,
+        "one operand, two operations"
+    );
+}
+
+#[test]
+fn thread_counts_out_of_range_are_errors() {
+    let (a, b) = cubes();
+    for threads in [0, RunOptions::MAX_THREADS + 1, 100_000] {
+        let opts = BooleanOptions {
+            run: RunOptions {
+                threads: Some(threads),
+                ..RunOptions::default()
+            },
+            ..BooleanOptions::default()
+        };
+        assert!(matches!(
+            boolean(&a, &b, Op::Union, &opts),
+            Err(Error::InvalidParameter(_))
+        ));
+    }
+    let counts = with_threads(Some(3), || {
+        let inner = with_threads(Some(3), rayon::current_num_threads).unwrap();
+        (rayon::current_num_threads(), inner)
+    });
+    assert_eq!(counts.unwrap(), (3, 3));
+}
+
+#[test]
+fn progress_reports_every_stage_in_order() {
+    let (a, b) = cubes();
+    let seen = Arc::new(Mutex::new(Vec::new()));
+    let log = seen.clone();
+    let opts = BooleanOptions {
+        run: RunOptions {
+            progress: Some(Progress::new(move |s| log.lock().unwrap().push(s))),
+            ..RunOptions::default()
+        },
+        ..BooleanOptions::default()
+    };
+    boolean(&a, &b, Op::Union, &opts).unwrap();
+    assert_eq!(
+        *seen.lock().unwrap(),
+        [
+            Stage::Check,
+            Stage::Intersect,
+            Stage::Arrange,
+            Stage::Classify,
+            Stage::Merge
+        ]
+    );
+}
+
+#[test]
+fn piece_specs_read_and_write_the_same_text() {
+    for text in [
+        "a_out_b",
+        "a_in_b#2",
+        "b_in_a:flip",
+        "b_on_a_opposite#0:flip",
+    ] {
+        let spec: PieceSpec = text.parse().unwrap();
+        assert_eq!(spec.to_string(), text);
+    }
+    let spec: PieceSpec = "a_in_b#3:flip".parse().unwrap();
+    assert_eq!(
+        spec,
+        PieceSpec {
+            group: Group::AInB,
+            component: Some(3),
+            flip: true
+        }
+    );
+    for bad in ["a_in", "a_in_b#x", "a_in_b#", "#1", "a_in_b:flop"] {
+        assert!(bad.parse::<PieceSpec>().is_err(), "{bad}");
+    }
+    for op in Op::ALL {
+        assert_eq!(op.to_string().parse::<Op>().unwrap(), op);
+    }
+    assert_eq!("subtract".parse::<Op>().unwrap(), Op::Difference);
+    assert_eq!(
+        "reverse_difference".parse::<Op>().unwrap(),
+        Op::ReverseDifference
+    );
+    for g in Group::ALL {
+        assert_eq!(g.to_string().parse::<Group>().unwrap(), g);
+    }
+}
+
+#[test]
+fn pick_takes_each_piece_once() {
+    // A slab crossed by two separate posts: B's part inside A has two components.
+    let a = Mesh::cuboid([0.0; 3], [4.0, 2.0, 1.0]);
+    let mut b = Mesh::cuboid([0.5, 0.5, 0.5], [1.5, 1.5, 2.0]);
+    let c = Mesh::cuboid([2.5, 0.5, 0.5], [3.5, 1.5, 2.0]);
+    let n = b.positions.len() as u32;
+    b.positions.extend(&c.positions);
+    b.triangles
+        .extend(c.triangles.iter().map(|t| t.map(|v| v + n)));
+    let s = split(&a, &b, &SplitOptions::default()).unwrap();
+    let b_in = s.groups.iter().find(|g| g.group == Group::BInA).unwrap();
+    assert_eq!(b_in.components.len(), 2);
+    let specs =
+        |list: &[&str]| -> Vec<PieceSpec> { list.iter().map(|t| t.parse().unwrap()).collect() };
+    // The difference, picked: A outside B and B inside A flipped.
+    let diff = s.pick(&specs(&["a_out_b", "b_in_a:flip"])).unwrap();
+    assert_eq!(signed_volume(&diff.mesh), 8.0 - 2.0 * 0.5);
+    assert!(diff.report().stats.closed);
+    // One post's part only: A minus one post, open exactly along the other post's rim.
+    let one = s.pick(&specs(&["a_out_b", "b_in_a#1:flip"])).unwrap();
+    let rim = Measures::of(&b_in.components[0]).boundary_edges;
+    assert!(rim >= 4);
+    assert_eq!(one.report().stats.boundary_edges, rim);
+    assert_eq!(one.report().stats.non_manifold_edges, 0);
+    for twice in [
+        &["a_out_b", "a_out_b"][..],
+        &["b_in_a#0", "b_in_a#0:flip"],
+        &["b_in_a", "b_in_a#1"],
+        &["a_out_b#0", "a_out_b"],
+    ] {
+        let err = s.pick(&specs(twice)).unwrap_err();
+        assert!(
+            err.to_string().contains("a piece may be picked once"),
+            "{err}"
+        );
+    }
+    assert!(s.pick(&specs(&["b_in_a#2"])).is_err());
+    assert!(s.pick(&specs(&["a_out_b#1"])).is_err());
+    assert!(s.pick(&specs(&["a_on_b_same"])).is_err());
+    // The same from the directory the split writes.
+    let dir = std::env::temp_dir().join(format!("meshbool-ops-pick-{}", std::process::id()));
+    let manifest = s.write_dir(&dir, Format::Obj).unwrap();
+    assert_eq!(manifest, s.report(Format::Obj));
+    let from_dir = pick_dir(&dir, &specs(&["a_out_b", "b_in_a:flip"])).unwrap();
+    assert_eq!(from_dir.mesh, diff.mesh);
+    assert!(pick_dir(&dir, &specs(&["b_in_a", "b_in_a#0"])).is_err());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn files_are_named_in_errors() {
+    let missing = std::path::Path::new("/nonexistent/meshbool/x.obj");
+    let err = read(missing, None).unwrap_err();
+    assert!(
+        err.to_string()
+            .starts_with("reading /nonexistent/meshbool/x.obj: "),
+        "{err}"
+    );
+    let err = Operand::read(missing, &Checks::default()).unwrap_err();
+    assert!(
+        matches!(
+            err,
+            Error::File {
+                action: "reading",
+                ..
+            }
+        ),
+        "{err}"
+    );
+    let err = write("/nonexistent/meshbool/y.ply", &Mesh::unit_cube(), None).unwrap_err();
+    assert!(
+        err.to_string()
+            .starts_with("writing /nonexistent/meshbool/y.ply: "),
+        "{err}"
+    );
+}

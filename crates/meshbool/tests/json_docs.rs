@@ -1,0 +1,227 @@
+//! `docs/json.md` lists every key of every report, and nothing else: the reports of real
+//! runs are checked against its tables both ways (each key written is documented; each
+//! documented key is written by some run).
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use meshbool::ops::{self, BooleanOptions, Checks, CurvesOptions, PieceSpec, SplitOptions};
+use meshbool::repair::{CloseMode, CloseOptions, DegenerateOptions, Facing, RepairConfig};
+use meshbool::shapes::heightfield;
+use meshbool::{Format, Mesh, Op};
+use serde_json::Value;
+
+/// The tables of `docs/json.md`: section name → rows (key, type column).
+fn doc_tables() -> BTreeMap<String, Vec<(String, String)>> {
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/json.md"))
+        .unwrap();
+    let mut tables = BTreeMap::new();
+    let mut section: Option<String> = None;
+    for line in text.lines() {
+        if let Some(name) = line.strip_prefix("### ") {
+            section = Some(name.trim().to_lowercase());
+            tables.insert(name.trim().to_lowercase(), Vec::new());
+        } else if line.starts_with("## ") {
+            section = None;
+        } else if let (Some(s), Some(row)) = (&section, line.strip_prefix("| ")) {
+            let cells: Vec<&str> = row.split(" | ").collect();
+            if cells.len() < 2 || cells[0] == "key" || cells[0].starts_with("---") {
+                continue;
+            }
+            let key = cells[0].trim_matches('`').to_string();
+            tables.get_mut(s).unwrap().push((key, cells[1].to_string()));
+        }
+    }
+    tables
+}
+
+/// The key paths a section documents, below `prefix`: `a`, `a.b` for objects, `a[].b` for
+/// arrays of objects; a row referring to another section (`[Name](#name)`) takes that
+/// section's keys, a row "*(the keys of [Name](#name))*" takes them at the same level.
+fn documented(
+    tables: &BTreeMap<String, Vec<(String, String)>>,
+    section: &str,
+    prefix: &str,
+    out: &mut BTreeSet<String>,
+) {
+    let link = |s: &str| {
+        let start = s.find("](#")? + 3;
+        Some(s[start..start + s[start..].find(')')?].to_string())
+    };
+    for (key, ty) in &tables[section] {
+        if key.starts_with("*(the keys of") {
+            documented(tables, &link(key).unwrap(), prefix, out);
+            continue;
+        }
+        out.insert(format!("{prefix}{key}"));
+        if let Some(sub) = link(ty) {
+            let sep = if ty.starts_with("array of") {
+                "[]."
+            } else {
+                "."
+            };
+            documented(tables, &sub, &format!("{prefix}{key}{sep}"), out);
+        }
+    }
+}
+
+/// The key paths of a JSON value, in the same notation.
+fn written(v: &Value, prefix: &str, out: &mut BTreeSet<String>) {
+    let Value::Object(map) = v else { return };
+    for (k, x) in map {
+        let path = format!("{prefix}{k}");
+        out.insert(path.clone());
+        match x {
+            Value::Object(_) => written(x, &format!("{path}."), out),
+            Value::Array(items) => {
+                for item in items {
+                    written(item, &format!("{path}[]."), out);
+                }
+            }
+            _ => {}
+        }
+    }
+}
+
+fn json(report: &impl serde::Serialize) -> Value {
+    serde_json::to_value(report).unwrap()
+}
+
+/// A slab crossed by two separate boxes: groups with several components.
+fn slab_and_posts() -> (Mesh, Mesh) {
+    let a = Mesh::cuboid([0.0; 3], [4.0, 2.0, 1.0]);
+    let mut b = Mesh::cuboid([0.5, 0.5, 0.5], [1.5, 1.5, 2.0]);
+    let c = Mesh::cuboid([2.5, 0.5, 0.5], [3.5, 1.5, 2.0]);
+    let n = b.positions.len() as u32;
+    b.positions.extend(&c.positions);
+    b.triangles
+        .extend(c.triangles.iter().map(|t| t.map(|v| v + n)));
+    (a, b)
+}
+
+/// A terrain with a hole in the middle, a fold, a duplicate, a T-junction crack and a
+/// needle: something for every repair step.
+fn rough_terrain() -> Mesh {
+    let mut m = heightfield([0.0, 0.0], [10.0, 10.0], 10, 10, |x, y| 0.1 * x * y);
+    m.triangles.swap_remove(100);
+    let dup = m.triangles[3];
+    m.triangles.push(dup);
+    m.triangles[50].swap(1, 2);
+    m
+}
+
+/// Each report's runs, as JSON.
+fn samples() -> BTreeMap<&'static str, Vec<Value>> {
+    let mut s: BTreeMap<&str, Vec<Value>> = BTreeMap::new();
+    let cube = Mesh::unit_cube();
+    let other = Mesh::cuboid([0.5; 3], [1.5; 3]);
+    let union = ops::boolean(&cube, &other, Op::Union, &BooleanOptions::default()).unwrap();
+    s.entry("boolean").or_default().push(json(&union.report()));
+
+    let (slab, posts) = slab_and_posts();
+    let split = ops::split(&slab, &posts, &SplitOptions::default()).unwrap();
+    let report = split.report(Format::Obj);
+    assert!(report.groups.iter().any(|g| g.components.len() == 2));
+    s.entry("split").or_default().push(json(&report));
+    let keep: Vec<PieceSpec> = vec!["a_out_b".parse().unwrap(), "b_in_a:flip".parse().unwrap()];
+    s.entry("pick")
+        .or_default()
+        .push(json(&split.pick(&keep).unwrap().report()));
+
+    let curves = ops::curves(&cube, &other, &CurvesOptions::default()).unwrap();
+    s.entry("curves").or_default().push(json(&curves.report()));
+    s.entry("info")
+        .or_default()
+        .push(json(&ops::InfoReport::new(
+            "cube",
+            ops::info(&cube).unwrap(),
+        )));
+    s.entry("orient")
+        .or_default()
+        .push(json(&ops::orient(&cube, Facing::Outward).unwrap().report()));
+
+    let terrain = rough_terrain();
+    let mut open_box = Mesh::unit_cube();
+    open_box.triangles.truncate(10);
+    for (mesh, mode) in [
+        (&open_box, CloseMode::Cap),
+        (&terrain, CloseMode::StitchCurtain),
+    ] {
+        let out = ops::close(mesh, mode, &CloseOptions::default()).unwrap();
+        s.entry("close").or_default().push(json(&out.report()));
+    }
+    for close in [CloseMode::StitchCurtain, CloseMode::Cap] {
+        let config = RepairConfig {
+            weld: Some(1e-9),
+            remove_duplicates: true,
+            tjunctions: true,
+            degenerate: Some(DegenerateOptions::default()),
+            orient: Some(Facing::ZUp),
+            remove_folds: true,
+            close,
+            close_gaps: Some(1.0),
+            ..RepairConfig::default()
+        };
+        let out = ops::repair(&terrain, &config).unwrap();
+        s.entry("repair").or_default().push(json(&out.report()));
+    }
+    s
+}
+
+#[test]
+fn docs_list_every_key_of_every_report_and_no_other() {
+    let tables = doc_tables();
+    let samples = samples();
+    assert_eq!(samples.len(), 8);
+    for (report, runs) in &samples {
+        let mut doc = BTreeSet::new();
+        documented(&tables, report, "", &mut doc);
+        let mut all = BTreeSet::new();
+        for run in runs {
+            assert_eq!(run["schema"], ops::SCHEMA, "{report}");
+            let mut keys = BTreeSet::new();
+            written(run, "", &mut keys);
+            let undocumented: Vec<_> = keys.difference(&doc).collect();
+            assert!(
+                undocumented.is_empty(),
+                "{report}: undocumented keys {undocumented:?}"
+            );
+            all.extend(keys);
+        }
+        let unwritten: Vec<_> = doc.difference(&all).collect();
+        assert!(
+            unwritten.is_empty(),
+            "{report}: documented, never written {unwritten:?}"
+        );
+    }
+}
+
+#[test]
+fn operand_report_keys_are_documented_when_a_check_finds_something() {
+    // Two overlapping cubes in one mesh: self-intersections found and taken as given.
+    let mut m = Mesh::unit_cube();
+    let other = Mesh::cuboid([0.5; 3], [1.5; 3]);
+    let n = m.positions.len() as u32;
+    m.positions.extend(&other.positions);
+    m.triangles
+        .extend(other.triangles.iter().map(|t| t.map(|v| v + n)));
+    let opts = BooleanOptions {
+        checks: Checks {
+            force: true,
+            ..Checks::default()
+        },
+        ..BooleanOptions::default()
+    };
+    let far = Mesh::cuboid([3.0; 3], [4.0; 3]);
+    let out = ops::boolean(&m, &far, Op::Union, &opts).unwrap();
+    let v = json(&out.report());
+    let s = &v["operands"][0]["self_intersections"];
+    assert_eq!(s["first"].as_array().unwrap().len(), 2);
+    assert_eq!(s["near"].as_array().unwrap().len(), 3);
+    assert_eq!(v["operands"][0]["forced"], true);
+    let tables = doc_tables();
+    let mut doc = BTreeSet::new();
+    documented(&tables, "boolean", "", &mut doc);
+    let mut keys = BTreeSet::new();
+    written(&v, "", &mut keys);
+    assert!(keys.is_subset(&doc), "{:?}", keys.difference(&doc));
+}
