@@ -667,3 +667,82 @@ fn split_merge_small_joins_stray_components() {
     assert_eq!(merged["merged_small_components"], 1);
     assert_eq!(merged["triangles"].as_u64().unwrap(), big + small);
 }
+
+/// A report as JSON without its timing, which differs from run to run.
+fn untimed(mut v: serde_json::Value) -> serde_json::Value {
+    if let Some(m) = v.as_object_mut() {
+        m.remove("seconds");
+    }
+    v
+}
+
+/// A library report as the CLI should print it, without its timing.
+fn json(report: &impl serde::Serialize) -> serde_json::Value {
+    untimed(serde_json::to_value(report).unwrap())
+}
+
+#[test]
+fn json_output_is_exactly_the_library_report() {
+    use meshbool::ops::{self, Checks, Operand};
+    let a = write_cube("ja.ply", [0.0; 3], [1.0; 3]);
+    let b = write_cube("jb.obj", [0.5, 0.25, -0.5], [1.5, 0.75, 0.5]);
+    let (sa, sb) = (a.to_str().unwrap(), b.to_str().unwrap());
+    let out = tmp("j_out.ply");
+    let so = out.to_str().unwrap();
+    let (oa, ob) = Operand::read_pair(&a, &b, &Checks::default()).unwrap();
+
+    let lib = ops::boolean(&oa, &ob, meshbool::Op::Difference, &Default::default()).unwrap();
+    let cli = report(&["difference", sa, sb, "-o", so, "--json"]);
+    assert_eq!(untimed(cli), json(&lib.report()));
+
+    let dir = tmp("j_split");
+    let split = ops::split(&oa, &ob, &Default::default()).unwrap();
+    let cli = report(&["split", sa, sb, "-o", dir.to_str().unwrap(), "--json"]);
+    assert_eq!(cli, json(&split.report(meshbool::Format::PlyBinaryLe)));
+    let manifest: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("manifest.json")).unwrap()).unwrap();
+    assert_eq!(manifest, cli);
+
+    let keep = ["a_out_b".parse().unwrap(), "b_in_a:flip".parse().unwrap()];
+    let cli = report(&[
+        "pick",
+        dir.to_str().unwrap(),
+        "--keep",
+        "a_out_b",
+        "--keep",
+        "b_in_a:flip",
+        "-o",
+        so,
+        "--json",
+    ]);
+    assert_eq!(cli, json(&split.pick(&keep).unwrap().report()));
+
+    let curves = ops::curves(&oa, &ob, &Default::default()).unwrap();
+    let cli = report(&["curves", sa, sb, "--json"]);
+    assert_eq!(untimed(cli), json(&curves.report()));
+
+    let mesh = ops::read(&a, None).unwrap().0;
+    let cli = report(&["info", sa, "--json"]);
+    assert_eq!(
+        cli,
+        json(&ops::InfoReport::new(sa, ops::info(&mesh).unwrap()))
+    );
+    let facing = meshbool::repair::Facing::Outward;
+    let cli = report(&["orient", sa, "-o", so, "--outward", "--json"]);
+    assert_eq!(cli, json(&ops::orient(&mesh, facing).unwrap().report()));
+    let mode = meshbool::repair::CloseMode::Cap;
+    let cli = report(&["close", sa, "-o", so, "--json"]);
+    assert_eq!(
+        cli,
+        json(
+            &ops::close(&mesh, mode, &Default::default())
+                .unwrap()
+                .report()
+        )
+    );
+    let cli = report(&["repair", sa, "-o", so, "--json"]);
+    assert_eq!(
+        cli,
+        json(&ops::repair(&mesh, &Default::default()).unwrap().report())
+    );
+}

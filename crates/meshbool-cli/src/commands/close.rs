@@ -1,0 +1,54 @@
+//! `meshbool close`: open meshes closed into solids (cap, stitch, curtain).
+
+use std::path::PathBuf;
+
+use anyhow::Result;
+use meshbool::ops;
+use meshbool::repair::{CloseMode, CloseOptions};
+
+use super::{parse_value, print_json};
+
+/// Arguments of `close`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Input mesh.
+    input: PathBuf,
+    /// Output mesh file.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// How to close: none, cap, stitch, curtain, stitch+curtain.
+    #[arg(long, default_value = "cap", value_parser = parse_value::<CloseMode>)]
+    mode: CloseMode,
+    /// Curtain: distance of the floor below the lowest point.
+    #[arg(long, default_value_t = 10.0)]
+    floor_offset: f64,
+    /// Stitch: the largest gap between two loops that may be bridged (default: any).
+    #[arg(long)]
+    max_gap: Option<f64>,
+    /// Print a JSON report on stdout.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Closes the input, writes it, prints the report.
+pub fn run(args: &Args) -> Result<()> {
+    let opts = CloseOptions {
+        stitch_max_gap: args.max_gap,
+        floor_offset: args.floor_offset,
+    };
+    let out = ops::close(&ops::read(&args.input, None)?.0, args.mode, &opts)?;
+    ops::write(&args.output, &out.mesh, None)?;
+    let report = out.report();
+    if args.json {
+        return print_json(&report);
+    }
+    eprintln!(
+        "wrote {}: {} boundary edges left, closed: {}, volume {} ({})",
+        args.output.display(),
+        report.boundary_edges,
+        report.closed,
+        report.volume,
+        serde_json::to_string(&report)?
+    );
+    Ok(())
+}

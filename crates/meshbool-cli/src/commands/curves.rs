@@ -1,0 +1,50 @@
+//! `meshbool curves`: the exact intersection curves of two meshes as polylines.
+
+use std::path::PathBuf;
+
+use anyhow::Result;
+use meshbool::ops::{self, Checks, CurvesOptions, Operand};
+
+use super::{print_json, warn};
+
+/// Arguments of `curves`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// First mesh.
+    a: PathBuf,
+    /// Second mesh.
+    b: PathBuf,
+    /// Output file for the polylines (.obj, .dxf or .json).
+    #[arg(short, long)]
+    output: Option<PathBuf>,
+    /// Leave out segments that only bound coplanar overlaps (shared faces).
+    #[arg(long)]
+    no_coplanar: bool,
+    /// Print a JSON summary on stdout.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Reads both meshes, computes the curves, writes them if asked, prints the summary.
+pub fn run(args: &Args) -> Result<()> {
+    let (a, b) = Operand::read_pair(&args.a, &args.b, &Checks::NONE)?;
+    let opts = CurvesOptions {
+        with_coplanar: !args.no_coplanar,
+        ..CurvesOptions::default()
+    };
+    let out = ops::curves(&a, &b, &opts)?;
+    if let Some(path) = &args.output {
+        out.write(path)?;
+    }
+    let report = out.report();
+    if args.json {
+        print_json(&report)?;
+    } else {
+        eprintln!(
+            "{} loops, {} open chains, total length {}, {} seam points ({:.3} s)",
+            report.loops, report.open_chains, report.total_length, report.points, report.seconds
+        );
+    }
+    warn(&out.warnings());
+    Ok(())
+}

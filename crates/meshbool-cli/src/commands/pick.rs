@@ -1,0 +1,41 @@
+//! `meshbool pick`: chosen pieces of a split merged into one welded mesh.
+
+use std::path::PathBuf;
+
+use anyhow::Result;
+use meshbool::ops::{self, PieceSpec};
+
+use super::{parse_value, print_json};
+
+/// Arguments of `pick`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Directory written by `meshbool split`.
+    dir: PathBuf,
+    /// A piece to keep: GROUP[#COMPONENT][:flip].
+    #[arg(long = "keep", required = true, value_parser = parse_value::<PieceSpec>)]
+    keep: Vec<PieceSpec>,
+    /// Output mesh file.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Print a JSON report on stdout.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Picks the pieces from the split's directory, writes the merged mesh, prints its report.
+pub fn run(args: &Args) -> Result<()> {
+    let out = ops::pick_dir(&args.dir, &args.keep)?;
+    ops::write(&args.output, &out.mesh, None)?;
+    let report = out.report();
+    if args.json {
+        return print_json(&report);
+    }
+    eprintln!(
+        "wrote {} ({} triangles, {} boundary edges)",
+        args.output.display(),
+        report.stats.triangles,
+        report.stats.boundary_edges
+    );
+    Ok(())
+}

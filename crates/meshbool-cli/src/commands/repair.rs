@@ -1,0 +1,149 @@
+//! `meshbool repair`: the repair pipeline, configured by a JSON file and flags.
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result};
+use meshbool::ops;
+use meshbool::repair::{CloseMode, DegenerateOptions, Facing, RepairConfig};
+
+use super::{parse_value, print_json};
+
+/// Arguments of `repair`: each flag overrides the configuration file's field.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Input mesh.
+    input: PathBuf,
+    /// Output mesh file.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// A JSON configuration (fields of `RepairConfig`; left-out fields default).
+    #[arg(long)]
+    config: Option<PathBuf>,
+    /// Weld vertices closer than this distance (no chaining; see the library docs).
+    #[arg(long)]
+    weld: Option<f64>,
+    /// Remove duplicate triangles; anti-parallel pairs (double walls) cancel.
+    #[arg(long)]
+    remove_duplicates: bool,
+    /// Split boundary edges at vertices lying exactly on them (closes T-junction cracks).
+    #[arg(long)]
+    tjunctions: bool,
+    /// Remove zero-area triangles (exact) by edge collapse or flip, without cracks.
+    #[arg(long)]
+    remove_degenerate: bool,
+    /// With --remove-degenerate: also triangles of at most this area.
+    #[arg(long, requires = "remove_degenerate")]
+    min_area: Option<f64>,
+    /// With --remove-degenerate: also triangles whose longest edge over smallest
+    /// height exceeds this (1.15 for equilateral).
+    #[arg(long, requires = "remove_degenerate")]
+    max_aspect: Option<f64>,
+    /// Orientation: consistent, then facing `majority` (default), `z-up`, `outward`;
+    /// `none` skips the step.
+    #[arg(long, value_parser = parse_orient)]
+    orient: Option<Orientation>,
+    /// Shorthand for `--orient z-up`.
+    #[arg(long, conflicts_with = "orient")]
+    z_up: bool,
+    /// Terrain: remove folds (triangles facing down after orienting up) by taking out
+    /// a vertex and re-triangulating in plan view. Needs --z-up.
+    #[arg(long)]
+    remove_folds: bool,
+    /// Close into a solid: none (default), cap, stitch, curtain, stitch+curtain.
+    #[arg(long, value_parser = parse_value::<CloseMode>)]
+    close: Option<CloseMode>,
+    /// Curtain: distance of the floor below the lowest point (default 10).
+    #[arg(long)]
+    floor_offset: Option<f64>,
+    /// Stitch: the largest gap between two loops that may be bridged (default: any).
+    #[arg(long)]
+    max_gap: Option<f64>,
+    /// Finally cap every hole left whose bounding-box diagonal is at most this.
+    #[arg(long)]
+    close_gaps: Option<f64>,
+    /// Print a JSON report on stdout.
+    #[arg(long)]
+    json: bool,
+}
+
+/// `--orient`: a facing, or `none` (no orientation step).
+#[derive(Clone, Copy)]
+struct Orientation(Option<Facing>);
+
+fn parse_orient(s: &str) -> Result<Orientation, String> {
+    if s.eq_ignore_ascii_case("none") {
+        Ok(Orientation(None))
+    } else {
+        parse_value::<Facing>(s).map(|f| Orientation(Some(f)))
+    }
+}
+
+impl Args {
+    /// The configuration: the file's (or the default), with the flags given over it.
+    fn config(&self) -> Result<RepairConfig> {
+        let mut c: RepairConfig = match &self.config {
+            Some(path) => {
+                let text = std::fs::read_to_string(path)
+                    .with_context(|| format!("reading {}", path.display()))?;
+                serde_json::from_str(&text)
+                    .with_context(|| format!("{}: not a repair configuration", path.display()))?
+            }
+            None => RepairConfig::default(),
+        };
+        if self.weld.is_some() {
+            c.weld = self.weld;
+        }
+        c.remove_duplicates |= self.remove_duplicates;
+        c.tjunctions |= self.tjunctions;
+        if self.remove_degenerate {
+            let d = c.degenerate.get_or_insert_with(DegenerateOptions::default);
+            if let Some(a) = self.min_area {
+                d.min_area = a;
+            }
+            if self.max_aspect.is_some() {
+                d.max_aspect = self.max_aspect;
+            }
+        }
+        if self.z_up {
+            c.orient = Some(Facing::ZUp);
+        } else if let Some(Orientation(o)) = self.orient {
+            c.orient = o;
+        }
+        c.remove_folds |= self.remove_folds;
+        if let Some(m) = self.close {
+            c.close = m;
+        }
+        if let Some(f) = self.floor_offset {
+            c.close_options.floor_offset = f;
+        }
+        if self.max_gap.is_some() {
+            c.close_options.stitch_max_gap = self.max_gap;
+        }
+        if self.close_gaps.is_some() {
+            c.close_gaps = self.close_gaps;
+        }
+        Ok(c)
+    }
+}
+
+/// Repairs the input as configured, writes it, prints the report.
+pub fn run(args: &Args) -> Result<()> {
+    let config = args.config()?;
+    let out = ops::repair(&ops::read(&args.input, None)?.0, &config)?;
+    ops::write(&args.output, &out.mesh, None)?;
+    if args.json {
+        return print_json(&out.report());
+    }
+    let (b, a) = (&out.repair.before, &out.repair.after);
+    eprintln!(
+        "wrote {}: triangles {} -> {}, boundary edges {} -> {}, non-manifold edges {} -> {}, inconsistent edges {} -> {}, degenerate {} -> {}, closed: {}, volume {} (--json for every step)",
+        args.output.display(),
+        b.triangles, a.triangles,
+        b.boundary_edges, a.boundary_edges,
+        b.non_manifold_edges, a.non_manifold_edges,
+        b.inconsistent_edges, a.inconsistent_edges,
+        b.degenerate_triangles, a.degenerate_triangles,
+        a.closed, a.volume
+    );
+    Ok(())
+}

@@ -1,0 +1,65 @@
+//! `meshbool split`: both meshes cut along their intersection into groups and components,
+//! written to a directory with a manifest.
+
+use std::path::PathBuf;
+
+use anyhow::Result;
+use meshbool::ops::{self, Operand, SplitOptions};
+use meshbool::Format;
+
+use super::{parse_value, print_json, warn, OperandFlags, Spinner};
+
+/// Arguments of `split`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// First mesh.
+    a: PathBuf,
+    /// Second mesh.
+    b: PathBuf,
+    /// Output directory.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// File format of the pieces (obj, ply, ...; f64-exact formats keep seam vertices shared).
+    #[arg(long, default_value = "ply", value_parser = parse_value::<Format>)]
+    format: Format,
+    /// Merge components of fewer triangles than this into the nearest larger component
+    /// of the same group (stray fragments); components are numbered largest first.
+    #[arg(long, default_value_t = 0)]
+    merge_small: usize,
+    #[command(flatten)]
+    flags: OperandFlags,
+}
+
+/// Reads and checks both operands, splits them, writes the pieces and the manifest, then
+/// prints the manifest (`--json`) or a line per group.
+pub fn run(args: &Args) -> Result<()> {
+    let flags = &args.flags;
+    ops::with_threads(flags.threads, || {
+        let spinner = Spinner::new(flags.reading());
+        let (a, b) = Operand::read_pair(&args.a, &args.b, &flags.checks())?;
+        warn(&[a.report().assumed(), b.report().assumed()].concat());
+        spinner.set_message("splitting");
+        let opts = SplitOptions {
+            checks: flags.checks(),
+            merge_small: args.merge_small,
+            run: flags.run(&spinner),
+        };
+        let out = ops::split(&a, &b, &opts)?;
+        spinner.set_message("writing");
+        let manifest = out.write_dir(&args.output, args.format)?;
+        drop(spinner);
+        if flags.json {
+            return print_json(&manifest);
+        }
+        for g in &manifest.groups {
+            eprintln!(
+                "{:<16} {:>8} triangles  area {:<14} {} components",
+                g.name.name(),
+                g.piece.triangles,
+                g.piece.area,
+                g.components.len().max(1)
+            );
+        }
+        Ok(())
+    })?
+}
