@@ -1,11 +1,9 @@
 //! Booleans at the front door: union, intersection, difference (both ways) of two inputs,
 //! with the report the CLI prints.
 
-use std::time::Instant;
-
 use serde::Serialize;
 
-use super::{Checks, Input, Measures, OperandReport, RunOptions, SCHEMA};
+use super::{Checks, Input, Measures, Operand, OperandReport, RunOptions, SCHEMA};
 use crate::boolean::{boolean_with_progress, Op, Provenance, Source};
 use crate::{Mesh, Result};
 
@@ -137,31 +135,29 @@ pub fn boolean<'a>(
     op: Op,
     opts: &BooleanOptions,
 ) -> Result<BooleanOutput> {
-    let (a, b) = (a.into(), b.into());
-    opts.run.install(|| {
-        opts.run.stage(crate::boolean::Stage::Check);
-        let (a, b) = Input::both(a, b, &opts.checks)?;
-        let start = Instant::now();
+    let run = |a: &Operand, b: &Operand| {
         let r = boolean_with_progress(a.mesh(), b.mesh(), op, &|s| opts.run.stage(s));
-        let seconds = start.elapsed().as_secs_f64();
-        Ok(BooleanOutput {
-            op,
-            mesh: r.mesh,
-            provenance: r.provenance,
-            operands: [a.report().clone(), b.report().clone()],
-            seam_points: r.seam_points,
-            degenerate: r.degenerate,
-            failed: r
-                .failed
-                .into_iter()
-                .map(|(source, triangle, reason)| FailedTriangle {
-                    source,
-                    triangle,
-                    reason,
-                })
-                .collect(),
-            rounding_flips: r.rounding_flips,
-            seconds,
-        })
-    })?
+        (r, [a.report().clone(), b.report().clone()])
+    };
+    let ((r, operands), seconds) =
+        Input::with_both(a.into(), b.into(), &opts.checks, &opts.run, run)?;
+    Ok(BooleanOutput {
+        op,
+        mesh: r.mesh,
+        provenance: r.provenance,
+        operands,
+        seam_points: r.seam_points,
+        degenerate: r.degenerate,
+        failed: r
+            .failed
+            .into_iter()
+            .map(|(source, triangle, reason)| FailedTriangle {
+                source,
+                triangle,
+                reason,
+            })
+            .collect(),
+        rounding_flips: r.rounding_flips,
+        seconds,
+    })
 }

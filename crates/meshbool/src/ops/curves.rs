@@ -2,11 +2,10 @@
 //! polylines (closed loops and open chains).
 
 use std::path::Path;
-use std::time::Instant;
 
 use serde::Serialize;
 
-use super::{Checks, Input, RunOptions, SCHEMA};
+use super::{Checks, Input, Operand, RunOptions, SCHEMA};
 use crate::boolean::Stage;
 use crate::intersect::{chain, intersect, Seam};
 use crate::io::{write_polylines, PolylineXyz};
@@ -131,22 +130,25 @@ pub fn curves<'a>(
     b: impl Into<Input<'a>>,
     opts: &CurvesOptions,
 ) -> Result<CurvesOutput> {
-    let (a, b) = (a.into(), b.into());
-    opts.run.install(|| {
-        opts.run.stage(Stage::Check);
-        let (a, b) = Input::both(a, b, &opts.checks)?;
-        let start = Instant::now();
+    let run = |a: &Operand, b: &Operand| {
         opts.run.stage(Stage::Intersect);
         let seam = intersect(a.mesh(), b.mesh());
         let polylines = chain(&seam, opts.with_coplanar)
             .iter()
             .map(|c| c.to_xyz(&seam))
             .collect();
-        Ok(CurvesOutput {
-            polylines,
+        (
             seam,
-            names: [a.name().to_string(), b.name().to_string()],
-            seconds: start.elapsed().as_secs_f64(),
-        })
-    })?
+            polylines,
+            [a.name().to_string(), b.name().to_string()],
+        )
+    };
+    let ((seam, polylines, names), seconds) =
+        Input::with_both(a.into(), b.into(), &opts.checks, &opts.run, run)?;
+    Ok(CurvesOutput {
+        polylines,
+        seam,
+        names,
+        seconds,
+    })
 }

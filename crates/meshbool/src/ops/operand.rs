@@ -5,9 +5,12 @@
 
 use std::borrow::Cow;
 use std::path::Path;
+use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 
+use super::RunOptions;
+use crate::boolean::Stage;
 use crate::edges::EdgeCounts;
 use crate::intersect::self_intersections;
 use crate::{weld_exact, Error, Mesh, Result};
@@ -254,13 +257,22 @@ impl<'a> Input<'a> {
         })
     }
 
-    /// Both inputs as operands (`A` and `B`), checked side by side.
-    pub(crate) fn both(
+    /// Runs `f` on both inputs as operands (`A` and `B`, checked side by side) under
+    /// `run`'s threads, with the time `f` took: how every function of two meshes begins.
+    pub(crate) fn with_both<R: Send>(
         a: Input<'a>,
         b: Input<'a>,
         checks: &Checks,
-    ) -> Result<(Cow<'a, Operand>, Cow<'a, Operand>)> {
-        let (a, b) = rayon::join(|| a.operand("A", checks), || b.operand("B", checks));
-        Ok((a?, b?))
+        run: &RunOptions,
+        f: impl FnOnce(&Operand, &Operand) -> R + Send,
+    ) -> Result<(R, f64)> {
+        run.install(|| {
+            run.stage(Stage::Check);
+            let (a, b) = rayon::join(|| a.operand("A", checks), || b.operand("B", checks));
+            let (a, b) = (a?, b?);
+            let start = Instant::now();
+            let r = f(&a, &b);
+            Ok((r, start.elapsed().as_secs_f64()))
+        })?
     }
 }

@@ -7,11 +7,10 @@
 use std::fmt;
 use std::path::Path;
 use std::str::FromStr;
-use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 
-use super::{Checks, Input, OperandReport, RunOptions, SCHEMA};
+use super::{Checks, Input, Operand, OperandReport, RunOptions, SCHEMA};
 use crate::boolean::{split_with_progress, Group, Provenance, Stage};
 use crate::edges::components_merged;
 use crate::measure::{area, mesh_stats, signed_volume, MeshStats};
@@ -114,47 +113,59 @@ pub fn split<'a>(
     b: impl Into<Input<'a>>,
     opts: &SplitOptions,
 ) -> Result<SplitOutput> {
-    let (a, b) = (a.into(), b.into());
-    opts.run.install(|| {
-        opts.run.stage(Stage::Check);
-        let (a, b) = Input::both(a, b, &opts.checks)?;
-        let start = Instant::now();
+    let run = |a: &Operand, b: &Operand| {
         let s = split_with_progress(a.mesh(), b.mesh(), &|s| opts.run.stage(s));
         opts.run.stage(Stage::Merge);
-        let mut groups = Vec::new();
-        for group in Group::ALL {
-            let (mesh, provenance) = s.group(group);
-            if mesh.is_empty() {
-                continue;
-            }
-            let parts = components_merged(&mesh, opts.merge_small);
-            let components = if parts.parts.len() > 1 {
-                parts
-                    .parts
-                    .iter()
-                    .map(|part| {
-                        let tris = part.iter().map(|&t| mesh.triangles[t as usize]).collect();
-                        crate::boolean::pick(&[(&Mesh::new(mesh.positions.clone(), tris), false)])
-                    })
-                    .collect()
-            } else {
-                Vec::new()
-            };
-            groups.push(GroupPieces {
-                group,
-                mesh,
-                provenance,
-                components,
-                merged_small: parts.merged,
-            });
-        }
-        Ok(SplitOutput {
-            operands: [a.report().clone(), b.report().clone()],
-            seam_points: s.seam.points.len(),
+        let groups = Group::ALL
+            .into_iter()
+            .filter_map(|group| {
+                let (mesh, provenance) = s.group(group);
+                (!mesh.is_empty()).then(|| group_pieces(group, mesh, provenance, opts.merge_small))
+            })
+            .collect();
+        (
+            s.seam.points.len(),
             groups,
-            seconds: start.elapsed().as_secs_f64(),
-        })
-    })?
+            [a.report().clone(), b.report().clone()],
+        )
+    };
+    let ((seam_points, groups, operands), seconds) =
+        Input::with_both(a.into(), b.into(), &opts.checks, &opts.run, run)?;
+    Ok(SplitOutput {
+        operands,
+        seam_points,
+        groups,
+        seconds,
+    })
+}
+
+/// A group's mesh with its components.
+fn group_pieces(
+    group: Group,
+    mesh: Mesh,
+    provenance: Vec<Provenance>,
+    merge_small: usize,
+) -> GroupPieces {
+    let parts = components_merged(&mesh, merge_small);
+    let components = if parts.parts.len() > 1 {
+        parts
+            .parts
+            .iter()
+            .map(|part| {
+                let tris = part.iter().map(|&t| mesh.triangles[t as usize]).collect();
+                crate::boolean::pick(&[(&Mesh::new(mesh.positions.clone(), tris), false)])
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    GroupPieces {
+        group,
+        mesh,
+        provenance,
+        components,
+        merged_small: parts.merged,
+    }
 }
 
 fn piece_info(file: String, m: &Mesh) -> PieceInfo {
