@@ -46,6 +46,11 @@ pub mod repair;
 pub mod shapes;
 #[cfg(test)]
 mod test_util;
+
+/// The README's Rust examples, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+struct ReadmeDoctests;
 mod vec3;
 
 pub use boolean::Op;
