@@ -3,6 +3,22 @@
 //! `boolean()` reads like the pipeline: intersect → arrange both → classify both → select
 //! by the operation's rules → merge into one mesh (seam vertices shared), with the source
 //! of every output triangle.
+//!
+//! Notation used here and in the stages:
+//! - **seam**: where the two surfaces meet — seam points (named by the smallest feature of
+//!   each mesh holding them, [`crate::intersect::Label`]) and seam segments between them.
+//! - **arranged mesh**: an input cut along the seam, re-triangulated so that every seam
+//!   point is a vertex and every seam segment an edge ([`Arranged`]); its triangles keep
+//!   their **parent** (the input triangle they lie in).
+//! - **patch**: a connected piece of an arranged mesh between seam edges.
+//! - **class**: where a triangle lies against the other mesh: inside, outside, or on one of
+//!   its faces facing the same or the opposite way ([`Class`]); one per patch, except where
+//!   an open surface's seam stops inside a patch.
+//! - **rule**: the classes of A and of B an operation keeps, and which it flips
+//!   ([`Op::rule`]).
+//! - **group**: one mesh's triangles of one class, the unit of split-and-pick ([`Group`]).
+//! - **provenance**: for each output triangle, its input, parent triangle and whether it
+//!   was flipped ([`Provenance`]).
 
 use std::fmt;
 use std::str::FromStr;
@@ -111,25 +127,69 @@ pub struct BooleanResult {
     pub rounding_flips: usize,
 }
 
-/// Which classes of A and of B an operation keeps, and whether B's are flipped.
-fn rule(op: Op) -> (&'static [Class], &'static [Class], bool) {
-    match op {
-        Op::Union => (
-            &[Class::Outside, Class::CoplanarSame],
-            &[Class::Outside],
-            false,
-        ),
-        Op::Intersection => (
-            &[Class::Inside, Class::CoplanarSame],
-            &[Class::Inside],
-            false,
-        ),
-        Op::Difference => (
-            &[Class::Outside, Class::CoplanarOpposite],
-            &[Class::Inside],
-            true,
-        ),
-        Op::ReverseDifference => unreachable!("handled by swapping the operands"),
+/// What a selection does with one triangle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Keep {
+    /// Left out.
+    Drop,
+    /// Kept as it is.
+    AsIs,
+    /// Kept with its orientation reversed.
+    Flipped,
+}
+
+/// The classes of one mesh that an operation keeps, and whether they are flipped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Selection {
+    /// The classes kept.
+    pub classes: &'static [Class],
+    /// Kept triangles are flipped (the subtrahend's inside, which bounds the result from
+    /// the other side).
+    pub flip: bool,
+}
+
+impl Selection {
+    /// What happens to a triangle of class `c`.
+    pub fn of(&self, c: Class) -> Keep {
+        match (self.classes.contains(&c), self.flip) {
+            (false, _) => Keep::Drop,
+            (true, false) => Keep::AsIs,
+            (true, true) => Keep::Flipped,
+        }
+    }
+}
+
+/// The rule of an operation: what it keeps of A and of B. Where the two meshes share a
+/// face (coplanar pieces, present in both), one copy is kept: A's for union and
+/// intersection, the minuend's for a difference.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Rule {
+    /// A's triangles, by their class against B.
+    pub a: Selection,
+    /// B's triangles, by their class against A.
+    pub b: Selection,
+}
+
+impl Op {
+    /// The operation's rule (see [`Rule`]).
+    pub fn rule(self) -> Rule {
+        use Class::{CoplanarOpposite, CoplanarSame, Inside, Outside};
+        let (a, flip_a, b, flip_b): (&[Class], bool, &[Class], bool) = match self {
+            Op::Union => (&[Outside, CoplanarSame], false, &[Outside], false),
+            Op::Intersection => (&[Inside, CoplanarSame], false, &[Inside], false),
+            Op::Difference => (&[Outside, CoplanarOpposite], false, &[Inside], true),
+            Op::ReverseDifference => (&[Inside], true, &[Outside, CoplanarOpposite], false),
+        };
+        Rule {
+            a: Selection {
+                classes: a,
+                flip: flip_a,
+            },
+            b: Selection {
+                classes: b,
+                flip: flip_b,
+            },
+        }
     }
 }
 
@@ -226,8 +286,8 @@ pub fn split_with_progress(a: &Mesh, b: &Mesh, progress: &dyn Fn(Stage)) -> Spli
 /// then B's); vertices are the used ones, A's in A's order, then B's own in B's order.
 pub fn merge(
     s: &Split,
-    keep_a: impl Fn(usize) -> Option<bool> + Sync,
-    keep_b: impl Fn(usize) -> Option<bool> + Sync,
+    keep_a: impl Fn(usize) -> Keep + Sync,
+    keep_b: impl Fn(usize) -> Keep + Sync,
 ) -> (Mesh, Vec<Provenance>) {
     use std::sync::atomic::{AtomicBool, Ordering::Relaxed};
     /// Triangles (and vertices) per piece of parallel work.
@@ -238,8 +298,8 @@ pub fn merge(
     for (sp, &vb) in s.b.seam_vertex.iter().enumerate() {
         b_to_merged[vb as usize] = s.a.seam_vertex[sp];
     }
-    type Keep<'k> = &'k (dyn Fn(usize) -> Option<bool> + Sync);
-    let sides: [(&Arranged, Keep, Source, Option<&[u32]>); 2] = [
+    type Choice<'k> = &'k (dyn Fn(usize) -> Keep + Sync);
+    let sides: [(&Arranged, Choice, Source, Option<&[u32]>); 2] = [
         (&s.a, &keep_a, Source::A, None),
         (&s.b, &keep_b, Source::B, Some(&b_to_merged)),
     ];
@@ -257,7 +317,11 @@ pub fn merge(
         .collect();
     let counts: Vec<usize> = pieces
         .par_iter()
-        .map(|(k, r)| r.clone().filter(|&t| (sides[*k].1)(t).is_some()).count())
+        .map(|(k, r)| {
+            r.clone()
+                .filter(|&t| (sides[*k].1)(t) != Keep::Drop)
+                .count()
+        })
         .collect();
     let total: usize = counts.iter().sum();
     let mut triangles = vec![[0u32; 3]; total];
@@ -274,7 +338,10 @@ pub fn merge(
         .zip(&pieces)
         .for_each(|((tris, prov), (k, range))| {
             let (arr, keep, source, map) = sides[*k];
-            let kept = range.clone().filter_map(|t| Some((t, keep(t)?)));
+            let kept = range.clone().filter_map(|t| match keep(t) {
+                Keep::Drop => None,
+                k => Some((t, k == Keep::Flipped)),
+            });
             for ((t, flip), (out, p)) in kept.zip(tris.iter_mut().zip(prov.iter_mut())) {
                 let tri = arr.mesh.triangles[t];
                 let mut v = match map {
@@ -364,38 +431,21 @@ pub fn boolean_with_progress(
     op: Op,
     progress: &dyn Fn(Stage),
 ) -> BooleanResult {
-    if op == Op::ReverseDifference {
-        let mut r = boolean_with_progress(b, a, Op::Difference, progress);
-        for p in &mut r.provenance {
-            p.source = match p.source {
-                Source::A => Source::B,
-                Source::B => Source::A,
-            };
-        }
-        r.degenerate.swap(0, 1);
-        for f in &mut r.failed {
-            f.0 = match f.0 {
-                Source::A => Source::B,
-                Source::B => Source::A,
-            };
-        }
-        return r;
-    }
     let s = split_with_progress(a, b, progress);
     progress(Stage::Merge);
-    let (keep_a, keep_b, flip_b) = rule(op);
+    let rule = op.rule();
     let (mesh, provenance) = merge(
         &s,
-        |t| keep_a.contains(&s.class_a.class[t]).then_some(false),
-        |t| keep_b.contains(&s.class_b.class[t]).then_some(flip_b),
+        |t| rule.a.of(s.class_a.class[t]),
+        |t| rule.b.of(s.class_b.class[t]),
     );
-    let kept = |arr: &Arranged, cls: &Classified, keep: &[Class]| {
+    let kept = |arr: &Arranged, cls: &Classified, keep: &Selection| {
         arr.rounding_flips
             .iter()
-            .filter(|&&t| keep.contains(&cls.class[t as usize]))
+            .filter(|&&t| keep.of(cls.class[t as usize]) != Keep::Drop)
             .count()
     };
-    let rounding_flips = kept(&s.a, &s.class_a, keep_a) + kept(&s.b, &s.class_b, keep_b);
+    let rounding_flips = kept(&s.a, &s.class_a, &rule.a) + kept(&s.b, &s.class_b, &rule.b);
     let failed =
         s.a.failed
             .iter()
@@ -506,10 +556,16 @@ impl Split {
     /// The triangles of one group as a mesh (vertices compacted), with their provenance.
     pub fn group(&self, g: Group) -> (Mesh, Vec<Provenance>) {
         let (side, class) = g.side_and_class();
-        let pick = |cls: &Classified, t: usize| (cls.class[t] == class).then_some(false);
+        let pick = |cls: &Classified, t: usize| {
+            if cls.class[t] == class {
+                Keep::AsIs
+            } else {
+                Keep::Drop
+            }
+        };
         match side {
-            Source::A => merge(self, |t| pick(&self.class_a, t), |_| None),
-            Source::B => merge(self, |_| None, |t| pick(&self.class_b, t)),
+            Source::A => merge(self, |t| pick(&self.class_a, t), |_| Keep::Drop),
+            Source::B => merge(self, |_| Keep::Drop, |t| pick(&self.class_b, t)),
         }
     }
 }
