@@ -202,7 +202,8 @@ impl Roots {
 /// What the boolean's classification needs of an arranged mesh's edges, without the full
 /// adjacency of [`EdgeTopology`] (a fraction of its memory and time on large meshes): the
 /// patches (components joined across every edge but the seam edges), the uses of the seam
-/// edges, and whether the mesh is closed.
+/// edges, and whether the mesh is closed. Part of the pipeline, not of the public surface.
+#[doc(hidden)]
 #[derive(Clone, Debug, Default)]
 pub struct SeamTopology {
     /// The seam edges that are edges of the mesh, as `[lo, hi]` (`lo < hi`), sorted.

@@ -4,40 +4,70 @@
 //! terrain — with the tools around them: intersection curves, split-and-pick, closing,
 //! repair, measures and file formats.
 //!
-//! The whole library works on one data model, [`Mesh`]: vertex positions (`f64`) and
-//! triangles as vertex indices (libigl's `V, F`). A triangle soup is a `Mesh` whose
-//! triangles share no vertices.
-//!
 //! ```
-//! use meshbool::{Mesh, measure};
+//! use meshbool::ops::{boolean, BooleanOptions};
+//! use meshbool::{Mesh, Op};
 //!
-//! let cube = Mesh::unit_cube();
-//! let stats = measure::mesh_stats(&cube);
-//! assert_eq!(stats.volume, 1.0);
-//! assert_eq!(stats.boundary_edges, 0);
-//! assert!(stats.closed);
-//! ```
-//!
-//! Reading and writing files goes through [`io`]:
-//!
-//! ```no_run
-//! let mesh = meshbool::io::read_path("terrain.obj")?;
-//! meshbool::io::write_path("terrain.ply", &mesh)?;
+//! let a = Mesh::unit_cube();
+//! let b = Mesh::cuboid([0.5; 3], [1.5; 3]);
+//! let union = boolean(&a, &b, Op::Union, &BooleanOptions::default())?;
+//! let inter = boolean(&a, &b, Op::Intersection, &BooleanOptions::default())?;
+//! let (u, i) = (union.report().result, inter.report().result);
+//! assert!(u.closed && i.closed);
+//! assert_eq!(u.volume + i.volume, 1.0 + 1.0); // vol(A ∪ B) + vol(A ∩ B) = vol(A) + vol(B)
+//! assert_eq!(i.volume, 0.125);
 //! # Ok::<(), meshbool::Error>(())
 //! ```
+//!
+//! ## Where to start
+//!
+//! - [`Mesh`]: the one data model, vertex positions (`f64`) and triangles as vertex
+//!   indices (libigl's `V, F`). A triangle soup is a `Mesh` whose triangles share no
+//!   vertices.
+//! - [`ops`]: the front door, one function per command of the `meshbool` tool —
+//!   [`ops::boolean`], [`ops::split`] and [`ops::SplitOutput::pick`], [`ops::curves`],
+//!   [`ops::repair`], [`ops::close`], [`ops::orient`], [`ops::info`], [`ops::read`] and
+//!   [`ops::write`] — each with an options struct and an output whose `report()` is the
+//!   tool's `--json`. Inputs are checked at the door ([`ops::Operand`]).
+//! - [`io`]: readers and writers (STL, OBJ, PLY, DXF, JSON soups) in `f64`.
+//! - [`measure`]: volume, areas, edge statistics ([`measure::mesh_stats`]).
+//! - [`repair`]: each repair step on its own (weld, T-junctions, degenerates, capping,
+//!   stitching, curtains, orientation, folds) and the [`repair::repair`] pipeline.
+//! - [`edges`]: edge adjacency and components; [`intersect`]: the exact intersection of
+//!   two meshes and its curves; [`shapes`]: spheres, tori and height fields for tests.
+//! - The vocabulary of booleans: [`Op`] and its [`Rule`], [`Class`], [`Group`],
+//!   [`Provenance`] and [`Source`], [`Stage`].
+//!
+//! Reading and writing files:
+//!
+//! ```no_run
+//! let (mesh, format) = meshbool::ops::read("terrain.obj", None)?;
+//! meshbool::ops::write("terrain.ply", &mesh, None)?;
+//! # Ok::<(), meshbool::Error>(())
+//! ```
+//!
+//! The pipeline's stages (`arrange`, `broad`, `bvh`, `classify`, `kernel`, and the
+//! pipeline itself in `boolean`) are public for the benchmarks and tests only and hidden
+//! from these docs; their interfaces may change.
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+#[doc(hidden)]
 pub mod arrange;
+#[doc(hidden)]
 pub mod boolean;
+#[doc(hidden)]
 pub mod broad;
+#[doc(hidden)]
 pub mod bvh;
+#[doc(hidden)]
 pub mod classify;
 pub mod edges;
 mod error;
 mod format;
 pub mod intersect;
 pub mod io;
+#[doc(hidden)]
 pub mod kernel;
 pub mod measure;
 mod mesh;
@@ -53,7 +83,8 @@ mod test_util;
 struct ReadmeDoctests;
 mod vec3;
 
-pub use boolean::Op;
+pub use boolean::{Group, Keep, Op, Provenance, Rule, Selection, Source, Stage};
+pub use classify::Class;
 pub use edges::EdgeTopology;
 pub use error::{Error, Location, Result};
 pub use format::Format;

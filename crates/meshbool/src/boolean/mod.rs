@@ -198,15 +198,38 @@ impl Op {
 #[derive(Clone, Debug)]
 pub struct Split {
     /// The intersection of the inputs.
-    pub seam: Seam,
+    pub(crate) seam: Seam,
     /// A cut along the seam.
-    pub a: Arranged,
+    pub(crate) a: Arranged,
     /// B cut along the seam.
-    pub b: Arranged,
+    pub(crate) b: Arranged,
     /// Classes of A's triangles relative to B.
-    pub class_a: Classified,
+    pub(crate) class_a: Classified,
     /// Classes of B's triangles relative to A.
-    pub class_b: Classified,
+    pub(crate) class_b: Classified,
+}
+
+impl Split {
+    /// The intersection of the inputs.
+    pub fn seam(&self) -> &Seam {
+        &self.seam
+    }
+
+    /// One input cut along the seam.
+    pub fn arranged(&self, side: Source) -> &Arranged {
+        match side {
+            Source::A => &self.a,
+            Source::B => &self.b,
+        }
+    }
+
+    /// The classes of one input's arranged triangles against the other input.
+    pub fn classified(&self, side: Source) -> &Classified {
+        match side {
+            Source::A => &self.class_a,
+            Source::B => &self.class_b,
+        }
+    }
 }
 
 /// The stages of [`split`] and [`boolean`], as reported to a progress callback
@@ -226,6 +249,26 @@ pub enum Stage {
 }
 
 impl Stage {
+    /// Every stage, in the order they run.
+    pub const ALL: [Stage; 5] = [
+        Stage::Check,
+        Stage::Intersect,
+        Stage::Arrange,
+        Stage::Classify,
+        Stage::Merge,
+    ];
+
+    /// The stage's name: `check`, `intersect`, `arrange`, `classify`, `merge`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Stage::Check => "check",
+            Stage::Intersect => "intersect",
+            Stage::Arrange => "arrange",
+            Stage::Classify => "classify",
+            Stage::Merge => "merge",
+        }
+    }
+
     /// A short description for progress displays.
     pub fn describe(self) -> &'static str {
         match self {
@@ -464,7 +507,15 @@ pub fn boolean_with_progress(
 
 impl fmt::Display for Stage {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.describe())
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Stage {
+    type Err = crate::Error;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        crate::error::parse_name(s, &Stage::ALL, Stage::name, "stage")
     }
 }
 

@@ -24,6 +24,7 @@ mod ply;
 mod polyline;
 mod stl;
 
+#[doc(no_inline)]
 pub use crate::format::Format;
 pub use polyline::{write_polylines, PolylineXyz};
 

@@ -228,6 +228,18 @@ fn piece_specs_read_and_write_the_same_text() {
     for g in Group::ALL {
         assert_eq!(g.to_string().parse::<Group>().unwrap(), g);
     }
+    for s in Stage::ALL {
+        assert_eq!(s.to_string().parse::<Stage>().unwrap(), s);
+    }
+    for f in Format::NAMES.map(|(_, f)| f) {
+        assert_eq!(f.name().parse::<Format>().unwrap(), f);
+    }
+    for m in CloseMode::ALL {
+        assert_eq!(m.to_string().parse::<CloseMode>().unwrap(), m);
+    }
+    for f in Facing::ALL {
+        assert_eq!(f.to_string().parse::<Facing>().unwrap(), f);
+    }
 }
 
 #[test]
