@@ -353,6 +353,54 @@ enum Cand {
 /// earlier candidate for the first and the later for the last.
 fn clip_edge(own: &Tri, i: usize, other: &Tri, own_is_a: bool, o: &Orients) -> Clip {
     let j = (i + 1) % 3;
+    let crossing = edge_crossings(own, i, other, o);
+    // Along the edge, order by its longest coordinate (non-zero: the corners differ there).
+    let along = Along {
+        axis: longest_axis(&own.p[i], &own.p[j]),
+        crossing: &crossing,
+    };
+    let mut ends = Ends::default();
+    edge_candidates(own, i, other, own_is_a, o, &along, |c, l| {
+        ends.add(&along, c, l)
+    });
+    ends.clip(&along)
+}
+
+/// Where edge `i` of `own` crosses edge `m` of the coplanar triangle `other` (each strictly
+/// crossing the other's line), for each `m`: prepared once for the comparisons, boxed (a
+/// prepared point is some 200 bytes, and most edges cross nothing).
+fn edge_crossings(own: &Tri, i: usize, other: &Tri, o: &Orients) -> [Option<Box<Prepared>>; 3] {
+    let j = (i + 1) % 3;
+    let crosses = |s: Sign, t: Sign| s.times(t) == Sign::Negative;
+    std::array::from_fn(|m| {
+        let n = (m + 1) % 3;
+        (crosses(o.other_edges[m][i], o.other_edges[m][j])
+            && crosses(o.own_edges[i][m], o.own_edges[i][n]))
+        .then(|| {
+            Box::new(Prepared::new(Point::Ssi {
+                p: own.p[i],
+                q: own.p[j],
+                r: other.p[m],
+                s: other.p[n],
+                axis: other.axis as u8,
+            }))
+        })
+    })
+}
+
+/// Calls `add` with every candidate end of the part of edge `i` of `own` inside `other`,
+/// with its label: `own`'s two corners where they lie in `other`, `other`'s corners
+/// strictly inside the edge, then the edge's crossings with `other`'s edges.
+fn edge_candidates(
+    own: &Tri,
+    i: usize,
+    other: &Tri,
+    own_is_a: bool,
+    o: &Orients,
+    along: &Along,
+    mut add: impl FnMut(Cand, Label),
+) {
+    let j = (i + 1) % 3;
     let own_edge = edge(own.v[i], own.v[j]);
     let mk = |own_f: Feature, other_f: Feature| {
         if own_is_a {
@@ -367,63 +415,13 @@ fn clip_edge(own: &Tri, i: usize, other: &Tri, own_is_a: bool, o: &Orients) -> C
             }
         }
     };
-    // Along the edge, order by its longest coordinate (non-zero: the corners differ there).
-    let axis = longest_axis(&own.p[i], &own.p[j]);
-    let proj = other.axis;
-    // Crossings with the other triangle's edges, prepared once for the comparisons (boxed:
-    // a prepared point is some 200 bytes, and most edges cross nothing).
-    let crosses = |s: Sign, t: Sign| s.times(t) == Sign::Negative;
-    let crossing: [Option<Box<Prepared>>; 3] = std::array::from_fn(|m| {
-        let n = (m + 1) % 3;
-        (crosses(o.other_edges[m][i], o.other_edges[m][j])
-            && crosses(o.own_edges[i][m], o.own_edges[i][n]))
-        .then(|| {
-            Box::new(Prepared::new(Point::Ssi {
-                p: own.p[i],
-                q: own.p[j],
-                r: other.p[m],
-                s: other.p[n],
-                axis: proj as u8,
-            }))
-        })
-    });
-    let prepared = |c: Cand| match c {
-        Cand::Corner(p) => Prepared::new(Point::Explicit(p)),
-        Cand::Crossing(m) => *crossing[m].clone().expect("a candidate crossing exists"),
-    };
-    let cmp = |x: Cand, y: Cand| match (x, y) {
-        // Input coordinates are finite (validated meshes): the order is total.
-        (Cand::Corner(p), Cand::Corner(q)) => {
-            p[axis].partial_cmp(&q[axis]).unwrap_or(Ordering::Equal)
-        }
-        (Cand::Crossing(m), Cand::Crossing(n)) => match (&crossing[m], &crossing[n]) {
-            (Some(a), Some(b)) => cmp_coord_prepared(a, b, axis),
-            _ => unreachable!("candidate crossings exist"),
-        },
-        _ => cmp_coord_prepared(&prepared(x), &prepared(y), axis),
-    };
-    let mut ends: Option<((Cand, Label), (Cand, Label))> = None;
-    let mut count = 0;
-    let mut add = |c: Cand, l: Label| {
-        count += 1;
-        match &mut ends {
-            None => ends = Some(((c, l), (c, l))),
-            Some((first, last)) => {
-                if cmp(c, first.0) == Ordering::Less {
-                    *first = (c, l);
-                }
-                if cmp(c, last.0) != Ordering::Less {
-                    *last = (c, l);
-                }
-            }
-        }
-    };
     for k in [i, j] {
         let at = other.locate_by(std::array::from_fn(|m| o.other_edges[m][k]));
         if let Some(f) = at {
             add(Cand::Corner(own.p[k]), mk(Feature::Vertex(own.v[k]), f));
         }
     }
+    let axis = along.axis;
     let (pa, qa) = (own.p[i][axis], own.p[j][axis]);
     for m in 0..3 {
         // On the edge's line and strictly between its ends.
@@ -435,7 +433,7 @@ fn clip_edge(own: &Tri, i: usize, other: &Tri, own_is_a: bool, o: &Orients) -> C
             );
         }
     }
-    for (m, x) in crossing.iter().enumerate() {
+    for (m, x) in along.crossing.iter().enumerate() {
         if x.is_some() {
             let n = (m + 1) % 3;
             add(
@@ -444,18 +442,87 @@ fn clip_edge(own: &Tri, i: usize, other: &Tri, own_is_a: bool, o: &Orients) -> C
             );
         }
     }
-    match (count, ends) {
-        (_, None) => Clip::None,
-        (1, Some((only, _))) => Clip::Point(only.1),
-        (_, Some((first, last))) => {
-            let same = match (first.0, last.0) {
-                (Cand::Corner(p), Cand::Corner(q)) => p == q,
-                (x, y) => same_point_prepared(&prepared(x), &prepared(y)),
-            };
-            if same {
-                Clip::Point(first.1)
-            } else {
-                Clip::Segment([first.1, last.1])
+}
+
+/// The order of candidates along one edge: by coordinate `axis`, exactly.
+struct Along<'a> {
+    axis: usize,
+    /// The edge's crossings, for [`Cand::Crossing`].
+    crossing: &'a [Option<Box<Prepared>>; 3],
+}
+
+impl Along<'_> {
+    fn prepared(&self, c: Cand) -> Prepared {
+        match c {
+            Cand::Corner(p) => Prepared::new(Point::Explicit(p)),
+            Cand::Crossing(m) => *self.crossing[m]
+                .clone()
+                .expect("a candidate crossing exists"),
+        }
+    }
+
+    fn cmp(&self, x: Cand, y: Cand) -> Ordering {
+        let axis = self.axis;
+        match (x, y) {
+            // Input coordinates are finite (validated meshes): the order is total.
+            (Cand::Corner(p), Cand::Corner(q)) => {
+                p[axis].partial_cmp(&q[axis]).unwrap_or(Ordering::Equal)
+            }
+            (Cand::Crossing(m), Cand::Crossing(n)) => {
+                match (&self.crossing[m], &self.crossing[n]) {
+                    (Some(a), Some(b)) => cmp_coord_prepared(a, b, axis),
+                    _ => unreachable!("candidate crossings exist"),
+                }
+            }
+            _ => cmp_coord_prepared(&self.prepared(x), &self.prepared(y), axis),
+        }
+    }
+
+    fn same(&self, x: Cand, y: Cand) -> bool {
+        match (x, y) {
+            (Cand::Corner(p), Cand::Corner(q)) => p == q,
+            (x, y) => same_point_prepared(&self.prepared(x), &self.prepared(y)),
+        }
+    }
+}
+
+/// The first and the last candidate seen along an edge, and how many there were.
+#[derive(Default)]
+struct Ends {
+    ends: Option<((Cand, Label), (Cand, Label))>,
+    count: usize,
+}
+
+impl Ends {
+    /// Takes candidate `c`: the new first when strictly before the first, the new last
+    /// when not before the last.
+    fn add(&mut self, along: &Along, c: Cand, l: Label) {
+        self.count += 1;
+        match &mut self.ends {
+            None => self.ends = Some(((c, l), (c, l))),
+            Some((first, last)) => {
+                if along.cmp(c, first.0) == Ordering::Less {
+                    *first = (c, l);
+                }
+                if along.cmp(c, last.0) != Ordering::Less {
+                    *last = (c, l);
+                }
+            }
+        }
+    }
+
+    /// The clipped edge: nothing, a point (one candidate, or first and last the same
+    /// point), or the segment from the first to the last.
+    fn clip(self, along: &Along) -> Clip {
+        match (self.count, self.ends) {
+            (_, None) => Clip::None,
+            (1, Some((only, _))) => Clip::Point(only.1),
+            (_, Some((first, last))) => {
+                if along.same(first.0, last.0) {
+                    Clip::Point(first.1)
+                } else {
+                    Clip::Segment([first.1, last.1])
+                }
             }
         }
     }
