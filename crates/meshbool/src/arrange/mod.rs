@@ -9,9 +9,8 @@
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
-use crate::intersect::tritri::Tri;
 use crate::intersect::{Feature, Seam};
-use crate::kernel::{orient2d, Point};
+use crate::kernel::{orient2d, Point, Triangle};
 use crate::Mesh;
 
 mod local;
@@ -228,10 +227,10 @@ fn cut_triangle(
 ) -> CutResult {
     let tri = mesh.triangles[t as usize];
     let corners = mesh.corners(t as usize);
-    let Some(info) = Tri::new(t, tri, corners) else {
+    let Some(shape) = Triangle::new(corners) else {
         return Err(local::Failed("degenerate triangle"));
     };
-    let mut lt = local::Local::new(corners, info.axis(), info.sign());
+    let mut lt = local::Local::new(corners, shape.axis(), shape.sign());
     let mut to_local: FxHashMap<u32, u32> = FxHashMap::default();
     for (k, &v) in tri.iter().enumerate() {
         to_local.insert(v, k as u32);
@@ -265,14 +264,14 @@ fn cut_triangle(
     }
     lt.improve();
     let pieces: Vec<[u32; 3]> = lt.tris.iter().map(|v| v.map(|l| ids[l as usize])).collect();
-    let flipped = turned_by_rounding(&pieces, points, &info);
+    let flipped = turned_by_rounding(&pieces, points, &shape);
     Ok((pieces, flipped))
 }
 
 /// Per piece of `parent`, whether it holds a seam point and, with the seam points rounded
 /// to their `f64` coordinates, no longer faces like `parent` (exact test on the rounded
 /// coordinates).
-fn turned_by_rounding(pieces: &[[u32; 3]], points: &SeamPoints, parent: &Tri) -> Vec<bool> {
+fn turned_by_rounding(pieces: &[[u32; 3]], points: &SeamPoints, parent: &Triangle) -> Vec<bool> {
     pieces
         .iter()
         .map(|p| {

@@ -13,8 +13,7 @@ use rustc_hash::FxHashMap;
 
 use crate::arrange::Arranged;
 use crate::edges::SeamTopology;
-use crate::intersect::tritri::Tri;
-use crate::kernel::{orient2d, orient3d_plane, Point, Sign};
+use crate::kernel::{orient2d, orient3d_plane, Point, Sign, Triangle};
 use crate::Mesh;
 
 mod winding;
@@ -64,8 +63,8 @@ fn local_class(own: &[[f64; 3]; 3], w: &Point, e: [&Point; 2], fan: &[FanFace]) 
             continue;
         }
         // In the plane of this face: overlapping it when on the same side of the edge.
-        let info = Tri::new(0, [0, 1, 2], f.plane)?;
-        let axis = info.axis();
+        let plane = Triangle::new(f.plane)?;
+        let axis = plane.axis();
         let (ow, of) = (
             orient2d(e[0], e[1], w, axis),
             orient2d(e[0], e[1], &f.far, axis),
@@ -77,7 +76,7 @@ fn local_class(own: &[[f64; 3]; 3], w: &Point, e: [&Point; 2], fan: &[FanFace]) 
                 &Point::Explicit(own[2]),
                 axis,
             );
-            return Some(if own_sign == info.sign() {
+            return Some(if own_sign == plane.sign() {
                 Class::CoplanarSame
             } else {
                 Class::CoplanarOpposite

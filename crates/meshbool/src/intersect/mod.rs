@@ -316,9 +316,12 @@ fn meets_beyond_shared(m: &Mesh, i: u32, j: u32, shared: usize) -> bool {
         let Some(far_y) = (0..3).find(|&k| !x.v.contains(&y.v[k])) else {
             return true;
         };
-        let (e0, e1) = (Point::Explicit(x.p[ks[0]]), Point::Explicit(x.p[ks[1]]));
-        let sx = orient2d(&e0, &e1, &Point::Explicit(x.p[far_x]), x.axis());
-        return sx == orient2d(&e0, &e1, &Point::Explicit(y.p[far_y]), x.axis());
+        let (e0, e1) = (
+            Point::Explicit(x.corners()[ks[0]]),
+            Point::Explicit(x.corners()[ks[1]]),
+        );
+        let sx = orient2d(&e0, &e1, &Point::Explicit(x.corners()[far_x]), x.axis());
+        return sx == orient2d(&e0, &e1, &Point::Explicit(y.corners()[far_y]), x.axis());
     }
     let labels: Vec<Label> = match tritri::intersect(&x, &y) {
         TriTri::None => vec![],

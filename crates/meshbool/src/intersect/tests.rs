@@ -131,7 +131,7 @@ fn coplanar_touching_at_a_vertex_and_apart() {
 
 #[test]
 fn identical_triangles_share_their_edges() {
-    let b = t(0, 10, a_tri().p);
+    let b = t(0, 10, *a_tri().corners());
     match tt(&a_tri(), &b) {
         TriTri::Coplanar { segments, .. } => {
             let mut want = vec![

@@ -10,8 +10,8 @@
 use std::cmp::Ordering;
 
 use crate::kernel::{
-    cmp_coord_prepared, longest_axis, normals_cross_sign, orient2d, orient2d_prepared,
-    orient2d_safe, orient3d_sides, robust_safe, same_point_prepared, Point, Prepared, Sign,
+    cmp_coord_prepared, longest_axis, orient2d, orient2d_prepared, orient2d_safe, orient3d_sides,
+    planes_line_axis, same_point_prepared, Point, Prepared, Sign, Triangle,
 };
 
 /// A vertex, edge or face of one mesh, by its vertex / triangle ids (edges sorted).
@@ -46,48 +46,36 @@ pub struct Tri {
     pub id: u32,
     /// Vertex ids.
     pub v: [u32; 3],
-    /// Corner coordinates.
-    pub p: [[f64; 3]; 3],
-    /// A projection axis in which the triangle is not degenerate, and its orientation there.
-    axis: usize,
-    sign: Sign,
-    /// The corners meet the conditions of Shewchuk's predicates (see `kernel`), so their
-    /// orientations skip the per-call checks.
-    safe: bool,
+    /// The corners, with the projection in which the triangle is not degenerate.
+    tri: Triangle,
 }
 
 impl Tri {
     /// `None` for a degenerate (zero-area) triangle.
     pub fn new(id: u32, v: [u32; 3], p: [[f64; 3]; 3]) -> Option<Tri> {
-        let n = approx_normal(&p);
-        let mut axes = [0, 1, 2];
-        axes.sort_by(|&i, &j| n[j].abs().total_cmp(&n[i].abs()));
-        let e = p.map(Point::Explicit);
-        axes.into_iter().find_map(|axis| {
-            let sign = orient2d(&e[0], &e[1], &e[2], axis);
-            (sign != Sign::Zero).then_some(Tri {
-                id,
-                v,
-                p,
-                axis,
-                sign,
-                safe: robust_safe(&[&p[0], &p[1], &p[2]]),
-            })
-        })
+        Triangle::new(p).map(|tri| Tri { id, v, tri })
     }
 
-    /// The projection axis in which the triangle is not degenerate.
+    /// Corner coordinates.
+    #[inline]
+    pub fn corners(&self) -> &[[f64; 3]; 3] {
+        self.tri.corners()
+    }
+
+    /// The projection axis in which the triangle is not degenerate ([`Triangle::axis`]).
+    #[inline]
     pub fn axis(&self) -> usize {
-        self.axis
+        self.tri.axis()
     }
 
     /// The triangle's orientation (as given) in the projection dropping [`Tri::axis`].
+    #[inline]
     pub fn sign(&self) -> Sign {
-        self.sign
+        self.tri.sign()
     }
 
     fn corner(&self, k: usize) -> Point {
-        Point::Explicit(self.p[k])
+        Point::Explicit(self.corners()[k])
     }
 
     /// The smallest feature of this (closed) triangle containing `x`, which must lie in
@@ -99,16 +87,16 @@ impl Tri {
     /// [`Tri::locate`] of a prepared point (its interval enclosure computed once for
     /// the three orientations).
     fn locate_prepared(&self, x: &Prepared) -> Option<Feature> {
-        let c = self.p.map(|p| Prepared::new(Point::Explicit(p)));
+        let c = self.corners().map(|p| Prepared::new(Point::Explicit(p)));
         self.locate_by(std::array::from_fn(|k| {
-            orient2d_prepared(&c[k], &c[(k + 1) % 3], x, self.axis)
+            orient2d_prepared(&c[k], &c[(k + 1) % 3], x, self.axis())
         }))
     }
 
     /// [`Tri::locate`] from the orientations of the point against the edges (edge `k`
     /// from corner `k` to `k + 1`, projected along [`Tri::axis`]).
     fn locate_by(&self, o: [Sign; 3]) -> Option<Feature> {
-        let o = o.map(|s| s.times(self.sign));
+        let o = o.map(|s| s.times(self.sign()));
         if o.contains(&Sign::Negative) {
             return None;
         }
@@ -124,16 +112,6 @@ impl Tri {
             [true, true, true] => None, // impossible for a non-degenerate triangle
         }
     }
-}
-
-fn approx_normal(p: &[[f64; 3]; 3]) -> [f64; 3] {
-    let u: [f64; 3] = std::array::from_fn(|k| p[1][k] - p[0][k]);
-    let v: [f64; 3] = std::array::from_fn(|k| p[2][k] - p[0][k]);
-    [
-        u[1] * v[2] - u[2] * v[1],
-        u[2] * v[0] - u[0] * v[2],
-        u[0] * v[1] - u[1] * v[0],
-    ]
 }
 
 /// What two triangles share.
@@ -179,11 +157,11 @@ fn on_plane(t: &Tri, s: [Sign; 3], o: &Tri) -> Vec<OnPlane> {
         if s[i].times(s[j]) == Sign::Negative {
             out.push(OnPlane {
                 point: Prepared::new(Point::Lpi {
-                    p: t.p[i],
-                    q: t.p[j],
-                    a: o.p[0],
-                    b: o.p[1],
-                    c: o.p[2],
+                    p: t.corners()[i],
+                    q: t.corners()[j],
+                    a: o.corners()[0],
+                    b: o.corners()[1],
+                    c: o.corners()[2],
                 }),
                 own: edge(t.v[i], t.v[j]),
             });
@@ -194,33 +172,20 @@ fn on_plane(t: &Tri, s: [Sign; 3], o: &Tri) -> Vec<OnPlane> {
 
 /// Intersects triangles `a` (mesh A) and `b` (mesh B) exactly.
 pub fn intersect(a: &Tri, b: &Tri) -> TriTri {
-    let sa = orient3d_sides(&b.p, &a.p);
+    let sa = orient3d_sides(b.corners(), a.corners());
     if sa[0] != Sign::Zero && sa[0] == sa[1] && sa[1] == sa[2] {
         return TriTri::None;
     }
     if sa == [Sign::Zero; 3] {
         return coplanar(a, b);
     }
-    let sb = orient3d_sides(&a.p, &b.p);
+    let sb = orient3d_sides(a.corners(), b.corners());
     if sb[0] != Sign::Zero && sb[0] == sb[1] && sb[1] == sb[2] {
         return TriTri::None;
     }
     // Both triangles meet the line L where the planes cross; order points along an axis
     // in which L's direction is (exactly) non-zero.
-    let d = {
-        let (n, m) = (approx_normal(&a.p), approx_normal(&b.p));
-        [
-            n[1] * m[2] - n[2] * m[1],
-            n[2] * m[0] - n[0] * m[2],
-            n[0] * m[1] - n[1] * m[0],
-        ]
-    };
-    let mut axes = [0, 1, 2];
-    axes.sort_by(|&i, &j| d[j].abs().total_cmp(&d[i].abs()));
-    let Some(axis) = axes
-        .into_iter()
-        .find(|&k| normals_cross_sign(&a.p, &b.p, k) != Sign::Zero)
-    else {
+    let Some(axis) = planes_line_axis(a.corners(), b.corners()) else {
         return TriTri::None; // parallel distinct planes cannot get here; stay safe
     };
     let sorted = |mut v: Vec<OnPlane>| {
@@ -275,17 +240,22 @@ fn coplanar(a: &Tri, b: &Tri) -> TriTri {
         // `other`'s edges against `own`'s corners, `own`'s edges against `other`'s corners.
         // When both triangles project along the same axis, the second direction asks the
         // first one's questions with the roles swapped.
-        let proj = other.axis;
+        let proj = other.axis();
         let orients = match previous {
-            Some(o) if a.axis == b.axis => Orients {
+            Some(o) if a.axis() == b.axis() => Orients {
                 other_edges: o.own_edges,
                 own_edges: o.other_edges,
             },
             _ => {
-                let safe = own.safe && other.safe;
+                let safe = own.tri.robust_safe() && other.tri.robust_safe();
                 let side = |e: &Tri, m: usize, x: &Tri, k: usize| {
                     if safe {
-                        orient2d_safe(&e.p[m], &e.p[(m + 1) % 3], &x.p[k], proj)
+                        orient2d_safe(
+                            &e.corners()[m],
+                            &e.corners()[(m + 1) % 3],
+                            &x.corners()[k],
+                            proj,
+                        )
                     } else {
                         orient2d(&e.corner(m), &e.corner((m + 1) % 3), &x.corner(k), proj)
                     }
@@ -356,7 +326,7 @@ fn clip_edge(own: &Tri, i: usize, other: &Tri, own_is_a: bool, o: &Orients) -> C
     let crossing = edge_crossings(own, i, other, o);
     // Along the edge, order by its longest coordinate (non-zero: the corners differ there).
     let along = Along {
-        axis: longest_axis(&own.p[i], &own.p[j]),
+        axis: longest_axis(&own.corners()[i], &own.corners()[j]),
         crossing: &crossing,
     };
     let mut ends = Ends::default();
@@ -378,11 +348,11 @@ fn edge_crossings(own: &Tri, i: usize, other: &Tri, o: &Orients) -> [Option<Box<
             && crosses(o.own_edges[i][m], o.own_edges[i][n]))
         .then(|| {
             Box::new(Prepared::new(Point::Ssi {
-                p: own.p[i],
-                q: own.p[j],
-                r: other.p[m],
-                s: other.p[n],
-                axis: other.axis as u8,
+                p: own.corners()[i],
+                q: own.corners()[j],
+                r: other.corners()[m],
+                s: other.corners()[n],
+                axis: other.axis() as u8,
             }))
         })
     })
@@ -418,17 +388,20 @@ fn edge_candidates(
     for k in [i, j] {
         let at = other.locate_by(std::array::from_fn(|m| o.other_edges[m][k]));
         if let Some(f) = at {
-            add(Cand::Corner(own.p[k]), mk(Feature::Vertex(own.v[k]), f));
+            add(
+                Cand::Corner(own.corners()[k]),
+                mk(Feature::Vertex(own.v[k]), f),
+            );
         }
     }
     let axis = along.axis;
-    let (pa, qa) = (own.p[i][axis], own.p[j][axis]);
+    let (pa, qa) = (own.corners()[i][axis], own.corners()[j][axis]);
     for m in 0..3 {
         // On the edge's line and strictly between its ends.
-        let w = other.p[m][axis];
+        let w = other.corners()[m][axis];
         if o.own_edges[i][m] == Sign::Zero && ((pa < w && w < qa) || (qa < w && w < pa)) {
             add(
-                Cand::Corner(other.p[m]),
+                Cand::Corner(other.corners()[m]),
                 mk(own_edge, Feature::Vertex(other.v[m])),
             );
         }

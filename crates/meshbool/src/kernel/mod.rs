@@ -20,10 +20,12 @@ mod filter;
 mod interval;
 #[cfg(test)]
 mod tests;
+mod triangle;
 
 use exact::Dyadic;
 pub use filter::{certainly_separated, certainly_unfolded, FloatPlane};
 use interval::Interval;
+pub use triangle::{planes_line_axis, Triangle};
 
 /// The sign of an exact value.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
