@@ -277,12 +277,12 @@ fn meets_beyond_shared(m: &Mesh, i: u32, j: u32, shared: usize) -> bool {
         }
         side != Sign::Zero
     };
-    // Two triangles sharing an edge whose far vertices lie certainly on opposite sides of
-    // it (seen along the edge) can only meet in that edge, coplanar or not. The kernel's
-    // floating-point filter only ever answers "certainly unfolded"; anything else goes to
-    // the exact tests below. This is what almost every edge-sharing pair of a smooth or
-    // flat surface is, and it spares the exact orientation test its slow path on planar
-    // quads.
+    // Two triangles sharing an edge whose far vertices lie certainly more than a right
+    // angle apart around it (seen along the edge) can only meet in that edge, coplanar or
+    // not. The kernel's floating-point filter only ever answers "certainly unfolded";
+    // anything else goes to the exact tests below. This is what almost every edge-sharing
+    // pair of a smooth or flat surface is, and it spares the exact orientation test its
+    // slow path on planar quads.
     let unfolded = |p: &[[f64; 3]; 3], vp: &[u32; 3], q: &[[f64; 3]; 3], vq: &[u32; 3]| {
         let (Some(fp), Some(fq)) = (
             (0..3).find(|&k| !vq.contains(&vp[k])),

@@ -61,13 +61,14 @@ impl FloatPlane {
 /// Whether the triangles `a b u` and `a b v`, which share the edge `a b`, certainly lie
 /// in different half-planes bounded by the edge's line, so that they meet in that edge at
 /// most (coplanar or not): the normals `(b − a) × (u − a)` and `(b − a) × (v − a)` point
-/// more than a right angle apart, i.e. `u` and `v` lie on opposite sides of the edge seen
-/// along it. With `e = b − a` and ε = 2⁻⁵³, each computed difference is within ε of its
-/// exact value, each cross-product component within about 4ε·|e|·|u − a| (resp.
-/// `|v − a|`), and the dot product of the two then within about 20ε·|e|²·|u − a|·|v − a|
-/// ≈ 2.2e-15 of that product; the answer needs the value below −1e-12 times the product,
-/// over 400 times that error. Margins that overflow or underflow (below 1e-250, where
-/// subnormal products lose their relative accuracy) answer `false`.
+/// more than a right angle apart, i.e. seen along the edge, `u` and `v` lie more than a
+/// right angle apart around it. With `e = b − a` and ε = 2⁻⁵³: each computed difference
+/// is within a factor 1 ± ε of the exact one per coordinate, each cross-product component
+/// within about 4ε·|e|·|u − a| (resp. `|v − a|`), and their dot product then within about
+/// 20ε·|e|²·|u − a|·|v − a| ≈ 2.2e-15 of that product; the answer needs the value below
+/// −1e-12 times the product, over 400 times that error. Margins that overflow or
+/// underflow (below 1e-250, where subnormal products lose their relative accuracy)
+/// answer `false`.
 #[inline]
 pub fn certainly_unfolded(a: &[f64; 3], b: &[f64; 3], u: &[f64; 3], v: &[f64; 3]) -> bool {
     let e = sub(b, a);
