@@ -46,6 +46,7 @@ pub mod shapes;
 #[cfg(test)]
 mod test_util;
 mod vec3;
+mod welder;
 
 pub use edges::EdgeTopology;
 pub use error::{Error, Location, Result};
