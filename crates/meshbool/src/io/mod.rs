@@ -166,15 +166,14 @@ impl<'a, W: Write> Out<'a, W> {
         self
     }
 
+    /// The three coordinates of `p` ([`Out::f64`]) with `sep` between them.
+    fn coords(&mut self, p: &[f64; 3], sep: &[u8]) -> &mut Self {
+        self.f64(p[0]).bytes(sep).f64(p[1]).bytes(sep).f64(p[2])
+    }
+
     /// An OBJ vertex line `v x y z`.
     fn obj_vertex(&mut self, p: &[f64; 3]) -> &mut Self {
-        self.bytes(b"v ")
-            .f64(p[0])
-            .bytes(b" ")
-            .f64(p[1])
-            .bytes(b" ")
-            .f64(p[2])
-            .bytes(b"\n")
+        self.bytes(b"v ").coords(p, b" ").bytes(b"\n")
     }
 
     fn int(&mut self, x: u64) -> &mut Self {

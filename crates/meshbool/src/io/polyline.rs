@@ -107,12 +107,7 @@ fn write_json<W: Write>(o: &mut Out<'_, W>, lines: &[PolylineXyz]) -> Result<()>
         });
         for (k, p) in l.points.iter().enumerate() {
             o.bytes(if k == 0 { b"[" } else { b",[" });
-            o.f64(p[0])
-                .bytes(b",")
-                .f64(p[1])
-                .bytes(b",")
-                .f64(p[2])
-                .bytes(b"]");
+            o.coords(p, b",").bytes(b"]");
             o.record_done()?;
         }
         o.bytes(b"]}");
