@@ -82,6 +82,7 @@ mod test_util;
 #[doc = include_str!("../../../README.md")]
 struct ReadmeDoctests;
 mod vec3;
+mod welder;
 
 pub use boolean::{Group, Keep, Op, Provenance, Rule, Selection, Source, Stage};
 pub use classify::Class;

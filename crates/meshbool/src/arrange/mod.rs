@@ -9,9 +9,8 @@
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
-use crate::intersect::tritri::Tri;
 use crate::intersect::{Feature, Seam};
-use crate::kernel::{orient2d, Point};
+use crate::kernel::{orient2d, Point, Triangle};
 use crate::Mesh;
 
 mod local;
@@ -75,12 +74,52 @@ fn feature(l: &crate::intersect::Label, side: Side) -> Feature {
 /// Cuts `mesh` (side `side` of `seam`) along the seam. `mesh` must be the mesh the seam was
 /// computed from on that side.
 pub fn arrange(mesh: &Mesh, seam: &Seam, side: Side) -> Arranged {
-    // Vertex ids of seam points.
+    let points = index_seam_points(mesh, seam, side);
+    let seam_edges = seam_edges(seam, &points.seam_vertex);
+    let constraints = constraints(seam, side, &seam_edges);
+    let cut = cut_triangles(mesh, &points, &constraints);
+    let results: Vec<(u32, CutResult)> = cut
+        .par_iter()
+        .map(|&t| (t, cut_triangle(mesh, t, &points, &constraints)))
+        .collect();
+    let out = reassemble(mesh, results);
+    Arranged {
+        mesh: Mesh::new(points.positions, out.triangles),
+        input_vertices: points.input_vertices,
+        added_points: points.added,
+        parent: out.parent,
+        seam_vertex: points.seam_vertex,
+        seam_edges,
+        failed: out.failed,
+        rounding_flips: out.rounding_flips,
+    }
+}
+
+/// The seam points as vertices of one mesh ([`index_seam_points`]).
+struct SeamPoints {
+    /// The input positions, then one per added vertex.
+    positions: Vec<[f64; 3]>,
+    /// Number of input vertices: added vertices start here.
+    input_vertices: usize,
+    /// The exact point of every added vertex.
+    added: Vec<Point>,
+    /// Added vertices inside each input triangle's face.
+    on_face: FxHashMap<u32, Vec<u32>>,
+    /// Added vertices on each input edge `(lo, hi)`.
+    on_edge: FxHashMap<(u32, u32), Vec<u32>>,
+    /// For every seam point, its vertex.
+    seam_vertex: Vec<u32>,
+}
+
+/// Gives every seam point a vertex of `mesh` (side `side`): a seam point at an input
+/// vertex is that vertex; every other one becomes a new vertex after the input's, noted
+/// with the face or edge of the input it lies on.
+fn index_seam_points(mesh: &Mesh, seam: &Seam, side: Side) -> SeamPoints {
     let mut positions = mesh.positions.clone();
     let input_vertices = positions.len();
     let mut added: Vec<Point> = Vec::new();
-    let mut face_pts: FxHashMap<u32, Vec<u32>> = FxHashMap::default();
-    let mut edge_pts: FxHashMap<(u32, u32), Vec<u32>> = FxHashMap::default();
+    let mut on_face: FxHashMap<u32, Vec<u32>> = FxHashMap::default();
+    let mut on_edge: FxHashMap<(u32, u32), Vec<u32>> = FxHashMap::default();
     let seam_vertex: Vec<u32> = seam
         .points
         .iter()
@@ -92,16 +131,27 @@ pub fn arrange(mesh: &Mesh, seam: &Seam, side: Side) -> Arranged {
                 positions.push(seam.positions[s]);
                 added.push(seam.exact[s].clone());
                 match f {
-                    Feature::Face(t) => face_pts.entry(t).or_default().push(id),
-                    Feature::Edge(u, v) => edge_pts.entry((u, v)).or_default().push(id),
+                    Feature::Face(t) => on_face.entry(t).or_default().push(id),
+                    Feature::Edge(u, v) => on_edge.entry((u, v)).or_default().push(id),
                     Feature::Vertex(_) => unreachable!(),
                 }
                 id
             }
         })
         .collect();
-    let seam_edges: Vec<[u32; 2]> = seam
-        .segments
+    SeamPoints {
+        positions,
+        input_vertices,
+        added,
+        on_face,
+        on_edge,
+        seam_vertex,
+    }
+}
+
+/// The seam segments as sorted vertex pairs, given every seam point's vertex.
+fn seam_edges(seam: &Seam, seam_vertex: &[u32]) -> Vec<[u32; 2]> {
+    seam.segments
         .iter()
         .map(|s| {
             let (x, y) = (
@@ -110,8 +160,12 @@ pub fn arrange(mesh: &Mesh, seam: &Seam, side: Side) -> Arranged {
             );
             [x.min(y), x.max(y)]
         })
-        .collect();
-    // Constraints per triangle.
+        .collect()
+}
+
+/// Per input triangle of side `side`, the seam edges found in it: the constraints of its
+/// re-triangulation.
+fn constraints(seam: &Seam, side: Side, seam_edges: &[[u32; 2]]) -> FxHashMap<u32, Vec<[u32; 2]>> {
     let mut cons: FxHashMap<u32, Vec<[u32; 2]>> = FxHashMap::default();
     for src in &seam.sources {
         let t = match side {
@@ -122,11 +176,21 @@ pub fn arrange(mesh: &Mesh, seam: &Seam, side: Side) -> Arranged {
             .or_default()
             .push(seam_edges[src.segment as usize]);
     }
-    let mut cut: Vec<u32> = face_pts.keys().chain(cons.keys()).copied().collect();
-    if !edge_pts.is_empty() {
+    cons
+}
+
+/// The input triangles to re-triangulate, sorted: those with a seam point in their face
+/// or on one of their edges, or a seam edge.
+fn cut_triangles(
+    mesh: &Mesh,
+    points: &SeamPoints,
+    cons: &FxHashMap<u32, Vec<[u32; 2]>>,
+) -> Vec<u32> {
+    let mut cut: Vec<u32> = points.on_face.keys().chain(cons.keys()).copied().collect();
+    if !points.on_edge.is_empty() {
         // Only a triangle with two corners on such edges can have one: check that first.
-        let mut ends = vec![false; positions.len()];
-        for &(u, v) in edge_pts.keys() {
+        let mut ends = vec![false; points.positions.len()];
+        for &(u, v) in points.on_edge.keys() {
             ends[u as usize] = true;
             ends[v as usize] = true;
         }
@@ -138,79 +202,100 @@ pub fn arrange(mesh: &Mesh, seam: &Seam, side: Side) -> Arranged {
                     tri.iter().filter(|&&v| ends[v as usize]).count() >= 2
                         && (0..3).any(|k| {
                             let (u, v) = (tri[k], tri[(k + 1) % 3]);
-                            edge_pts.contains_key(&(u.min(v), u.max(v)))
+                            points.on_edge.contains_key(&(u.min(v), u.max(v)))
                         })
                 }),
         );
     }
     cut.par_sort_unstable();
     cut.dedup();
+    cut
+}
 
-    type Cut = (u32, Result<(Vec<[u32; 3]>, Vec<bool>), local::Failed>);
-    let results: Vec<Cut> = cut
-        .par_iter()
-        .map(|&t| {
-            let tri = mesh.triangles[t as usize];
-            let corners = mesh.corners(t as usize);
-            let Some(info) = Tri::new(t, tri, corners) else {
-                return (t, Err(local::Failed("degenerate triangle")));
-            };
-            let (axis, sign) = (info.axis(), info.sign());
-            let mut lt = local::Local::new(corners, info.axis(), info.sign());
-            let mut to_local: FxHashMap<u32, u32> = FxHashMap::default();
-            for (k, &v) in tri.iter().enumerate() {
-                to_local.insert(v, k as u32);
+/// One cut triangle re-triangulated: its pieces (vertex ids of the arranged mesh) and,
+/// per piece, whether rounding its seam points turns it over; or why it failed.
+type CutResult = Result<(Vec<[u32; 3]>, Vec<bool>), local::Failed>;
+
+/// Re-triangulates input triangle `t` with the seam points on it (`points`) and its seam
+/// edges (`cons`) as constraints, then improves the shape of the pieces; and marks the
+/// pieces that their rounded seam points turn over ([`turned_by_rounding`]).
+fn cut_triangle(
+    mesh: &Mesh,
+    t: u32,
+    points: &SeamPoints,
+    cons: &FxHashMap<u32, Vec<[u32; 2]>>,
+) -> CutResult {
+    let tri = mesh.triangles[t as usize];
+    let corners = mesh.corners(t as usize);
+    let Some(shape) = Triangle::new(corners) else {
+        return Err(local::Failed("degenerate triangle"));
+    };
+    let mut lt = local::Local::new(corners, shape.axis(), shape.sign());
+    let mut to_local: FxHashMap<u32, u32> = FxHashMap::default();
+    for (k, &v) in tri.iter().enumerate() {
+        to_local.insert(v, k as u32);
+    }
+    let mut ids: Vec<u32> = tri.to_vec();
+    // Seam points with the outer edge they lie on, if any.
+    let mut mine: Vec<(u32, Option<usize>)> = points
+        .on_face
+        .get(&t)
+        .map(|p| p.iter().map(|&g| (g, None)).collect())
+        .unwrap_or_default();
+    for k in 0..3 {
+        let (u, v) = (tri[k], tri[(k + 1) % 3]);
+        if let Some(p) = points.on_edge.get(&(u.min(v), u.max(v))) {
+            mine.extend(p.iter().map(|&g| (g, Some(k))));
+        }
+    }
+    for (g, on_edge) in mine {
+        let exact = points.added[g as usize - points.input_vertices].clone();
+        let l = lt.insert(exact, points.positions[g as usize], on_edge)?;
+        if l as usize == ids.len() {
+            ids.push(g);
+        }
+        to_local.insert(g, l);
+    }
+    for c in cons.get(&t).map(Vec::as_slice).unwrap_or(&[]) {
+        let (Some(&p), Some(&q)) = (to_local.get(&c[0]), to_local.get(&c[1])) else {
+            return Err(local::Failed("constraint end not in the triangle"));
+        };
+        lt.constrain(p, q)?;
+    }
+    lt.improve();
+    let pieces: Vec<[u32; 3]> = lt.tris.iter().map(|v| v.map(|l| ids[l as usize])).collect();
+    let flipped = turned_by_rounding(&pieces, points, &shape);
+    Ok((pieces, flipped))
+}
+
+/// Per piece of `parent`, whether it holds a seam point and, with the seam points rounded
+/// to their `f64` coordinates, no longer faces like `parent` (exact test on the rounded
+/// coordinates).
+fn turned_by_rounding(pieces: &[[u32; 3]], points: &SeamPoints, parent: &Triangle) -> Vec<bool> {
+    pieces
+        .iter()
+        .map(|p| {
+            p.iter().any(|&v| v as usize >= points.input_vertices) && {
+                let [a, b, c] = p.map(|v| Point::Explicit(points.positions[v as usize]));
+                orient2d(&a, &b, &c, parent.axis()) != parent.sign()
             }
-            let mut ids: Vec<u32> = tri.to_vec();
-            let mut run = || -> Result<Vec<[u32; 3]>, local::Failed> {
-                // Seam points with the outer edge they lie on, if any.
-                let mut mine: Vec<(u32, Option<usize>)> = face_pts
-                    .get(&t)
-                    .map(|p| p.iter().map(|&g| (g, None)).collect())
-                    .unwrap_or_default();
-                for k in 0..3 {
-                    let (u, v) = (tri[k], tri[(k + 1) % 3]);
-                    if let Some(p) = edge_pts.get(&(u.min(v), u.max(v))) {
-                        mine.extend(p.iter().map(|&g| (g, Some(k))));
-                    }
-                }
-                for (g, on_edge) in mine {
-                    let exact = added[g as usize - input_vertices].clone();
-                    let l = lt.insert(exact, positions[g as usize], on_edge)?;
-                    if l as usize == ids.len() {
-                        ids.push(g);
-                    }
-                    to_local.insert(g, l);
-                }
-                for c in cons.get(&t).map(Vec::as_slice).unwrap_or(&[]) {
-                    let (Some(&p), Some(&q)) = (to_local.get(&c[0]), to_local.get(&c[1])) else {
-                        return Err(local::Failed("constraint end not in the triangle"));
-                    };
-                    lt.constrain(p, q)?;
-                }
-                lt.improve();
-                Ok(lt.tris.iter().map(|v| v.map(|l| ids[l as usize])).collect())
-            };
-            // Pieces with rounded seam points that no longer face like their input
-            // triangle (exact test on the rounded coordinates).
-            let flips = |pieces: Vec<[u32; 3]>| {
-                let flipped = pieces
-                    .iter()
-                    .map(|p| {
-                        p.iter().any(|&v| v as usize >= input_vertices) && {
-                            let [a, b, c] = p.map(|v| Point::Explicit(positions[v as usize]));
-                            orient2d(&a, &b, &c, axis) != sign
-                        }
-                    })
-                    .collect();
-                (pieces, flipped)
-            };
-            (t, run().map(flips))
         })
-        .collect();
+        .collect()
+}
 
-    // The output in input order: runs of uncut triangles copied as they are, each cut
-    // one replaced by its pieces (the results come in the sorted order of `cut`).
+/// The arranged triangles with their bookkeeping ([`reassemble`]).
+struct Reassembled {
+    triangles: Vec<[u32; 3]>,
+    parent: Vec<u32>,
+    failed: Vec<(u32, &'static str)>,
+    rounding_flips: Vec<u32>,
+}
+
+/// The output in input order: runs of uncut triangles copied as they are, each cut one
+/// replaced by its pieces (`results` in increasing triangle order), or kept whole where
+/// it failed; each output triangle's parent, and the failures and pieces turned by
+/// rounding by their ids.
+fn reassemble(mesh: &Mesh, results: Vec<(u32, CutResult)>) -> Reassembled {
     let mut failed = Vec::new();
     let mut rounding_flips = Vec::new();
     let pieces: usize = results
@@ -245,13 +330,9 @@ pub fn arrange(mesh: &Mesh, seam: &Seam, side: Side) -> Arranged {
     }
     triangles.extend_from_slice(&mesh.triangles[next..]);
     parent.extend(next as u32..mesh.triangles.len() as u32);
-    Arranged {
-        mesh: Mesh::new(positions, triangles),
-        input_vertices,
-        added_points: added,
+    Reassembled {
+        triangles,
         parent,
-        seam_vertex,
-        seam_edges,
         failed,
         rounding_flips,
     }

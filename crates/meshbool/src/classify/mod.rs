@@ -13,8 +13,7 @@ use rustc_hash::FxHashMap;
 
 use crate::arrange::Arranged;
 use crate::edges::SeamTopology;
-use crate::intersect::tritri::Tri;
-use crate::kernel::{orient2d, orient3d_plane, Point, Sign};
+use crate::kernel::{orient2d, orient3d_plane, Point, Sign, Triangle};
 use crate::Mesh;
 
 mod winding;
@@ -64,8 +63,8 @@ fn local_class(own: &[[f64; 3]; 3], w: &Point, e: [&Point; 2], fan: &[FanFace]) 
             continue;
         }
         // In the plane of this face: overlapping it when on the same side of the edge.
-        let info = Tri::new(0, [0, 1, 2], f.plane)?;
-        let axis = info.axis();
+        let plane = Triangle::new(f.plane)?;
+        let axis = plane.axis();
         let (ow, of) = (
             orient2d(e[0], e[1], w, axis),
             orient2d(e[0], e[1], &f.far, axis),
@@ -77,7 +76,7 @@ fn local_class(own: &[[f64; 3]; 3], w: &Point, e: [&Point; 2], fan: &[FanFace]) 
                 &Point::Explicit(own[2]),
                 axis,
             );
-            return Some(if own_sign == info.sign() {
+            return Some(if own_sign == plane.sign() {
                 Class::CoplanarSame
             } else {
                 Class::CoplanarOpposite
@@ -112,21 +111,38 @@ pub struct Operand<'a> {
 /// Classifies the triangles of `x` against the other mesh `y` (both arranged along the same
 /// seam). `y_closed` picks the winding-number threshold (1/2 for closed, 0 for open).
 pub fn classify(x: &Operand, y: &Operand, y_closed: bool) -> Classified {
-    let (x_in, topo, y_in, ytopo) = (x.input, x.topology, y.input, y.topology);
-    let (x, y) = (x.arranged, y.arranged);
-    let n = x.mesh.triangles.len();
     // Patches: components of the triangles joined across edges that are not seam edges,
     // numbered in the order of each patch's first triangle.
-    let (patches, patch) = (topo.patches as u32, &topo.patch);
-    // Votes from every seam edge use.
+    let (patches, patch) = (x.topology.patches, &x.topology.patch);
+    let votes = seam_votes(x, y);
+    let resolved = resolve_patches(votes, patch, patches);
+    let answers = winding_fallback(&x.arranged.mesh, y.input, y_closed, &resolved.queries);
+    let by_winding = resolved.by_winding;
+    Classified {
+        class: settle(resolved, answers, patch, patches),
+        patch: patch.clone(),
+        patches,
+        by_winding,
+    }
+}
+
+/// One use of a seam edge: the patch and triangle using it, and the triangle's class
+/// from the other mesh's fan there (`None`: the fan does not decide).
+type Vote = (u32, u32, Option<Class>);
+
+/// The votes of every use of every seam edge of `x`, each from the other mesh's fan around
+/// that edge ([`local_class`]), in the order of `x`'s seam edges.
+fn seam_votes(x: &Operand, y: &Operand) -> Vec<Vote> {
+    let (x_in, topo, y_in, ytopo) = (x.input, x.topology, y.input, y.topology);
+    let (x, y) = (x.arranged, y.arranged);
+    let patch = &topo.patch;
     let seam_of_vertex: FxHashMap<u32, u32> = x
         .seam_vertex
         .iter()
         .enumerate()
         .map(|(s, &v)| (v, s as u32))
         .collect();
-    // (patch, triangle, class) for every use of a seam edge.
-    let votes: Vec<(u32, u32, Option<Class>)> = (0..topo.edges.len())
+    (0..topo.edges.len())
         .into_par_iter()
         .flat_map_iter(|e| {
             let [u, v] = topo.edges[e];
@@ -161,7 +177,29 @@ pub fn classify(x: &Operand, y: &Operand, y_closed: bool) -> Classified {
                 })
                 .collect::<Vec<_>>()
         })
-        .collect();
+        .collect()
+}
+
+/// What the seam decided ([`resolve_patches`]), and what is left to winding numbers.
+struct Resolved {
+    /// Per patch: `None` without seam edges, `Some(None)` where its votes disagree or do
+    /// not decide, `Some(Some(c))` where they all say `c`.
+    decided: Vec<Option<Option<Class>>>,
+    /// Per triangle, its class where the seam decides it.
+    class: Vec<Option<Class>>,
+    /// Triangles whose centroid needs a winding number: the first triangle of a patch
+    /// without seam edges (for the whole patch), every triangle without its own answer in
+    /// a patch whose votes disagree.
+    queries: Vec<usize>,
+    /// Patches left to winding numbers.
+    by_winding: usize,
+}
+
+/// Combines the votes per patch: a patch whose votes all agree takes their class. In a
+/// patch whose votes disagree (an open surface's seam stops inside it), the triangles
+/// along the seam keep their own agreeing votes, and the others are queued for a winding
+/// number each; a patch without votes is queued once, by its first triangle.
+fn resolve_patches(votes: Vec<Vote>, patch: &[u32], patches: usize) -> Resolved {
     // None: no vote yet; Some(None): undecided or disagreeing.
     fn combine(d: Option<Option<Class>>, c: Option<Class>) -> Option<Option<Class>> {
         match (d, c) {
@@ -171,7 +209,7 @@ pub fn classify(x: &Operand, y: &Operand, y_closed: bool) -> Classified {
             (Some(Some(_)), Some(_)) => Some(None),
         }
     }
-    let mut decided: Vec<Option<Option<Class>>> = vec![None; patches as usize];
+    let mut decided: Vec<Option<Option<Class>>> = vec![None; patches];
     // Per triangle too: where a patch's votes disagree (the seam stops inside it), the
     // triangles along the seam keep their own local answer.
     let mut own_vote: FxHashMap<u32, Option<Class>> = FxHashMap::default();
@@ -180,19 +218,11 @@ pub fn classify(x: &Operand, y: &Operand, y_closed: bool) -> Classified {
         let v = own_vote.get(&t).copied();
         own_vote.insert(t, combine(v, c).flatten());
     }
-    let threshold = if y_closed { 0.5 } else { 0.0 };
-    let centroid = |t: usize| -> [f64; 3] {
-        let [a, b, c] = x.mesh.corners(t);
-        std::array::from_fn(|k| (a[k] + b[k] + c[k]) / 3.0)
-    };
-    // Patches without a decision: one winding number for a patch without seam edges;
-    // where a patch's seam edges disagree (an open surface's seam stops inside it), the
-    // triangles along the seam keep their own local answer and every other triangle of
-    // the patch gets its own winding number.
-    let mut first: Vec<Option<usize>> = vec![None; patches as usize];
+    let mut first: Vec<Option<usize>> = vec![None; patches];
     for (t, &p) in patch.iter().enumerate() {
         first[p as usize].get_or_insert(t);
     }
+    let n = patch.len();
     let mut by_winding = 0;
     let mut class: Vec<Option<Class>> = vec![None; n];
     let mut queries: Vec<usize> = Vec::new();
@@ -219,40 +249,58 @@ pub fn classify(x: &Operand, y: &Operand, y_closed: bool) -> Classified {
             }
         };
     }
-    // Exact sums while they are cheap, the hierarchy beyond (deterministic either way).
-    let fast =
-        (queries.len() as f64 * y_in.triangles.len() as f64 > 2e7).then(|| FastWinding::new(y_in));
+    Resolved {
+        decided,
+        class,
+        queries,
+        by_winding,
+    }
+}
+
+/// The class of each queried triangle of `x` from the generalized winding number of `y`
+/// at its centroid: inside above the threshold (1/2 for a closed `y`, 0 for an open one).
+/// Exact sums while they are cheap, the hierarchy beyond (deterministic either way).
+fn winding_fallback(x: &Mesh, y: &Mesh, y_closed: bool, queries: &[usize]) -> Vec<Class> {
+    let threshold = if y_closed { 0.5 } else { 0.0 };
+    let centroid = |t: usize| -> [f64; 3] {
+        let [a, b, c] = x.corners(t);
+        std::array::from_fn(|k| (a[k] + b[k] + c[k]) / 3.0)
+    };
+    let fast = (queries.len() as f64 * y.triangles.len() as f64 > 2e7).then(|| FastWinding::new(y));
     let points: Vec<[f64; 3]> = queries.iter().map(|&t| centroid(t)).collect();
     let winding: Vec<f64> = match &fast {
         Some(f) => f.at_many(&points),
-        None => points.iter().map(|&p| winding_number(y_in, p)).collect(),
+        None => points.iter().map(|&p| winding_number(y, p)).collect(),
     };
-    let answers = winding.into_iter().map(|w| {
-        if w > threshold {
-            Class::Inside
-        } else {
-            Class::Outside
-        }
-    });
-    let mut patch_answer: Vec<Option<Class>> = vec![None; patches as usize];
-    for (&t, c) in queries.iter().zip(answers) {
-        match decided[patch[t] as usize] {
+    winding
+        .into_iter()
+        .map(|w| {
+            if w > threshold {
+                Class::Inside
+            } else {
+                Class::Outside
+            }
+        })
+        .collect()
+}
+
+/// Every triangle's class: its seam answer, or the winding answer (`answers`, one per
+/// query) for its patch (a patch without seam edges) or for itself.
+fn settle(r: Resolved, answers: Vec<Class>, patch: &[u32], patches: usize) -> Vec<Class> {
+    let mut class = r.class;
+    let mut patch_answer: Vec<Option<Class>> = vec![None; patches];
+    for (&t, c) in r.queries.iter().zip(answers) {
+        match r.decided[patch[t] as usize] {
             None => patch_answer[patch[t] as usize] = Some(c),
             _ => class[t] = Some(c),
         }
     }
-    let class: Vec<Class> = class
+    class
         .into_iter()
         .enumerate()
         .map(|(t, c)| {
             c.or(patch_answer[patch[t] as usize])
                 .expect("every triangle is decided: by its patch, its seam or a winding number")
         })
-        .collect();
-    Classified {
-        class,
-        patch: patch.clone(),
-        patches: patches as usize,
-        by_winding,
-    }
+        .collect()
 }

@@ -255,49 +255,11 @@ pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
     found
 }
 
-/// Whether an edge-cross-edge axis certainly separates triangles `p` and `q`: the
-/// separating-axis test in floating point, answering only "certainly apart". Any vector
-/// is a valid axis (the one computed from rounded edges is just some direction); what
-/// must be certain is that the exact projections, onto it, of the corners (taken
-/// relative to `p[0]`, which moves neither) leave a gap. Each computed projection is
-/// within 4 ulp of |axis|₁ · (largest relative coordinate) of the exact one; the gap must
-/// exceed 1e-13 times that product, over 50 times the two projections' errors together.
-/// For pairs whose planes do not separate them: mostly neighbours across nearly planar
-/// quads, where rounded coordinates put a corner of each a hair over the other's plane.
-fn separated(p: &[[f64; 3]; 3], q: &[[f64; 3]; 3]) -> bool {
-    use crate::vec3::{cross, dot, sub};
-    let o = p[0];
-    let (p, q) = (p.map(|x| sub(&x, &o)), q.map(|x| sub(&x, &o)));
-    let scale = p
-        .iter()
-        .chain(&q)
-        .flat_map(|x| x.iter())
-        .fold(0.0f64, |s, x| s.max(x.abs()));
-    let edges = |t: &[[f64; 3]; 3]| [sub(&t[1], &t[0]), sub(&t[2], &t[1]), sub(&t[0], &t[2])];
-    let (ep, eq) = (edges(&p), edges(&q));
-    for a in ep.iter().flat_map(|u| eq.iter().map(move |v| cross(u, v))) {
-        let margin = 1e-13 * (a[0].abs() + a[1].abs() + a[2].abs()) * scale;
-        if !(margin.is_finite() && margin > 1e-250) {
-            continue;
-        }
-        let range = |t: &[[f64; 3]; 3]| {
-            let s = t.map(|x| dot(&a, &x));
-            (s[0].min(s[1]).min(s[2]), s[0].max(s[1]).max(s[2]))
-        };
-        let ((p_lo, p_hi), (q_lo, q_hi)) = (range(&p), range(&q));
-        if p_hi + margin < q_lo || q_hi + margin < p_lo {
-            return true;
-        }
-    }
-    false
-}
-
 /// Whether triangles `i` and `j` of `m`, which share `shared` (< 3) vertices, meet
 /// anywhere else than in those vertices and the edge between them. Exact.
 #[inline(never)]
 fn meets_beyond_shared(m: &Mesh, i: u32, j: u32, shared: usize) -> bool {
-    use crate::kernel::{orient2d, FloatPlane};
-    use crate::vec3::{cross, dot, norm, sub};
+    use crate::kernel::{certainly_separated, certainly_unfolded, orient2d, FloatPlane};
     // The corners of `q` that `p` does not share, all strictly on one side of `p`'s plane
     // (and at least one of them): then the two meet at most in what they share.
     let apart = |p: &[[f64; 3]; 3], vp: &[u32; 3], q: &[[f64; 3]; 3], vq: &[u32; 3]| {
@@ -315,12 +277,12 @@ fn meets_beyond_shared(m: &Mesh, i: u32, j: u32, shared: usize) -> bool {
         }
         side != Sign::Zero
     };
-    // Two triangles sharing an edge whose far vertices lie certainly on opposite sides of
-    // it (seen along the edge) can only meet in that edge, coplanar or not. A floating-
-    // point filter with a margin far above its rounding error: it only ever answers
-    // "certainly unfolded"; anything else goes to the exact tests below. This is what
-    // almost every edge-sharing pair of a smooth or flat surface is, and it spares the
-    // exact orientation test its slow path on planar quads.
+    // Two triangles sharing an edge whose far vertices lie certainly more than a right
+    // angle apart around it (seen along the edge) can only meet in that edge, coplanar or
+    // not. The kernel's floating-point filter only ever answers "certainly unfolded";
+    // anything else goes to the exact tests below. This is what almost every edge-sharing
+    // pair of a smooth or flat surface is, and it spares the exact orientation test its
+    // slow path on planar quads.
     let unfolded = |p: &[[f64; 3]; 3], vp: &[u32; 3], q: &[[f64; 3]; 3], vq: &[u32; 3]| {
         let (Some(fp), Some(fq)) = (
             (0..3).find(|&k| !vq.contains(&vp[k])),
@@ -328,12 +290,7 @@ fn meets_beyond_shared(m: &Mesh, i: u32, j: u32, shared: usize) -> bool {
         ) else {
             return false;
         };
-        let (a, b) = (p[(fp + 1) % 3], p[(fp + 2) % 3]);
-        let e = sub(&b, &a);
-        let (u, v) = (sub(&p[fp], &a), sub(&q[fq], &a));
-        let d = dot(&cross(&e, &u), &cross(&e, &v));
-        let margin = 1e-12 * dot(&e, &e) * norm(&u) * norm(&v);
-        margin.is_finite() && margin > 1e-250 && d < -margin
+        certainly_unfolded(&p[(fp + 1) % 3], &p[(fp + 2) % 3], &p[fp], &q[fq])
     };
     let (vi, vj) = (m.triangles[i as usize], m.triangles[j as usize]);
     let (pi, pj) = (m.corners(i as usize), m.corners(j as usize));
@@ -345,7 +302,7 @@ fn meets_beyond_shared(m: &Mesh, i: u32, j: u32, shared: usize) -> bool {
     if apart(&pi, &vi, &pj, &vj) || (shared < 2 && apart(&pj, &vj, &pi, &vi)) {
         return false;
     }
-    if shared == 0 && separated(&pi, &pj) {
+    if shared == 0 && certainly_separated(&pi, &pj) {
         return false;
     }
     let (Some(x), Some(y)) = (tri(m, i as usize), tri(m, j as usize)) else {
@@ -359,9 +316,12 @@ fn meets_beyond_shared(m: &Mesh, i: u32, j: u32, shared: usize) -> bool {
         let Some(far_y) = (0..3).find(|&k| !x.v.contains(&y.v[k])) else {
             return true;
         };
-        let (e0, e1) = (Point::Explicit(x.p[ks[0]]), Point::Explicit(x.p[ks[1]]));
-        let sx = orient2d(&e0, &e1, &Point::Explicit(x.p[far_x]), x.axis());
-        return sx == orient2d(&e0, &e1, &Point::Explicit(y.p[far_y]), x.axis());
+        let (e0, e1) = (
+            Point::Explicit(x.corners()[ks[0]]),
+            Point::Explicit(x.corners()[ks[1]]),
+        );
+        let sx = orient2d(&e0, &e1, &Point::Explicit(x.corners()[far_x]), x.axis());
+        return sx == orient2d(&e0, &e1, &Point::Explicit(y.corners()[far_y]), x.axis());
     }
     let labels: Vec<Label> = match tritri::intersect(&x, &y) {
         TriTri::None => vec![],

@@ -10,8 +10,8 @@
 use std::cmp::Ordering;
 
 use crate::kernel::{
-    cmp_coord_prepared, longest_axis, normals_cross_sign, orient2d, orient2d_prepared,
-    orient2d_safe, orient3d_sides, robust_safe, same_point_prepared, Point, Prepared, Sign,
+    cmp_coord_prepared, longest_axis, orient2d, orient2d_prepared, orient2d_safe, orient3d_sides,
+    planes_line_axis, same_point_prepared, Point, Prepared, Sign, Triangle,
 };
 
 /// A vertex, edge or face of one mesh, by its vertex / triangle ids (edges sorted).
@@ -46,48 +46,36 @@ pub struct Tri {
     pub id: u32,
     /// Vertex ids.
     pub v: [u32; 3],
-    /// Corner coordinates.
-    pub p: [[f64; 3]; 3],
-    /// A projection axis in which the triangle is not degenerate, and its orientation there.
-    axis: usize,
-    sign: Sign,
-    /// The corners meet the conditions of Shewchuk's predicates (see `kernel`), so their
-    /// orientations skip the per-call checks.
-    safe: bool,
+    /// The corners, with the projection in which the triangle is not degenerate.
+    tri: Triangle,
 }
 
 impl Tri {
     /// `None` for a degenerate (zero-area) triangle.
     pub fn new(id: u32, v: [u32; 3], p: [[f64; 3]; 3]) -> Option<Tri> {
-        let n = approx_normal(&p);
-        let mut axes = [0, 1, 2];
-        axes.sort_by(|&i, &j| n[j].abs().total_cmp(&n[i].abs()));
-        let e = p.map(Point::Explicit);
-        axes.into_iter().find_map(|axis| {
-            let sign = orient2d(&e[0], &e[1], &e[2], axis);
-            (sign != Sign::Zero).then_some(Tri {
-                id,
-                v,
-                p,
-                axis,
-                sign,
-                safe: robust_safe(&[&p[0], &p[1], &p[2]]),
-            })
-        })
+        Triangle::new(p).map(|tri| Tri { id, v, tri })
     }
 
-    /// The projection axis in which the triangle is not degenerate.
+    /// Corner coordinates.
+    #[inline]
+    pub fn corners(&self) -> &[[f64; 3]; 3] {
+        self.tri.corners()
+    }
+
+    /// The projection axis in which the triangle is not degenerate ([`Triangle::axis`]).
+    #[inline]
     pub fn axis(&self) -> usize {
-        self.axis
+        self.tri.axis()
     }
 
     /// The triangle's orientation (as given) in the projection dropping [`Tri::axis`].
+    #[inline]
     pub fn sign(&self) -> Sign {
-        self.sign
+        self.tri.sign()
     }
 
     fn corner(&self, k: usize) -> Point {
-        Point::Explicit(self.p[k])
+        Point::Explicit(self.corners()[k])
     }
 
     /// The smallest feature of this (closed) triangle containing `x`, which must lie in
@@ -99,16 +87,16 @@ impl Tri {
     /// [`Tri::locate`] of a prepared point (its interval enclosure computed once for
     /// the three orientations).
     fn locate_prepared(&self, x: &Prepared) -> Option<Feature> {
-        let c = self.p.map(|p| Prepared::new(Point::Explicit(p)));
+        let c = self.corners().map(|p| Prepared::new(Point::Explicit(p)));
         self.locate_by(std::array::from_fn(|k| {
-            orient2d_prepared(&c[k], &c[(k + 1) % 3], x, self.axis)
+            orient2d_prepared(&c[k], &c[(k + 1) % 3], x, self.axis())
         }))
     }
 
     /// [`Tri::locate`] from the orientations of the point against the edges (edge `k`
     /// from corner `k` to `k + 1`, projected along [`Tri::axis`]).
     fn locate_by(&self, o: [Sign; 3]) -> Option<Feature> {
-        let o = o.map(|s| s.times(self.sign));
+        let o = o.map(|s| s.times(self.sign()));
         if o.contains(&Sign::Negative) {
             return None;
         }
@@ -124,16 +112,6 @@ impl Tri {
             [true, true, true] => None, // impossible for a non-degenerate triangle
         }
     }
-}
-
-fn approx_normal(p: &[[f64; 3]; 3]) -> [f64; 3] {
-    let u: [f64; 3] = std::array::from_fn(|k| p[1][k] - p[0][k]);
-    let v: [f64; 3] = std::array::from_fn(|k| p[2][k] - p[0][k]);
-    [
-        u[1] * v[2] - u[2] * v[1],
-        u[2] * v[0] - u[0] * v[2],
-        u[0] * v[1] - u[1] * v[0],
-    ]
 }
 
 /// What two triangles share.
@@ -179,11 +157,11 @@ fn on_plane(t: &Tri, s: [Sign; 3], o: &Tri) -> Vec<OnPlane> {
         if s[i].times(s[j]) == Sign::Negative {
             out.push(OnPlane {
                 point: Prepared::new(Point::Lpi {
-                    p: t.p[i],
-                    q: t.p[j],
-                    a: o.p[0],
-                    b: o.p[1],
-                    c: o.p[2],
+                    p: t.corners()[i],
+                    q: t.corners()[j],
+                    a: o.corners()[0],
+                    b: o.corners()[1],
+                    c: o.corners()[2],
                 }),
                 own: edge(t.v[i], t.v[j]),
             });
@@ -194,33 +172,20 @@ fn on_plane(t: &Tri, s: [Sign; 3], o: &Tri) -> Vec<OnPlane> {
 
 /// Intersects triangles `a` (mesh A) and `b` (mesh B) exactly.
 pub fn intersect(a: &Tri, b: &Tri) -> TriTri {
-    let sa = orient3d_sides(&b.p, &a.p);
+    let sa = orient3d_sides(b.corners(), a.corners());
     if sa[0] != Sign::Zero && sa[0] == sa[1] && sa[1] == sa[2] {
         return TriTri::None;
     }
     if sa == [Sign::Zero; 3] {
         return coplanar(a, b);
     }
-    let sb = orient3d_sides(&a.p, &b.p);
+    let sb = orient3d_sides(a.corners(), b.corners());
     if sb[0] != Sign::Zero && sb[0] == sb[1] && sb[1] == sb[2] {
         return TriTri::None;
     }
     // Both triangles meet the line L where the planes cross; order points along an axis
     // in which L's direction is (exactly) non-zero.
-    let d = {
-        let (n, m) = (approx_normal(&a.p), approx_normal(&b.p));
-        [
-            n[1] * m[2] - n[2] * m[1],
-            n[2] * m[0] - n[0] * m[2],
-            n[0] * m[1] - n[1] * m[0],
-        ]
-    };
-    let mut axes = [0, 1, 2];
-    axes.sort_by(|&i, &j| d[j].abs().total_cmp(&d[i].abs()));
-    let Some(axis) = axes
-        .into_iter()
-        .find(|&k| normals_cross_sign(&a.p, &b.p, k) != Sign::Zero)
-    else {
+    let Some(axis) = planes_line_axis(a.corners(), b.corners()) else {
         return TriTri::None; // parallel distinct planes cannot get here; stay safe
     };
     let sorted = |mut v: Vec<OnPlane>| {
@@ -275,17 +240,22 @@ fn coplanar(a: &Tri, b: &Tri) -> TriTri {
         // `other`'s edges against `own`'s corners, `own`'s edges against `other`'s corners.
         // When both triangles project along the same axis, the second direction asks the
         // first one's questions with the roles swapped.
-        let proj = other.axis;
+        let proj = other.axis();
         let orients = match previous {
-            Some(o) if a.axis == b.axis => Orients {
+            Some(o) if a.axis() == b.axis() => Orients {
                 other_edges: o.own_edges,
                 own_edges: o.other_edges,
             },
             _ => {
-                let safe = own.safe && other.safe;
+                let safe = own.tri.robust_safe() && other.tri.robust_safe();
                 let side = |e: &Tri, m: usize, x: &Tri, k: usize| {
                     if safe {
-                        orient2d_safe(&e.p[m], &e.p[(m + 1) % 3], &x.p[k], proj)
+                        orient2d_safe(
+                            &e.corners()[m],
+                            &e.corners()[(m + 1) % 3],
+                            &x.corners()[k],
+                            proj,
+                        )
                     } else {
                         orient2d(&e.corner(m), &e.corner((m + 1) % 3), &x.corner(k), proj)
                     }
@@ -353,6 +323,54 @@ enum Cand {
 /// earlier candidate for the first and the later for the last.
 fn clip_edge(own: &Tri, i: usize, other: &Tri, own_is_a: bool, o: &Orients) -> Clip {
     let j = (i + 1) % 3;
+    let crossing = edge_crossings(own, i, other, o);
+    // Along the edge, order by its longest coordinate (non-zero: the corners differ there).
+    let along = Along {
+        axis: longest_axis(&own.corners()[i], &own.corners()[j]),
+        crossing: &crossing,
+    };
+    let mut ends = Ends::default();
+    edge_candidates(own, i, other, own_is_a, o, &along, |c, l| {
+        ends.add(&along, c, l)
+    });
+    ends.clip(&along)
+}
+
+/// Where edge `i` of `own` crosses edge `m` of the coplanar triangle `other` (each strictly
+/// crossing the other's line), for each `m`: prepared once for the comparisons, boxed (a
+/// prepared point is some 200 bytes, and most edges cross nothing).
+fn edge_crossings(own: &Tri, i: usize, other: &Tri, o: &Orients) -> [Option<Box<Prepared>>; 3] {
+    let j = (i + 1) % 3;
+    let crosses = |s: Sign, t: Sign| s.times(t) == Sign::Negative;
+    std::array::from_fn(|m| {
+        let n = (m + 1) % 3;
+        (crosses(o.other_edges[m][i], o.other_edges[m][j])
+            && crosses(o.own_edges[i][m], o.own_edges[i][n]))
+        .then(|| {
+            Box::new(Prepared::new(Point::Ssi {
+                p: own.corners()[i],
+                q: own.corners()[j],
+                r: other.corners()[m],
+                s: other.corners()[n],
+                axis: other.axis() as u8,
+            }))
+        })
+    })
+}
+
+/// Calls `add` with every candidate end of the part of edge `i` of `own` inside `other`,
+/// with its label: `own`'s two corners where they lie in `other`, `other`'s corners
+/// strictly inside the edge, then the edge's crossings with `other`'s edges.
+fn edge_candidates(
+    own: &Tri,
+    i: usize,
+    other: &Tri,
+    own_is_a: bool,
+    o: &Orients,
+    along: &Along,
+    mut add: impl FnMut(Cand, Label),
+) {
+    let j = (i + 1) % 3;
     let own_edge = edge(own.v[i], own.v[j]);
     let mk = |own_f: Feature, other_f: Feature| {
         if own_is_a {
@@ -367,75 +385,28 @@ fn clip_edge(own: &Tri, i: usize, other: &Tri, own_is_a: bool, o: &Orients) -> C
             }
         }
     };
-    // Along the edge, order by its longest coordinate (non-zero: the corners differ there).
-    let axis = longest_axis(&own.p[i], &own.p[j]);
-    let proj = other.axis;
-    // Crossings with the other triangle's edges, prepared once for the comparisons (boxed:
-    // a prepared point is some 200 bytes, and most edges cross nothing).
-    let crosses = |s: Sign, t: Sign| s.times(t) == Sign::Negative;
-    let crossing: [Option<Box<Prepared>>; 3] = std::array::from_fn(|m| {
-        let n = (m + 1) % 3;
-        (crosses(o.other_edges[m][i], o.other_edges[m][j])
-            && crosses(o.own_edges[i][m], o.own_edges[i][n]))
-        .then(|| {
-            Box::new(Prepared::new(Point::Ssi {
-                p: own.p[i],
-                q: own.p[j],
-                r: other.p[m],
-                s: other.p[n],
-                axis: proj as u8,
-            }))
-        })
-    });
-    let prepared = |c: Cand| match c {
-        Cand::Corner(p) => Prepared::new(Point::Explicit(p)),
-        Cand::Crossing(m) => *crossing[m].clone().expect("a candidate crossing exists"),
-    };
-    let cmp = |x: Cand, y: Cand| match (x, y) {
-        // Input coordinates are finite (validated meshes): the order is total.
-        (Cand::Corner(p), Cand::Corner(q)) => {
-            p[axis].partial_cmp(&q[axis]).unwrap_or(Ordering::Equal)
-        }
-        (Cand::Crossing(m), Cand::Crossing(n)) => match (&crossing[m], &crossing[n]) {
-            (Some(a), Some(b)) => cmp_coord_prepared(a, b, axis),
-            _ => unreachable!("candidate crossings exist"),
-        },
-        _ => cmp_coord_prepared(&prepared(x), &prepared(y), axis),
-    };
-    let mut ends: Option<((Cand, Label), (Cand, Label))> = None;
-    let mut count = 0;
-    let mut add = |c: Cand, l: Label| {
-        count += 1;
-        match &mut ends {
-            None => ends = Some(((c, l), (c, l))),
-            Some((first, last)) => {
-                if cmp(c, first.0) == Ordering::Less {
-                    *first = (c, l);
-                }
-                if cmp(c, last.0) != Ordering::Less {
-                    *last = (c, l);
-                }
-            }
-        }
-    };
     for k in [i, j] {
         let at = other.locate_by(std::array::from_fn(|m| o.other_edges[m][k]));
         if let Some(f) = at {
-            add(Cand::Corner(own.p[k]), mk(Feature::Vertex(own.v[k]), f));
+            add(
+                Cand::Corner(own.corners()[k]),
+                mk(Feature::Vertex(own.v[k]), f),
+            );
         }
     }
-    let (pa, qa) = (own.p[i][axis], own.p[j][axis]);
+    let axis = along.axis;
+    let (pa, qa) = (own.corners()[i][axis], own.corners()[j][axis]);
     for m in 0..3 {
         // On the edge's line and strictly between its ends.
-        let w = other.p[m][axis];
+        let w = other.corners()[m][axis];
         if o.own_edges[i][m] == Sign::Zero && ((pa < w && w < qa) || (qa < w && w < pa)) {
             add(
-                Cand::Corner(other.p[m]),
+                Cand::Corner(other.corners()[m]),
                 mk(own_edge, Feature::Vertex(other.v[m])),
             );
         }
     }
-    for (m, x) in crossing.iter().enumerate() {
+    for (m, x) in along.crossing.iter().enumerate() {
         if x.is_some() {
             let n = (m + 1) % 3;
             add(
@@ -444,18 +415,87 @@ fn clip_edge(own: &Tri, i: usize, other: &Tri, own_is_a: bool, o: &Orients) -> C
             );
         }
     }
-    match (count, ends) {
-        (_, None) => Clip::None,
-        (1, Some((only, _))) => Clip::Point(only.1),
-        (_, Some((first, last))) => {
-            let same = match (first.0, last.0) {
-                (Cand::Corner(p), Cand::Corner(q)) => p == q,
-                (x, y) => same_point_prepared(&prepared(x), &prepared(y)),
-            };
-            if same {
-                Clip::Point(first.1)
-            } else {
-                Clip::Segment([first.1, last.1])
+}
+
+/// The order of candidates along one edge: by coordinate `axis`, exactly.
+struct Along<'a> {
+    axis: usize,
+    /// The edge's crossings, for [`Cand::Crossing`].
+    crossing: &'a [Option<Box<Prepared>>; 3],
+}
+
+impl Along<'_> {
+    fn prepared(&self, c: Cand) -> Prepared {
+        match c {
+            Cand::Corner(p) => Prepared::new(Point::Explicit(p)),
+            Cand::Crossing(m) => *self.crossing[m]
+                .clone()
+                .expect("a candidate crossing exists"),
+        }
+    }
+
+    fn cmp(&self, x: Cand, y: Cand) -> Ordering {
+        let axis = self.axis;
+        match (x, y) {
+            // Input coordinates are finite (validated meshes): the order is total.
+            (Cand::Corner(p), Cand::Corner(q)) => {
+                p[axis].partial_cmp(&q[axis]).unwrap_or(Ordering::Equal)
+            }
+            (Cand::Crossing(m), Cand::Crossing(n)) => {
+                match (&self.crossing[m], &self.crossing[n]) {
+                    (Some(a), Some(b)) => cmp_coord_prepared(a, b, axis),
+                    _ => unreachable!("candidate crossings exist"),
+                }
+            }
+            _ => cmp_coord_prepared(&self.prepared(x), &self.prepared(y), axis),
+        }
+    }
+
+    fn same(&self, x: Cand, y: Cand) -> bool {
+        match (x, y) {
+            (Cand::Corner(p), Cand::Corner(q)) => p == q,
+            (x, y) => same_point_prepared(&self.prepared(x), &self.prepared(y)),
+        }
+    }
+}
+
+/// The first and the last candidate seen along an edge, and how many there were.
+#[derive(Default)]
+struct Ends {
+    ends: Option<((Cand, Label), (Cand, Label))>,
+    count: usize,
+}
+
+impl Ends {
+    /// Takes candidate `c`: the new first when strictly before the first, the new last
+    /// when not before the last.
+    fn add(&mut self, along: &Along, c: Cand, l: Label) {
+        self.count += 1;
+        match &mut self.ends {
+            None => self.ends = Some(((c, l), (c, l))),
+            Some((first, last)) => {
+                if along.cmp(c, first.0) == Ordering::Less {
+                    *first = (c, l);
+                }
+                if along.cmp(c, last.0) != Ordering::Less {
+                    *last = (c, l);
+                }
+            }
+        }
+    }
+
+    /// The clipped edge: nothing, a point (one candidate, or first and last the same
+    /// point), or the segment from the first to the last.
+    fn clip(self, along: &Along) -> Clip {
+        match (self.count, self.ends) {
+            (_, None) => Clip::None,
+            (1, Some((only, _))) => Clip::Point(only.1),
+            (_, Some((first, last))) => {
+                if along.same(first.0, last.0) {
+                    Clip::Point(first.1)
+                } else {
+                    Clip::Segment([first.1, last.1])
+                }
             }
         }
     }

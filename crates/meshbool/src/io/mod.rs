@@ -32,24 +32,31 @@ pub use polyline::{write_polylines, PolylineXyz};
 /// deciding between families the content cannot tell apart. STL's binary/ASCII encoding
 /// and PLY's encoding always come from the content. `None` when nothing fits.
 pub fn detect_format(bytes: &[u8], hint: Option<Format>) -> Option<Format> {
-    let family = |f: Format| match f {
-        Format::StlBinary | Format::StlAscii => 0,
-        Format::Obj => 1,
-        Format::PlyAscii | Format::PlyBinaryLe | Format::PlyBinaryBe => 2,
-        Format::Dxf => 3,
-        Format::JsonSoup | Format::JsonKirra => 4,
-    };
     if bytes.starts_with(b"ply") {
         return ply::encoding(bytes).or(Some(Format::PlyAscii));
     }
-    match hint.map(family) {
-        Some(0) => return Some(stl::encoding(bytes)),
-        Some(1) => return Some(Format::Obj),
-        Some(2) => return Some(Format::PlyAscii),
-        Some(3) => return Some(Format::Dxf),
-        Some(4) => return Some(Format::JsonSoup),
-        _ => {}
+    match hint {
+        Some(family) => Some(format_in_family(bytes, family)),
+        None => format_from_content(bytes),
     }
+}
+
+/// The format of `bytes` within the family of `hint` (STL, OBJ, PLY, DXF or JSON): STL's
+/// encoding from the content, the family's first format otherwise.
+fn format_in_family(bytes: &[u8], hint: Format) -> Format {
+    match hint {
+        Format::StlBinary | Format::StlAscii => stl::encoding(bytes),
+        Format::Obj => Format::Obj,
+        Format::PlyAscii | Format::PlyBinaryLe | Format::PlyBinaryBe => Format::PlyAscii,
+        Format::Dxf => Format::Dxf,
+        Format::JsonSoup | Format::JsonKirra => Format::JsonSoup,
+    }
+}
+
+/// The format of `bytes` from the content alone (no PLY header): binary STL by its
+/// size, then by the first text: `solid` (ASCII STL), a JSON bracket, DXF group codes,
+/// OBJ records. `None` when nothing fits.
+fn format_from_content(bytes: &[u8]) -> Option<Format> {
     if stl::is_binary(bytes) {
         return Some(Format::StlBinary);
     }
@@ -160,15 +167,14 @@ impl<'a, W: Write> Out<'a, W> {
         self
     }
 
+    /// The three coordinates of `p` ([`Out::f64`]) with `sep` between them.
+    fn coords(&mut self, p: &[f64; 3], sep: &[u8]) -> &mut Self {
+        self.f64(p[0]).bytes(sep).f64(p[1]).bytes(sep).f64(p[2])
+    }
+
     /// An OBJ vertex line `v x y z`.
     fn obj_vertex(&mut self, p: &[f64; 3]) -> &mut Self {
-        self.bytes(b"v ")
-            .f64(p[0])
-            .bytes(b" ")
-            .f64(p[1])
-            .bytes(b" ")
-            .f64(p[2])
-            .bytes(b"\n")
+        self.bytes(b"v ").coords(p, b" ").bytes(b"\n")
     }
 
     fn int(&mut self, x: u64) -> &mut Self {

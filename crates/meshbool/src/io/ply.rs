@@ -316,12 +316,7 @@ pub(super) fn write(out: &mut impl Write, mesh: &Mesh, format: Format) -> Result
     let u = |x: u32| if be { x.to_be_bytes() } else { x.to_le_bytes() };
     for p in &mesh.positions {
         if format == Format::PlyAscii {
-            o.f64(p[0])
-                .bytes(b" ")
-                .f64(p[1])
-                .bytes(b" ")
-                .f64(p[2])
-                .bytes(b"\n");
+            o.coords(p, b" ").bytes(b"\n");
         } else {
             o.bytes(&f(p[0])).bytes(&f(p[1])).bytes(&f(p[2]));
         }

@@ -6,7 +6,7 @@ use std::io::Write;
 
 use super::{lines, parse_f64, tokens, Format, Out};
 use crate::error::{Error, Location, Result};
-use crate::mesh::Hashed;
+use crate::welder::Hashed;
 use crate::{Mesh, Welder};
 
 const HEADER: usize = 80;

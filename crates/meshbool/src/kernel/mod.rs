@@ -16,12 +16,16 @@
 use std::cmp::Ordering;
 
 mod exact;
+mod filter;
 mod interval;
 #[cfg(test)]
 mod tests;
+mod triangle;
 
 use exact::Dyadic;
+pub use filter::{certainly_separated, certainly_unfolded, FloatPlane};
 use interval::Interval;
+pub use triangle::{planes_line_axis, Triangle};
 
 /// The sign of an exact value.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -501,57 +505,6 @@ pub fn orient3d_sides(t: &[[f64; 3]; 3], ds: &[[f64; 3]; 3]) -> [Sign; 3] {
         return s;
     }
     std::array::from_fn(|k| filtered[k].unwrap_or_else(|| orient3d_robust(a, b, c, &ds[k])))
-}
-
-/// A triangle's plane prepared for many side tests against explicit points: a floating-
-/// point filter that answers only where its rounding error cannot change the sign, and
-/// leaves the rest to [`orient3d_explicit`]. Used by tests that look at millions of
-/// neighbouring pairs (the self-intersection check), where most answers are clear-cut.
-#[derive(Clone, Copy, Debug)]
-pub struct FloatPlane {
-    a: [f64; 3],
-    n: [f64; 3],
-    /// `|b − a|₁ · |c − a|₁`: bounds the size of the normal's rounding error.
-    scale: f64,
-}
-
-impl FloatPlane {
-    /// The plane through `a`, `b`, `c`, normal `(b − a) × (c − a)`.
-    pub fn new(t: &[[f64; 3]; 3]) -> Self {
-        let [a, b, c] = *t;
-        let u: [f64; 3] = std::array::from_fn(|k| b[k] - a[k]);
-        let v: [f64; 3] = std::array::from_fn(|k| c[k] - a[k]);
-        let l1 = |x: &[f64; 3]| x[0].abs() + x[1].abs() + x[2].abs();
-        FloatPlane {
-            a,
-            n: crate::vec3::cross(&u, &v),
-            scale: l1(&u) * l1(&v),
-        }
-    }
-
-    /// The side of `q` (as [`orient3d_explicit`] with the plane's three points) when the
-    /// floating-point value is certain: its magnitude is over 1e-12 of the bound on the
-    /// terms, some 400 times the worst rounding error of the sum; `None` otherwise (and
-    /// where the bound overflows or underflows).
-    pub fn side(&self, q: &[f64; 3]) -> Option<Sign> {
-        let d: [f64; 3] = std::array::from_fn(|k| q[k] - self.a[k]);
-        let s = self.n[0] * d[0] + self.n[1] * d[1] + self.n[2] * d[2];
-        let bound = 1e-12 * self.scale * (d[0].abs() + d[1].abs() + d[2].abs());
-        if !(bound.is_finite() && bound > 1e-250) || s.abs() <= bound {
-            return None;
-        }
-        Some(if s > 0.0 {
-            Sign::Positive
-        } else {
-            Sign::Negative
-        })
-    }
-
-    /// The exact side of `q` relative to the plane through `t` (this plane's triangle).
-    pub fn side_exact(&self, t: &[[f64; 3]; 3], q: &[f64; 3]) -> Sign {
-        self.side(q)
-            .unwrap_or_else(|| orient3d_explicit(&t[0], &t[1], &t[2], q))
-    }
 }
 
 /// Exact orientation of four points of any kind (see the module conventions).

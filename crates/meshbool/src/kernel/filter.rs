@@ -1,0 +1,116 @@
+//! Floating-point filters that only ever answer "certain": for tests asked of millions of
+//! neighbouring pairs (the self-intersection check), where almost every answer is
+//! clear-cut. Each computes a value in plain `f64` and answers only when it exceeds a
+//! margin far above the value's worst rounding error; anything closer, and any margin
+//! that overflows or underflows, is left to the exact predicates.
+
+use super::{orient3d_explicit, Sign};
+use crate::vec3::{cross, dot, norm, sub};
+
+/// A triangle's plane prepared for many side tests against explicit points: a floating-
+/// point filter that answers only where its rounding error cannot change the sign, and
+/// leaves the rest to [`orient3d_explicit`]. Used by tests that look at millions of
+/// neighbouring pairs (the self-intersection check), where most answers are clear-cut.
+#[derive(Clone, Copy, Debug)]
+pub struct FloatPlane {
+    a: [f64; 3],
+    n: [f64; 3],
+    /// `|b − a|₁ · |c − a|₁`: bounds the size of the normal's rounding error.
+    scale: f64,
+}
+
+impl FloatPlane {
+    /// The plane through `a`, `b`, `c`, normal `(b − a) × (c − a)`.
+    pub fn new(t: &[[f64; 3]; 3]) -> Self {
+        let [a, b, c] = *t;
+        let u: [f64; 3] = std::array::from_fn(|k| b[k] - a[k]);
+        let v: [f64; 3] = std::array::from_fn(|k| c[k] - a[k]);
+        let l1 = |x: &[f64; 3]| x[0].abs() + x[1].abs() + x[2].abs();
+        FloatPlane {
+            a,
+            n: cross(&u, &v),
+            scale: l1(&u) * l1(&v),
+        }
+    }
+
+    /// The side of `q` (as [`orient3d_explicit`] with the plane's three points) when the
+    /// floating-point value is certain: its magnitude is over 1e-12 of the bound on the
+    /// terms, some 400 times the worst rounding error of the sum; `None` otherwise (and
+    /// where the bound overflows or underflows).
+    pub fn side(&self, q: &[f64; 3]) -> Option<Sign> {
+        let d: [f64; 3] = std::array::from_fn(|k| q[k] - self.a[k]);
+        let s = self.n[0] * d[0] + self.n[1] * d[1] + self.n[2] * d[2];
+        let bound = 1e-12 * self.scale * (d[0].abs() + d[1].abs() + d[2].abs());
+        if !(bound.is_finite() && bound > 1e-250) || s.abs() <= bound {
+            return None;
+        }
+        Some(if s > 0.0 {
+            Sign::Positive
+        } else {
+            Sign::Negative
+        })
+    }
+
+    /// The exact side of `q` relative to the plane through `t` (this plane's triangle).
+    pub fn side_exact(&self, t: &[[f64; 3]; 3], q: &[f64; 3]) -> Sign {
+        self.side(q)
+            .unwrap_or_else(|| orient3d_explicit(&t[0], &t[1], &t[2], q))
+    }
+}
+
+/// Whether the triangles `a b u` and `a b v`, which share the edge `a b`, certainly lie
+/// in different half-planes bounded by the edge's line, so that they meet in that edge at
+/// most (coplanar or not): the normals `(b − a) × (u − a)` and `(b − a) × (v − a)` point
+/// more than a right angle apart, i.e. seen along the edge, `u` and `v` lie more than a
+/// right angle apart around it. With `e = b − a` and ε = 2⁻⁵³: each computed difference
+/// is within a factor 1 ± ε of the exact one per coordinate, each cross-product component
+/// within about 4ε·|e|·|u − a| (resp. `|v − a|`), and their dot product then within about
+/// 20ε·|e|²·|u − a|·|v − a| ≈ 2.2e-15 of that product; the answer needs the value below
+/// −1e-12 times the product, over 400 times that error. Margins that overflow or
+/// underflow (below 1e-250, where subnormal products lose their relative accuracy)
+/// answer `false`.
+#[inline]
+pub fn certainly_unfolded(a: &[f64; 3], b: &[f64; 3], u: &[f64; 3], v: &[f64; 3]) -> bool {
+    let e = sub(b, a);
+    let (u, v) = (sub(u, a), sub(v, a));
+    let d = dot(&cross(&e, &u), &cross(&e, &v));
+    let margin = 1e-12 * dot(&e, &e) * norm(&u) * norm(&v);
+    margin.is_finite() && margin > 1e-250 && d < -margin
+}
+
+/// Whether an edge-cross-edge axis certainly separates triangles `p` and `q`: the
+/// separating-axis test in floating point, answering only "certainly apart". Any vector
+/// is a valid axis (the one computed from rounded edges is just some direction); what
+/// must be certain is that the exact projections, onto it, of the corners (taken
+/// relative to `p[0]`, which moves neither) leave a gap. Each computed projection is
+/// within 4 ulp of |axis|₁ · (largest relative coordinate) of the exact one; the gap must
+/// exceed 1e-13 times that product, over 50 times the two projections' errors together.
+/// For pairs whose planes do not separate them: mostly neighbours across nearly planar
+/// quads, where rounded coordinates put a corner of each a hair over the other's plane.
+#[inline]
+pub fn certainly_separated(p: &[[f64; 3]; 3], q: &[[f64; 3]; 3]) -> bool {
+    let o = p[0];
+    let (p, q) = (p.map(|x| sub(&x, &o)), q.map(|x| sub(&x, &o)));
+    let scale = p
+        .iter()
+        .chain(&q)
+        .flat_map(|x| x.iter())
+        .fold(0.0f64, |s, x| s.max(x.abs()));
+    let edges = |t: &[[f64; 3]; 3]| [sub(&t[1], &t[0]), sub(&t[2], &t[1]), sub(&t[0], &t[2])];
+    let (ep, eq) = (edges(&p), edges(&q));
+    for a in ep.iter().flat_map(|u| eq.iter().map(move |v| cross(u, v))) {
+        let margin = 1e-13 * (a[0].abs() + a[1].abs() + a[2].abs()) * scale;
+        if !(margin.is_finite() && margin > 1e-250) {
+            continue;
+        }
+        let range = |t: &[[f64; 3]; 3]| {
+            let s = t.map(|x| dot(&a, &x));
+            (s[0].min(s[1]).min(s[2]), s[0].max(s[1]).max(s[2]))
+        };
+        let ((p_lo, p_hi), (q_lo, q_hi)) = (range(&p), range(&q));
+        if p_hi + margin < q_lo || q_hi + margin < p_lo {
+            return true;
+        }
+    }
+    false
+}
