@@ -89,5 +89,5 @@ pub use classify::Class;
 pub use edges::EdgeTopology;
 pub use error::{Error, Location, Result};
 pub use format::Format;
-pub(crate) use mesh::Welder;
 pub use mesh::{weld_exact, Aabb, Mesh, Welded};
+pub(crate) use welder::Welder;

@@ -1,9 +1,8 @@
 //! The one data model: [`Mesh`] (positions + triangles), soup ↔ indexed conversion,
-//! exact welding (on [`Welder`]) and bounds.
+//! exact welding (on the crate's weld table) and bounds.
 
 use crate::error::{Error, Location, Result};
-// Re-exported for the crate root's `pub(crate) use mesh::Welder`.
-pub(crate) use crate::welder::Welder;
+use crate::Welder;
 
 /// A triangle mesh: vertex positions and triangles as triples of vertex indices
 /// (counter-clockwise seen from the side the normal points to).

@@ -15,6 +15,7 @@ use crate::Mesh;
 
 mod curves;
 mod fans;
+#[doc(hidden)]
 pub mod tritri;
 
 pub use curves::{chain, Polyline};
@@ -65,6 +66,7 @@ pub struct Seam {
 }
 
 /// The canonical exact construction of a labelled seam point.
+#[doc(hidden)]
 pub fn label_point(l: &Label, a: &Mesh, b: &Mesh) -> Point {
     let pa = |v: u32| a.positions[v as usize];
     let pb = |v: u32| b.positions[v as usize];
