@@ -323,11 +323,7 @@ fn oriented_terrain_needs_no_force() {
 fn self_intersecting_input_is_refused_with_a_location() {
     // Two overlapping cubes in one file.
     let mut m = meshbool::Mesh::unit_cube();
-    let other = meshbool::Mesh::cuboid([0.5; 3], [1.5; 3]);
-    let n = m.positions.len() as u32;
-    m.positions.extend(&other.positions);
-    m.triangles
-        .extend(other.triangles.iter().map(|t| t.map(|v| v + n)));
+    m.append(&meshbool::Mesh::cuboid([0.5; 3], [1.5; 3]));
     let bad = tmp("selfx.ply");
     meshbool::io::write_path(&bad, &m).unwrap();
     let c = write_cube("selfx_b.ply", [2.0; 3], [3.0; 3]);
@@ -349,8 +345,9 @@ fn self_intersecting_input_is_refused_with_a_location() {
 
 #[test]
 fn close_cap_turns_an_open_box_into_a_unit_cube() {
-    let mut m = meshbool::Mesh::unit_cube();
-    m.triangles.drain(4..6);
+    let (positions, mut triangles) = meshbool::Mesh::unit_cube().into_parts();
+    triangles.drain(4..6);
+    let m = meshbool::Mesh::new(positions, triangles).unwrap();
     let open = tmp("openbox.obj");
     meshbool::io::write_path(&open, &m).unwrap();
     let out = tmp("closedbox.ply");
@@ -423,7 +420,8 @@ fn repair_weld_closes_a_crack() {
             [1.0001, 1.0, 0.0],
         ],
         vec![[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]],
-    );
+    )
+    .unwrap();
     let input = tmp("crack.obj");
     meshbool::io::write_path(&input, &m).unwrap();
     let out = tmp("crack_fixed.obj");
@@ -444,10 +442,11 @@ fn repair_weld_closes_a_crack() {
 
 #[test]
 fn repair_tjunctions_closes_a_cube_crack() {
-    let mut m = meshbool::Mesh::unit_cube();
-    m.positions.push([1.0, 0.5, 0.0]);
-    m.triangles.truncate(10);
-    m.triangles.extend([[1, 8, 5], [8, 3, 7], [8, 7, 5]]);
+    let (mut positions, mut triangles) = meshbool::Mesh::unit_cube().into_parts();
+    positions.push([1.0, 0.5, 0.0]);
+    triangles.truncate(10);
+    triangles.extend([[1, 8, 5], [8, 3, 7], [8, 7, 5]]);
+    let m = meshbool::Mesh::new(positions, triangles).unwrap();
     let input = tmp("tj.ply");
     meshbool::io::write_path(&input, &m).unwrap();
     let out = tmp("tj_fixed.ply");
@@ -469,23 +468,19 @@ fn repair_tjunctions_closes_a_cube_crack() {
 
 /// A box over `[0, 1]² × [z0, z1]` with its top (`top = false`) or bottom face missing.
 fn open_box(z0: f64, z1: f64, drop_top: bool) -> meshbool::Mesh {
-    let mut m = meshbool::Mesh::cuboid([0.0, 0.0, z0], [1.0, 1.0, z1]);
+    let m = meshbool::Mesh::cuboid([0.0, 0.0, z0], [1.0, 1.0, z1]);
     let z = if drop_top { z1 } else { z0 };
-    m.triangles = (0..m.triangles.len())
+    let triangles = (0..m.triangle_count())
         .filter(|&t| !m.corners(t).iter().all(|p| p[2] == z))
-        .map(|t| m.triangles[t])
+        .map(|t| m.triangles()[t])
         .collect();
-    m
+    meshbool::Mesh::new(m.positions().to_vec(), triangles).unwrap()
 }
 
 #[test]
 fn close_stitch_joins_two_open_boxes_into_one_cuboid() {
     let mut m = open_box(0.0, 1.0, true);
-    let top = open_box(2.0, 3.0, false);
-    let off = m.positions.len() as u32;
-    m.positions.extend(&top.positions);
-    m.triangles
-        .extend(top.triangles.iter().map(|t| t.map(|v| v + off)));
+    m.append(&open_box(2.0, 3.0, false));
     let input = tmp("two_boxes.obj");
     meshbool::io::write_path(&input, &m).unwrap();
     let out = tmp("stitched.obj");
@@ -565,8 +560,9 @@ fn repair_pipeline_orients_and_curtains_the_terrain() {
 fn repair_config_file_with_flags_overriding() {
     // A box missing its top, with a duplicated triangle: the config asks for duplicate
     // removal, outward orientation and capping; a flag adds an exact weld.
-    let mut m = open_box(0.0, 1.0, true);
-    m.triangles.push(m.triangles[0]);
+    let (positions, mut triangles) = open_box(0.0, 1.0, true).into_parts();
+    triangles.push(triangles[0]);
+    let m = meshbool::Mesh::new(positions, triangles).unwrap();
     let input = tmp("cfg_in.obj");
     meshbool::io::write_path(&input, &m).unwrap();
     let cfg = tmp("repair.json");
@@ -623,11 +619,7 @@ fn split_merge_small_joins_stray_components() {
     // the box top (a handful).
     let a = write_cube("ms_a.ply", [0.0; 3], [3.0; 3]);
     let mut b = meshbool::shapes::uv_sphere([1.2, 1.5, 3.0], 0.8, 24, 12);
-    let post = meshbool::Mesh::cuboid([2.5, 2.5, 2.5], [2.7, 2.7, 3.3]);
-    let off = b.positions.len() as u32;
-    b.positions.extend(&post.positions);
-    b.triangles
-        .extend(post.triangles.iter().map(|t| t.map(|v| v + off)));
+    b.append(&meshbool::Mesh::cuboid([2.5, 2.5, 2.5], [2.7, 2.7, 3.3]));
     let bp = tmp("ms_b.ply");
     meshbool::io::write_path(&bp, &b).unwrap();
     let group = |m: &serde_json::Value, name: &str| -> serde_json::Value {

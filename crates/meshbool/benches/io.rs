@@ -38,12 +38,13 @@ fn read_2m_binary_stl() -> meshbool::Mesh {
 /// The same file with its triangles in a scrambled order: no locality between a vertex's
 /// uses, the worst case for welding.
 static SHUFFLED: LazyLock<Vec<u8>> = LazyLock::new(|| {
-    let mut m = uv_sphere([0.0; 3], 1.0, 2000, 501);
-    let n = m.triangles.len();
+    let (positions, triangles) = uv_sphere([0.0; 3], 1.0, 2000, 501).into_parts();
+    let n = triangles.len();
     // A fixed permutation: multiplication by an odd constant modulo a power of two, folded.
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by_key(|&i| (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 11);
-    m.triangles = order.iter().map(|&i| m.triangles[i]).collect();
+    let scrambled = order.iter().map(|&i| triangles[i]).collect();
+    let m = meshbool::Mesh::new(positions, scrambled).unwrap();
     let mut out = Vec::new();
     io::write(&mut out, &m, Format::StlBinary).unwrap();
     out

@@ -561,7 +561,7 @@ mod tests {
     fn extents_beyond_f64_range() {
         // The common box is wider than the largest f64: one cell per axis, no panic.
         let tri = |x: f64| {
-            Mesh::new(
+            Mesh::new_unchecked(
                 vec![[x, 0.0, 0.0], [0.0, x, 0.0], [0.0, 0.0, x]],
                 vec![[0, 1, 2]],
             )

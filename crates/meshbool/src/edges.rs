@@ -491,7 +491,7 @@ mod tests {
     #[test]
     fn kinds_of_edges() {
         // Two triangles sharing edge 0-1 in the same direction, a third sharing it too.
-        let m = Mesh::new(
+        let m = Mesh::new_unchecked(
             vec![
                 [0.0; 3],
                 [1.0, 0.0, 0.0],
@@ -624,15 +624,12 @@ mod merge_tests {
 
     /// `m` with `other`'s triangles appended (vertices offset).
     fn with(mut m: Mesh, other: &Mesh) -> Mesh {
-        let off = m.positions.len() as u32;
-        m.positions.extend(&other.positions);
-        m.triangles
-            .extend(other.triangles.iter().map(|t| t.map(|v| v + off)));
+        m.append(other);
         m
     }
 
     fn stray(at: [f64; 3]) -> Mesh {
-        Mesh::new(
+        Mesh::new_unchecked(
             vec![at, [at[0] + 0.1, at[1], at[2]], [at[0], at[1] + 0.1, at[2]]],
             vec![[0, 1, 2]],
         )

@@ -60,7 +60,7 @@ fn sum_over_triangles(mesh: &Mesh, f: impl Fn([f64; 3], [f64; 3], [f64; 3]) -> f
 }
 
 /// Signed volume enclosed by the mesh: positive when a closed mesh's triangles face
-/// outward. Input: a mesh with valid indices. For an open mesh the value depends on the
+/// outward. For an open mesh the value depends on the
 /// reference point (the bounding-box centre here) and is not a meaningful volume.
 pub fn signed_volume(mesh: &Mesh) -> f64 {
     sum_over_triangles(mesh, |a, b, c| dot(&a, &cross(&b, &c))) / 6.0
@@ -162,7 +162,7 @@ pub struct MeshStats {
     pub bbox: Option<Aabb>,
 }
 
-/// Measures a mesh. Input: a mesh with valid indices ([`Mesh::validate`]).
+/// Measures a mesh.
 pub fn mesh_stats(mesh: &Mesh) -> MeshStats {
     let topo = EdgeTopology::new(mesh);
     let counts = topo.kind_counts();
@@ -215,7 +215,7 @@ mod tests {
                 })
             })
             .collect();
-        Mesh::new(positions, triangles)
+        Mesh::new_unchecked(positions, triangles)
     }
 
     #[test]
@@ -275,7 +275,7 @@ mod tests {
 
     #[test]
     fn degenerate_and_duplicate() {
-        let m = Mesh::new(
+        let m = Mesh::new_unchecked(
             vec![
                 [0.0; 3],
                 [1.0, 1.0, 1.0],

@@ -7,15 +7,21 @@ use crate::Welder;
 /// A triangle mesh: vertex positions and triangles as triples of vertex indices
 /// (counter-clockwise seen from the side the normal points to).
 ///
+/// Every `Mesh` has valid indices: each names a vertex, and there are at most `u32::MAX`
+/// vertices. [`Mesh::new`] checks this, and nothing else can break it, so no function
+/// taking a `Mesh` can fail on an index. Nothing else is assumed: a mesh may be open,
+/// non-manifold, inconsistently oriented, contain degenerate or repeated triangles, or
+/// even non-finite coordinates ([`Mesh::validate`] checks those; operations that need
+/// finite coordinates check them and return an error).
+/// [`crate::measure::mesh_stats`] tells what a mesh is like.
+///
 /// A triangle soup is a `Mesh` whose triangles share no vertices ([`Mesh::from_soup_unwelded`]).
-/// Nothing about the mesh is assumed: it may be open, non-manifold, inconsistently oriented
-/// or contain degenerate triangles; [`crate::measure::mesh_stats`] tells which.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Mesh {
     /// Vertex positions `[x, y, z]`.
-    pub positions: Vec<[f64; 3]>,
+    pub(crate) positions: Vec<[f64; 3]>,
     /// Triangles as indices into `positions`.
-    pub triangles: Vec<[u32; 3]>,
+    pub(crate) triangles: Vec<[u32; 3]>,
 }
 
 /// An axis-aligned bounding box.
@@ -49,12 +55,55 @@ pub struct Welded {
 }
 
 impl Mesh {
-    /// A mesh from positions and triangles, as given (no checks; see [`Mesh::validate`]).
-    pub fn new(positions: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>) -> Self {
-        Mesh {
+    /// A mesh from positions and triangles. Errors ([`Error::InvalidMesh`], naming the
+    /// first offending triangle) when an index is out of range or there are more than
+    /// `u32::MAX` vertices. Coordinates are taken as they are.
+    pub fn new(positions: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>) -> Result<Self> {
+        let mesh = Mesh {
             positions,
             triangles,
-        }
+        };
+        mesh.check_indices()?;
+        Ok(mesh)
+    }
+
+    /// A mesh from parts the crate built and knows to be valid.
+    pub(crate) fn new_unchecked(positions: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>) -> Self {
+        let mesh = Mesh {
+            positions,
+            triangles,
+        };
+        debug_assert!(mesh.check_indices().is_ok());
+        mesh
+    }
+
+    /// The vertex positions `[x, y, z]`.
+    pub fn positions(&self) -> &[[f64; 3]] {
+        &self.positions
+    }
+
+    /// The vertex positions, to move them (the mesh's connectivity stays as it is).
+    pub fn positions_mut(&mut self) -> &mut [[f64; 3]] {
+        &mut self.positions
+    }
+
+    /// The triangles, as indices into [`Mesh::positions`].
+    pub fn triangles(&self) -> &[[u32; 3]] {
+        &self.triangles
+    }
+
+    /// Adds `other`'s vertices and triangles to this mesh (its vertices after this mesh's,
+    /// not welded to them).
+    pub fn append(&mut self, other: &Mesh) {
+        let offset = self.positions.len() as u32;
+        self.positions.extend_from_slice(&other.positions);
+        self.triangles
+            .extend(other.triangles.iter().map(|t| t.map(|v| v + offset)));
+    }
+
+    /// The positions and triangles, giving up the mesh.
+    pub fn into_parts(self) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+        (self.positions, self.triangles)
     }
 
     /// The axis-aligned unit cube `[0,1]^3`, 8 vertices, 12 outward-facing triangles.
@@ -108,8 +157,8 @@ impl Mesh {
         self.triangles.is_empty()
     }
 
-    /// The three corner positions of triangle `t`. Panics if `t` or its indices are out of
-    /// range; call [`Mesh::validate`] first on untrusted data.
+    /// The three corner positions of triangle `t`. Panics if `t` is out of range, as
+    /// indexing does.
     #[inline]
     pub fn corners(&self, t: usize) -> [[f64; 3]; 3] {
         let [a, b, c] = self.triangles[t];
@@ -145,24 +194,14 @@ impl Mesh {
     }
 
     /// The triangle soup: three corner positions per triangle.
-    /// Panics on out-of-range indices; call [`Mesh::validate`] first on untrusted data.
     pub fn to_soup(&self) -> Vec<[[f64; 3]; 3]> {
         (0..self.triangles.len()).map(|t| self.corners(t)).collect()
     }
 
-    /// Checks the data model: every coordinate finite, every index in range, at most
-    /// `u32::MAX` vertices. The error names the first offending vertex or triangle.
+    /// Checks that every coordinate is finite (indices are always in range). The error
+    /// names the first offending vertex.
     pub fn validate(&self) -> Result<()> {
-        if self.positions.len() > u32::MAX as usize {
-            return Err(Error::invalid(
-                Location::Whole,
-                format!(
-                    "{} vertices exceed the limit of {}",
-                    self.positions.len(),
-                    u32::MAX
-                ),
-            ));
-        }
+        self.check_indices()?;
         if let Some(v) = self
             .positions
             .iter()
@@ -171,6 +210,21 @@ impl Mesh {
             return Err(Error::invalid(
                 Location::Vertex(v),
                 format!("non-finite coordinate {:?}", self.positions[v]),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Every index in range, at most `u32::MAX` vertices.
+    fn check_indices(&self) -> Result<()> {
+        if self.positions.len() > u32::MAX as usize {
+            return Err(Error::invalid(
+                Location::Whole,
+                format!(
+                    "{} vertices exceed the limit of {}",
+                    self.positions.len(),
+                    u32::MAX
+                ),
             ));
         }
         let n = self.positions.len() as u64;
@@ -215,7 +269,7 @@ impl Mesh {
     }
 
     /// The same mesh without the vertices no triangle uses, the rest renumbered in order of
-    /// first use; also returns how many were dropped. Triangle indices must be valid.
+    /// first use; also returns how many were dropped.
     pub fn without_unreferenced(self) -> (Mesh, usize) {
         let mut id = vec![u32::MAX; self.positions.len()];
         let mut positions = Vec::new();
@@ -233,7 +287,7 @@ impl Mesh {
             })
             .collect();
         let dropped = self.positions.len() - positions.len();
-        (Mesh::new(positions, triangles), dropped)
+        (Mesh::new_unchecked(positions, triangles), dropped)
     }
 }
 
@@ -280,7 +334,7 @@ mod tests {
 
     #[test]
     fn weld_merges_negative_zero_but_not_neighbours() {
-        let m = Mesh::new(
+        let m = Mesh::new_unchecked(
             vec![
                 [0.0, 0.0, 1.0],
                 [-0.0, 0.0, 1.0],

@@ -41,7 +41,7 @@ pub fn uv_sphere(center: [f64; 3], radius: f64, segments: u32, rings: u32) -> Me
             triangles.push([a, d, c]);
         }
     }
-    Mesh::new(positions, triangles)
+    Mesh::new_unchecked(positions, triangles)
 }
 
 /// A torus around the z axis: `major` radius of the tube's centre line, `minor` tube radius,
@@ -70,7 +70,7 @@ pub fn torus(center: [f64; 3], major: f64, minor: f64, segments: u32, sides: u32
             triangles.push([a, d, c]);
         }
     }
-    Mesh::new(positions, triangles)
+    Mesh::new_unchecked(positions, triangles)
 }
 
 /// A height field over the rectangle `min..max` (x, y) sampled on an `nx` × `ny` grid of
@@ -100,7 +100,7 @@ pub fn heightfield(
             triangles.push([v(i, j), v(i + 1, j + 1), v(i, j + 1)]);
         }
     }
-    Mesh::new(positions, triangles)
+    Mesh::new_unchecked(positions, triangles)
 }
 
 /// `mesh` rotated by `angle` radians about `axis` (through the origin; any non-zero
@@ -133,7 +133,7 @@ pub fn rigid_motion(mesh: &Mesh, axis: [f64; 3], angle: f64, shift: [f64; 3]) ->
             std::array::from_fn(|i| r[i][0] * p[0] + r[i][1] * p[1] + r[i][2] * p[2] + shift[i])
         })
         .collect();
-    Mesh::new(positions, mesh.triangles.clone())
+    Mesh::new_unchecked(positions, mesh.triangles.clone())
 }
 
 #[cfg(test)]

@@ -90,23 +90,19 @@ fn json(report: &impl serde::Serialize) -> Value {
 fn slab_and_posts() -> (Mesh, Mesh) {
     let a = Mesh::cuboid([0.0; 3], [4.0, 2.0, 1.0]);
     let mut b = Mesh::cuboid([0.5, 0.5, 0.5], [1.5, 1.5, 2.0]);
-    let c = Mesh::cuboid([2.5, 0.5, 0.5], [3.5, 1.5, 2.0]);
-    let n = b.positions.len() as u32;
-    b.positions.extend(&c.positions);
-    b.triangles
-        .extend(c.triangles.iter().map(|t| t.map(|v| v + n)));
+    b.append(&Mesh::cuboid([2.5, 0.5, 0.5], [3.5, 1.5, 2.0]));
     (a, b)
 }
 
 /// A terrain with a hole in the middle, a fold, a duplicate, a T-junction crack and a
 /// needle: something for every repair step.
 fn rough_terrain() -> Mesh {
-    let mut m = heightfield([0.0, 0.0], [10.0, 10.0], 10, 10, |x, y| 0.1 * x * y);
-    m.triangles.swap_remove(100);
-    let dup = m.triangles[3];
-    m.triangles.push(dup);
-    m.triangles[50].swap(1, 2);
-    m
+    let m = heightfield([0.0, 0.0], [10.0, 10.0], 10, 10, |x, y| 0.1 * x * y);
+    let (positions, mut triangles) = m.into_parts();
+    triangles.swap_remove(100);
+    triangles.push(triangles[3]);
+    triangles[50].swap(1, 2);
+    Mesh::new(positions, triangles).unwrap()
 }
 
 /// Each report's runs, as JSON.
@@ -140,8 +136,9 @@ fn samples() -> BTreeMap<&'static str, Vec<Value>> {
         .push(json(&ops::orient(&cube, Facing::Outward).unwrap().report()));
 
     let terrain = rough_terrain();
-    let mut open_box = Mesh::unit_cube();
-    open_box.triangles.truncate(10);
+    let (positions, mut triangles) = Mesh::unit_cube().into_parts();
+    triangles.truncate(10);
+    let open_box = Mesh::new(positions, triangles).unwrap();
     for (mesh, mode) in [
         (&open_box, CloseMode::Cap),
         (&terrain, CloseMode::StitchCurtain),
@@ -199,11 +196,7 @@ fn docs_list_every_key_of_every_report_and_no_other() {
 fn operand_report_keys_are_documented_when_a_check_finds_something() {
     // Two overlapping cubes in one mesh: self-intersections found and taken as given.
     let mut m = Mesh::unit_cube();
-    let other = Mesh::cuboid([0.5; 3], [1.5; 3]);
-    let n = m.positions.len() as u32;
-    m.positions.extend(&other.positions);
-    m.triangles
-        .extend(other.triangles.iter().map(|t| t.map(|v| v + n)));
+    m.append(&Mesh::cuboid([0.5; 3], [1.5; 3]));
     let opts = BooleanOptions {
         checks: Checks {
             force: true,

@@ -31,15 +31,21 @@ fn coordinate() -> impl Strategy<Value = f64> {
     ]
 }
 
-/// A mesh of up to 9 vertices and 14 triangles (every index valid).
-fn mesh() -> impl Strategy<Value = Mesh> {
+/// Positions and triangles: up to 9 vertices and 14 triangles, indices now and then one
+/// past the last vertex.
+fn parts() -> impl Strategy<Value = (Vec<[f64; 3]>, Vec<[u32; 3]>)> {
     (1usize..9).prop_flat_map(|n| {
+        let index = prop_oneof![12 => 0..n as u32, 1 => Just(n as u32)];
         (
             prop::collection::vec([coordinate(), coordinate(), coordinate()], n),
-            prop::collection::vec([0..n as u32, 0..n as u32, 0..n as u32], 0..14),
+            prop::collection::vec([index.clone(), index.clone(), index], 0..14),
         )
-            .prop_map(|(positions, triangles)| Mesh::new(positions, triangles))
     })
+}
+
+/// A mesh: the parts whose indices are in range ([`Mesh::new`] refuses the others).
+fn mesh() -> impl Strategy<Value = Mesh> {
+    parts().prop_filter_map("an index out of range", |(p, t)| Mesh::new(p, t).ok())
 }
 
 /// Every function of the public surface that takes a mesh, on `m` (and `other` where it
@@ -140,6 +146,17 @@ fn exercise(m: &Mesh, other: &Mesh) {
 
 proptest! {
     #![proptest_config(ProptestConfig { cases: 400, ..ProptestConfig::default() })]
+
+    #[test]
+    fn meshes_are_made_only_with_indices_in_range((positions, triangles) in parts()) {
+        let n = positions.len() as u32;
+        let valid = triangles.iter().flatten().all(|&i| i < n);
+        let made = Mesh::new(positions, triangles);
+        prop_assert_eq!(made.is_ok(), valid);
+        if let Ok(m) = made {
+            exercise(&m, &m);
+        }
+    }
 
     #[test]
     fn no_public_function_panics_on_any_mesh(a in mesh(), b in mesh()) {

@@ -70,7 +70,7 @@ fn kirra_cylinder_is_closed_and_cup_is_open() {
 fn volume_keeps_precision_at_utm_offsets() {
     let m = io::read_path(data("kirra_cylinder.obj")).unwrap();
     let mut far = m.clone();
-    for p in &mut far.positions {
+    for p in far.positions_mut() {
         *p = [p[0] + 478_600.0, p[1] + 6_772_300.0, p[2] + 350.0];
     }
     let (a, b) = (mesh_stats(&m).volume, mesh_stats(&far).volume);

@@ -15,13 +15,13 @@ fuzz_target!(|data: &[u8]| {
         for g in [Format::Obj, Format::PlyBinaryLe] {
             let mut out = Vec::new();
             io::write(&mut out, &mesh, g).expect("a mesh that was read must be writable");
-            if mesh.positions.is_empty() || mesh.triangles.is_empty() {
+            if mesh.positions().is_empty() || mesh.triangles().is_empty() {
                 continue;
             }
             let back = io::read_bytes(&out, g).expect("written output must read back");
-            assert_eq!(back.triangles, mesh.triangles);
+            assert_eq!(back.triangles(), mesh.triangles());
             let bits = |m: &meshbool::Mesh| -> Vec<[u64; 3]> {
-                m.positions.iter().map(|p| p.map(f64::to_bits)).collect()
+                m.positions().iter().map(|p| p.map(f64::to_bits)).collect()
             };
             assert_eq!(bits(&back), bits(&mesh));
         }

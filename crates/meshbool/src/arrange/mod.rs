@@ -84,7 +84,7 @@ pub fn arrange(mesh: &Mesh, seam: &Seam, side: Side) -> Arranged {
         .collect();
     let out = reassemble(mesh, results);
     Arranged {
-        mesh: Mesh::new(points.positions, out.triangles),
+        mesh: Mesh::new_unchecked(points.positions, out.triangles),
         input_vertices: points.input_vertices,
         added_points: points.added,
         parent: out.parent,

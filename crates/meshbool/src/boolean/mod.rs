@@ -445,7 +445,7 @@ pub fn merge(
     triangles
         .par_iter_mut()
         .for_each(|t| *t = t.map(|v| new_id[v as usize]));
-    (Mesh::new(positions, triangles), provenance)
+    (Mesh::new_unchecked(positions, triangles), provenance)
 }
 
 /// `v` cut into consecutive slices of the given lengths (which must add up to at most its
@@ -625,17 +625,12 @@ impl Split {
 /// "pick" of split-and-pick (pieces written by a split share their seam vertices bit for bit).
 pub fn pick(pieces: &[(&Mesh, bool)]) -> Mesh {
     let mut all = Mesh::default();
-    for (m, flip) in pieces {
-        let off = all.positions.len() as u32;
-        all.positions.extend_from_slice(&m.positions);
-        all.triangles.extend(m.triangles.iter().map(|t| {
-            let t = t.map(|i| i + off);
-            if *flip {
-                [t[0], t[2], t[1]]
-            } else {
-                t
-            }
-        }));
+    for &(m, flip) in pieces {
+        if flip {
+            all.append(&m.flipped());
+        } else {
+            all.append(m);
+        }
     }
     crate::weld_exact(&all).mesh.without_unreferenced().0
 }

@@ -242,7 +242,7 @@ fn check_open_split(terrain: &Mesh, tool: &Mesh) -> Split {
             .filter(|&t| s.class_a.class[t] == c)
             .map(|t| s.a.mesh.triangles[t])
             .collect();
-        crate::measure::area(&Mesh::new(s.a.mesh.positions.clone(), tris))
+        crate::measure::area(&Mesh::new_unchecked(s.a.mesh.positions.clone(), tris))
     };
     let (ai, ao) = (area_of(Class::Inside), area_of(Class::Outside));
     let total = crate::measure::area(terrain);
@@ -271,7 +271,7 @@ fn terrain_split_by_cylinder_and_cup() {
             .filter(|(p, _)| p.source == Source::A)
             .map(|(_, t)| *t)
             .collect();
-        let holed = Mesh::new(r.mesh.positions.clone(), holed);
+        let holed = Mesh::new_unchecked(r.mesh.positions.clone(), holed);
         let seam_len = crate::intersect::chain(&crate::intersect::intersect(&terrain, &cyl), true)
             [0]
         .points
@@ -374,7 +374,7 @@ fn seam_stopping_inside_a_patch_is_classified_by_winding_number() {
     // of its plane, so every triangle of A is behind B (inside) exactly when y < 0.3 —
     // also far beyond the ends of the seam.
     let a = crate::shapes::heightfield([-5.0, -5.0], [5.0, 5.0], 20, 20, |_, _| 0.0);
-    let b = Mesh::new(
+    let b = Mesh::new_unchecked(
         vec![
             [-1.0, 0.3, -1.0],
             [1.0, 0.3, -1.0],

@@ -254,7 +254,7 @@ mod tests {
         let n = rim.len() as u32;
         let wedges = if closed { n } else { n - 1 };
         let triangles = (0..wedges).map(|k| [0, 1 + k, 1 + (k + 1) % n]).collect();
-        Mesh::new(positions, triangles)
+        Mesh::new_unchecked(positions, triangles)
     }
 
     fn circle(angles_deg: &[f64]) -> Vec<[f64; 2]> {

@@ -311,10 +311,10 @@ fn tritri_is_symmetric_and_its_points_lie_in_both_triangles() {
         coplanar += matches!(ab, TriTri::Coplanar { .. }) as usize;
         // Every point lies in both closed triangles, on exactly the features its label
         // names. Single-triangle meshes: A has vertices 0..3, B vertices 10..13 (face 0 each).
-        let mesh_a = Mesh::new(pa.to_vec(), vec![[0, 1, 2]]);
+        let mesh_a = Mesh::new_unchecked(pa.to_vec(), vec![[0, 1, 2]]);
         let mut pos_b = vec![[0.0; 3]; 10];
         pos_b.extend(pb);
-        let mesh_b = Mesh::new(pos_b, vec![[10, 11, 12]]);
+        let mesh_b = Mesh::new_unchecked(pos_b, vec![[10, 11, 12]]);
         for lab in sab.iter().flatten().chain(&pab) {
             let x = label_point(lab, &mesh_a, &mesh_b);
             assert_eq!(a.locate(&x), Some(lab.a), "{lab:?} {pa:?} {pb:?}");
@@ -338,11 +338,8 @@ fn self_intersections_found_exactly() {
     // Two spheres in one mesh, overlapping: every crossing pair is reported.
     let a = uv_sphere([0.0; 3], 1.0, 32, 16);
     let b = uv_sphere([0.5, 0.1, 0.0], 1.0, 24, 12);
-    let n = a.positions.len() as u32;
     let mut both = a.clone();
-    both.positions.extend(&b.positions);
-    both.triangles
-        .extend(b.triangles.iter().map(|t| t.map(|v| v + n)));
+    both.append(&b);
     let pairs = self_intersections(&both);
     // Expected: every pair of a and b that meets at all (segments and single points).
     let na = a.triangles.len() as u32;
@@ -364,7 +361,7 @@ fn self_intersections_found_exactly() {
         crossing
     );
     // A triangle folded flat onto its neighbour (sharing an edge, overlapping).
-    let fold = Mesh::new(
+    let fold = Mesh::new_unchecked(
         vec![
             [0.0, 0.0, 0.0],
             [2.0, 0.0, 0.0],
@@ -375,7 +372,7 @@ fn self_intersections_found_exactly() {
     );
     assert_eq!(self_intersections(&fold), vec![(0, 1)]);
     // The same, but the second triangle on the other side of the edge: fine.
-    let flat = Mesh::new(
+    let flat = Mesh::new_unchecked(
         vec![
             [0.0, 0.0, 0.0],
             [2.0, 0.0, 0.0],
@@ -406,7 +403,7 @@ fn double_fan(order: [usize; 5]) -> Mesh {
         triangles.push([5, p, q]);
         triangles.push([6, q, p]);
     }
-    Mesh::new(positions, triangles)
+    Mesh::new_unchecked(positions, triangles)
 }
 
 #[test]
@@ -531,7 +528,7 @@ fn separating_axis_filter_only_answers_apart_when_apart() {
             2 => t.map(|p| p.map(|x| x * 2f64.powi(-30))),
             _ => {
                 let m = rigid_motion(
-                    &Mesh::new(t.to_vec(), vec![]),
+                    &Mesh::new_unchecked(t.to_vec(), vec![]),
                     [1.0, 2.0, 3.0],
                     0.3,
                     [1e3; 3],

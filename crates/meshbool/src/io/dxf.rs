@@ -217,7 +217,7 @@ pub(super) fn read(bytes: &[u8]) -> Result<Mesh> {
             "missing EOF marker: truncated?",
         ));
     }
-    Ok(Mesh::new(welder.into_positions(), triangles))
+    Ok(Mesh::new_unchecked(welder.into_positions(), triangles))
 }
 
 pub(super) fn write(out: &mut impl Write, mesh: &Mesh) -> Result<()> {

@@ -55,7 +55,7 @@ pub(super) fn read(bytes: &[u8]) -> Result<Mesh> {
         }
         super::push_fan(&poly, &mut triangles);
     }
-    Ok(Mesh::new(welder.into_positions(), triangles))
+    Ok(Mesh::new_unchecked(welder.into_positions(), triangles))
 }
 
 pub(super) fn write(out: &mut impl Write, mesh: &Mesh, format: Format) -> Result<()> {

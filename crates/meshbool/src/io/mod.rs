@@ -102,7 +102,8 @@ pub fn read_path(path: impl AsRef<Path>) -> Result<Mesh> {
     read_bytes(&bytes, format)
 }
 
-/// Writes `mesh` to `out` in `format`. The mesh must be valid ([`Mesh::validate`]).
+/// Writes `mesh` to `out` in `format`. Non-finite coordinates are an error
+/// ([`Mesh::validate`]).
 pub fn write(out: &mut impl Write, mesh: &Mesh, format: Format) -> Result<()> {
     mesh.validate()?;
     match format {

@@ -93,7 +93,7 @@ pub(super) fn read(bytes: &[u8]) -> Result<Mesh> {
             format!("face references a vertex beyond the {n} defined"),
         ));
     }
-    Ok(Mesh::new(positions, triangles))
+    Ok(Mesh::new_unchecked(positions, triangles))
 }
 
 pub(super) fn write(out: &mut impl Write, mesh: &Mesh) -> Result<()> {

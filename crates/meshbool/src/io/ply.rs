@@ -289,7 +289,7 @@ pub(super) fn read(bytes: &[u8]) -> Result<Mesh> {
             }
         }
     }
-    Ok(Mesh::new(positions, triangles))
+    Ok(Mesh::new_unchecked(positions, triangles))
 }
 
 pub(super) fn write(out: &mut impl Write, mesh: &Mesh, format: Format) -> Result<()> {

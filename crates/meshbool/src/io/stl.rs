@@ -104,7 +104,7 @@ fn read_binary(bytes: &[u8]) -> Result<Mesh> {
         std::mem::swap(&mut cur, &mut next);
     }
     let triangles = ids.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
-    Ok(Mesh::new(welder.into_positions(), triangles))
+    Ok(Mesh::new_unchecked(welder.into_positions(), triangles))
 }
 
 fn read_ascii(bytes: &[u8]) -> Result<Mesh> {
@@ -167,7 +167,7 @@ fn read_ascii(bytes: &[u8]) -> Result<Mesh> {
         }
     }
     match state {
-        State::Top => Ok(Mesh::new(welder.into_positions(), triangles)),
+        State::Top => Ok(Mesh::new_unchecked(welder.into_positions(), triangles)),
         State::Solid => Err(err(
             lines(bytes).count(),
             "missing endsolid: file truncated?".into(),

@@ -18,7 +18,7 @@
 //! | `repair` | [`repair`] | [`RepairOutput`] | [`RepairCommandReport`] |
 //! | `convert` | [`read`], [`write()`] | | |
 //!
-//! Inputs are plain [`Mesh`]es, checked at the door: invalid indices or non-finite
+//! Inputs are plain [`Mesh`]es, checked at the door: non-finite
 //! coordinates are an [`Error`], never a panic. Functions of two meshes take anything that
 //! is an [`Input`]: a `&Mesh`, checked and exactly welded on the way in as their options'
 //! [`Checks`] say, or an [`Operand`] made earlier (checked once, usable many times; the
@@ -163,7 +163,7 @@ pub struct Measures {
 }
 
 impl Measures {
-    /// Measures `mesh` (valid indices).
+    /// Measures `mesh`.
     pub fn of(mesh: &Mesh) -> Measures {
         let counts = EdgeCounts::of(mesh);
         Measures {

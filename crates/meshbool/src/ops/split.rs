@@ -153,7 +153,7 @@ fn group_pieces(
             .iter()
             .map(|part| {
                 let tris = part.iter().map(|&t| mesh.triangles[t as usize]).collect();
-                crate::boolean::pick(&[(&Mesh::new(mesh.positions.clone(), tris), false)])
+                crate::boolean::pick(&[(&Mesh::new_unchecked(mesh.positions.clone(), tris), false)])
             })
             .collect()
     } else {
@@ -375,7 +375,7 @@ impl PickOutput {
 
 /// Merges meshes into one, each flipped where its flag says, welding exactly equal
 /// positions: the "pick" of split-and-pick (pieces of one split share their seam vertices
-/// bit for bit). Meshes must be valid ([`Mesh::validate`]).
+/// bit for bit).
 pub fn pick(pieces: &[(&Mesh, bool)]) -> PickOutput {
     PickOutput {
         mesh: crate::boolean::pick(pieces),

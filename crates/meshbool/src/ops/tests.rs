@@ -13,10 +13,7 @@ fn cubes() -> (Mesh, Mesh) {
 /// Two cubes overlapping in one mesh.
 fn self_intersecting() -> Mesh {
     let (mut m, other) = cubes();
-    let n = m.positions.len() as u32;
-    m.positions.extend(&other.positions);
-    m.triangles
-        .extend(other.triangles.iter().map(|t| t.map(|v| v + n)));
+    m.append(&other);
     m
 }
 
@@ -247,11 +244,7 @@ fn pick_takes_each_piece_once() {
     // A slab crossed by two separate posts: B's part inside A has two components.
     let a = Mesh::cuboid([0.0; 3], [4.0, 2.0, 1.0]);
     let mut b = Mesh::cuboid([0.5, 0.5, 0.5], [1.5, 1.5, 2.0]);
-    let c = Mesh::cuboid([2.5, 0.5, 0.5], [3.5, 1.5, 2.0]);
-    let n = b.positions.len() as u32;
-    b.positions.extend(&c.positions);
-    b.triangles
-        .extend(c.triangles.iter().map(|t| t.map(|v| v + n)));
+    b.append(&Mesh::cuboid([2.5, 0.5, 0.5], [3.5, 1.5, 2.0]));
     let s = split(&a, &b, &SplitOptions::default()).unwrap();
     let b_in = s.groups.iter().find(|g| g.group == Group::BInA).unwrap();
     assert_eq!(b_in.components.len(), 2);

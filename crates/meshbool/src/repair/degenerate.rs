@@ -351,7 +351,7 @@ pub fn remove_degenerates(mesh: &Mesh, opts: &DegenerateOptions) -> (Mesh, Degen
     }
     report.left = tris.iter().filter(|t| bad(t)).count();
     report.triangles_removed = mesh.triangles.len() - tris.len();
-    (Mesh::new(positions.clone(), tris), report)
+    (Mesh::new_unchecked(positions.clone(), tris), report)
 }
 
 #[cfg(test)]
@@ -481,7 +481,7 @@ mod tests {
         // middle), and a zero-area cap (4, 0, 1) closing that edge from below: nothing lies
         // across the cap's longest edge 0–1, so it is dropped; the boundary goes back from
         // 4 edges (0 -> 1 along the cap) to 5 (0 -> 4 -> 1).
-        let m = Mesh::new(
+        let m = Mesh::new_unchecked(
             vec![
                 [0.0, 0.0, 0.0],
                 [2.0, 0.0, 0.0],

@@ -62,7 +62,10 @@ pub fn remove_duplicates(mesh: &Mesh) -> (Mesh, DuplicateReport) {
         .filter(|(_, &k)| k)
         .map(|(t, _)| *t)
         .collect();
-    (Mesh::new(mesh.positions.clone(), triangles), report)
+    (
+        Mesh::new_unchecked(mesh.positions.clone(), triangles),
+        report,
+    )
 }
 
 #[cfg(test)]
@@ -89,7 +92,7 @@ mod tests {
         let s = mesh_stats(&f);
         assert_eq!((s.non_manifold_edges, s.volume), (0, 1.0));
         // Three copies, two one way and one the other: one survives, the surplus way.
-        let tri = Mesh::new(
+        let tri = Mesh::new_unchecked(
             vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
             vec![[0, 1, 2], [2, 1, 0], [1, 2, 0]],
         );

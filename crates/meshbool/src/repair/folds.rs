@@ -124,7 +124,7 @@ pub fn remove_folds(mesh: &Mesh) -> (Mesh, FoldReport) {
         }
     }
     report.left = down(&tris).len();
-    (Mesh::new(mesh.positions.clone(), tris), report)
+    (Mesh::new_unchecked(mesh.positions.clone(), tris), report)
 }
 
 /// Chains the directed edges (sorted by start) into one closed loop that uses each of

@@ -64,7 +64,7 @@ pub struct OrientReport {
     pub non_manifold_edges: usize,
 }
 
-/// Makes the orientation of `mesh` (valid indices) consistent across every manifold edge
+/// Makes the orientation of `mesh` consistent across every manifold edge
 /// where the surface allows it, facing each component as `facing` asks. Vertices and the
 /// order of triangles are unchanged; only corner order changes.
 pub fn orient(mesh: &Mesh, facing: Facing) -> (Mesh, OrientReport) {
@@ -137,7 +137,7 @@ pub fn orient(mesh: &Mesh, facing: Facing) -> (Mesh, OrientReport) {
                     .iter()
                     .map(|&t| oriented(t as usize, flip[t as usize]))
                     .collect();
-                let sub = Mesh::new(mesh.positions.clone(), sub);
+                let sub = Mesh::new_unchecked(mesh.positions.clone(), sub);
                 let measure = if facing == Facing::ZUp {
                     signed_projected_xy(&sub)
                 } else if EdgeTopology::new(&sub).is_closed() {
@@ -160,7 +160,10 @@ pub fn orient(mesh: &Mesh, facing: Facing) -> (Mesh, OrientReport) {
     }
     report.flipped = flip.iter().filter(|&&f| f).count();
     let triangles = (0..n).map(|t| oriented(t, flip[t])).collect();
-    (Mesh::new(mesh.positions.clone(), triangles), report)
+    (
+        Mesh::new_unchecked(mesh.positions.clone(), triangles),
+        report,
+    )
 }
 
 /// Signed area of the projection on the XY plane (positive where triangles face +z).
@@ -282,7 +285,7 @@ mod tests {
             triangles.push([a, c, b]);
             triangles.push([b, c, d]);
         }
-        let m = Mesh::new(positions, triangles);
+        let m = Mesh::new_unchecked(positions, triangles);
         let (_, r) = orient(&m, Facing::Majority);
         assert_eq!((r.components, r.conflicting_edges), (1, 1));
         assert_eq!(

@@ -232,7 +232,7 @@ pub struct RepairReport {
     pub after: MeshStats,
 }
 
-/// Runs the repair steps `config` asks for on `mesh` (valid indices), in the order of
+/// Runs the repair steps `config` asks for on `mesh`, in the order of
 /// [`RepairConfig`]. Errors only on invalid parameters (negative or non-finite
 /// distances), before any work.
 pub fn repair(mesh: &Mesh, config: &RepairConfig) -> Result<(Mesh, RepairReport), Error> {

@@ -190,15 +190,12 @@ mod tests {
                 triangles.push([a, b2, a2]);
             }
         }
-        Mesh::new(positions, triangles)
+        Mesh::new_unchecked(positions, triangles)
     }
 
     fn joined(a: &Mesh, b: &Mesh) -> Mesh {
         let mut m = a.clone();
-        let off = m.positions.len() as u32;
-        m.positions.extend(&b.positions);
-        m.triangles
-            .extend(b.triangles.iter().map(|t| t.map(|v| v + off)));
+        m.append(b);
         m
     }
 
@@ -293,7 +290,7 @@ mod tests {
         // with the cup below it (gap 0.5), the other cup (gap about 10) stays open.
         let near = cup(10, 1.0, 0.0, 1.0, 0.0, false);
         let far = cup(10, 1.0, 0.0, 1.0, 0.0, false);
-        let far = Mesh::new(
+        let far = Mesh::new_unchecked(
             far.positions
                 .iter()
                 .map(|p| [p[0] + 10.0, p[1], p[2]])

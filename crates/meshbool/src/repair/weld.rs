@@ -90,7 +90,7 @@ pub fn weld_within(mesh: &Mesh, tolerance: f64) -> (Mesh, WeldReport) {
             new_id[v as usize]
         }));
     }
-    (Mesh::new(positions, triangles), report)
+    (Mesh::new_unchecked(positions, triangles), report)
 }
 
 #[cfg(test)]
@@ -103,7 +103,7 @@ mod tests {
         // Points on a line 0.6 apart with tolerance 1: 0 and 0.6 merge, 1.2 does not join
         // them (1.2 from the representative), 1.8 merges into 1.2.
         let xs = [0.0, 0.6, 1.2, 1.8];
-        let mut m = Mesh::new(xs.iter().map(|&x| [x, 0.0, 0.0]).collect(), vec![]);
+        let mut m = Mesh::new_unchecked(xs.iter().map(|&x| [x, 0.0, 0.0]).collect(), vec![]);
         m.positions.extend([[0.0, 5.0, 0.0], [1.0, 5.0, 1.0]]);
         m.triangles = vec![[0, 4, 5], [1, 4, 5], [2, 4, 5], [3, 4, 5]];
         let (w, r) = weld_within(&m, 1.0);
@@ -116,7 +116,7 @@ mod tests {
         assert_eq!(w.positions[3], [1.2, 0.0, 0.0]);
         // Exactly at the tolerance merges; just beyond does not.
         let pair = |d: f64| {
-            Mesh::new(
+            Mesh::new_unchecked(
                 vec![[0.0; 3], [d, 0.0, 0.0], [0.0, 9.0, 0.0], [9.0, 9.0, 0.0]],
                 vec![[0, 2, 3], [1, 2, 3]],
             )
@@ -131,7 +131,7 @@ mod tests {
     #[test]
     fn closes_a_crack_and_counts_collapsed_triangles() {
         // Two unit squares side by side whose shared edge vertices differ by 1e-4: a crack.
-        let mut m = Mesh::new(
+        let mut m = Mesh::new_unchecked(
             vec![
                 [0.0, 0.0, 0.0],
                 [1.0, 0.0, 0.0],
