@@ -14,13 +14,17 @@ fn main() {
 #[divan::bench(sample_count = 10)]
 fn union_200k_spheres() -> usize {
     let (a, b) = &*P200K;
-    boolean(a, b, Op::Union).mesh.triangle_count()
+    boolean(a, b, Op::Union, &Default::default())
+        .mesh
+        .triangle_count()
 }
 
 #[divan::bench(sample_count = 5)]
 fn union_2m_spheres() -> usize {
     let (a, b) = &*P2M;
-    boolean(a, b, Op::Union).mesh.triangle_count()
+    boolean(a, b, Op::Union, &Default::default())
+        .mesh
+        .triangle_count()
 }
 
 /// Two crossing open terrains (80k and 34k triangles): the seam stops inside both, so
@@ -41,5 +45,7 @@ static TERRAINS: std::sync::LazyLock<(meshbool::Mesh, meshbool::Mesh)> =
 #[divan::bench(sample_count = 10)]
 fn union_crossing_terrains() -> usize {
     let (a, b) = &*TERRAINS;
-    boolean(a, b, Op::Union).mesh.triangle_count()
+    boolean(a, b, Op::Union, &Default::default())
+        .mesh
+        .triangle_count()
 }

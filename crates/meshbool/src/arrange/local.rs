@@ -5,6 +5,7 @@
 //! of unconstrained edges for shape (an approximate in-circle test chooses a flip, the exact
 //! orientation test allows it).
 
+use super::FailReason;
 use crate::kernel::{orient2d_prepared, Point, Prepared, Sign};
 
 const NONE: u32 = u32::MAX;
@@ -30,7 +31,7 @@ pub(crate) struct Local {
 
 /// What went wrong: the inputs broke an assumption (e.g. a constraint crossing another).
 #[derive(Debug)]
-pub(crate) struct Failed(pub &'static str);
+pub(crate) struct Failed(pub FailReason);
 
 fn rot<T: Copy>(a: [T; 3], k: usize) -> [T; 3] {
     [a[k % 3], a[(k + 1) % 3], a[(k + 2) % 3]]
@@ -126,7 +127,7 @@ impl Local {
         loop {
             steps += 1;
             if steps > 4 * self.tris.len() + 16 {
-                return Err(Failed("point location did not converge"));
+                return Err(Failed(FailReason::PointLocationDidNotConverge));
             }
             let v = self.tris[t as usize];
             let o: [Sign; 3] =
@@ -140,7 +141,7 @@ impl Local {
             {
                 let n = self.nbr[t as usize][k];
                 if n == NONE {
-                    return Err(Failed("point outside its triangle"));
+                    return Err(Failed(FailReason::PointOutside));
                 }
                 t = n;
                 continue;
@@ -164,7 +165,7 @@ impl Local {
                 [0, 1] => return Ok(v[1]),
                 [1, 2] => return Ok(v[2]),
                 [0, 2] => return Ok(v[0]),
-                _ => return Err(Failed("degenerate triangle in the triangulation")),
+                _ => return Err(Failed(FailReason::DegenerateInTriangulation)),
             }
             self.last = t;
             return Ok(id);
@@ -310,7 +311,7 @@ impl Local {
                 let (a, b) = (v[k], v[(k + 1) % 3]);
                 if a < b && crosses(self, a, b) {
                     if self.fixed[t][k] {
-                        return Err(Failed("a constraint crosses another constraint"));
+                        return Err(Failed(FailReason::ConstraintsCross));
                     }
                     queue.push((a, b));
                 }
@@ -320,7 +321,7 @@ impl Local {
         while let Some((a, b)) = queue.pop() {
             guard += 1;
             if guard > 64 * (self.tris.len() + 16) {
-                return Err(Failed("constraint insertion did not converge"));
+                return Err(Failed(FailReason::ConstraintInsertionDidNotConverge));
             }
             let Some((t, k)) = self.find_edge(a, b) else {
                 continue;
@@ -340,7 +341,7 @@ impl Local {
         if self.mark_fixed(p, q) {
             Ok(())
         } else {
-            Err(Failed("constraint missing after insertion"))
+            Err(Failed(FailReason::ConstraintMissing))
         }
     }
 

@@ -9,19 +9,50 @@
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
-use crate::intersect::{Feature, Seam};
+use crate::intersect::{Feature, Seam, Source};
 use crate::kernel::{orient2d, Point, Triangle};
 use crate::Mesh;
 
 mod local;
 
-/// Which input mesh to arrange.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Side {
-    /// The first mesh of the seam.
-    A,
-    /// The second mesh of the seam.
-    B,
+/// Why a cut triangle could not be re-triangulated (the inputs broke an assumption of the
+/// arrangement, as a self-intersecting mesh does); the triangle is then kept whole.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FailReason {
+    /// The triangle has zero area.
+    DegenerateTriangle,
+    /// A seam segment ends outside the triangle.
+    ConstraintEndOutside,
+    /// Walking to a seam point's triangle did not end.
+    PointLocationDidNotConverge,
+    /// A seam point lies outside its triangle.
+    PointOutside,
+    /// The triangulation met a zero-area triangle.
+    DegenerateInTriangulation,
+    /// Two seam segments cross each other.
+    ConstraintsCross,
+    /// Inserting a seam segment did not end.
+    ConstraintInsertionDidNotConverge,
+    /// A seam segment is not an edge after its insertion.
+    ConstraintMissing,
+}
+
+impl std::fmt::Display for FailReason {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            FailReason::DegenerateTriangle => "degenerate triangle",
+            FailReason::ConstraintEndOutside => "constraint end not in the triangle",
+            FailReason::PointLocationDidNotConverge => "point location did not converge",
+            FailReason::PointOutside => "point outside its triangle",
+            FailReason::DegenerateInTriangulation => "degenerate triangle in the triangulation",
+            FailReason::ConstraintsCross => "a constraint crosses another constraint",
+            FailReason::ConstraintInsertionDidNotConverge => {
+                "constraint insertion did not converge"
+            }
+            FailReason::ConstraintMissing => "constraint missing after insertion",
+        })
+    }
 }
 
 /// One mesh cut along the seam.
@@ -45,7 +76,7 @@ pub struct Arranged {
     pub seam_edges: Vec<[u32; 2]>,
     /// Input triangles that could not be re-triangulated, with the reason (inconsistent
     /// input, such as a self-intersecting mesh), kept uncut; empty for valid inputs.
-    pub failed: Vec<(u32, &'static str)>,
+    pub failed: Vec<(u32, FailReason)>,
     /// Triangles of [`Arranged::mesh`] (sorted ids) that are correct with their exact
     /// points but, with seam points rounded to `f64` coordinates, turn over or collapse
     /// in their input triangle's plane (a sliver thinner than the rounding): the output
@@ -64,16 +95,9 @@ impl Arranged {
     }
 }
 
-fn feature(l: &crate::intersect::Label, side: Side) -> Feature {
-    match side {
-        Side::A => l.a,
-        Side::B => l.b,
-    }
-}
-
 /// Cuts `mesh` (side `side` of `seam`) along the seam. `mesh` must be the mesh the seam was
 /// computed from on that side.
-pub fn arrange(mesh: &Mesh, seam: &Seam, side: Side) -> Arranged {
+pub fn arrange(mesh: &Mesh, seam: &Seam, side: Source) -> Arranged {
     let points = index_seam_points(mesh, seam, side);
     let seam_edges = seam_edges(seam, &points.seam_vertex);
     let constraints = constraints(seam, side, &seam_edges);
@@ -114,7 +138,7 @@ struct SeamPoints {
 /// Gives every seam point a vertex of `mesh` (side `side`): a seam point at an input
 /// vertex is that vertex; every other one becomes a new vertex after the input's, noted
 /// with the face or edge of the input it lies on.
-fn index_seam_points(mesh: &Mesh, seam: &Seam, side: Side) -> SeamPoints {
+fn index_seam_points(mesh: &Mesh, seam: &Seam, side: Source) -> SeamPoints {
     let mut positions = mesh.positions.clone();
     let input_vertices = positions.len();
     let mut added: Vec<Point> = Vec::new();
@@ -124,7 +148,7 @@ fn index_seam_points(mesh: &Mesh, seam: &Seam, side: Side) -> SeamPoints {
         .points
         .iter()
         .enumerate()
-        .map(|(s, l)| match feature(l, side) {
+        .map(|(s, l)| match l.feature(side) {
             Feature::Vertex(v) => v,
             f => {
                 let id = positions.len() as u32;
@@ -165,12 +189,16 @@ fn seam_edges(seam: &Seam, seam_vertex: &[u32]) -> Vec<[u32; 2]> {
 
 /// Per input triangle of side `side`, the seam edges found in it: the constraints of its
 /// re-triangulation.
-fn constraints(seam: &Seam, side: Side, seam_edges: &[[u32; 2]]) -> FxHashMap<u32, Vec<[u32; 2]>> {
+fn constraints(
+    seam: &Seam,
+    side: Source,
+    seam_edges: &[[u32; 2]],
+) -> FxHashMap<u32, Vec<[u32; 2]>> {
     let mut cons: FxHashMap<u32, Vec<[u32; 2]>> = FxHashMap::default();
     for src in &seam.sources {
         let t = match side {
-            Side::A => src.tri_a,
-            Side::B => src.tri_b,
+            Source::A => src.tri_a,
+            Source::B => src.tri_b,
         };
         cons.entry(t)
             .or_default()
@@ -228,7 +256,7 @@ fn cut_triangle(
     let tri = mesh.triangles[t as usize];
     let corners = mesh.corners(t as usize);
     let Some(shape) = Triangle::new(corners) else {
-        return Err(local::Failed("degenerate triangle"));
+        return Err(local::Failed(FailReason::DegenerateTriangle));
     };
     let mut lt = local::Local::new(corners, shape.axis(), shape.sign());
     let mut to_local: FxHashMap<u32, u32> = FxHashMap::default();
@@ -258,7 +286,7 @@ fn cut_triangle(
     }
     for c in cons.get(&t).map(Vec::as_slice).unwrap_or(&[]) {
         let (Some(&p), Some(&q)) = (to_local.get(&c[0]), to_local.get(&c[1])) else {
-            return Err(local::Failed("constraint end not in the triangle"));
+            return Err(local::Failed(FailReason::ConstraintEndOutside));
         };
         lt.constrain(p, q)?;
     }
@@ -287,7 +315,7 @@ fn turned_by_rounding(pieces: &[[u32; 3]], points: &SeamPoints, parent: &Triangl
 struct Reassembled {
     triangles: Vec<[u32; 3]>,
     parent: Vec<u32>,
-    failed: Vec<(u32, &'static str)>,
+    failed: Vec<(u32, FailReason)>,
     rounding_flips: Vec<u32>,
 }
 

@@ -16,7 +16,7 @@ fn edges_of(m: &Mesh) -> FxHashSet<[u32; 2]> {
 /// preserved, and every seam segment is an edge of each.
 fn check_closed_pair(a: &Mesh, b: &Mesh) {
     let seam = intersect(a, b);
-    for (m, side) in [(a, Side::A), (b, Side::B)] {
+    for (m, side) in [(a, Source::A), (b, Source::B)] {
         let arr = arrange(m, &seam, side);
         assert!(arr.failed.is_empty(), "{:?}", arr.failed);
         let s = mesh_stats(&arr.mesh);
@@ -71,7 +71,7 @@ fn terrain_cut_by_cylinder_keeps_its_boundary() {
     let t = crate::test_util::data("kirra_terrain.obj");
     let c = crate::test_util::data("kirra_cylinder.obj");
     let seam = intersect(&t, &c);
-    let arr = arrange(&t, &seam, Side::A);
+    let arr = arrange(&t, &seam, Source::A);
     assert!(arr.failed.is_empty());
     let s = mesh_stats(&arr.mesh);
     assert_eq!((s.boundary_edges, s.non_manifold_edges), (560, 0));
@@ -123,7 +123,7 @@ fn near_identical_copies() {
 fn identical_meshes_need_no_cuts() {
     let a = uv_sphere([0.0; 3], 1.0, 24, 12);
     let seam = intersect(&a, &a);
-    let arr = arrange(&a, &seam, Side::A);
+    let arr = arrange(&a, &seam, Source::A);
     assert_eq!(arr.mesh.triangles, a.triangles);
     assert_eq!(arr.mesh.positions.len(), a.positions.len());
 }

@@ -26,10 +26,11 @@ use std::str::FromStr;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::arrange::{arrange, Arranged, Side};
+use crate::arrange::{arrange, Arranged, FailReason};
 use crate::classify::{classify, Class, Classified, Operand};
 use crate::edges::SeamTopology;
-use crate::intersect::{intersect, Seam};
+pub use crate::intersect::Source;
+use crate::intersect::{intersect_with, Seam};
 use crate::Mesh;
 
 /// A boolean operation. Written (and parsed, [`FromStr`]) as `union`, `intersection`,
@@ -86,15 +87,6 @@ impl FromStr for Op {
     }
 }
 
-/// Which input an output triangle comes from.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
-pub enum Source {
-    /// The first operand.
-    A,
-    /// The second operand.
-    B,
-}
-
 /// Where an output triangle comes from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Provenance {
@@ -121,7 +113,7 @@ pub struct BooleanResult {
     pub degenerate: [usize; 2],
     /// Triangles that could not be re-triangulated (invalid input), kept uncut: each is
     /// `(source, triangle, reason)`. Empty for valid inputs.
-    pub failed: Vec<(Source, u32, &'static str)>,
+    pub failed: Vec<(Source, u32, FailReason)>,
     /// Result triangles that turned over or collapsed when their seam points were rounded
     /// to `f64` coordinates ([`Arranged::rounding_flips`]); 0 in almost every case.
     pub rounding_flips: usize,
@@ -232,8 +224,8 @@ impl Split {
     }
 }
 
-/// The stages of [`split`] and [`boolean`], as reported to a progress callback
-/// ([`split_with_progress`], [`boolean_with_progress`]) when each begins.
+/// The stages of a boolean or split, as reported to a progress callback
+/// ([`crate::ops::RunOptions::progress`]) when each begins.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Stage {
     /// Checking the inputs (validity, orientation, self-intersections).
@@ -281,18 +273,48 @@ impl Stage {
     }
 }
 
-/// Runs intersection, arrangement and classification of `a` against `b` (both valid and
-/// exactly welded; see [`crate::weld_exact`]).
-pub fn split(a: &Mesh, b: &Mesh) -> Split {
-    split_with_progress(a, b, &|_| {})
+/// How the pipeline runs: progress reporting, and the two measured crossovers between
+/// algorithms (public so that tests can force either path on small inputs).
+#[derive(Clone, Copy)]
+pub struct PipelineOptions<'p> {
+    /// Called with each stage as it begins, on the calling thread.
+    pub progress: Option<&'p (dyn Fn(Stage) + Sync)>,
+    /// Candidate pairs from the grid from this many triangles in both meshes together
+    /// ([`crate::intersect::GRID_FROM`]), below from two trees.
+    pub grid_from: usize,
+    /// Exact winding-number sums up to this many triangle × query products
+    /// ([`crate::classify::EXACT_WINDING_UP_TO`]), the hierarchical approximation beyond.
+    pub exact_winding_up_to: f64,
 }
 
-/// [`split`], calling `progress` as each stage begins.
-pub fn split_with_progress(a: &Mesh, b: &Mesh, progress: &dyn Fn(Stage)) -> Split {
-    progress(Stage::Intersect);
-    let seam = intersect(a, b);
-    progress(Stage::Arrange);
-    let (arr_a, arr_b) = rayon::join(|| arrange(a, &seam, Side::A), || arrange(b, &seam, Side::B));
+impl Default for PipelineOptions<'_> {
+    fn default() -> Self {
+        PipelineOptions {
+            progress: None,
+            grid_from: crate::intersect::GRID_FROM,
+            exact_winding_up_to: crate::classify::EXACT_WINDING_UP_TO,
+        }
+    }
+}
+
+impl PipelineOptions<'_> {
+    fn stage(&self, stage: Stage) {
+        if let Some(p) = self.progress {
+            p(stage);
+        }
+    }
+}
+
+/// Runs intersection, arrangement and classification of `a` against `b` (both valid and
+/// exactly welded; see [`crate::weld_exact`]).
+pub fn split(a: &Mesh, b: &Mesh, opts: &PipelineOptions) -> Split {
+    opts.stage(Stage::Intersect);
+    let seam = intersect_with(a, b, opts.grid_from);
+    opts.stage(Stage::Arrange);
+    let (arr_a, arr_b) = rayon::join(
+        || arrange(a, &seam, Source::A),
+        || arrange(b, &seam, Source::B),
+    );
     // Closedness picks the winding-number threshold; the arranged mesh is closed exactly
     // when its input is (cutting keeps every edge's use count).
     let (topo_a, topo_b) = rayon::join(
@@ -310,10 +332,10 @@ pub fn split_with_progress(a: &Mesh, b: &Mesh, progress: &dyn Fn(Stage)) -> Spli
         arranged: &arr_b,
         topology: &topo_b,
     };
-    progress(Stage::Classify);
+    opts.stage(Stage::Classify);
     let (class_a, class_b) = rayon::join(
-        || classify(&oa, &ob, closed_b),
-        || classify(&ob, &oa, closed_a),
+        || classify(&oa, &ob, closed_b, opts.exact_winding_up_to),
+        || classify(&ob, &oa, closed_a, opts.exact_winding_up_to),
     );
     Split {
         seam,
@@ -463,19 +485,9 @@ fn split_by<'v, T>(mut v: &'v mut [T], lengths: &[usize]) -> Vec<&'v mut [T]> {
 
 /// The boolean `op` of `a` and `b` (both valid, exactly welded, consistently oriented;
 /// closed meshes facing outward, open surfaces with "inside" behind them).
-pub fn boolean(a: &Mesh, b: &Mesh, op: Op) -> BooleanResult {
-    boolean_with_progress(a, b, op, &|_| {})
-}
-
-/// [`boolean`], calling `progress` as each stage begins.
-pub fn boolean_with_progress(
-    a: &Mesh,
-    b: &Mesh,
-    op: Op,
-    progress: &dyn Fn(Stage),
-) -> BooleanResult {
-    let s = split_with_progress(a, b, progress);
-    progress(Stage::Merge);
+pub fn boolean(a: &Mesh, b: &Mesh, op: Op, opts: &PipelineOptions) -> BooleanResult {
+    let s = split(a, b, opts);
+    opts.stage(Stage::Merge);
     let rule = op.rule();
     let (mesh, provenance) = merge(
         &s,

@@ -8,6 +8,16 @@ fn vol(m: &Mesh) -> f64 {
     signed_volume(m)
 }
 
+/// The pipeline's boolean with the default options.
+fn boolean(a: &Mesh, b: &Mesh, op: Op) -> BooleanResult {
+    super::boolean(a, b, op, &PipelineOptions::default())
+}
+
+/// The pipeline's split with the default options.
+fn split(a: &Mesh, b: &Mesh) -> Split {
+    super::split(a, b, &PipelineOptions::default())
+}
+
 /// Closed, manifold, consistently oriented (or empty).
 fn assert_closed(m: &Mesh, what: &str) {
     if m.triangles.is_empty() {
@@ -353,7 +363,12 @@ fn progress_reports_every_stage_in_order() {
     let a = Mesh::unit_cube();
     let b = Mesh::cuboid([0.5; 3], [1.5; 3]);
     let seen = std::sync::Mutex::new(Vec::new());
-    let r = boolean_with_progress(&a, &b, Op::Union, &|s| seen.lock().unwrap().push(s));
+    let progress = |s| seen.lock().unwrap().push(s);
+    let opts = PipelineOptions {
+        progress: Some(&progress),
+        ..PipelineOptions::default()
+    };
+    let r = super::boolean(&a, &b, Op::Union, &opts);
     assert_eq!(
         *seen.lock().unwrap(),
         vec![
@@ -458,4 +473,55 @@ fn large_spheres_take_the_large_input_paths() {
     let r = boolean(&a, &b, Op::Union);
     let s = split(&a, &b);
     assert!(r.seam_points > 1000 && s.a.mesh.triangles.len() > a.triangles.len());
+}
+
+#[test]
+fn forced_paths_below_their_crossovers_give_the_same_results() {
+    // The grid broad phase and the hierarchical winding numbers, forced on small inputs
+    // (PipelineOptions' crossovers at 0), answer as the trees and the exact sums do.
+    let sphere = uv_sphere([0.0; 3], 1.0, 24, 12);
+    let moved = rigid_motion(&sphere, [0.3, 0.2, 1.0], 0.4, [0.6, 0.1, 0.0]);
+    let mut inner = Mesh::cuboid([-0.2; 3], [0.2; 3]);
+    inner.append(&rigid_motion(
+        &sphere,
+        [0.0, 0.0, 1.0],
+        0.0,
+        [1.5, 0.0, 0.0],
+    ));
+    let grid = crate::shapes::heightfield([-2.0, -2.0], [2.0, 2.0], 12, 12, |x, y| 0.1 * x * y);
+    // A box below the grid, apart from everything: a piece without a seam.
+    let mut moved_and_box = moved.clone();
+    moved_and_box.append(&Mesh::cuboid([1.0, 1.0, -1.5], [1.4, 1.4, -1.1]));
+    let forced = PipelineOptions {
+        grid_from: 0,
+        exact_winding_up_to: 0.0,
+        ..PipelineOptions::default()
+    };
+    let mut by_winding = 0;
+    let pairs = [
+        (&sphere, &moved),
+        (&sphere, &inner),
+        (&grid, &moved_and_box),
+        (&moved_and_box, &grid),
+    ];
+    for (a, b) in pairs {
+        let (s, f) = (split(a, b), super::split(a, b, &forced));
+        assert!(f.seam.from_grid && !s.seam.from_grid);
+        assert_eq!(s.seam.points, f.seam.points);
+        assert_eq!(s.seam.segments, f.seam.segments);
+        assert_eq!(s.class_a.class, f.class_a.class);
+        assert_eq!(s.class_b.class, f.class_b.class);
+        for (cs, cf) in [(&s.class_a, &f.class_a), (&s.class_b, &f.class_b)] {
+            assert!(!cs.approximate_winding);
+            assert_eq!(cf.approximate_winding, cf.by_winding > 0);
+            by_winding += cf.by_winding;
+        }
+        for op in Op::ALL {
+            assert_eq!(
+                boolean(a, b, op).mesh,
+                super::boolean(a, b, op, &forced).mesh
+            );
+        }
+    }
+    assert!(by_winding >= 3, "{by_winding}");
 }

@@ -43,6 +43,9 @@ pub struct Classified {
     pub patches: usize,
     /// Patches classified by winding number (no seam edge, or disagreeing seam edges).
     pub by_winding: usize,
+    /// True when winding numbers were asked for and came from the hierarchical
+    /// approximation rather than exact sums.
+    pub approximate_winding: bool,
 }
 
 /// One triangle of the other mesh's fan around a seam edge: its plane (an input triangle,
@@ -108,21 +111,34 @@ pub struct Operand<'a> {
     pub topology: &'a SeamTopology,
 }
 
+/// Up to this many triangle × query products, winding numbers are exact sums; beyond, the
+/// hierarchical approximation (a measured crossover).
+pub const EXACT_WINDING_UP_TO: f64 = 2e7;
+
 /// Classifies the triangles of `x` against the other mesh `y` (both arranged along the same
-/// seam). `y_closed` picks the winding-number threshold (1/2 for closed, 0 for open).
-pub fn classify(x: &Operand, y: &Operand, y_closed: bool) -> Classified {
+/// seam). `y_closed` picks the winding-number threshold (1/2 for closed, 0 for open);
+/// winding numbers are exact sums up to `exact_winding_up_to` triangle × query products
+/// ([`EXACT_WINDING_UP_TO`] by default).
+pub fn classify(x: &Operand, y: &Operand, y_closed: bool, exact_winding_up_to: f64) -> Classified {
     // Patches: components of the triangles joined across edges that are not seam edges,
     // numbered in the order of each patch's first triangle.
     let (patches, patch) = (x.topology.patches, &x.topology.patch);
     let votes = seam_votes(x, y);
     let resolved = resolve_patches(votes, patch, patches);
-    let answers = winding_fallback(&x.arranged.mesh, y.input, y_closed, &resolved.queries);
+    let (answers, approximate_winding) = winding_fallback(
+        &x.arranged.mesh,
+        y.input,
+        y_closed,
+        &resolved.queries,
+        exact_winding_up_to,
+    );
     let by_winding = resolved.by_winding;
     Classified {
         class: settle(resolved, answers, patch, patches),
         patch: patch.clone(),
         patches,
         by_winding,
+        approximate_winding,
     }
 }
 
@@ -259,20 +275,28 @@ fn resolve_patches(votes: Vec<Vote>, patch: &[u32], patches: usize) -> Resolved 
 
 /// The class of each queried triangle of `x` from the generalized winding number of `y`
 /// at its centroid: inside above the threshold (1/2 for a closed `y`, 0 for an open one).
-/// Exact sums while they are cheap, the hierarchy beyond (deterministic either way).
-fn winding_fallback(x: &Mesh, y: &Mesh, y_closed: bool, queries: &[usize]) -> Vec<Class> {
+/// Exact sums up to `exact_up_to` triangle × query products, the hierarchy beyond
+/// (deterministic either way); also whether the hierarchy answered.
+fn winding_fallback(
+    x: &Mesh,
+    y: &Mesh,
+    y_closed: bool,
+    queries: &[usize],
+    exact_up_to: f64,
+) -> (Vec<Class>, bool) {
     let threshold = if y_closed { 0.5 } else { 0.0 };
     let centroid = |t: usize| -> [f64; 3] {
         let [a, b, c] = x.corners(t);
         std::array::from_fn(|k| (a[k] + b[k] + c[k]) / 3.0)
     };
-    let fast = (queries.len() as f64 * y.triangles.len() as f64 > 2e7).then(|| FastWinding::new(y));
+    let fast = (queries.len() as f64 * y.triangles.len() as f64 > exact_up_to)
+        .then(|| FastWinding::new(y));
     let points: Vec<[f64; 3]> = queries.iter().map(|&t| centroid(t)).collect();
     let winding: Vec<f64> = match &fast {
         Some(f) => f.at_many(&points),
         None => points.iter().map(|&p| winding_number(y, p)).collect(),
     };
-    winding
+    let classes = winding
         .into_iter()
         .map(|w| {
             if w > threshold {
@@ -281,7 +305,8 @@ fn winding_fallback(x: &Mesh, y: &Mesh, y_closed: bool, queries: &[usize]) -> Ve
                 Class::Outside
             }
         })
-        .collect()
+        .collect();
+    (classes, fast.is_some())
 }
 
 /// Every triangle's class: its seam answer, or the winding answer (`answers`, one per

@@ -21,6 +21,16 @@ pub mod tritri;
 pub use curves::{chain, Polyline};
 pub use tritri::{Feature, Label, TriTri};
 
+/// One of the two input meshes: the first (A) or the second (B) of a seam, boolean or
+/// split.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+pub enum Source {
+    /// The first input.
+    A,
+    /// The second input.
+    B,
+}
+
 /// One seam segment between two distinct seam points.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct SeamSegment {
@@ -63,6 +73,9 @@ pub struct Seam {
     pub degenerate: [usize; 2],
     /// Triangle pairs whose boxes overlapped (broad-phase candidates).
     pub candidate_pairs: usize,
+    /// True when the candidates came from the grid broad phase ([`crate::broad`]), false
+    /// when from two trees.
+    pub from_grid: bool,
 }
 
 /// The canonical exact construction of a labelled seam point.
@@ -117,7 +130,7 @@ pub fn label_point(l: &Label, a: &Mesh, b: &Mesh) -> Point {
 /// [`crate::broad`] (a pass over each mesh, then work only near the other mesh); below, from
 /// two trees ([`Bvh`]), which cost less to set up. Both give the same sorted pairs. Measured
 /// crossover: about 50k triangles per sphere (BENCHMARKS.md).
-const GRID_FROM: usize = 100_000;
+pub const GRID_FROM: usize = 100_000;
 
 fn tri(m: &Mesh, t: usize) -> Option<tritri::Tri> {
     tritri::Tri::new(t as u32, m.triangles[t], m.corners(t))
@@ -128,7 +141,14 @@ fn tri(m: &Mesh, t: usize) -> Option<tritri::Tri> {
 /// at the same position would name one point twice and break the curves there.
 /// Degenerate triangles are left out and counted in [`Seam::degenerate`].
 pub fn intersect(a: &Mesh, b: &Mesh) -> Seam {
-    let pairs = if a.triangles.len() + b.triangles.len() >= GRID_FROM {
+    intersect_with(a, b, GRID_FROM)
+}
+
+/// [`intersect`], with candidate pairs from the grid from `grid_from` triangles in both
+/// meshes together ([`GRID_FROM`] by default; tests set it to force either path).
+pub(crate) fn intersect_with(a: &Mesh, b: &Mesh, grid_from: usize) -> Seam {
+    let from_grid = a.triangles.len() + b.triangles.len() >= grid_from;
+    let pairs = if from_grid {
         crate::broad::overlapping_pairs(a, b)
     } else {
         // Each tree holds only the triangles that can meet the other mesh at all.
@@ -172,6 +192,7 @@ pub fn intersect(a: &Mesh, b: &Mesh) -> Seam {
     let mut seam = Seam {
         degenerate: [da, db],
         candidate_pairs: pairs.len(),
+        from_grid,
         ..Seam::default()
     };
     let mut point_ids: FxHashMap<Label, u32> = FxHashMap::default();

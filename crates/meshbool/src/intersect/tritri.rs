@@ -39,6 +39,16 @@ pub struct Label {
     pub b: Feature,
 }
 
+impl Label {
+    /// The feature of one mesh.
+    pub fn feature(&self, side: super::Source) -> Feature {
+        match side {
+            super::Source::A => self.a,
+            super::Source::B => self.b,
+        }
+    }
+}
+
 /// A triangle with its ids and corner coordinates.
 #[derive(Clone, Copy, Debug)]
 pub struct Tri {

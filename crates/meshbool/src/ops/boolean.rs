@@ -4,7 +4,8 @@
 use serde::Serialize;
 
 use super::{Checks, Input, Measures, Operand, OperandReport, RunOptions, SCHEMA};
-use crate::boolean::{boolean_with_progress, Op, Provenance, Source};
+use crate::arrange::FailReason;
+use crate::boolean::{Op, Provenance, Source};
 use crate::{Mesh, Result};
 
 /// Options of [`boolean`].
@@ -25,7 +26,7 @@ pub struct FailedTriangle {
     /// Its index in that input.
     pub triangle: u32,
     /// Why.
-    pub reason: &'static str,
+    pub reason: FailReason,
 }
 
 /// The result of [`boolean`]: the mesh, where each of its triangles comes from, and what
@@ -136,7 +137,7 @@ pub fn boolean<'a>(
     opts: &BooleanOptions,
 ) -> Result<BooleanOutput> {
     let run = |a: &Operand, b: &Operand| {
-        let r = boolean_with_progress(a.mesh(), b.mesh(), op, &|s| opts.run.stage(s));
+        let r = crate::boolean::boolean(a.mesh(), b.mesh(), op, &opts.run.pipeline());
         (r, [a.report().clone(), b.report().clone()])
     };
     let ((r, operands), seconds) =

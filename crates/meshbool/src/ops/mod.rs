@@ -118,6 +118,14 @@ impl RunOptions {
     fn stage(&self, stage: Stage) {
         Progress::report(&self.progress, stage);
     }
+
+    /// The pipeline's options: this progress callback, the default crossovers.
+    fn pipeline(&self) -> crate::boolean::PipelineOptions<'_> {
+        crate::boolean::PipelineOptions {
+            progress: self.progress.as_ref().map(|p| &*p.0 as _),
+            ..Default::default()
+        }
+    }
 }
 
 /// Runs `f` in a pool of `threads` worker threads (`None`: the current pool). A call

@@ -11,7 +11,7 @@ use std::str::FromStr;
 use serde::{Deserialize, Serialize};
 
 use super::{Checks, Input, Operand, OperandReport, RunOptions, SCHEMA};
-use crate::boolean::{split_with_progress, Group, Provenance, Stage};
+use crate::boolean::{Group, Provenance, Stage};
 use crate::edges::components_merged;
 use crate::measure::{area, mesh_stats, signed_volume, MeshStats};
 use crate::{Error, Format, Mesh, Result};
@@ -114,7 +114,7 @@ pub fn split<'a>(
     opts: &SplitOptions,
 ) -> Result<SplitOutput> {
     let run = |a: &Operand, b: &Operand| {
-        let s = split_with_progress(a.mesh(), b.mesh(), &|s| opts.run.stage(s));
+        let s = crate::boolean::split(a.mesh(), b.mesh(), &opts.run.pipeline());
         opts.run.stage(Stage::Merge);
         let groups = Group::ALL
             .into_iter()

@@ -519,7 +519,7 @@ mod boolean_output {
         // The seam of two spheres cuts many thin triangles.
         let a = uv_sphere([0.0; 3], 1.0, 48, 24);
         let b = rigid_motion(&a, [0.0, 0.0, 1.0], 0.1, [0.5, 0.0, 0.0]);
-        let u = boolean(&a, &b, Op::Union).mesh;
+        let u = boolean(&a, &b, Op::Union, &Default::default()).mesh;
         let opts = DegenerateOptions {
             min_area: 0.0,
             max_aspect: Some(30.0),
