@@ -18,7 +18,7 @@ mod fans;
 #[doc(hidden)]
 pub mod tritri;
 
-pub use curves::{chain, Polyline};
+pub use curves::{chain, Polyline, PolylineXyz};
 pub use tritri::{Feature, Label, TriTri};
 
 /// One of the two input meshes: the first (A) or the second (B) of a seam, boolean or

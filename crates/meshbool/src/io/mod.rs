@@ -26,7 +26,7 @@ mod stl;
 
 #[doc(no_inline)]
 pub use crate::format::Format;
-pub use polyline::{write_polylines, PolylineXyz};
+pub use polyline::write_polylines;
 
 /// The format of `bytes`, from the content, with `hint` (a format from the file name)
 /// deciding between families the content cannot tell apart. STL's binary/ASCII encoding

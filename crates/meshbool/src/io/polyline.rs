@@ -4,29 +4,7 @@ use std::io::Write;
 
 use super::{Format, Out};
 use crate::error::{Error, Location, Result};
-
-/// A polyline with its coordinates, open or closed (the first point is not repeated).
-#[derive(Clone, Debug, PartialEq)]
-pub struct PolylineXyz {
-    /// The points in order.
-    pub points: Vec<[f64; 3]>,
-    /// True when the last point connects back to the first.
-    pub closed: bool,
-}
-
-impl PolylineXyz {
-    /// Length: the sum of its steps (and the closing step of a closed line).
-    pub fn length(&self) -> f64 {
-        let n = self.points.len();
-        let steps = if self.closed { n } else { n.saturating_sub(1) };
-        (0..steps)
-            .map(|k| {
-                let (p, q) = (self.points[k], self.points[(k + 1) % n]);
-                ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt()
-            })
-            .sum()
-    }
-}
+use crate::intersect::PolylineXyz;
 
 /// Writes `lines` in `format`: OBJ (`v` and `l`; a closed line repeats its first index),
 /// DXF (3D `POLYLINE`, flag 1 when closed) or JSON (`[{"closed":..,"points":[[x,y,z],..]}]`).

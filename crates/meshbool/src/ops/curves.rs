@@ -7,8 +7,8 @@ use serde::Serialize;
 
 use super::{Checks, Input, Operand, RunOptions, SCHEMA};
 use crate::boolean::Stage;
-use crate::intersect::{chain, intersect, Seam};
-use crate::io::{write_polylines, PolylineXyz};
+use crate::intersect::{chain, intersect, PolylineXyz, Seam};
+use crate::io::write_polylines;
 use crate::{Error, Format, Result};
 
 /// Options of [`curves`].
