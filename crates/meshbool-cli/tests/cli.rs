@@ -707,7 +707,10 @@ fn json_output_is_exactly_the_library_report() {
         so,
         "--json",
     ]);
-    assert_eq!(cli, json(&split.pick(&keep).unwrap().report()));
+    assert_eq!(
+        cli,
+        json(&split.pick(&keep, &Default::default()).unwrap().report())
+    );
 
     let curves = ops::curves(&oa, &ob, &Default::default()).unwrap();
     let cli = report(&["curves", sa, sb, "--json"]);

@@ -119,9 +119,9 @@ fn samples() -> BTreeMap<&'static str, Vec<Value>> {
     assert!(report.groups.iter().any(|g| g.components.len() == 2));
     s.entry("split").or_default().push(json(&report));
     let keep: Vec<PieceSpec> = vec!["a_out_b".parse().unwrap(), "b_in_a:flip".parse().unwrap()];
-    s.entry("pick")
-        .or_default()
-        .push(json(&split.pick(&keep).unwrap().report()));
+    s.entry("pick").or_default().push(json(
+        &split.pick(&keep, &Default::default()).unwrap().report(),
+    ));
 
     let curves = ops::curves(&cube, &other, &CurvesOptions::default()).unwrap();
     s.entry("curves").or_default().push(json(&curves.report()));

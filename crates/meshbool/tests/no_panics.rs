@@ -73,7 +73,7 @@ fn exercise(m: &Mesh, other: &Mesh) {
     if let Ok(s) = ops::split(m, other, &opts) {
         let _ = s.report(Format::Obj);
         let specs = ["a_in_b", "a_out_b#0", "b_in_a:flip", "b_out_a#1"];
-        let _ = s.pick(&specs.map(|t| t.parse().unwrap()));
+        let _ = s.pick(&specs.map(|t| t.parse().unwrap()), &Default::default());
     }
     if let Ok(c) = ops::curves(m, other, &CurvesOptions::default()) {
         let _ = c.report();
@@ -104,7 +104,8 @@ fn exercise(m: &Mesh, other: &Mesh) {
     };
     let _ = ops::repair(m, &all_steps);
     let _ = repair::repair(m, &all_steps);
-    let _ = ops::pick(&[(m, false), (other, true)]);
+    let _ = ops::pick(&[(m, false), (other, true)], &Default::default());
+    let _ = repair::split_nonmanifold(m);
 
     let _ = measure::mesh_stats(m);
     let _ = measure::signed_volume(m);

@@ -18,6 +18,10 @@ pub struct Args {
     /// Output mesh file.
     #[arg(short, long)]
     output: PathBuf,
+    /// Keep the result's non-manifold edges and vertices (solids touching along an edge or
+    /// at a vertex) instead of splitting them.
+    #[arg(long)]
+    keep_nonmanifold: bool,
     #[command(flatten)]
     flags: OperandFlags,
 }
@@ -52,6 +56,7 @@ pub fn run(args: &Args, op: Op) -> Result<()> {
         let (a, b) = Operand::read_pair(&args.a, &args.b, &flags.checks())?;
         let opts = BooleanOptions {
             checks: flags.checks(),
+            keep_nonmanifold: args.keep_nonmanifold,
             run: flags.run(&spinner),
         };
         let out = ops::boolean(&a, &b, op, &opts)?;

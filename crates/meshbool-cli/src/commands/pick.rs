@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use anyhow::Result;
-use meshbool::ops::{self, PieceSpec};
+use meshbool::ops::{self, PickOptions, PieceSpec};
 
 use super::{parse_value, print_json};
 
@@ -18,6 +18,10 @@ pub struct Args {
     /// Output mesh file.
     #[arg(short, long)]
     output: PathBuf,
+    /// Keep the merged mesh's non-manifold edges and vertices (pieces touching along an
+    /// edge or at a vertex) instead of splitting them.
+    #[arg(long)]
+    keep_nonmanifold: bool,
     /// Print a JSON report on stdout.
     #[arg(long)]
     json: bool,
@@ -25,7 +29,10 @@ pub struct Args {
 
 /// Picks the pieces from the split's directory, writes the merged mesh, prints its report.
 pub fn run(args: &Args) -> Result<()> {
-    let out = ops::pick_dir(&args.dir, &args.keep)?;
+    let opts = PickOptions {
+        keep_nonmanifold: args.keep_nonmanifold,
+    };
+    let out = ops::pick_dir(&args.dir, &args.keep, &opts)?;
     ops::write(&args.output, &out.mesh, None)?;
     let report = out.report();
     if args.json {

@@ -31,6 +31,8 @@ use crate::classify::{classify, Class, Classified, Operand};
 use crate::edges::SeamTopology;
 pub use crate::intersect::Source;
 use crate::intersect::{intersect_with, Seam};
+use crate::repair::nonmanifold::split_at;
+use crate::repair::NonManifoldReport;
 use crate::Mesh;
 
 /// A boolean operation. Written (and parsed, [`FromStr`]) as `union`, `intersection`,
@@ -106,6 +108,9 @@ pub struct BooleanResult {
     pub mesh: Mesh,
     /// The origin of every triangle of `mesh`.
     pub provenance: Vec<Provenance>,
+    /// Where the result was non-manifold and how it was split (nothing with
+    /// [`PipelineOptions::keep_nonmanifold`]).
+    pub nonmanifold: NonManifoldReport,
     /// Seam points, for statistics.
     pub seam_points: usize,
     /// Degenerate (zero-area) triangles of A and B where the meshes meet, left out of the
@@ -285,6 +290,10 @@ pub struct PipelineOptions<'p> {
     /// Exact winding-number sums up to this many triangle × query products
     /// ([`crate::classify::EXACT_WINDING_UP_TO`]), the hierarchical approximation beyond.
     pub exact_winding_up_to: f64,
+    /// Keep the result's topology where it is not manifold (solids touching along an edge
+    /// or at a vertex share that edge or vertex) instead of splitting it
+    /// ([`crate::repair::split_nonmanifold`], at the seam only).
+    pub keep_nonmanifold: bool,
 }
 
 impl Default for PipelineOptions<'_> {
@@ -293,6 +302,7 @@ impl Default for PipelineOptions<'_> {
             progress: None,
             grid_from: crate::intersect::GRID_FROM,
             exact_winding_up_to: crate::classify::EXACT_WINDING_UP_TO,
+            keep_nonmanifold: false,
         }
     }
 }
@@ -346,6 +356,18 @@ pub fn split(a: &Mesh, b: &Mesh, opts: &PipelineOptions) -> Split {
     }
 }
 
+/// What [`merge`] makes.
+#[derive(Clone, Debug)]
+pub struct Merged {
+    /// The chosen triangles as one mesh.
+    pub mesh: Mesh,
+    /// The origin of each of its triangles.
+    pub provenance: Vec<Provenance>,
+    /// Its vertices at seam points (sorted): where the two inputs' parts are glued, the
+    /// only places a merge can make a mesh non-manifold.
+    pub seam_vertices: Vec<u32>,
+}
+
 /// Merges chosen triangles of both arrangements into one mesh. `keep_a(t)` / `keep_b(t)`
 /// say whether a triangle is kept and whether it is flipped. Triangles come in order (A's,
 /// then B's); vertices are the used ones, A's in A's order, then B's own in B's order.
@@ -353,7 +375,7 @@ pub fn merge(
     s: &Split,
     keep_a: impl Fn(usize) -> Keep + Sync,
     keep_b: impl Fn(usize) -> Keep + Sync,
-) -> (Mesh, Vec<Provenance>) {
+) -> Merged {
     use std::sync::atomic::{AtomicBool, Ordering::Relaxed};
     /// Triangles (and vertices) per piece of parallel work.
     const CHUNK: usize = 1 << 14;
@@ -467,7 +489,20 @@ pub fn merge(
     triangles
         .par_iter_mut()
         .for_each(|t| *t = t.map(|v| new_id[v as usize]));
-    (Mesh::new_unchecked(positions, triangles), provenance)
+    // Seam vertices are numbered by A's arrangement in the merged numbering.
+    let mut seam_vertices: Vec<u32> =
+        s.a.seam_vertex
+            .iter()
+            .map(|&v| new_id[v as usize])
+            .filter(|&v| v != u32::MAX)
+            .collect();
+    seam_vertices.par_sort_unstable();
+    seam_vertices.dedup();
+    Merged {
+        mesh: Mesh::new_unchecked(positions, triangles),
+        provenance,
+        seam_vertices,
+    }
 }
 
 /// `v` cut into consecutive slices of the given lengths (which must add up to at most its
@@ -489,11 +524,16 @@ pub fn boolean(a: &Mesh, b: &Mesh, op: Op, opts: &PipelineOptions) -> BooleanRes
     let s = split(a, b, opts);
     opts.stage(Stage::Merge);
     let rule = op.rule();
-    let (mesh, provenance) = merge(
+    let merged = merge(
         &s,
         |t| rule.a.of(s.class_a.class[t]),
         |t| rule.b.of(s.class_b.class[t]),
     );
+    let (mesh, nonmanifold) = if opts.keep_nonmanifold {
+        (merged.mesh, NonManifoldReport::default())
+    } else {
+        split_at(merged.mesh, &merged.seam_vertices)
+    };
     let kept = |arr: &Arranged, cls: &Classified, keep: &Selection| {
         arr.rounding_flips
             .iter()
@@ -509,7 +549,8 @@ pub fn boolean(a: &Mesh, b: &Mesh, op: Op, opts: &PipelineOptions) -> BooleanRes
             .collect();
     BooleanResult {
         mesh,
-        provenance,
+        provenance: merged.provenance,
+        nonmanifold,
         seam_points: s.seam.points.len(),
         degenerate: s.seam.degenerate,
         failed,
@@ -626,10 +667,11 @@ impl Split {
                 Keep::Drop
             }
         };
-        match side {
+        let merged = match side {
             Source::A => merge(self, |t| pick(&self.class_a, t), |_| Keep::Drop),
             Source::B => merge(self, |_| Keep::Drop, |t| pick(&self.class_b, t)),
-        }
+        };
+        (merged.mesh, merged.provenance)
     }
 }
 

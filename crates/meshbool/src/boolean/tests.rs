@@ -106,24 +106,33 @@ fn touching_cubes() {
     // Union of face-to-face cubes: the shared face disappears, a 2x1x1 box remains.
     let un = boolean(&a, &b, Op::Union).mesh;
     assert_eq!(mesh_stats(&un).area, 10.0);
-    // Edge to edge: the union is a solid whose one shared edge has four faces (a
-    // non-manifold edge, correctly), no boundary; vertex to vertex: manifold edges.
+    // Edge to edge: the two solids share an edge with four faces (a non-manifold edge when
+    // kept, split into two manifold sheets by default); vertex to vertex: manifold edges,
+    // the vertex split by default. No boundary either way.
     for (b, non_manifold) in [
         (Mesh::cuboid([1.0, 1.0, 0.0], [2.0, 2.0, 1.0]), 1),
         (Mesh::cuboid([1.0; 3], [2.0; 3]), 0),
     ] {
-        let un = boolean(&a, &b, Op::Union).mesh;
-        let s = mesh_stats(&un);
-        assert_eq!(
-            (
-                s.triangles,
-                s.boundary_edges,
-                s.non_manifold_edges,
-                s.inconsistent_edges
-            ),
-            (24, 0, non_manifold, 0)
-        );
-        assert_eq!(s.volume, 2.0);
+        let keep = PipelineOptions {
+            keep_nonmanifold: true,
+            ..PipelineOptions::default()
+        };
+        for (un, non_manifold) in [
+            (super::boolean(&a, &b, Op::Union, &keep).mesh, non_manifold),
+            (boolean(&a, &b, Op::Union).mesh, 0),
+        ] {
+            let s = mesh_stats(&un);
+            assert_eq!(
+                (
+                    s.triangles,
+                    s.boundary_edges,
+                    s.non_manifold_edges,
+                    s.inconsistent_edges
+                ),
+                (24, 0, non_manifold, 0)
+            );
+            assert_eq!(s.volume, 2.0);
+        }
         assert!(boolean(&a, &b, Op::Intersection).mesh.triangles.is_empty());
         assert_eq!(vol(&boolean(&a, &b, Op::Difference).mesh), 1.0);
     }

@@ -5,7 +5,8 @@ use serde::Serialize;
 
 use super::{Checks, Input, Measures, Operand, OperandReport, RunOptions, SCHEMA};
 use crate::arrange::FailReason;
-use crate::boolean::{Op, Provenance, Source};
+use crate::boolean::{Op, PipelineOptions, Provenance, Source};
+use crate::repair::NonManifoldReport;
 use crate::{Mesh, Result};
 
 /// Options of [`boolean`].
@@ -13,6 +14,10 @@ use crate::{Mesh, Result};
 pub struct BooleanOptions {
     /// Checks of inputs given as meshes (operands made earlier keep theirs).
     pub checks: Checks,
+    /// Keep the result's topology where it is not manifold (solids touching along an edge
+    /// or at a vertex then share it). By default such edges and vertices are split so that
+    /// the result is manifold ([`crate::repair::split_nonmanifold`]; positions unchanged).
+    pub keep_nonmanifold: bool,
     /// Threads and progress.
     pub run: RunOptions,
 }
@@ -40,6 +45,9 @@ pub struct BooleanOutput {
     pub mesh: Mesh,
     /// The origin of every triangle of `mesh`.
     pub provenance: Vec<Provenance>,
+    /// Where the result was not manifold and was split (see
+    /// [`BooleanOptions::keep_nonmanifold`]).
+    pub nonmanifold: NonManifoldReport,
     /// What the checks found in A and B.
     pub operands: [OperandReport; 2],
     /// Points of the intersection curves.
@@ -73,6 +81,8 @@ pub struct BooleanReport {
     pub rounding_flips: usize,
     /// Triangles kept uncut, one line each.
     pub failed_triangles: Vec<String>,
+    /// Where the result was not manifold and was split.
+    pub split_nonmanifold: NonManifoldReport,
     /// What the result assumes: skipped checks, problems taken as given, rounding and
     /// left-out degenerate triangles, one line each.
     pub assumed: Vec<String>,
@@ -118,6 +128,7 @@ impl BooleanOutput {
             seam_points: self.seam_points,
             rounding_flips: self.rounding_flips,
             failed_triangles: self.failed_lines(),
+            split_nonmanifold: self.nonmanifold.clone(),
             assumed: self.assumed(),
             operands: self.operands.clone(),
             seconds: self.seconds,
@@ -137,7 +148,11 @@ pub fn boolean<'a>(
     opts: &BooleanOptions,
 ) -> Result<BooleanOutput> {
     let run = |a: &Operand, b: &Operand| {
-        let r = crate::boolean::boolean(a.mesh(), b.mesh(), op, &opts.run.pipeline());
+        let pipeline = PipelineOptions {
+            keep_nonmanifold: opts.keep_nonmanifold,
+            ..opts.run.pipeline()
+        };
+        let r = crate::boolean::boolean(a.mesh(), b.mesh(), op, &pipeline);
         (r, [a.report().clone(), b.report().clone()])
     };
     let ((r, operands), seconds) =
@@ -146,6 +161,7 @@ pub fn boolean<'a>(
         op,
         mesh: r.mesh,
         provenance: r.provenance,
+        nonmanifold: r.nonmanifold,
         operands,
         seam_points: r.seam_points,
         degenerate: r.degenerate,

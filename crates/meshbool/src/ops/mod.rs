@@ -62,8 +62,8 @@ pub use single::{
     OrientOutput, RepairCommandReport, RepairOutput,
 };
 pub use split::{
-    pick, pick_dir, split, GroupInfo, GroupPieces, PickOutput, PickReport, PieceInfo, PieceSpec,
-    SplitOptions, SplitOutput, SplitReport,
+    pick, pick_dir, split, GroupInfo, GroupPieces, PickOptions, PickOutput, PickReport, PieceInfo,
+    PieceSpec, SplitOptions, SplitOutput, SplitReport,
 };
 
 /// The version of the JSON reports (the `schema` key of every report). Raised when a key

@@ -14,6 +14,7 @@ use super::{Checks, Input, Operand, OperandReport, RunOptions, SCHEMA};
 use crate::boolean::{Group, Provenance, Stage};
 use crate::edges::components_merged;
 use crate::measure::{area, mesh_stats, signed_volume, MeshStats};
+use crate::repair::{split_nonmanifold, NonManifoldReport};
 use crate::{Error, Format, Mesh, Result};
 
 /// Options of [`split`].
@@ -227,13 +228,13 @@ impl SplitOutput {
     }
 
     /// Merges the pieces `specs` names, each flipped where it says so, into one welded
-    /// mesh. A piece may be named once.
-    pub fn pick(&self, specs: &[PieceSpec]) -> Result<PickOutput> {
+    /// mesh ([`pick`]). A piece may be named once.
+    pub fn pick(&self, specs: &[PieceSpec], opts: &PickOptions) -> Result<PickOutput> {
         let pieces = resolve(specs, |group| {
             let g = self.groups.iter().find(|g| g.group == group)?;
             Some((&g.mesh, &g.components[..]))
         })?;
-        Ok(pick(&pieces))
+        Ok(pick(&pieces, opts))
     }
 }
 
@@ -346,11 +347,23 @@ impl FromStr for PieceSpec {
     }
 }
 
+/// Options of a pick.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PickOptions {
+    /// Keep the merged mesh's topology where it is not manifold (pieces touching along an
+    /// edge or at a vertex then share it). By default such edges and vertices are split
+    /// ([`crate::repair::split_nonmanifold`]; positions unchanged).
+    pub keep_nonmanifold: bool,
+}
+
 /// The result of a pick: one welded mesh.
 #[derive(Clone, Debug)]
 pub struct PickOutput {
-    /// The merged pieces, exactly equal positions welded, unreferenced vertices dropped.
+    /// The merged pieces, exactly equal positions welded, unreferenced vertices dropped,
+    /// non-manifold edges and vertices split unless asked otherwise.
     pub mesh: Mesh,
+    /// Where the merged mesh was not manifold and was split.
+    pub nonmanifold: NonManifoldReport,
 }
 
 /// The JSON of `meshbool pick --json`: the merged mesh's measures.
@@ -361,6 +374,8 @@ pub struct PickReport {
     /// Every measure of the result ([`mesh_stats`]).
     #[serde(flatten)]
     pub stats: MeshStats,
+    /// Where the merged mesh was not manifold and was split.
+    pub split_nonmanifold: NonManifoldReport,
 }
 
 impl PickOutput {
@@ -369,22 +384,32 @@ impl PickOutput {
         PickReport {
             schema: SCHEMA,
             stats: mesh_stats(&self.mesh),
+            split_nonmanifold: self.nonmanifold.clone(),
         }
     }
 }
 
 /// Merges meshes into one, each flipped where its flag says, welding exactly equal
 /// positions: the "pick" of split-and-pick (pieces of one split share their seam vertices
-/// bit for bit).
-pub fn pick(pieces: &[(&Mesh, bool)]) -> PickOutput {
-    PickOutput {
-        mesh: crate::boolean::pick(pieces),
-    }
+/// bit for bit). Where the pieces touch along an edge or at a vertex, the merged mesh is
+/// made manifold unless `opts` says otherwise.
+pub fn pick(pieces: &[(&Mesh, bool)], opts: &PickOptions) -> PickOutput {
+    let mesh = crate::boolean::pick(pieces);
+    let (mesh, nonmanifold) = if opts.keep_nonmanifold {
+        (mesh, NonManifoldReport::default())
+    } else {
+        split_nonmanifold(&mesh)
+    };
+    PickOutput { mesh, nonmanifold }
 }
 
 /// Picks from a split's directory ([`SplitOutput::write_dir`]): reads its manifest and the
 /// pieces `specs` names, and merges them as [`SplitOutput::pick`] does.
-pub fn pick_dir(dir: impl AsRef<Path>, specs: &[PieceSpec]) -> Result<PickOutput> {
+pub fn pick_dir(
+    dir: impl AsRef<Path>,
+    specs: &[PieceSpec],
+    opts: &PickOptions,
+) -> Result<PickOutput> {
     let dir = dir.as_ref();
     let path = dir.join("manifest.json");
     let bytes = std::fs::read(&path).map_err(|e| Error::from(e).in_file("reading", &path))?;
@@ -401,5 +426,5 @@ pub fn pick_dir(dir: impl AsRef<Path>, specs: &[PieceSpec]) -> Result<PickOutput
         .map(|(piece, flip)| Ok((super::read(dir.join(&piece.file), None)?.0, flip)))
         .collect::<Result<Vec<_>>>()?;
     let refs: Vec<(&Mesh, bool)> = meshes.iter().map(|(m, f)| (m, *f)).collect();
-    Ok(pick(&refs))
+    Ok(pick(&refs, opts))
 }

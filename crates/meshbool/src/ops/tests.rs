@@ -251,11 +251,18 @@ fn pick_takes_each_piece_once() {
     let specs =
         |list: &[&str]| -> Vec<PieceSpec> { list.iter().map(|t| t.parse().unwrap()).collect() };
     // The difference, picked: A outside B and B inside A flipped.
-    let diff = s.pick(&specs(&["a_out_b", "b_in_a:flip"])).unwrap();
+    let diff = s
+        .pick(&specs(&["a_out_b", "b_in_a:flip"]), &PickOptions::default())
+        .unwrap();
     assert_eq!(signed_volume(&diff.mesh), 8.0 - 2.0 * 0.5);
     assert!(diff.report().stats.closed);
     // One post's part only: A minus one post, open exactly along the other post's rim.
-    let one = s.pick(&specs(&["a_out_b", "b_in_a#1:flip"])).unwrap();
+    let one = s
+        .pick(
+            &specs(&["a_out_b", "b_in_a#1:flip"]),
+            &PickOptions::default(),
+        )
+        .unwrap();
     let rim = Measures::of(&b_in.components[0]).boundary_edges;
     assert!(rim >= 4);
     assert_eq!(one.report().stats.boundary_edges, rim);
@@ -266,22 +273,38 @@ fn pick_takes_each_piece_once() {
         &["b_in_a", "b_in_a#1"],
         &["a_out_b#0", "a_out_b"],
     ] {
-        let err = s.pick(&specs(twice)).unwrap_err();
+        let err = s.pick(&specs(twice), &PickOptions::default()).unwrap_err();
         assert!(
             err.to_string().contains("a piece may be picked once"),
             "{err}"
         );
     }
-    assert!(s.pick(&specs(&["b_in_a#2"])).is_err());
-    assert!(s.pick(&specs(&["a_out_b#1"])).is_err());
-    assert!(s.pick(&specs(&["a_on_b_same"])).is_err());
+    assert!(s
+        .pick(&specs(&["b_in_a#2"]), &PickOptions::default())
+        .is_err());
+    assert!(s
+        .pick(&specs(&["a_out_b#1"]), &PickOptions::default())
+        .is_err());
+    assert!(s
+        .pick(&specs(&["a_on_b_same"]), &PickOptions::default())
+        .is_err());
     // The same from the directory the split writes.
     let dir = std::env::temp_dir().join(format!("meshbool-ops-pick-{}", std::process::id()));
     let manifest = s.write_dir(&dir, Format::Obj).unwrap();
     assert_eq!(manifest, s.report(Format::Obj));
-    let from_dir = pick_dir(&dir, &specs(&["a_out_b", "b_in_a:flip"])).unwrap();
+    let from_dir = pick_dir(
+        &dir,
+        &specs(&["a_out_b", "b_in_a:flip"]),
+        &PickOptions::default(),
+    )
+    .unwrap();
     assert_eq!(from_dir.mesh, diff.mesh);
-    assert!(pick_dir(&dir, &specs(&["b_in_a", "b_in_a#0"])).is_err());
+    assert!(pick_dir(
+        &dir,
+        &specs(&["b_in_a", "b_in_a#0"]),
+        &PickOptions::default()
+    )
+    .is_err());
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -311,4 +334,54 @@ fn files_are_named_in_errors() {
             .starts_with("writing /nonexistent/meshbool/y.ply: "),
         "{err}"
     );
+}
+
+#[test]
+fn touching_solids_come_out_closed_and_manifold() {
+    use crate::measure::mesh_stats;
+    let a = Mesh::unit_cube();
+    // B touches A along an edge, then at a vertex only.
+    for (b, edges, copies) in [
+        (Mesh::cuboid([1.0, 1.0, 0.0], [2.0, 2.0, 1.0]), 1, 2),
+        (Mesh::cuboid([1.0; 3], [2.0; 3]), 0, 1),
+    ] {
+        let out = boolean(&a, &b, Op::Union, &BooleanOptions::default()).unwrap();
+        let s = mesh_stats(&out.mesh);
+        assert_eq!(
+            (s.boundary_edges, s.non_manifold_edges, s.inconsistent_edges),
+            (0, 0, 0)
+        );
+        assert_eq!((s.components, s.volume), (2, 2.0));
+        assert_eq!(out.nonmanifold.edges_split, edges);
+        assert_eq!(out.nonmanifold.vertices_added, copies);
+        assert_eq!(out.report().split_nonmanifold, out.nonmanifold);
+        // Vertex-manifold too: nothing left to split anywhere.
+        assert_eq!(
+            crate::repair::split_nonmanifold(&out.mesh).1,
+            Default::default()
+        );
+        // Kept as it is when asked: the touching edge (or vertex) is shared.
+        let opts = BooleanOptions {
+            keep_nonmanifold: true,
+            ..BooleanOptions::default()
+        };
+        let kept = boolean(&a, &b, Op::Union, &opts).unwrap();
+        let k = mesh_stats(&kept.mesh);
+        assert_eq!(k.non_manifold_edges, edges);
+        assert_eq!(k.vertices + copies, s.vertices);
+        // The same triangles at the same positions, in the same order.
+        assert_eq!(kept.mesh.to_soup(), out.mesh.to_soup());
+        for (op, volume) in [(Op::Intersection, 0.0), (Op::Difference, 1.0)] {
+            let r = boolean(&a, &b, op, &BooleanOptions::default()).unwrap();
+            assert_eq!(signed_volume(&r.mesh), volume, "{op}");
+        }
+    }
+    // Picking the same pieces gives the same manifold mesh.
+    let b = Mesh::cuboid([1.0, 1.0, 0.0], [2.0, 2.0, 1.0]);
+    let s = split(&a, &b, &SplitOptions::default()).unwrap();
+    let specs = ["a_out_b".parse().unwrap(), "b_out_a".parse().unwrap()];
+    let picked = s.pick(&specs, &PickOptions::default()).unwrap();
+    let p = picked.report().stats;
+    assert_eq!((p.non_manifold_edges, p.components, p.volume), (0, 2, 2.0));
+    assert_eq!(picked.nonmanifold.edges_split, 1);
 }

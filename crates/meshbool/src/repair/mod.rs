@@ -2,7 +2,8 @@
 //! ([`cap_holes`]), stitching loop pairs ([`stitch`]), curtain walls to a floor
 //! ([`curtain`]), welding within a distance ([`weld_within`]), T-junctions
 //! ([`resolve_t_junctions`]), duplicate and anti-parallel triangles
-//! ([`remove_duplicates`]), degenerate and sliver triangles ([`remove_degenerates`]).
+//! ([`remove_duplicates`]), degenerate and sliver triangles ([`remove_degenerates`]),
+//! non-manifold edges and vertices split into manifold sheets ([`split_nonmanifold`]).
 //! Every step is a function on its own that returns a report of what it did.
 
 mod cap;
@@ -10,6 +11,7 @@ mod curtain;
 mod degenerate;
 mod duplicates;
 mod folds;
+pub(crate) mod nonmanifold;
 mod orient;
 mod pipeline;
 mod stitch;
@@ -21,6 +23,7 @@ pub use curtain::{curtain, CurtainReport};
 pub use degenerate::{remove_degenerates, DegenerateOptions, DegenerateReport};
 pub use duplicates::{remove_duplicates, DuplicateReport};
 pub use folds::{remove_folds, FoldReport};
+pub use nonmanifold::{split_nonmanifold, NonManifoldReport};
 pub use orient::{orient, Facing, OrientReport};
 pub use pipeline::{
     close, repair, CloseMode, CloseOptions, CloseReport, RepairConfig, RepairReport,

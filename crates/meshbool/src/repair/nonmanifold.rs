@@ -1,0 +1,374 @@
+//! Manifold topology without moving anything: edges used by more than two triangles have
+//! their triangles paired into sheets, and vertices whose triangles form several fans get
+//! one copy per fan (same position). Two solids touching along an edge or at a vertex
+//! come out as two closed, manifold surfaces that share positions but no vertex.
+//!
+//! Pairing is exact: the triangles around an edge are ordered by angle with `orient3d`
+//! on their coordinates, and each is paired with its neighbour on its inside (the side
+//! its normal points away from), so that every sheet bounds one solid wedge. Where the
+//! orientation around an edge does not alternate (an inconsistently oriented or open
+//! input), triangles without a partner are counted and left on a boundary there.
+
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::kernel::{orient3d_explicit, Sign};
+use crate::Mesh;
+
+/// What [`split_nonmanifold`] did.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct NonManifoldReport {
+    /// Edges used by more than two triangles, whose triangles were paired into sheets.
+    pub edges_split: usize,
+    /// Vertices added: one copy of a vertex for each of its fans beyond the first.
+    pub vertices_added: usize,
+    /// Triangles at split edges left without a partner (the orientation around the edge
+    /// does not alternate); each leaves a boundary edge.
+    pub unpaired: usize,
+}
+
+/// Makes `mesh` manifold by splitting its topology (see the module doc): afterwards every
+/// edge has at most two triangles and every vertex one fan. Positions are unchanged
+/// (copies are appended after the existing vertices); triangles keep their order and
+/// orientation.
+pub fn split_nonmanifold(mesh: &Mesh) -> (Mesh, NonManifoldReport) {
+    let all: Vec<u32> = (0..mesh.positions.len() as u32).collect();
+    split_at(mesh.clone(), &all)
+}
+
+/// [`split_nonmanifold`] looking only at the vertices `candidates` (sorted, distinct):
+/// where a boolean glues its two inputs, the only places it can make the result
+/// non-manifold.
+pub(crate) fn split_at(mut mesh: Mesh, candidates: &[u32]) -> (Mesh, NonManifoldReport) {
+    let n = mesh.positions.len();
+    // The corners (triangle, position in it) of each candidate vertex, in triangle order.
+    let mut slot = vec![u32::MAX; n];
+    for (i, &v) in candidates.iter().enumerate() {
+        slot[v as usize] = i as u32;
+    }
+    let mut start = vec![0u32; candidates.len() + 1];
+    for &v in mesh.triangles.iter().flatten() {
+        if slot[v as usize] != u32::MAX {
+            start[slot[v as usize] as usize + 1] += 1;
+        }
+    }
+    for i in 0..candidates.len() {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let mut corners = vec![(0u32, 0u8); start[candidates.len()] as usize];
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        for (k, &v) in tri.iter().enumerate() {
+            let s = slot[v as usize];
+            if s != u32::MAX {
+                corners[fill[s as usize] as usize] = (t as u32, k as u8);
+                fill[s as usize] += 1;
+            }
+        }
+    }
+    // Each candidate's fans, worked out on its own.
+    let fans: Vec<Fans> = (0..candidates.len())
+        .into_par_iter()
+        .map(|i| {
+            let cs = &corners[start[i] as usize..start[i + 1] as usize];
+            let counts_here =
+                |other: u32| candidates[i] < other || slot[other as usize] == u32::MAX;
+            fans_of(&mesh, candidates[i], cs, counts_here)
+        })
+        .collect();
+    // Every fan but the first gets a new vertex at the same position.
+    let mut report = NonManifoldReport::default();
+    for (i, f) in fans.iter().enumerate() {
+        let v = candidates[i];
+        report.edges_split += f.split_edges;
+        report.unpaired += f.unpaired;
+        let cs = &corners[start[i] as usize..start[i + 1] as usize];
+        for fan in 1..f.count {
+            let copy = mesh.positions.len() as u32;
+            mesh.positions.push(mesh.positions[v as usize]);
+            report.vertices_added += 1;
+            for (c, &(t, k)) in cs.iter().enumerate() {
+                if f.fan[c] == fan {
+                    mesh.triangles[t as usize][k as usize] = copy;
+                }
+            }
+        }
+    }
+    (mesh, report)
+}
+
+/// The fans of one vertex: `fan[c]` for each of its corners (0 for the fan holding its
+/// first corner, then in order of first corners), their number, and the split edges at it.
+struct Fans {
+    fan: Vec<u32>,
+    count: u32,
+    split_edges: usize,
+    unpaired: usize,
+}
+
+/// The fans around vertex `v` whose corners are `cs`: corners are joined across each edge
+/// at `v` that two triangles share, and across the pairs of an edge with more. Split
+/// edges are counted where `counts_here(other end)` says (once per edge).
+fn fans_of(mesh: &Mesh, v: u32, cs: &[(u32, u8)], counts_here: impl Fn(u32) -> bool) -> Fans {
+    // The uses of each edge at v: (other end, corner, direction: true when v -> other).
+    let mut uses: Vec<(u32, u32, bool)> = Vec::with_capacity(2 * cs.len());
+    for (c, &(t, k)) in cs.iter().enumerate() {
+        let tri = mesh.triangles[t as usize];
+        let (next, prev) = (tri[(k as usize + 1) % 3], tri[(k as usize + 2) % 3]);
+        if next != v {
+            uses.push((next, c as u32, true));
+        }
+        if prev != v && prev != next {
+            uses.push((prev, c as u32, false));
+        }
+    }
+    uses.sort_unstable();
+    let mut parent: Vec<u32> = (0..cs.len() as u32).collect();
+    let mut join = |a: u32, b: u32| {
+        let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+        parent[ra.max(rb) as usize] = ra.min(rb);
+    };
+    let (mut split_edges, mut unpaired) = (0, 0);
+    for edge in uses.chunk_by(|a, b| a.0 == b.0) {
+        match edge {
+            [_] => {}
+            [a, b] => join(a.1, b.1),
+            _ => {
+                let sheets = pair_around(mesh, v, edge, cs);
+                if counts_here(edge[0].0) {
+                    split_edges += 1;
+                    unpaired += edge.len() - 2 * sheets.len();
+                }
+                for (a, b) in sheets {
+                    join(a, b);
+                }
+            }
+        }
+    }
+    let mut fan = vec![u32::MAX; cs.len()];
+    let mut count = 0;
+    for c in 0..cs.len() {
+        let r = root(&mut parent, c as u32) as usize;
+        if fan[r] == u32::MAX {
+            fan[r] = count;
+            count += 1;
+        }
+        fan[c] = fan[r];
+    }
+    Fans {
+        fan,
+        count,
+        split_edges,
+        unpaired,
+    }
+}
+
+fn root(parent: &mut [u32], mut x: u32) -> u32 {
+    while parent[x as usize] != x {
+        let up = parent[parent[x as usize] as usize];
+        parent[x as usize] = up;
+        x = up;
+    }
+    x
+}
+
+/// Pairs the triangles around the edge from `v` to the other end of `uses` (more than two
+/// uses: other end, corner of `v`, direction) into sheets, as pairs of corners. Both ends
+/// of an edge pair it alike: the order depends only on the edge, taken from its lower to
+/// its higher vertex id, and on its triangles.
+fn pair_around(
+    mesh: &Mesh,
+    v: u32,
+    uses: &[(u32, u32, bool)],
+    cs: &[(u32, u8)],
+) -> Vec<(u32, u32)> {
+    let other = uses[0].0;
+    let (lo, hi) = (v.min(other), v.max(other));
+    let (p, q) = (mesh.positions[lo as usize], mesh.positions[hi as usize]);
+    // Per use: its corner, whether it runs lo -> hi, its far vertex.
+    let items: Vec<(u32, bool, [f64; 3], u32)> = uses
+        .iter()
+        .map(|&(_, c, out)| {
+            let (t, k) = cs[c as usize];
+            let tri = mesh.triangles[t as usize];
+            let far = tri[(k as usize + if out { 2 } else { 1 }) % 3];
+            (c, out == (v == lo), mesh.positions[far as usize], t)
+        })
+        .collect();
+    let order = angular_order(&p, &q, &items);
+    // Around the axis lo -> hi, angles increasing counter-clockwise (seen with the axis
+    // pointing at the viewer): a triangle running hi -> lo faces backwards, so its inside
+    // is towards the next triangle, which (oriented consistently) runs lo -> hi.
+    let m = order.len();
+    let mut taken = vec![false; m];
+    let mut sheets = Vec::new();
+    for i in 0..m {
+        let j = (i + 1) % m;
+        let (a, b) = (&items[order[i]], &items[order[j]]);
+        if !a.1 && b.1 && !taken[i] && !taken[j] {
+            taken[i] = true;
+            taken[j] = true;
+            sheets.push((a.0, b.0));
+        }
+    }
+    sheets
+}
+
+/// The uses' indices ordered by the angle of their far vertices around the axis `p -> q`,
+/// counter-clockwise, starting at the first use's far vertex; at equal angles those
+/// running `p -> q` (whose inside is before them) first, then by triangle.
+/// Exact (`orient3d` on the coordinates). Far vertices on the axis itself (zero-area
+/// triangles) come first.
+fn angular_order(p: &[f64; 3], q: &[f64; 3], items: &[(u32, bool, [f64; 3], u32)]) -> Vec<usize> {
+    // A reference direction: a far vertex off the axis, and a point off the plane through
+    // the axis and it (to tell its ray from the opposite one).
+    let off_axis = |w: &[f64; 3]| {
+        let d = crate::vec3::sub(q, p);
+        let n = crate::vec3::cross(&d, &crate::vec3::sub(w, p));
+        let aux = std::array::from_fn(|k| p[k] + n[k]);
+        (orient3d_explicit(p, q, w, &aux) != Sign::Zero).then_some(aux)
+    };
+    let Some((w0, aux)) = items.iter().find_map(|it| Some((it.2, off_axis(&it.2)?))) else {
+        let mut all: Vec<usize> = (0..items.len()).collect();
+        all.sort_by_key(|&i| items[i].3);
+        return all;
+    };
+    let side0 = orient3d_explicit(p, q, &aux, &w0);
+    // Half-turn 0: angles in [0, π); 1: [π, 2π); rank 0 within a half for its first ray.
+    let key = |w: &[f64; 3]| -> (u8, u8) {
+        match orient3d_explicit(p, q, &w0, w) {
+            Sign::Positive => (0, 1),
+            Sign::Negative => (1, 1),
+            Sign::Zero => match orient3d_explicit(p, q, &aux, w) {
+                s if s == side0 => (0, 0),
+                Sign::Zero => (0, 0),
+                _ => (1, 0),
+            },
+        }
+    };
+    let keys: Vec<(u8, u8)> = items.iter().map(|it| key(&it.2)).collect();
+    let mut order: Vec<usize> = (0..items.len()).collect();
+    order.sort_by(|&i, &j| {
+        keys[i].cmp(&keys[j]).then_with(|| {
+            let by_angle = if keys[i].1 == 1 {
+                // Same open half-turn: j comes later when it lies counter-clockwise of i.
+                match orient3d_explicit(p, q, &items[i].2, &items[j].2) {
+                    Sign::Positive => std::cmp::Ordering::Less,
+                    Sign::Negative => std::cmp::Ordering::Greater,
+                    Sign::Zero => std::cmp::Ordering::Equal,
+                }
+            } else {
+                std::cmp::Ordering::Equal
+            };
+            // At one angle (faces on faces), the one bounding the wedge before it first.
+            by_angle
+                .then(items[j].1.cmp(&items[i].1))
+                .then(items[i].3.cmp(&items[j].3))
+        })
+    });
+    order
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::edges::EdgeTopology;
+    use crate::measure::{mesh_stats, signed_volume};
+
+    fn two(a: Mesh, b: &Mesh) -> Mesh {
+        let mut m = crate::weld_exact(&{
+            let mut m = a;
+            m.append(b);
+            m
+        })
+        .mesh;
+        m.triangles.sort_unstable();
+        m
+    }
+
+    fn assert_manifold_closed(m: &Mesh, components: usize, volume: f64) {
+        let s = mesh_stats(m);
+        assert_eq!(
+            (s.boundary_edges, s.non_manifold_edges, s.inconsistent_edges),
+            (0, 0, 0)
+        );
+        assert_eq!(s.components, components);
+        assert_eq!(signed_volume(m), volume);
+        // Vertex-manifold: every vertex's triangles form one fan.
+        let all: Vec<u32> = (0..m.positions.len() as u32).collect();
+        let (again, r) = split_at(m.clone(), &all);
+        assert_eq!(r, NonManifoldReport::default());
+        assert_eq!(&again, m);
+    }
+
+    #[test]
+    fn cubes_sharing_an_edge_become_two_closed_sheets() {
+        let a = Mesh::unit_cube();
+        let b = Mesh::cuboid([1.0, 1.0, 0.0], [2.0, 2.0, 1.0]);
+        let m = two(a, &b);
+        assert_eq!(EdgeTopology::new(&m).kind_counts().non_manifold, 1);
+        let (out, r) = split_nonmanifold(&m);
+        assert_eq!(r.edges_split, 1);
+        assert_eq!(r.vertices_added, 2);
+        assert_eq!(r.unpaired, 0);
+        assert_eq!(out.triangles.len(), m.triangles.len());
+        assert_manifold_closed(&out, 2, 2.0);
+    }
+
+    #[test]
+    fn cubes_sharing_a_vertex_get_two_copies_of_it() {
+        let m = two(Mesh::unit_cube(), &Mesh::cuboid([1.0; 3], [2.0; 3]));
+        let (out, r) = split_nonmanifold(&m);
+        assert_eq!((r.edges_split, r.vertices_added, r.unpaired), (0, 1, 0));
+        assert_manifold_closed(&out, 2, 2.0);
+    }
+
+    #[test]
+    fn four_cubes_around_one_edge_pair_each_with_itself() {
+        // Four unit cubes around the z axis: the axis edge has 8 triangles, four solid
+        // wedges and no empty one, in every rotation of the triangle order.
+        let mut m = Mesh::default();
+        for (x, y) in [(0.0, 0.0), (-1.0, 0.0), (-1.0, -1.0), (0.0, -1.0)] {
+            m.append(&Mesh::cuboid([x, y, 0.0], [x + 1.0, y + 1.0, 1.0]));
+        }
+        let m = crate::weld_exact(&m).mesh;
+        for shift in 0..m.triangles.len() {
+            let mut rotated = m.clone();
+            rotated.triangles.rotate_left(shift);
+            let (out, r) = split_nonmanifold(&rotated);
+            assert_eq!(r.unpaired, 0);
+            let s = mesh_stats(&out);
+            assert_eq!((s.boundary_edges, s.non_manifold_edges), (0, 0));
+            assert_eq!(s.components, 4, "shift {shift}");
+            assert_eq!(signed_volume(&out), 4.0);
+        }
+    }
+
+    #[test]
+    fn manifold_meshes_are_left_as_they_are() {
+        let sphere = crate::shapes::uv_sphere([0.0; 3], 1.0, 16, 8);
+        let (out, r) = split_nonmanifold(&sphere);
+        assert_eq!(r, NonManifoldReport::default());
+        assert_eq!(out, sphere);
+        let grid = crate::shapes::heightfield([0.0, 0.0], [1.0, 1.0], 4, 4, |x, y| x * y);
+        assert_eq!(split_nonmanifold(&grid).0, grid);
+    }
+
+    #[test]
+    fn inconsistent_orientation_leaves_unpaired_triangles_open() {
+        // Three triangles on one edge, all running the same way: nothing pairs.
+        let m = Mesh::new_unchecked(
+            vec![
+                [0.0, 0.0, 0.0],
+                [0.0, 0.0, 1.0],
+                [1.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [-1.0, 0.0, 0.0],
+            ],
+            vec![[0, 1, 2], [0, 1, 3], [0, 1, 4]],
+        );
+        let (out, r) = split_nonmanifold(&m);
+        assert_eq!((r.edges_split, r.unpaired), (1, 3));
+        assert_eq!(mesh_stats(&out).non_manifold_edges, 0);
+    }
+}
