@@ -323,7 +323,8 @@ fn oriented_terrain_needs_no_force() {
 fn self_intersecting_input_is_refused_with_a_location() {
     // Two overlapping cubes in one file.
     let mut m = meshbool::Mesh::unit_cube();
-    m.append(&meshbool::Mesh::cuboid([0.5; 3], [1.5; 3]));
+    m.append(&meshbool::Mesh::cuboid([0.5; 3], [1.5; 3]))
+        .unwrap();
     let bad = tmp("selfx.ply");
     meshbool::io::write_path(&bad, &m).unwrap();
     let c = write_cube("selfx_b.ply", [2.0; 3], [3.0; 3]);
@@ -480,7 +481,7 @@ fn open_box(z0: f64, z1: f64, drop_top: bool) -> meshbool::Mesh {
 #[test]
 fn close_stitch_joins_two_open_boxes_into_one_cuboid() {
     let mut m = open_box(0.0, 1.0, true);
-    m.append(&open_box(2.0, 3.0, false));
+    m.append(&open_box(2.0, 3.0, false)).unwrap();
     let input = tmp("two_boxes.obj");
     meshbool::io::write_path(&input, &m).unwrap();
     let out = tmp("stitched.obj");
@@ -619,7 +620,8 @@ fn split_merge_small_joins_stray_components() {
     // the box top (a handful).
     let a = write_cube("ms_a.ply", [0.0; 3], [3.0; 3]);
     let mut b = meshbool::shapes::uv_sphere([1.2, 1.5, 3.0], 0.8, 24, 12);
-    b.append(&meshbool::Mesh::cuboid([2.5, 2.5, 2.5], [2.7, 2.7, 3.3]));
+    b.append(&meshbool::Mesh::cuboid([2.5, 2.5, 2.5], [2.7, 2.7, 3.3]))
+        .unwrap();
     let bp = tmp("ms_b.ply");
     meshbool::io::write_path(&bp, &b).unwrap();
     let group = |m: &serde_json::Value, name: &str| -> serde_json::Value {

@@ -214,7 +214,7 @@ fn sort_keyed(keyed: &mut Vec<(u64, u32)>) {
 }
 
 impl Bvh {
-    /// Builds the hierarchy of `mesh` (indices must be in range).
+    /// Builds the hierarchy of `mesh`.
     pub fn new(mesh: &Mesh) -> Self {
         Self::over(mesh, morton_order(mesh))
     }

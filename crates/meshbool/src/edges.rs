@@ -49,7 +49,7 @@ impl EdgeTopology {
     /// Marks a triangle edge that joins a vertex to itself.
     pub const NO_EDGE: u32 = u32::MAX;
 
-    /// Builds the adjacency of `mesh` (indices must be in range). Linear time: half-edges
+    /// Builds the adjacency of `mesh`. Linear time: half-edges
     /// are bucketed by their lower vertex (a counting sort), then each small bucket is sorted
     /// by the higher vertex.
     pub fn new(mesh: &Mesh) -> Self {
@@ -219,7 +219,7 @@ pub struct SeamTopology {
 }
 
 impl SeamTopology {
-    /// The seam structure of `mesh` (indices must be in range) cut along `seam` (vertex
+    /// The seam structure of `mesh` cut along `seam` (vertex
     /// pairs, in any order; pairs that are not edges of the mesh are ignored).
     pub fn new(mesh: &Mesh, seam: &[[u32; 2]]) -> Self {
         let nv = mesh.positions.len();
@@ -362,7 +362,7 @@ pub struct EdgeCounts {
 }
 
 impl EdgeCounts {
-    /// Counts the edges of `mesh` by kind (indices must be in range), the same counts as
+    /// Counts the edges of `mesh` by kind, the same counts as
     /// [`EdgeTopology::kind_counts`] without building the adjacency: what the input checks
     /// and result reports need, in a fraction of the memory. The vertex range is split
     /// among the threads; each buckets the half-edges whose lower vertex is in its range
@@ -624,7 +624,7 @@ mod merge_tests {
 
     /// `m` with `other`'s triangles appended (vertices offset).
     fn with(mut m: Mesh, other: &Mesh) -> Mesh {
-        m.append(other);
+        m.append(other).unwrap();
         m
     }
 

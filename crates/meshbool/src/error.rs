@@ -63,6 +63,15 @@ pub enum Error {
         /// What is wrong.
         message: String,
     },
+    /// A file the library wrote for itself (a split's `manifest.json`) does not read as
+    /// one.
+    #[error("malformed {what}: {message}")]
+    Malformed {
+        /// What the content should have been.
+        what: &'static str,
+        /// What is wrong.
+        message: String,
+    },
     /// A parameter given to an operation is out of its range (a negative distance, NaN).
     #[error("invalid parameter: {0}")]
     InvalidParameter(String),

@@ -47,7 +47,7 @@ impl fmt::Display for Format {
 }
 
 impl Format {
-    /// All formats, with the names [`Format::from_name`] accepts.
+    /// All formats, with the names they are read by ([`FromStr`]) and written as.
     pub const NAMES: [(&'static str, Format); 9] = [
         ("stl", Format::StlBinary),
         ("stl-ascii", Format::StlAscii),
@@ -66,15 +66,6 @@ impl Format {
             .iter()
             .find(|(_, f)| *f == self)
             .map_or("", |(n, _)| n)
-    }
-
-    /// The format for a name such as `stl`, `stl-ascii`, `ply-ascii`, `kirra-json` (case-insensitive).
-    pub fn from_name(name: &str) -> Option<Format> {
-        let name = name.to_ascii_lowercase();
-        Self::NAMES
-            .iter()
-            .find(|(n, _)| *n == name)
-            .map(|&(_, f)| f)
     }
 
     /// True when reading this format already merges exactly equal positions into one
@@ -120,7 +111,8 @@ impl Format {
 impl FromStr for Format {
     type Err = crate::Error;
 
-    /// [`Format::from_name`], with an error listing the known names.
+    /// The format named `s` ([`Format::NAMES`], any ASCII case), with an error listing the
+    /// names.
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         let formats = Format::NAMES.map(|(_, f)| f);
         crate::error::parse_name(s, &formats, Format::name, "format")

@@ -52,6 +52,26 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+/// `Display` and `FromStr` for an enum with `ALL` and `name()`: written and read by its
+/// names (reading ignores ASCII case and lists the names when it fails).
+macro_rules! by_name {
+    ($t:ty, $what:literal) => {
+        impl std::fmt::Display for $t {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str(self.name())
+            }
+        }
+
+        impl std::str::FromStr for $t {
+            type Err = crate::Error;
+
+            fn from_str(s: &str) -> Result<Self, Self::Err> {
+                crate::error::parse_name(s, &<$t>::ALL, <$t>::name, $what)
+            }
+        }
+    };
+}
+
 #[doc(hidden)]
 pub mod arrange;
 #[doc(hidden)]

@@ -93,12 +93,20 @@ impl Mesh {
     }
 
     /// Adds `other`'s vertices and triangles to this mesh (its vertices after this mesh's,
-    /// not welded to them).
-    pub fn append(&mut self, other: &Mesh) {
+    /// not welded to them). Errors, changing nothing, when the two together would have
+    /// more than `u32::MAX` vertices.
+    pub fn append(&mut self, other: &Mesh) -> Result<()> {
+        if self.positions.len() + other.positions.len() > u32::MAX as usize {
+            return Err(Error::invalid(
+                Location::Whole,
+                "appending would exceed the limit of u32::MAX vertices",
+            ));
+        }
         let offset = self.positions.len() as u32;
         self.positions.extend_from_slice(&other.positions);
         self.triangles
             .extend(other.triangles.iter().map(|t| t.map(|v| v + offset)));
+        Ok(())
     }
 
     /// The positions and triangles, giving up the mesh.
@@ -201,7 +209,7 @@ impl Mesh {
     /// Checks that every coordinate is finite (indices are always in range). The error
     /// names the first offending vertex.
     pub fn validate(&self) -> Result<()> {
-        self.check_indices()?;
+        debug_assert!(self.check_indices().is_ok());
         if let Some(v) = self
             .positions
             .iter()
@@ -268,16 +276,15 @@ impl Mesh {
         }
     }
 
-    /// The same mesh without the vertices no triangle uses, the rest renumbered in order of
-    /// first use; also returns how many were dropped.
-    pub fn without_unreferenced(self) -> (Mesh, usize) {
+    /// The triangles `ids` (in range) of this mesh as a mesh of their own, with only the
+    /// vertices they use, numbered in order of first use.
+    pub(crate) fn subset(&self, ids: &[u32]) -> Mesh {
         let mut id = vec![u32::MAX; self.positions.len()];
         let mut positions = Vec::new();
-        let triangles: Vec<[u32; 3]> = self
-            .triangles
+        let triangles = ids
             .iter()
-            .map(|t| {
-                t.map(|v| {
+            .map(|&t| {
+                self.triangles[t as usize].map(|v| {
                     if id[v as usize] == u32::MAX {
                         id[v as usize] = positions.len() as u32;
                         positions.push(self.positions[v as usize]);
@@ -286,15 +293,23 @@ impl Mesh {
                 })
             })
             .collect();
-        let dropped = self.positions.len() - positions.len();
-        (Mesh::new_unchecked(positions, triangles), dropped)
+        Mesh::new_unchecked(positions, triangles)
+    }
+
+    /// The same mesh without the vertices no triangle uses, the rest renumbered in order of
+    /// first use; also returns how many were dropped.
+    pub fn without_unreferenced(self) -> (Mesh, usize) {
+        let all: Vec<u32> = (0..self.triangles.len() as u32).collect();
+        let kept = self.subset(&all);
+        let dropped = self.positions.len() - kept.positions.len();
+        (kept, dropped)
     }
 }
 
 /// Welds vertices whose positions are exactly equal (as `f64` numbers; `0.0` and `-0.0`
 /// are equal). No tolerance: for welding within a distance use the repair tools.
 ///
-/// Input: any mesh (indices must be in range). Output: the welded mesh, vertices in order
+/// Input: any mesh. Output: the welded mesh, vertices in order
 /// of first appearance in `positions`, triangles unchanged in number and order (a triangle
 /// whose corners become equal stays, as a degenerate triangle), plus the old→new vertex map.
 /// Deterministic.
@@ -349,10 +364,10 @@ mod tests {
 
     #[test]
     fn validate_names_offender() {
-        let mut m = Mesh::unit_cube();
-        m.triangles[5] = [0, 1, 8];
+        let (positions, mut triangles) = Mesh::unit_cube().into_parts();
+        triangles[5] = [0, 1, 8];
         assert!(matches!(
-            m.validate(),
+            Mesh::new(positions, triangles),
             Err(Error::InvalidMesh {
                 location: Location::Triangle(5),
                 ..

@@ -90,7 +90,8 @@ fn json(report: &impl serde::Serialize) -> Value {
 fn slab_and_posts() -> (Mesh, Mesh) {
     let a = Mesh::cuboid([0.0; 3], [4.0, 2.0, 1.0]);
     let mut b = Mesh::cuboid([0.5, 0.5, 0.5], [1.5, 1.5, 2.0]);
-    b.append(&Mesh::cuboid([2.5, 0.5, 0.5], [3.5, 1.5, 2.0]));
+    b.append(&Mesh::cuboid([2.5, 0.5, 0.5], [3.5, 1.5, 2.0]))
+        .unwrap();
     (a, b)
 }
 
@@ -196,7 +197,7 @@ fn docs_list_every_key_of_every_report_and_no_other() {
 fn operand_report_keys_are_documented_when_a_check_finds_something() {
     // Two overlapping cubes in one mesh: self-intersections found and taken as given.
     let mut m = Mesh::unit_cube();
-    m.append(&Mesh::cuboid([0.5; 3], [1.5; 3]));
+    m.append(&Mesh::cuboid([0.5; 3], [1.5; 3])).unwrap();
     let opts = BooleanOptions {
         checks: Checks {
             force: true,

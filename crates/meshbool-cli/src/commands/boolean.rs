@@ -54,10 +54,11 @@ pub fn run(args: &Args, op: Op) -> Result<()> {
     ops::with_threads(flags.threads, || {
         let spinner = Spinner::new(flags.reading());
         let (a, b) = Operand::read_pair(&args.a, &args.b, &flags.checks())?;
+        // The operands were checked as they were read.
         let opts = BooleanOptions {
-            checks: flags.checks(),
             keep_nonmanifold: args.keep_nonmanifold,
             run: flags.run(&spinner),
+            ..BooleanOptions::default()
         };
         let out = ops::boolean(&a, &b, op, &opts)?;
         spinner.set_message("writing");

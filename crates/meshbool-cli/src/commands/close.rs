@@ -3,10 +3,10 @@
 use std::path::PathBuf;
 
 use anyhow::Result;
-use meshbool::ops;
+use meshbool::ops::{self, Checks, Operand};
 use meshbool::repair::{CloseMode, CloseOptions};
 
-use super::{parse_value, print_json};
+use super::{one_of, print_json};
 
 /// Arguments of `close`.
 #[derive(clap::Args)]
@@ -16,8 +16,8 @@ pub struct Args {
     /// Output mesh file.
     #[arg(short, long)]
     output: PathBuf,
-    /// How to close: none, cap, stitch, curtain, stitch+curtain.
-    #[arg(long, default_value = "cap", value_parser = parse_value::<CloseMode>)]
+    /// How to close.
+    #[arg(long, ignore_case = true, default_value = "cap", value_parser = one_of::<CloseMode>(CloseMode::ALL.map(CloseMode::name)))]
     mode: CloseMode,
     /// Curtain: distance of the floor below the lowest point.
     #[arg(long, default_value_t = 10.0)]
@@ -36,7 +36,11 @@ pub fn run(args: &Args) -> Result<()> {
         stitch_max_gap: args.max_gap,
         floor_offset: args.floor_offset,
     };
-    let out = ops::close(&ops::read(&args.input, None)?.0, args.mode, &opts)?;
+    let out = ops::close(
+        &Operand::read(&args.input, &Checks::NONE)?,
+        args.mode,
+        &opts,
+    )?;
     ops::write(&args.output, &out.mesh, None)?;
     let report = out.report();
     if args.json {

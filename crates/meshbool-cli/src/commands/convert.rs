@@ -6,7 +6,7 @@ use anyhow::{Context, Result};
 use meshbool::ops;
 use meshbool::Format;
 
-use super::parse_value;
+use super::{format_names, one_of};
 
 /// Arguments of `convert`.
 #[derive(clap::Args)]
@@ -16,10 +16,10 @@ pub struct Args {
     /// Output mesh file.
     output: PathBuf,
     /// Read the input as this format whatever its name says.
-    #[arg(long, value_parser = parse_value::<Format>)]
+    #[arg(long, ignore_case = true, value_parser = one_of::<Format>(format_names()))]
     from: Option<Format>,
-    /// Write this format (stl, stl-ascii, obj, ply, ply-ascii, ply-be, dxf, json, kirra-json).
-    #[arg(long, value_parser = parse_value::<Format>)]
+    /// Write this format.
+    #[arg(long, ignore_case = true, value_parser = one_of::<Format>(format_names()))]
     to: Option<Format>,
 }
 

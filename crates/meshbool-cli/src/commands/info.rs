@@ -7,7 +7,7 @@ use meshbool::measure::MeshStats;
 use meshbool::ops::{self, InfoReport};
 use meshbool::Format;
 
-use super::{parse_value, print_json};
+use super::{format_names, one_of, print_json};
 
 /// Arguments of `info`.
 #[derive(clap::Args)]
@@ -19,7 +19,7 @@ pub struct Args {
     #[arg(long)]
     json: bool,
     /// Read the inputs as this format whatever their names say.
-    #[arg(long, value_parser = parse_value::<Format>)]
+    #[arg(long, ignore_case = true, value_parser = one_of::<Format>(format_names()))]
     from: Option<Format>,
 }
 

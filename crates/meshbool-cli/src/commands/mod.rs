@@ -44,11 +44,11 @@ impl OperandFlags {
         }
     }
 
-    /// Threads, and progress shown on `spinner`.
+    /// Progress shown on `spinner` (the command runs in its thread pool as a whole).
     pub fn run(&self, spinner: &Spinner) -> RunOptions {
         let bar = spinner.0.clone();
         RunOptions {
-            threads: self.threads,
+            threads: None,
             progress: Some(Progress::new(move |s| bar.set_message(s.describe()))),
         }
     }
@@ -103,6 +103,23 @@ pub fn warn(lines: &[String]) {
     for w in lines {
         eprintln!("warning: {w}");
     }
+}
+
+/// A parser for one of the library's named values: `--help` lists `names`, and the text
+/// is read with the library's `FromStr` (arguments using it set `ignore_case`).
+pub fn one_of<T>(
+    names: impl IntoIterator<Item = &'static str>,
+) -> impl clap::builder::TypedValueParser<Value = T>
+where
+    T: std::str::FromStr<Err = meshbool::Error> + Clone + Send + Sync + 'static,
+{
+    use clap::builder::TypedValueParser;
+    clap::builder::PossibleValuesParser::new(names).try_map(|s| s.parse::<T>())
+}
+
+/// The names of the formats (`--from`, `--to`, `--format`).
+pub fn format_names() -> [&'static str; 9] {
+    meshbool::Format::NAMES.map(|(n, _)| n)
 }
 
 /// Parses a value the library can read from text (a format, close mode, facing, piece of

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use anyhow::Result;
-use meshbool::ops;
+use meshbool::ops::{self, Checks, Operand};
 use meshbool::repair::Facing;
 
 use super::print_json;
@@ -34,7 +34,7 @@ pub fn run(args: &Args) -> Result<()> {
         (_, true) => Facing::Outward,
         _ => Facing::Majority,
     };
-    let out = ops::orient(&ops::read(&args.input, None)?.0, facing)?;
+    let out = ops::orient(&Operand::read(&args.input, &Checks::NONE)?, facing)?;
     ops::write(&args.output, &out.mesh, None)?;
     if args.json {
         return print_json(&out.report());

@@ -3,10 +3,10 @@
 use std::path::PathBuf;
 
 use anyhow::{Context, Result};
-use meshbool::ops;
+use meshbool::ops::{self, Checks, Operand};
 use meshbool::repair::{CloseMode, DegenerateOptions, Facing, RepairConfig};
 
-use super::{parse_value, print_json};
+use super::{one_of, print_json};
 
 /// Arguments of `repair`: each flag overrides the configuration file's field.
 #[derive(clap::Args)]
@@ -38,9 +38,9 @@ pub struct Args {
     /// height exceeds this (1.15 for equilateral).
     #[arg(long, requires = "remove_degenerate")]
     max_aspect: Option<f64>,
-    /// Orientation: consistent, then facing `majority` (default), `z-up`, `outward`;
-    /// `none` skips the step.
-    #[arg(long, value_parser = parse_orient)]
+    /// Orientation: consistent, then facing as named (default: majority); `none` skips
+    /// the step.
+    #[arg(long, ignore_case = true, value_parser = one_of::<Orientation>(["none"].into_iter().chain(Facing::ALL.map(Facing::name))))]
     orient: Option<Orientation>,
     /// Shorthand for `--orient z-up`.
     #[arg(long, conflicts_with = "orient")]
@@ -49,8 +49,8 @@ pub struct Args {
     /// a vertex and re-triangulating in plan view. Needs --z-up.
     #[arg(long)]
     remove_folds: bool,
-    /// Close into a solid: none (default), cap, stitch, curtain, stitch+curtain.
-    #[arg(long, value_parser = parse_value::<CloseMode>)]
+    /// Close into a solid (default: none).
+    #[arg(long, ignore_case = true, value_parser = one_of::<CloseMode>(CloseMode::ALL.map(CloseMode::name)))]
     close: Option<CloseMode>,
     /// Curtain: distance of the floor below the lowest point (default 10).
     #[arg(long)]
@@ -70,11 +70,15 @@ pub struct Args {
 #[derive(Clone, Copy)]
 struct Orientation(Option<Facing>);
 
-fn parse_orient(s: &str) -> Result<Orientation, String> {
-    if s.eq_ignore_ascii_case("none") {
-        Ok(Orientation(None))
-    } else {
-        parse_value::<Facing>(s).map(|f| Orientation(Some(f)))
+impl std::str::FromStr for Orientation {
+    type Err = meshbool::Error;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        if s.eq_ignore_ascii_case("none") {
+            Ok(Orientation(None))
+        } else {
+            s.parse().map(|f| Orientation(Some(f)))
+        }
     }
 }
 
@@ -129,7 +133,7 @@ impl Args {
 /// Repairs the input as configured, writes it, prints the report.
 pub fn run(args: &Args) -> Result<()> {
     let config = args.config()?;
-    let out = ops::repair(&ops::read(&args.input, None)?.0, &config)?;
+    let out = ops::repair(&Operand::read(&args.input, &Checks::NONE)?, &config)?;
     ops::write(&args.output, &out.mesh, None)?;
     if args.json {
         return print_json(&out.report());

@@ -7,7 +7,7 @@ use anyhow::Result;
 use meshbool::ops::{self, Operand, SplitOptions};
 use meshbool::Format;
 
-use super::{parse_value, print_json, warn, OperandFlags, Spinner};
+use super::{format_names, one_of, print_json, warn, OperandFlags, Spinner};
 
 /// Arguments of `split`.
 #[derive(clap::Args)]
@@ -20,7 +20,7 @@ pub struct Args {
     #[arg(short, long)]
     output: PathBuf,
     /// File format of the pieces (obj, ply, ...; f64-exact formats keep seam vertices shared).
-    #[arg(long, default_value = "ply", value_parser = parse_value::<Format>)]
+    #[arg(long, ignore_case = true, default_value = "ply", value_parser = one_of::<Format>(format_names()))]
     format: Format,
     /// Merge components of fewer triangles than this into the nearest larger component
     /// of the same group (stray fragments); components are numbered largest first.
@@ -39,10 +39,11 @@ pub fn run(args: &Args) -> Result<()> {
         let (a, b) = Operand::read_pair(&args.a, &args.b, &flags.checks())?;
         warn(&[a.report().assumed(), b.report().assumed()].concat());
         spinner.set_message("splitting");
+        // The operands were checked as they were read.
         let opts = SplitOptions {
-            checks: flags.checks(),
             merge_small: args.merge_small,
             run: flags.run(&spinner),
+            ..SplitOptions::default()
         };
         let out = ops::split(&a, &b, &opts)?;
         spinner.set_message("writing");

@@ -27,7 +27,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::arrange::{arrange, Arranged, FailReason};
-use crate::classify::{classify, Class, Classified, Operand};
+use crate::classify::{classify, Class, Classified, CutMesh};
 use crate::edges::SeamTopology;
 pub use crate::intersect::Source;
 use crate::intersect::{intersect_with, Seam};
@@ -116,12 +116,24 @@ pub struct BooleanResult {
     /// Degenerate (zero-area) triangles of A and B where the meshes meet, left out of the
     /// intersection test (see [`Seam::degenerate`]).
     pub degenerate: [usize; 2],
-    /// Triangles that could not be re-triangulated (invalid input), kept uncut: each is
-    /// `(source, triangle, reason)`. Empty for valid inputs.
-    pub failed: Vec<(Source, u32, FailReason)>,
+    /// Triangles that could not be re-triangulated (invalid input), kept uncut. Empty for
+    /// valid inputs.
+    pub failed: Vec<FailedTriangle>,
     /// Result triangles that turned over or collapsed when their seam points were rounded
     /// to `f64` coordinates ([`Arranged::rounding_flips`]); 0 in almost every case.
     pub rounding_flips: usize,
+}
+
+/// An input triangle that could not be cut along the seam (inconsistent input, such as a
+/// self-intersecting mesh taken as given) and was kept whole.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct FailedTriangle {
+    /// The input it belongs to.
+    pub source: Source,
+    /// Its index in that input.
+    pub triangle: u32,
+    /// Why.
+    pub reason: FailReason,
 }
 
 /// What a selection does with one triangle.
@@ -332,12 +344,12 @@ pub fn split(a: &Mesh, b: &Mesh, opts: &PipelineOptions) -> Split {
         || SeamTopology::new(&arr_b.mesh, &arr_b.seam_edges),
     );
     let (closed_a, closed_b) = (topo_a.is_closed(), topo_b.is_closed());
-    let oa = Operand {
+    let oa = CutMesh {
         input: a,
         arranged: &arr_a,
         topology: &topo_a,
     };
-    let ob = Operand {
+    let ob = CutMesh {
         input: b,
         arranged: &arr_b,
         topology: &topo_b,
@@ -541,12 +553,18 @@ pub fn boolean(a: &Mesh, b: &Mesh, op: Op, opts: &PipelineOptions) -> BooleanRes
             .count()
     };
     let rounding_flips = kept(&s.a, &s.class_a, &rule.a) + kept(&s.b, &s.class_b, &rule.b);
-    let failed =
-        s.a.failed
-            .iter()
-            .map(|&(t, w)| (Source::A, t, w))
-            .chain(s.b.failed.iter().map(|&(t, w)| (Source::B, t, w)))
-            .collect();
+    let failed = [(Source::A, &s.a), (Source::B, &s.b)]
+        .into_iter()
+        .flat_map(|(source, arr)| {
+            arr.failed
+                .iter()
+                .map(move |&(triangle, reason)| FailedTriangle {
+                    source,
+                    triangle,
+                    reason,
+                })
+        })
+        .collect();
     BooleanResult {
         mesh,
         provenance: merged.provenance,
@@ -558,19 +576,7 @@ pub fn boolean(a: &Mesh, b: &Mesh, op: Op, opts: &PipelineOptions) -> BooleanRes
     }
 }
 
-impl fmt::Display for Stage {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for Stage {
-    type Err = crate::Error;
-
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        crate::error::parse_name(s, &Stage::ALL, Stage::name, "stage")
-    }
-}
+by_name!(Stage, "stage");
 
 /// The groups of split-and-pick: each mesh's triangles by their class against the other.
 /// Written (and parsed, [`FromStr`]) by [`Group::name`].
@@ -622,11 +628,6 @@ impl Group {
         }
     }
 
-    /// The group named `name` ([`Group::name`]).
-    pub fn from_name(name: &str) -> Option<Group> {
-        Group::ALL.into_iter().find(|g| g.name() == name)
-    }
-
     /// The side and class of the group's triangles.
     fn side_and_class(self) -> (Source, Class) {
         match self {
@@ -642,19 +643,7 @@ impl Group {
     }
 }
 
-impl fmt::Display for Group {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for Group {
-    type Err = crate::Error;
-
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        crate::error::parse_name(s, &Group::ALL, Group::name, "group")
-    }
-}
+by_name!(Group, "group");
 
 impl Split {
     /// The triangles of one group as a mesh (vertices compacted), with their provenance.
@@ -676,17 +665,18 @@ impl Split {
 }
 
 /// Merges meshes into one, each optionally flipped, welding exactly equal positions: the
-/// "pick" of split-and-pick (pieces written by a split share their seam vertices bit for bit).
-pub fn pick(pieces: &[(&Mesh, bool)]) -> Mesh {
+/// "pick" of split-and-pick (pieces written by a split share their seam vertices bit for
+/// bit). Errors when the pieces together have more than `u32::MAX` vertices.
+pub fn pick(pieces: &[(&Mesh, bool)]) -> crate::Result<Mesh> {
     let mut all = Mesh::default();
     for &(m, flip) in pieces {
         if flip {
-            all.append(&m.flipped());
+            all.append(&m.flipped())?;
         } else {
-            all.append(m);
+            all.append(m)?;
         }
     }
-    crate::weld_exact(&all).mesh.without_unreferenced().0
+    Ok(crate::weld_exact(&all).mesh.without_unreferenced().0)
 }
 
 #[cfg(test)]

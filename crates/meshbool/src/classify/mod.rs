@@ -102,7 +102,7 @@ fn local_class(own: &[[f64; 3]; 3], w: &Point, e: [&Point; 2], fan: &[FanFace]) 
 
 /// One side of a classification: an input mesh, its arrangement and the arrangement's
 /// edge topology.
-pub struct Operand<'a> {
+pub struct CutMesh<'a> {
     /// The input mesh.
     pub input: &'a Mesh,
     /// Its arrangement along the seam.
@@ -119,7 +119,7 @@ pub const EXACT_WINDING_UP_TO: f64 = 2e7;
 /// seam). `y_closed` picks the winding-number threshold (1/2 for closed, 0 for open);
 /// winding numbers are exact sums up to `exact_winding_up_to` triangle × query products
 /// ([`EXACT_WINDING_UP_TO`] by default).
-pub fn classify(x: &Operand, y: &Operand, y_closed: bool, exact_winding_up_to: f64) -> Classified {
+pub fn classify(x: &CutMesh, y: &CutMesh, y_closed: bool, exact_winding_up_to: f64) -> Classified {
     // Patches: components of the triangles joined across edges that are not seam edges,
     // numbered in the order of each patch's first triangle.
     let (patches, patch) = (x.topology.patches, &x.topology.patch);
@@ -148,7 +148,7 @@ type Vote = (u32, u32, Option<Class>);
 
 /// The votes of every use of every seam edge of `x`, each from the other mesh's fan around
 /// that edge ([`local_class`]), in the order of `x`'s seam edges.
-fn seam_votes(x: &Operand, y: &Operand) -> Vec<Vote> {
+fn seam_votes(x: &CutMesh, y: &CutMesh) -> Vec<Vote> {
     let (x_in, topo, y_in, ytopo) = (x.input, x.topology, y.input, y.topology);
     let (x, y) = (x.arranged, y.arranged);
     let patch = &topo.patch;

@@ -49,11 +49,6 @@ impl Polyline {
             closed: self.closed,
         }
     }
-
-    /// Length, measured on the approximate point coordinates.
-    pub fn length(&self, seam: &Seam) -> f64 {
-        self.to_xyz(seam).length()
-    }
 }
 
 /// Chains the seam's segments (coplanar ones too when `with_coplanar`) into polylines.

@@ -170,7 +170,7 @@ fn two_spheres_meet_in_one_loop_on_the_analytic_circle() {
             let r = (p[1] * p[1] + p[2] * p[2]).sqrt();
             assert!((r - rho).abs() <= 2.0 * sag, "{p:?}");
         }
-        assert!((curves[0].length(&seam) - 2.0 * std::f64::consts::PI * rho).abs() < 0.05);
+        assert!((curves[0].to_xyz(&seam).length() - 2.0 * std::f64::consts::PI * rho).abs() < 0.05);
     }
 }
 
@@ -339,7 +339,7 @@ fn self_intersections_found_exactly() {
     let a = uv_sphere([0.0; 3], 1.0, 32, 16);
     let b = uv_sphere([0.5, 0.1, 0.0], 1.0, 24, 12);
     let mut both = a.clone();
-    both.append(&b);
+    both.append(&b).unwrap();
     let pairs = self_intersections(&both);
     // Expected: every pair of a and b that meets at all (segments and single points).
     let na = a.triangles.len() as u32;

@@ -95,11 +95,17 @@ pub fn read_bytes(bytes: &[u8], format: Format) -> Result<Mesh> {
 
 /// Reads a mesh file, telling the format from the extension and the content.
 pub fn read_path(path: impl AsRef<Path>) -> Result<Mesh> {
+    Ok(read_file(path, None)?.0)
+}
+
+/// Reads a mesh file as `from`, or as the format its name and content say
+/// ([`detect_format`]); also gives the format it was read as.
+pub fn read_file(path: impl AsRef<Path>, from: Option<Format>) -> Result<(Mesh, Format)> {
     let path = path.as_ref();
     let bytes = fs::read(path)?;
-    let format = detect_format(&bytes, Format::for_path(path))
+    let format = detect_format(&bytes, from.or_else(|| Format::for_path(path)))
         .ok_or_else(|| Error::UnknownFormat(path.display().to_string()))?;
-    read_bytes(&bytes, format)
+    Ok((read_bytes(&bytes, format)?, format))
 }
 
 /// Writes `mesh` to `out` in `format`. Non-finite coordinates are an error
@@ -129,8 +135,17 @@ pub fn write_path(path: impl AsRef<Path>, mesh: &Mesh) -> Result<()> {
 
 /// Writes `mesh` to a file in `format`.
 pub fn write_path_as(path: impl AsRef<Path>, mesh: &Mesh, format: Format) -> Result<()> {
+    write_file(path.as_ref(), |out| write(out, mesh, format))
+}
+
+/// Creates the file at `path` and lets `fill` write it through a buffer: the one way
+/// files are written.
+pub(crate) fn write_file(
+    path: &Path,
+    fill: impl FnOnce(&mut BufWriter<fs::File>) -> Result<()>,
+) -> Result<()> {
     let mut out = BufWriter::new(fs::File::create(path)?);
-    write(&mut out, mesh, format)?;
+    fill(&mut out)?;
     out.flush()?;
     Ok(())
 }

@@ -424,7 +424,7 @@ fn detection_by_name_and_content() {
     }
     assert_eq!(Format::for_path("a/b.STL"), Some(Format::StlBinary));
     assert_eq!(Format::for_path("x.txt"), None);
-    assert_eq!(Format::from_name("PLY-ascii"), Some(Format::PlyAscii));
+    assert_eq!("PLY-ascii".parse::<Format>().unwrap(), Format::PlyAscii);
     assert_eq!(detect_format(b"hello world", None), None);
 }
 

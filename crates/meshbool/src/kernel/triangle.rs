@@ -3,6 +3,7 @@
 //! its orientation there.
 
 use super::{normals_cross_sign, orient2d, robust_safe, Point, Sign};
+use crate::vec3::{cross, sub};
 
 /// A non-degenerate triangle of input points, with a projection in which it is not
 /// degenerate: [`Triangle::axis`] (the coordinate dropped) and [`Triangle::sign`] (its
@@ -69,13 +70,7 @@ impl Triangle {
 
 /// `(b − a) × (c − a)` in plain `f64`: only to choose an order of trying axes.
 fn approx_normal(p: &[[f64; 3]; 3]) -> [f64; 3] {
-    let u: [f64; 3] = std::array::from_fn(|k| p[1][k] - p[0][k]);
-    let v: [f64; 3] = std::array::from_fn(|k| p[2][k] - p[0][k]);
-    [
-        u[1] * v[2] - u[2] * v[1],
-        u[2] * v[0] - u[0] * v[2],
-        u[0] * v[1] - u[1] * v[0],
-    ]
+    cross(&sub(&p[1], &p[0]), &sub(&p[2], &p[0]))
 }
 
 /// An axis in which the direction of the line where the planes of triangles `t` and `u`
@@ -83,14 +78,7 @@ fn approx_normal(p: &[[f64; 3]; 3]) -> [f64; 3] {
 /// ordered along it by that coordinate. Axes are tried from the largest component of the
 /// approximate direction to the smallest. `None` for parallel (or degenerate) planes.
 pub fn planes_line_axis(t: &[[f64; 3]; 3], u: &[[f64; 3]; 3]) -> Option<usize> {
-    let d = {
-        let (n, m) = (approx_normal(t), approx_normal(u));
-        [
-            n[1] * m[2] - n[2] * m[1],
-            n[2] * m[0] - n[0] * m[2],
-            n[0] * m[1] - n[1] * m[0],
-        ]
-    };
+    let d = cross(&approx_normal(t), &approx_normal(u));
     let mut axes = [0, 1, 2];
     axes.sort_by(|&i, &j| d[j].abs().total_cmp(&d[i].abs()));
     axes.into_iter()

@@ -4,8 +4,7 @@
 use serde::Serialize;
 
 use super::{Checks, Input, Measures, Operand, OperandReport, RunOptions, SCHEMA};
-use crate::arrange::FailReason;
-use crate::boolean::{Op, PipelineOptions, Provenance, Source};
+use crate::boolean::{FailedTriangle, Op, PipelineOptions, Provenance};
 use crate::repair::NonManifoldReport;
 use crate::{Mesh, Result};
 
@@ -20,18 +19,6 @@ pub struct BooleanOptions {
     pub keep_nonmanifold: bool,
     /// Threads and progress.
     pub run: RunOptions,
-}
-
-/// An input triangle that could not be cut along the seam (inconsistent input, such as a
-/// self-intersecting mesh taken as given) and was kept whole.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-pub struct FailedTriangle {
-    /// The input it belongs to.
-    pub source: Source,
-    /// Its index in that input.
-    pub triangle: u32,
-    /// Why.
-    pub reason: FailReason,
 }
 
 /// The result of [`boolean`]: the mesh, where each of its triangles comes from, and what
@@ -165,15 +152,7 @@ pub fn boolean<'a>(
         operands,
         seam_points: r.seam_points,
         degenerate: r.degenerate,
-        failed: r
-            .failed
-            .into_iter()
-            .map(|(source, triangle, reason)| FailedTriangle {
-                source,
-                triangle,
-                reason,
-            })
-            .collect(),
+        failed: r.failed,
         rounding_flips: r.rounding_flips,
         seconds,
     })

@@ -102,13 +102,8 @@ impl CurvesOutput {
                 path.display()
             ))
         })?;
-        let run = || -> Result<()> {
-            let mut file = std::io::BufWriter::new(std::fs::File::create(path)?);
-            write_polylines(&mut file, &self.polylines, format)?;
-            std::io::Write::flush(&mut file)?;
-            Ok(())
-        };
-        run().map_err(|e| e.in_file("writing", path))
+        crate::io::write_file(path, |out| write_polylines(out, &self.polylines, format))
+            .map_err(|e| e.in_file("writing", path))
     }
 
     /// What the curves leave out, one line each (degenerate triangles).

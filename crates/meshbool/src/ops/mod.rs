@@ -54,7 +54,8 @@ mod operand;
 mod single;
 mod split;
 
-pub use boolean::{boolean, BooleanOptions, BooleanOutput, BooleanReport, FailedTriangle};
+pub use crate::boolean::FailedTriangle;
+pub use boolean::{boolean, BooleanOptions, BooleanOutput, BooleanReport};
 pub use curves::{curves, CurvesOptions, CurvesOutput, CurvesReport};
 pub use operand::{Checks, Input, Operand, OperandReport, SelfIntersections};
 pub use single::{
@@ -79,12 +80,6 @@ impl Progress {
     pub fn new(f: impl Fn(Stage) + Send + Sync + 'static) -> Self {
         Progress(Arc::new(f))
     }
-
-    pub(crate) fn report(this: &Option<Progress>, stage: Stage) {
-        if let Some(p) = this {
-            (p.0)(stage);
-        }
-    }
 }
 
 impl fmt::Debug for Progress {
@@ -97,8 +92,8 @@ impl fmt::Debug for Progress {
 /// every command.
 #[derive(Clone, Debug, Default)]
 pub struct RunOptions {
-    /// Worker threads (`None`: rayon's current pool, by default one thread per core).
-    /// `Some(n)` runs the call in a pool of its own of `n` threads (1 to
+    /// Worker threads (`None` or `Some(0)`: rayon's current pool, by default one thread
+    /// per core). `Some(n)` runs the call in a pool of its own of `n` threads (at most
     /// [`RunOptions::MAX_THREADS`]); a call already running in a pool of `n` threads uses it.
     pub threads: Option<usize>,
     /// Called as each stage begins.
@@ -109,14 +104,10 @@ impl RunOptions {
     /// The most worker threads a call may ask for.
     pub const MAX_THREADS: usize = 1024;
 
-    /// Runs `f` under these options' thread count (see [`RunOptions::threads`]).
-    /// Errors when the count is out of range or the pool cannot be started.
-    pub fn install<R: Send>(&self, f: impl FnOnce() -> R + Send) -> Result<R> {
-        with_threads(self.threads, f)
-    }
-
     fn stage(&self, stage: Stage) {
-        Progress::report(&self.progress, stage);
+        if let Some(p) = &self.progress {
+            (p.0)(stage);
+        }
     }
 
     /// The pipeline's options: this progress callback, the default crossovers.
@@ -128,14 +119,17 @@ impl RunOptions {
     }
 }
 
-/// Runs `f` in a pool of `threads` worker threads (`None`: the current pool). A call
-/// already on a worker of a pool that size runs directly. Errors when `threads` is 0 or
-/// over [`RunOptions::MAX_THREADS`], or when the threads cannot be started.
+/// Runs `f` in a pool of `threads` worker threads (`None` or `Some(0)`: the current
+/// pool). A call already on a worker of a pool that size runs directly. Errors when
+/// `threads` is over [`RunOptions::MAX_THREADS`] or the threads cannot be started.
 pub fn with_threads<R: Send>(threads: Option<usize>, f: impl FnOnce() -> R + Send) -> Result<R> {
-    let Some(n) = threads else { return Ok(f()) };
-    if !(1..=RunOptions::MAX_THREADS).contains(&n) {
+    let n = match threads {
+        None | Some(0) => return Ok(f()),
+        Some(n) => n,
+    };
+    if n > RunOptions::MAX_THREADS {
         return Err(Error::InvalidParameter(format!(
-            "threads must be between 1 and {}, got {n}",
+            "threads must be at most {}, got {n}",
             RunOptions::MAX_THREADS
         )));
     }
@@ -191,13 +185,7 @@ impl Measures {
 /// (welded only where the format stores corners per triangle).
 pub fn read(path: impl AsRef<Path>, from: Option<Format>) -> Result<(Mesh, Format)> {
     let path = path.as_ref();
-    let run = || -> Result<(Mesh, Format)> {
-        let bytes = std::fs::read(path)?;
-        let format = crate::io::detect_format(&bytes, from.or_else(|| Format::for_path(path)))
-            .ok_or_else(|| Error::UnknownFormat(path.display().to_string()))?;
-        Ok((crate::io::read_bytes(&bytes, format)?, format))
-    };
-    run().map_err(|e| e.in_file("reading", path))
+    crate::io::read_file(path, from).map_err(|e| e.in_file("reading", path))
 }
 
 /// Writes `mesh` to a file in `format`, or the format the file's name says. Errors name
@@ -209,13 +197,6 @@ pub fn write(path: impl AsRef<Path>, mesh: &Mesh, format: Option<Format>) -> Res
         None => return Err(Error::UnknownFormat(path.display().to_string())),
     };
     crate::io::write_path_as(path, mesh, format).map_err(|e| e.in_file("writing", path))
-}
-
-/// The exactly welded copy of a valid mesh (what every operation expects), as an error
-/// where the mesh breaks the data model.
-fn checked_welded(mesh: &Mesh) -> Result<Mesh> {
-    mesh.validate()?;
-    Ok(crate::weld_exact(mesh).mesh)
 }
 
 #[cfg(test)]

@@ -9,7 +9,7 @@ use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 
-use super::RunOptions;
+use super::{with_threads, RunOptions};
 use crate::boolean::Stage;
 use crate::edges::EdgeCounts;
 use crate::intersect::self_intersections;
@@ -250,7 +250,9 @@ impl<'a> From<&'a Operand> for Input<'a> {
 }
 
 impl<'a> Input<'a> {
-    fn operand(self, name: &str, checks: &Checks) -> Result<Cow<'a, Operand>> {
+    /// The input as an operand named `name`: a mesh checked as `checks` say, an operand
+    /// as it is.
+    pub(crate) fn operand(self, name: &str, checks: &Checks) -> Result<Cow<'a, Operand>> {
         Ok(match self {
             Input::Mesh(m) => Cow::Owned(Operand::new(name, m, checks)?),
             Input::Operand(o) => Cow::Borrowed(o),
@@ -266,8 +268,10 @@ impl<'a> Input<'a> {
         run: &RunOptions,
         f: impl FnOnce(&Operand, &Operand) -> R + Send,
     ) -> Result<(R, f64)> {
-        run.install(|| {
-            run.stage(Stage::Check);
+        with_threads(run.threads, || {
+            if matches!(a, Input::Mesh(_)) || matches!(b, Input::Mesh(_)) {
+                run.stage(Stage::Check);
+            }
             let (a, b) = rayon::join(|| a.operand("A", checks), || b.operand("B", checks));
             let (a, b) = (a?, b?);
             let start = Instant::now();

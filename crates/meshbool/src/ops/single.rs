@@ -1,10 +1,13 @@
 //! Commands on one mesh at the front door: measures (`info`), orientation, closing and the
-//! repair pipeline. Each validates its input; orientation, closing and repair also weld it
-//! exactly first (what their edge walks expect), as the CLI always did on reading.
+//! repair pipeline. Orientation, closing and repair take an [`Input`]: a mesh, validated
+//! and welded exactly on the way in (what their edge walks expect), or an [`Operand`]
+//! made earlier (the CLI reads its file as one, which does not weld twice formats that
+//! weld on read).
 
 use serde::Serialize;
 
-use super::{checked_welded, Measures, SCHEMA};
+use super::{Checks, Input, Operand, SCHEMA};
+use crate::edges::EdgeCounts;
 use crate::measure::{mesh_stats, MeshStats};
 use crate::repair::{
     self, CloseMode, CloseOptions, CloseReport, Facing, OrientReport, RepairConfig, RepairReport,
@@ -70,10 +73,15 @@ impl OrientOutput {
     }
 }
 
+/// The welded, validated mesh of one input.
+fn welded<'a>(input: impl Into<Input<'a>>) -> Result<std::borrow::Cow<'a, Operand>> {
+    input.into().operand("mesh", &Checks::NONE)
+}
+
 /// Makes orientation consistent and faces each component as `facing` says
 /// ([`repair::orient`]), on the exactly welded mesh.
-pub fn orient(mesh: &Mesh, facing: Facing) -> Result<OrientOutput> {
-    let (mesh, orient) = repair::orient(&checked_welded(mesh)?, facing);
+pub fn orient<'a>(mesh: impl Into<Input<'a>>, facing: Facing) -> Result<OrientOutput> {
+    let (mesh, orient) = repair::orient(welded(mesh)?.mesh(), facing);
     Ok(OrientOutput { mesh, orient })
 }
 
@@ -105,21 +113,25 @@ pub struct CloseCommandReport {
 impl CloseOutput {
     /// The report, with the result's measures.
     pub fn report(&self) -> CloseCommandReport {
-        let m = Measures::of(&self.mesh);
+        let counts = EdgeCounts::of(&self.mesh);
         CloseCommandReport {
             schema: SCHEMA,
             close: self.close.clone(),
-            boundary_edges: m.boundary_edges,
-            closed: m.closed,
-            volume: m.volume,
+            boundary_edges: counts.boundary,
+            closed: !self.mesh.is_empty() && counts.boundary == 0 && counts.non_manifold == 0,
+            volume: crate::measure::signed_volume(&self.mesh),
         }
     }
 }
 
 /// Closes the exactly welded mesh as `mode` says ([`repair::close`]): capping holes,
 /// stitching loop pairs, curtain walls to a floor. Orient a surface up before a curtain.
-pub fn close(mesh: &Mesh, mode: CloseMode, opts: &CloseOptions) -> Result<CloseOutput> {
-    let (mesh, close) = repair::close(&checked_welded(mesh)?, mode, opts)?;
+pub fn close<'a>(
+    mesh: impl Into<Input<'a>>,
+    mode: CloseMode,
+    opts: &CloseOptions,
+) -> Result<CloseOutput> {
+    let (mesh, close) = repair::close(welded(mesh)?.mesh(), mode, opts)?;
     Ok(CloseOutput { mesh, close })
 }
 
@@ -154,7 +166,7 @@ impl RepairOutput {
 
 /// Runs the repair pipeline `config` asks for ([`repair::repair`]) on the exactly welded
 /// mesh.
-pub fn repair(mesh: &Mesh, config: &RepairConfig) -> Result<RepairOutput> {
-    let (mesh, repair) = repair::repair(&checked_welded(mesh)?, config)?;
+pub fn repair<'a>(mesh: impl Into<Input<'a>>, config: &RepairConfig) -> Result<RepairOutput> {
+    let (mesh, repair) = repair::repair(welded(mesh)?.mesh(), config)?;
     Ok(RepairOutput { mesh, repair })
 }

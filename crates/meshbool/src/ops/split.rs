@@ -149,14 +149,7 @@ fn group_pieces(
 ) -> GroupPieces {
     let parts = components_merged(&mesh, merge_small);
     let components = if parts.parts.len() > 1 {
-        parts
-            .parts
-            .iter()
-            .map(|part| {
-                let tris = part.iter().map(|&t| mesh.triangles[t as usize]).collect();
-                crate::boolean::pick(&[(&Mesh::new_unchecked(mesh.positions.clone(), tris), false)])
-            })
-            .collect()
+        parts.parts.iter().map(|part| mesh.subset(part)).collect()
     } else {
         Vec::new()
     };
@@ -234,7 +227,7 @@ impl SplitOutput {
             let g = self.groups.iter().find(|g| g.group == group)?;
             Some((&g.mesh, &g.components[..]))
         })?;
-        Ok(pick(&pieces, opts))
+        pick(&pieces, opts)
     }
 }
 
@@ -393,14 +386,19 @@ impl PickOutput {
 /// positions: the "pick" of split-and-pick (pieces of one split share their seam vertices
 /// bit for bit). Where the pieces touch along an edge or at a vertex, the merged mesh is
 /// made manifold unless `opts` says otherwise.
-pub fn pick(pieces: &[(&Mesh, bool)], opts: &PickOptions) -> PickOutput {
-    let mesh = crate::boolean::pick(pieces);
+/// Errors when a piece has non-finite coordinates, or all together more than
+/// `u32::MAX` vertices.
+pub fn pick(pieces: &[(&Mesh, bool)], opts: &PickOptions) -> Result<PickOutput> {
+    for (m, _) in pieces {
+        m.validate()?;
+    }
+    let mesh = crate::boolean::pick(pieces)?;
     let (mesh, nonmanifold) = if opts.keep_nonmanifold {
         (mesh, NonManifoldReport::default())
     } else {
         split_nonmanifold(&mesh)
     };
-    PickOutput { mesh, nonmanifold }
+    Ok(PickOutput { mesh, nonmanifold })
 }
 
 /// Picks from a split's directory ([`SplitOutput::write_dir`]): reads its manifest and the
@@ -414,8 +412,11 @@ pub fn pick_dir(
     let path = dir.join("manifest.json");
     let bytes = std::fs::read(&path).map_err(|e| Error::from(e).in_file("reading", &path))?;
     let manifest: SplitReport = serde_json::from_slice(&bytes).map_err(|e| {
-        Error::InvalidParameter(format!("not a meshbool split manifest ({e})"))
-            .in_file("reading", &path)
+        Error::Malformed {
+            what: "split manifest",
+            message: e.to_string(),
+        }
+        .in_file("reading", &path)
     })?;
     let files = resolve(specs, |group| {
         let g = manifest.groups.iter().find(|g| g.name == group)?;
@@ -426,5 +427,5 @@ pub fn pick_dir(
         .map(|(piece, flip)| Ok((super::read(dir.join(&piece.file), None)?.0, flip)))
         .collect::<Result<Vec<_>>>()?;
     let refs: Vec<(&Mesh, bool)> = meshes.iter().map(|(m, f)| (m, *f)).collect();
-    Ok(pick(&refs, opts))
+    pick(&refs, opts)
 }

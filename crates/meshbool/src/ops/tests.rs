@@ -13,7 +13,7 @@ fn cubes() -> (Mesh, Mesh) {
 /// Two cubes overlapping in one mesh.
 fn self_intersecting() -> Mesh {
     let (mut m, other) = cubes();
-    m.append(&other);
+    m.append(&other).unwrap();
     m
 }
 
@@ -44,28 +44,32 @@ fn boolean_of_meshes_satisfies_the_volume_identities() {
 #[test]
 fn invalid_meshes_are_errors_at_the_door() {
     let (a, _) = cubes();
-    let mut bad_index = a.clone();
-    bad_index.triangles[3][1] = 99;
+    // Indices out of range cannot make a mesh at all.
+    let (positions, mut triangles) = a.clone().into_parts();
+    triangles[3][1] = 99;
+    assert!(matches!(
+        Mesh::new(positions, triangles),
+        Err(Error::InvalidMesh { .. })
+    ));
     let mut nan = a.clone();
-    nan.positions[2][0] = f64::NAN;
-    for bad in [&bad_index, &nan] {
-        let opts = BooleanOptions::default();
-        assert!(matches!(
-            boolean(bad, &a, Op::Union, &opts),
-            Err(Error::InvalidMesh { .. })
-        ));
-        assert!(matches!(
-            boolean(&a, bad, Op::Union, &opts),
-            Err(Error::InvalidMesh { .. })
-        ));
-        assert!(split(bad, &a, &SplitOptions::default()).is_err());
-        assert!(curves(&a, bad, &CurvesOptions::default()).is_err());
-        assert!(info(bad).is_err());
-        assert!(orient(bad, Facing::Majority).is_err());
-        assert!(close(bad, CloseMode::Cap, &Default::default()).is_err());
-        assert!(repair(bad, &Default::default()).is_err());
-        assert!(Operand::new("x", bad, &Checks::NONE).is_err());
-    }
+    nan.positions_mut()[2][0] = f64::NAN;
+    let bad = &nan;
+    let opts = BooleanOptions::default();
+    assert!(matches!(
+        boolean(bad, &a, Op::Union, &opts),
+        Err(Error::InvalidMesh { .. })
+    ));
+    assert!(matches!(
+        boolean(&a, bad, Op::Union, &opts),
+        Err(Error::InvalidMesh { .. })
+    ));
+    assert!(split(bad, &a, &SplitOptions::default()).is_err());
+    assert!(curves(&a, bad, &CurvesOptions::default()).is_err());
+    assert!(info(bad).is_err());
+    assert!(orient(bad, Facing::Majority).is_err());
+    assert!(close(bad, CloseMode::Cap, &Default::default()).is_err());
+    assert!(repair(bad, &Default::default()).is_err());
+    assert!(Operand::new("x", bad, &Checks::NONE).is_err());
 }
 
 #[test]
@@ -146,7 +150,7 @@ fn operands_are_welded_and_reusable() {
 #[test]
 fn thread_counts_out_of_range_are_errors() {
     let (a, b) = cubes();
-    for threads in [0, RunOptions::MAX_THREADS + 1, 100_000] {
+    for threads in [RunOptions::MAX_THREADS + 1, 100_000] {
         let opts = BooleanOptions {
             run: RunOptions {
                 threads: Some(threads),
@@ -159,6 +163,11 @@ fn thread_counts_out_of_range_are_errors() {
             Err(Error::InvalidParameter(_))
         ));
     }
+    assert_eq!(
+        with_threads(Some(0), || 7).unwrap(),
+        7,
+        "0: the current pool"
+    );
     let counts = with_threads(Some(3), || {
         let inner = with_threads(Some(3), rayon::current_num_threads).unwrap();
         (rayon::current_num_threads(), inner)
@@ -244,7 +253,8 @@ fn pick_takes_each_piece_once() {
     // A slab crossed by two separate posts: B's part inside A has two components.
     let a = Mesh::cuboid([0.0; 3], [4.0, 2.0, 1.0]);
     let mut b = Mesh::cuboid([0.5, 0.5, 0.5], [1.5, 1.5, 2.0]);
-    b.append(&Mesh::cuboid([2.5, 0.5, 0.5], [3.5, 1.5, 2.0]));
+    b.append(&Mesh::cuboid([2.5, 0.5, 0.5], [3.5, 1.5, 2.0]))
+        .unwrap();
     let s = split(&a, &b, &SplitOptions::default()).unwrap();
     let b_in = s.groups.iter().find(|g| g.group == Group::BInA).unwrap();
     assert_eq!(b_in.components.len(), 2);

@@ -278,7 +278,7 @@ mod tests {
     fn two(a: Mesh, b: &Mesh) -> Mesh {
         let mut m = crate::weld_exact(&{
             let mut m = a;
-            m.append(b);
+            m.append(b).unwrap();
             m
         })
         .mesh;
@@ -329,7 +329,8 @@ mod tests {
         // wedges and no empty one, in every rotation of the triangle order.
         let mut m = Mesh::default();
         for (x, y) in [(0.0, 0.0), (-1.0, 0.0), (-1.0, -1.0), (0.0, -1.0)] {
-            m.append(&Mesh::cuboid([x, y, 0.0], [x + 1.0, y + 1.0, 1.0]));
+            m.append(&Mesh::cuboid([x, y, 0.0], [x + 1.0, y + 1.0, 1.0]))
+                .unwrap();
         }
         let m = crate::weld_exact(&m).mesh;
         for shift in 0..m.triangles.len() {

@@ -36,19 +36,7 @@ impl Facing {
     }
 }
 
-impl std::fmt::Display for Facing {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl std::str::FromStr for Facing {
-    type Err = crate::Error;
-
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        crate::error::parse_name(s, &Facing::ALL, Facing::name, "facing")
-    }
-}
+by_name!(Facing, "facing");
 
 /// What [`orient`] did.
 #[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]

@@ -52,19 +52,7 @@ impl CloseMode {
     }
 }
 
-impl std::fmt::Display for CloseMode {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl std::str::FromStr for CloseMode {
-    type Err = Error;
-
-    fn from_str(s: &str) -> Result<Self, Error> {
-        crate::error::parse_name(s, &CloseMode::ALL, CloseMode::name, "close mode")
-    }
-}
+by_name!(CloseMode, "close mode");
 
 /// Parameters of [`close`] besides the mode.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]

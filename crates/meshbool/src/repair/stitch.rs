@@ -195,7 +195,7 @@ mod tests {
 
     fn joined(a: &Mesh, b: &Mesh) -> Mesh {
         let mut m = a.clone();
-        m.append(b);
+        m.append(b).unwrap();
         m
     }
 
