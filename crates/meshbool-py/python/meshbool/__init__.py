@@ -1,0 +1,391 @@
+"""meshbool: exact boolean operations on triangle meshes, closed solids and open surfaces.
+
+Numpy in, numpy out. A mesh is any of: a :class:`Mesh`, an object with ``.vertices`` and
+``.faces`` (a ``trimesh.Trimesh``), or a ``(vertices, faces)`` tuple; vertices are
+``float64 (n, 3)``, faces integer ``(m, 3)`` indices into them.
+
+>>> import numpy as np, meshbool
+>>> cube = meshbool.box([0, 0, 0], [1, 1, 1])
+>>> other = meshbool.box([0.5, 0.5, 0.5], [1.5, 1.5, 1.5])
+>>> union = meshbool.boolean(cube, other, "union")
+>>> union.volume, union.is_closed
+(1.875, True)
+
+Every call releases the GIL while it works. Errors raise ``ValueError`` (bad geometry,
+arguments or file content) or ``OSError`` (files), with the library's message. The
+reports are the dicts the ``meshbool`` command line prints with ``--json``.
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any, Iterable, NamedTuple, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _native
+
+__all__ = [
+    "Mesh",
+    "Split",
+    "Polyline",
+    "Curves",
+    "boolean",
+    "split",
+    "pick",
+    "curves",
+    "repair",
+    "orient",
+    "close",
+    "read",
+    "write",
+    "box",
+    "OPERATIONS",
+    "GROUPS",
+    "SCHEMA",
+    "__version__",
+]
+
+__version__ = _native.VERSION
+#: The version of the reports (their ``"schema"`` key).
+SCHEMA = _native.SCHEMA
+#: Operation names :func:`boolean` takes (``"intersect"`` and ``"subtract"`` as well).
+OPERATIONS = ("union", "intersection", "difference", "reverse_difference")
+#: The groups of a split.
+GROUPS = (
+    "a_in_b",
+    "a_out_b",
+    "b_in_a",
+    "b_out_a",
+    "a_on_b_same",
+    "a_on_b_opposite",
+    "b_on_a_same",
+    "b_on_a_opposite",
+)
+
+
+def _arrays(vertices: Any, faces: Any) -> Tuple[np.ndarray, np.ndarray]:
+    """Vertices as C-contiguous float64 (n, 3), faces as C-contiguous uint32 (m, 3)."""
+    v = np.asarray(vertices)
+    f = np.asarray(faces)
+    if v.size == 0:
+        v = v.reshape(0, 3)
+    if f.size == 0:
+        f = f.reshape(0, 3)
+    if v.ndim != 2 or v.shape[1] != 3:
+        raise ValueError(f"vertices must have shape (n, 3), got {v.shape}")
+    if f.ndim != 2 or f.shape[1] != 3:
+        raise ValueError(f"faces must have shape (m, 3), got {f.shape}")
+    if not (np.issubdtype(v.dtype, np.floating) or np.issubdtype(v.dtype, np.integer)):
+        raise ValueError(f"vertices must be numbers, got dtype {v.dtype}")
+    if f.size and not np.issubdtype(f.dtype, np.integer):
+        raise ValueError(f"faces must be integers, got dtype {f.dtype}")
+    if f.size and (f.min() < 0 or f.max() > np.iinfo(np.uint32).max):
+        raise ValueError(
+            f"face indices must be in 0..{np.iinfo(np.uint32).max}, got {f.min()}..{f.max()}"
+        )
+    return (
+        np.ascontiguousarray(v, dtype=np.float64),
+        np.ascontiguousarray(f, dtype=np.uint32),
+    )
+
+
+def _parts(mesh: Any) -> Tuple[np.ndarray, np.ndarray]:
+    """The arrays of anything that is a mesh."""
+    if isinstance(mesh, Mesh):
+        return mesh.vertices, mesh.faces
+    if hasattr(mesh, "vertices") and hasattr(mesh, "faces"):
+        return _arrays(mesh.vertices, mesh.faces)
+    if isinstance(mesh, (tuple, list)) and len(mesh) == 2:
+        return _arrays(mesh[0], mesh[1])
+    raise ValueError(
+        "expected a mesh: a meshbool.Mesh, an object with .vertices and .faces, "
+        f"or a (vertices, faces) tuple; got {type(mesh).__name__}"
+    )
+
+
+class Mesh:
+    """A triangle mesh: ``vertices`` float64 (n, 3), ``faces`` uint32 (m, 3).
+
+    Indices are checked when the mesh is made (``ValueError`` naming the first bad face);
+    coordinates may be anything, and operations that need finite ones check them.
+    Results of operations carry ``report`` (the command line's ``--json`` dict) and,
+    for booleans, ``provenance``.
+    """
+
+    __slots__ = ("vertices", "faces", "report", "provenance")
+
+    def __init__(self, vertices: Any, faces: Any) -> None:
+        v, f = _arrays(vertices, faces)
+        if f.size and f.max() >= len(v):
+            bad = int(np.argmax((f >= len(v)).any(axis=1)))
+            raise ValueError(
+                f"invalid mesh at triangle {bad}: vertex index out of range in "
+                f"{f[bad].tolist()} (the mesh has {len(v)} vertices)"
+            )
+        self.vertices: np.ndarray = v
+        self.faces: np.ndarray = f
+        self.report: Optional[dict] = None
+        self.provenance: Optional[dict] = None
+
+    @classmethod
+    def _from(cls, v: np.ndarray, f: np.ndarray, report: Optional[str] = None) -> "Mesh":
+        m = cls.__new__(cls)
+        m.vertices, m.faces = v, f
+        m.report = json.loads(report) if report is not None else None
+        m.provenance = None
+        return m
+
+    def _measures(self) -> Tuple[float, float, bool]:
+        return _native.measures(self.vertices, self.faces)
+
+    @property
+    def volume(self) -> float:
+        """Signed volume (positive for a closed mesh facing outward)."""
+        return self._measures()[0]
+
+    @property
+    def area(self) -> float:
+        """Surface area."""
+        return self._measures()[1]
+
+    @property
+    def is_closed(self) -> bool:
+        """True when the mesh has triangles and neither boundary nor non-manifold edges."""
+        return self._measures()[2]
+
+    @property
+    def assumed(self) -> list:
+        """What a boolean's result assumes (skipped checks, problems taken as given)."""
+        return list((self.report or {}).get("assumed", []))
+
+    def stats(self) -> dict:
+        """Every measure: the dict of ``meshbool info --json`` (without ``file``)."""
+        report = json.loads(_native.info(self.vertices, self.faces))
+        report.pop("file", None)
+        return report
+
+    def to_trimesh(self) -> Any:
+        """The mesh as a ``trimesh.Trimesh`` (trimesh must be installed; not processed)."""
+        import trimesh
+
+        return trimesh.Trimesh(vertices=self.vertices, faces=self.faces, process=False)
+
+    def __len__(self) -> int:
+        return len(self.faces)
+
+    def __repr__(self) -> str:
+        return f"meshbool.Mesh({len(self.vertices)} vertices, {len(self.faces)} faces)"
+
+
+def box(lo: Sequence[float], hi: Sequence[float]) -> Mesh:
+    """An axis-aligned box from ``lo`` to ``hi``: 8 vertices, 12 outward-facing triangles."""
+    lo, hi = np.asarray(lo, dtype=np.float64), np.asarray(hi, dtype=np.float64)
+    corners = np.array(
+        [[(hi if i & (1 << k) else lo)[k] for k in range(3)] for i in range(8)]
+    )
+    faces = [
+        [0, 2, 1], [1, 2, 3], [4, 5, 6], [5, 7, 6], [0, 1, 4], [1, 5, 4],
+        [2, 6, 3], [3, 6, 7], [0, 4, 2], [2, 4, 6], [1, 3, 5], [3, 7, 5],
+    ]  # fmt: skip
+    return Mesh(corners, faces)
+
+
+MeshLike = Union[Mesh, Tuple[Any, Any], Any]
+
+
+def boolean(
+    a: MeshLike,
+    b: MeshLike,
+    op: str,
+    *,
+    force: bool = False,
+    self_check: bool = True,
+    threads: Optional[int] = None,
+    keep_nonmanifold: bool = False,
+) -> Mesh:
+    """The boolean ``op`` of ``a`` and ``b``.
+
+    ``op``: ``"union"``, ``"intersection"`` (``"intersect"``), ``"difference"``
+    (``"subtract"``: a − b) or ``"reverse_difference"`` (b − a). Closed meshes must face
+    outward; an open surface's inside is behind it (the side its normals point away from).
+
+    Inputs are checked: inconsistently oriented or non-manifold edges and
+    self-intersections make inside/outside ambiguous and raise ``ValueError`` unless
+    ``force`` (then ``result.assumed`` lists what was taken as given). ``self_check=False``
+    skips the self-intersection check (for inputs known to be clean). ``threads``: worker
+    threads (default all cores). ``keep_nonmanifold``: keep edges and vertices where the
+    result's solids touch instead of splitting them.
+
+    Returns a :class:`Mesh` with ``report`` (the ``--json`` dict) and ``provenance``
+    (a dict of arrays: ``source`` 0 for a / 1 for b, ``triangle`` in that input,
+    ``flipped``).
+    """
+    av, af = _parts(a)
+    bv, bf = _parts(b)
+    v, f, source, triangle, flipped, report = _native.boolean(
+        av, af, bv, bf, op, force, self_check, threads, keep_nonmanifold
+    )
+    out = Mesh._from(v, f, report)
+    out.provenance = {"source": source, "triangle": triangle, "flipped": flipped}
+    return out
+
+
+class Split:
+    """Two meshes cut along their intersection: groups (``a_in_b``, ``a_out_b``,
+    ``b_in_a``, ``b_out_a`` and the coplanar ``a_on_b_same``, ``a_on_b_opposite``,
+    ``b_on_a_same``, ``b_on_a_opposite``) as attributes (an empty :class:`Mesh` where a
+    group is empty), their connected components, and picking pieces back together."""
+
+    __slots__ = ("_native",)
+
+    def __init__(self, native: Any) -> None:
+        self._native = native
+
+    @property
+    def groups(self) -> list:
+        """The names of the non-empty groups."""
+        return list(self._native.groups())
+
+    def group(self, name: str) -> Mesh:
+        """A group's triangles (an empty mesh where the group is empty)."""
+        arrays = self._native.group(name)
+        if arrays is None:
+            return Mesh(np.zeros((0, 3)), np.zeros((0, 3), dtype=np.uint32))
+        return Mesh._from(*arrays)
+
+    def __getattr__(self, name: str) -> Mesh:
+        if name in GROUPS:
+            return self.group(name)
+        raise AttributeError(name)
+
+    def components(self, group: str) -> list:
+        """A group's connected components, largest first (``GROUP#k`` in :meth:`pick`)."""
+        return [Mesh._from(v, f) for v, f in self._native.components(group)]
+
+    def pick(self, *pieces: str, keep_nonmanifold: bool = False) -> Mesh:
+        """Merges pieces into one welded mesh: ``"a_out_b"``, ``"b_in_a:flip"``,
+        ``"a_in_b#2"`` (group, optional ``#component``, optional ``:flip``). A piece may be
+        named once. Where pieces touch along an edge or at a vertex the result is made
+        manifold unless ``keep_nonmanifold``."""
+        if len(pieces) == 1 and not isinstance(pieces[0], str):
+            pieces = tuple(pieces[0])
+        v, f, report = self._native.pick(list(pieces), keep_nonmanifold)
+        return Mesh._from(v, f, report)
+
+    def report(self, format: str = "ply") -> dict:
+        """What the split holds (the manifest ``write`` would write in ``format``)."""
+        return json.loads(self._native.report(format))
+
+    def write(self, directory: str, format: str = "ply") -> dict:
+        """Writes every group and component and ``manifest.json`` (returned) to a
+        directory, for ``meshbool pick`` or :func:`pick` from the command line."""
+        return json.loads(self._native.write(str(directory), format))
+
+    def __repr__(self) -> str:
+        return f"meshbool.Split(groups={self.groups})"
+
+
+def split(
+    a: MeshLike,
+    b: MeshLike,
+    *,
+    force: bool = False,
+    self_check: bool = True,
+    threads: Optional[int] = None,
+    merge_small: int = 0,
+) -> Split:
+    """Splits ``a`` and ``b`` along their intersection into groups and components.
+    Checks as for :func:`boolean`; ``merge_small`` folds components of fewer triangles
+    into the nearest larger one of their group."""
+    av, af = _parts(a)
+    bv, bf = _parts(b)
+    return Split(_native.split(av, af, bv, bf, force, self_check, threads, merge_small))
+
+
+def pick(pieces: Iterable[Any], *, keep_nonmanifold: bool = False) -> Mesh:
+    """Merges meshes into one, welding exactly equal positions: ``pieces`` are meshes or
+    ``(mesh, flip)`` pairs."""
+    parts = []
+    for p in pieces:
+        if isinstance(p, tuple) and len(p) == 2 and isinstance(p[1], (bool, np.bool_)):
+            mesh, flip = p
+        else:
+            mesh, flip = p, False
+        v, f = _parts(mesh)
+        parts.append((v, f, bool(flip)))
+    v, f, report = _native.pick(parts, keep_nonmanifold)
+    return Mesh._from(v, f, report)
+
+
+class Polyline(NamedTuple):
+    """An intersection curve: its points (k, 3) and whether it closes on itself."""
+
+    points: np.ndarray
+    closed: bool
+
+
+class Curves(list):
+    """The intersection curves (a list of :class:`Polyline`) with their ``report``."""
+
+    report: dict
+
+
+def curves(a: MeshLike, b: MeshLike, *, with_coplanar: bool = True) -> Curves:
+    """The exact intersection curves of ``a`` and ``b``, chained into polylines: closed
+    loops and open chains (ending on an open surface's boundary). ``with_coplanar=False``
+    leaves out segments that only bound shared faces."""
+    av, af = _parts(a)
+    bv, bf = _parts(b)
+    lines, report = _native.curves(av, af, bv, bf, with_coplanar)
+    out = Curves(Polyline(p, c) for p, c in lines)
+    out.report = json.loads(report)
+    return out
+
+
+def orient(mesh: MeshLike, facing: str = "majority") -> Mesh:
+    """Consistent orientation, each component facing as asked: ``"majority"`` (as most of
+    its triangles did), ``"z-up"`` (terrain), ``"outward"`` (closed components)."""
+    v, f = _parts(mesh)
+    return Mesh._from(*_native.orient(v, f, facing.replace("_", "-")))
+
+
+def close(
+    mesh: MeshLike,
+    mode: str = "cap",
+    *,
+    floor_offset: float = 10.0,
+    max_gap: Optional[float] = None,
+) -> Mesh:
+    """Closes an open mesh into a solid: ``"cap"`` (triangulate every hole), ``"stitch"``
+    (join pairs of holes, at most ``max_gap`` apart), ``"curtain"`` (walls down to
+    ``min z − floor_offset``, floor capped: orient the surface up first),
+    ``"stitch+curtain"``."""
+    v, f = _parts(mesh)
+    return Mesh._from(*_native.close(v, f, mode, float(floor_offset), max_gap))
+
+
+def repair(mesh: MeshLike, **config: Any) -> Mesh:
+    """The repair pipeline; keyword arguments are the fields of the library's
+    ``RepairConfig`` (the ``--config`` JSON of ``meshbool repair``): ``weld`` (a
+    distance), ``remove_duplicates``, ``tjunctions``, ``degenerate`` (``{"min_area": ..,
+    "max_aspect": ..}``), ``orient`` (``"majority"``, ``"z-up"``, ``"outward"`` or
+    ``None``), ``remove_folds``, ``close`` (a :func:`close` mode), ``close_options``
+    (``{"floor_offset": .., "stitch_max_gap": ..}``), ``close_gaps`` (a size). Unknown
+    keywords raise ``ValueError``. The report says what every step did."""
+    v, f = _parts(mesh)
+    return Mesh._from(*_native.repair(v, f, json.dumps(config)))
+
+
+def read(path: str, format: Optional[str] = None) -> Mesh:
+    """Reads a mesh file (STL, OBJ, PLY, DXF, JSON soups), as the file has it; the format
+    from its name and content unless given (``"stl"``, ``"obj"``, ``"ply"``, ...)."""
+    v, f, _ = _native.read(str(path), format)
+    return Mesh._from(v, f)
+
+
+def write(path: str, mesh: MeshLike, format: Optional[str] = None) -> None:
+    """Writes a mesh file in ``format`` or the format its name says (``.stl`` binary,
+    ``.obj``, ``.ply`` binary little-endian, ``.dxf``, ``.json``)."""
+    v, f = _parts(mesh)
+    _native.write(str(path), v, f, format)

@@ -1,0 +1,450 @@
+//! `meshbool._native`: the Python extension behind the `meshbool` package. A thin layer
+//! over the library's front door (`meshbool::ops`): numpy arrays in, one call per command
+//! with the GIL released, numpy arrays and JSON reports out. The Python package
+//! (`python/meshbool/__init__.py`) turns these into `Mesh` objects and dicts.
+//!
+//! Meshes cross as two arrays: vertices `float64 (n, 3)` and faces `uint32 (m, 3)`, both
+//! C-contiguous (the Python side converts). Results are handed to numpy without a copy
+//! (the library's vectors become the arrays' buffers).
+#![forbid(unsafe_code)]
+
+use meshbool::ops::{
+    self, BooleanOptions, Checks, CurvesOptions, InfoReport, Measures, PickOptions, PieceSpec,
+    RunOptions, SplitOptions, SplitOutput,
+};
+use meshbool::repair::{CloseMode, CloseOptions, Facing, RepairConfig};
+use meshbool::{Error, Format, Mesh, Op, Source};
+use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
+use pyo3::exceptions::{PyOSError, PyValueError};
+use pyo3::prelude::*;
+
+/// The library's errors as Python exceptions: `OSError` for what the operating system
+/// refused (reading or writing files), `ValueError` for everything else (bad geometry,
+/// bad arguments, malformed files).
+fn py_err(e: Error) -> PyErr {
+    let os = match &e {
+        Error::Io(_) => true,
+        Error::File { error, .. } => matches!(**error, Error::Io(_)),
+        _ => false,
+    };
+    if os {
+        PyOSError::new_err(e.to_string())
+    } else {
+        PyValueError::new_err(e.to_string())
+    }
+}
+
+/// A report as JSON text (the Python side makes it a dict).
+fn json(report: &impl serde::Serialize) -> PyResult<String> {
+    serde_json::to_string(report).map_err(|e| PyValueError::new_err(e.to_string()))
+}
+
+/// Rows of three of a contiguous `(n, 3)` array.
+fn rows<T: numpy::Element + Copy>(
+    a: &PyReadonlyArray2<'_, T>,
+    what: &str,
+) -> PyResult<Vec<[T; 3]>> {
+    if a.ndim() != 2 || a.shape()[1] != 3 {
+        return Err(PyValueError::new_err(format!(
+            "{what} must have shape (n, 3), got {:?}",
+            a.shape()
+        )));
+    }
+    let flat = a
+        .as_slice()
+        .map_err(|_| PyValueError::new_err(format!("{what} must be C-contiguous")))?;
+    Ok(flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect())
+}
+
+/// A mesh from vertices and faces; an error naming the first bad face when an index is out
+/// of range.
+fn mesh(v: &PyReadonlyArray2<'_, f64>, f: &PyReadonlyArray2<'_, u32>) -> PyResult<Mesh> {
+    Mesh::new(rows(v, "vertices")?, rows(f, "faces")?).map_err(py_err)
+}
+
+/// Vertices and faces of a result, as numpy arrays owning the mesh's buffers.
+type Arrays<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<u32>>);
+
+/// One mesh's arrays and a report.
+type WithReport<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<u32>>, String);
+
+fn arrays(py: Python<'_>, mesh: Mesh) -> PyResult<Arrays<'_>> {
+    let (positions, triangles) = mesh.into_parts();
+    let (n, m) = (positions.len(), triangles.len());
+    Ok((
+        PyArray1::from_vec(py, positions.into_flattened()).reshape([n, 3])?,
+        PyArray1::from_vec(py, triangles.into_flattened()).reshape([m, 3])?,
+    ))
+}
+
+fn checks(force: bool, self_check: bool) -> Checks {
+    Checks {
+        self_intersections: self_check,
+        force,
+        ..Checks::default()
+    }
+}
+
+fn run(threads: Option<usize>) -> RunOptions {
+    RunOptions {
+        threads,
+        ..RunOptions::default()
+    }
+}
+
+fn parse<T: std::str::FromStr<Err = Error>>(s: &str) -> PyResult<T> {
+    s.parse().map_err(py_err)
+}
+
+/// Raises `ValueError` when a vertex has a non-finite coordinate or an index is out of range.
+#[pyfunction]
+fn check(v: PyReadonlyArray2<'_, f64>, f: PyReadonlyArray2<'_, u32>) -> PyResult<()> {
+    mesh(&v, &f)?.validate().map_err(py_err)
+}
+
+/// `(volume, area, closed)` of a mesh.
+#[pyfunction]
+fn measures(
+    py: Python<'_>,
+    v: PyReadonlyArray2<'_, f64>,
+    f: PyReadonlyArray2<'_, u32>,
+) -> PyResult<(f64, f64, bool)> {
+    let m = mesh(&v, &f)?;
+    let r = py.detach(move || Measures::of(&m));
+    Ok((r.volume, r.area, r.closed))
+}
+
+/// The `meshbool info --json` report of a mesh.
+#[pyfunction]
+fn info(
+    py: Python<'_>,
+    v: PyReadonlyArray2<'_, f64>,
+    f: PyReadonlyArray2<'_, u32>,
+) -> PyResult<String> {
+    let m = mesh(&v, &f)?;
+    let stats = py.detach(move || ops::info(&m)).map_err(py_err)?;
+    json(&InfoReport::new("", stats))
+}
+
+/// A boolean: the result's arrays, its provenance (source 0 = A / 1 = B, triangle,
+/// flipped) and the report.
+#[pyfunction]
+#[pyo3(signature = (av, af, bv, bf, op, force, self_check, threads, keep_nonmanifold))]
+#[allow(clippy::too_many_arguments, clippy::type_complexity)]
+fn boolean<'py>(
+    py: Python<'py>,
+    av: PyReadonlyArray2<'py, f64>,
+    af: PyReadonlyArray2<'py, u32>,
+    bv: PyReadonlyArray2<'py, f64>,
+    bf: PyReadonlyArray2<'py, u32>,
+    op: &str,
+    force: bool,
+    self_check: bool,
+    threads: Option<usize>,
+    keep_nonmanifold: bool,
+) -> PyResult<(
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray2<u32>>,
+    Bound<'py, PyArray1<u8>>,
+    Bound<'py, PyArray1<u32>>,
+    Bound<'py, PyArray1<bool>>,
+    String,
+)> {
+    let (a, b, op) = (mesh(&av, &af)?, mesh(&bv, &bf)?, parse::<Op>(op)?);
+    let opts = BooleanOptions {
+        checks: checks(force, self_check),
+        keep_nonmanifold,
+        run: run(threads),
+    };
+    let out = py
+        .detach(move || ops::boolean(&a, &b, op, &opts).map(|o| (o.report(), o)))
+        .map_err(py_err)?;
+    let (report, out) = out;
+    let source = out
+        .provenance
+        .iter()
+        .map(|p| u8::from(p.source == Source::B));
+    let triangle = out.provenance.iter().map(|p| p.triangle);
+    let flipped = out.provenance.iter().map(|p| p.flipped);
+    let (source, triangle, flipped) = (
+        PyArray1::from_iter(py, source),
+        PyArray1::from_iter(py, triangle),
+        PyArray1::from_iter(py, flipped),
+    );
+    let (v, f) = arrays(py, out.mesh)?;
+    Ok((v, f, source, triangle, flipped, json(&report)?))
+}
+
+/// A split of two meshes along their intersection: its groups and their components.
+#[pyclass(module = "meshbool._native", frozen)]
+struct Split {
+    out: SplitOutput,
+}
+
+#[pymethods]
+impl Split {
+    /// The names of the non-empty groups.
+    fn groups(&self) -> Vec<String> {
+        self.out
+            .groups
+            .iter()
+            .map(|g| g.group.to_string())
+            .collect()
+    }
+
+    /// A group's arrays, or `None` when the split has no such (non-empty) group.
+    fn group<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Option<Arrays<'py>>> {
+        let group = parse(name)?;
+        match self.out.groups.iter().find(|g| g.group == group) {
+            Some(g) => Ok(Some(arrays(py, g.mesh.clone())?)),
+            None => Ok(None),
+        }
+    }
+
+    /// A group's components, largest first (one: the group itself).
+    fn components<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Vec<Arrays<'py>>> {
+        let group = parse(name)?;
+        let Some(g) = self.out.groups.iter().find(|g| g.group == group) else {
+            return Ok(Vec::new());
+        };
+        if g.components.is_empty() {
+            return Ok(vec![arrays(py, g.mesh.clone())?]);
+        }
+        g.components.iter().map(|c| arrays(py, c.clone())).collect()
+    }
+
+    /// Merges pieces (`GROUP[#COMPONENT][:flip]`) into one welded mesh: its arrays and
+    /// the pick report.
+    fn pick<'py>(
+        &self,
+        py: Python<'py>,
+        specs: Vec<String>,
+        keep_nonmanifold: bool,
+    ) -> PyResult<WithReport<'py>> {
+        let specs = specs
+            .iter()
+            .map(|s| parse::<PieceSpec>(s))
+            .collect::<PyResult<Vec<_>>>()?;
+        let opts = PickOptions { keep_nonmanifold };
+        let out = py.detach(|| self.out.pick(&specs, &opts)).map_err(py_err)?;
+        let report = json(&out.report())?;
+        let (v, f) = arrays(py, out.mesh)?;
+        Ok((v, f, report))
+    }
+
+    /// The split's report (the manifest's content) with the file names `format` gives.
+    fn report(&self, format: &str) -> PyResult<String> {
+        json(&self.out.report(parse::<Format>(format)?))
+    }
+
+    /// Writes the pieces and the manifest to a directory; returns the manifest.
+    fn write(&self, py: Python<'_>, dir: std::path::PathBuf, format: &str) -> PyResult<String> {
+        let format = parse::<Format>(format)?;
+        let manifest = py
+            .detach(|| self.out.write_dir(&dir, format))
+            .map_err(py_err)?;
+        json(&manifest)
+    }
+}
+
+/// Splits two meshes along their intersection.
+#[pyfunction]
+#[pyo3(signature = (av, af, bv, bf, force, self_check, threads, merge_small))]
+#[allow(clippy::too_many_arguments)]
+fn split(
+    py: Python<'_>,
+    av: PyReadonlyArray2<'_, f64>,
+    af: PyReadonlyArray2<'_, u32>,
+    bv: PyReadonlyArray2<'_, f64>,
+    bf: PyReadonlyArray2<'_, u32>,
+    force: bool,
+    self_check: bool,
+    threads: Option<usize>,
+    merge_small: usize,
+) -> PyResult<Split> {
+    let (a, b) = (mesh(&av, &af)?, mesh(&bv, &bf)?);
+    let opts = SplitOptions {
+        checks: checks(force, self_check),
+        merge_small,
+        run: run(threads),
+    };
+    let out = py
+        .detach(move || ops::split(&a, &b, &opts))
+        .map_err(py_err)?;
+    Ok(Split { out })
+}
+
+/// Merges meshes, each flipped where its flag says, welding exactly equal positions.
+#[pyfunction]
+fn pick<'py>(
+    py: Python<'py>,
+    pieces: Vec<(PyReadonlyArray2<'py, f64>, PyReadonlyArray2<'py, u32>, bool)>,
+    keep_nonmanifold: bool,
+) -> PyResult<WithReport<'py>> {
+    let meshes = pieces
+        .iter()
+        .map(|(v, f, flip)| Ok((mesh(v, f)?, *flip)))
+        .collect::<PyResult<Vec<_>>>()?;
+    let opts = PickOptions { keep_nonmanifold };
+    let out = py
+        .detach(move || {
+            let refs: Vec<(&Mesh, bool)> = meshes.iter().map(|(m, f)| (m, *f)).collect();
+            ops::pick(&refs, &opts)
+        })
+        .map_err(py_err)?;
+    let report = json(&out.report())?;
+    let (v, f) = arrays(py, out.mesh)?;
+    Ok((v, f, report))
+}
+
+/// The intersection curves: `(points (k, 3), closed)` per polyline, and the report.
+#[pyfunction]
+#[allow(clippy::type_complexity)]
+fn curves<'py>(
+    py: Python<'py>,
+    av: PyReadonlyArray2<'py, f64>,
+    af: PyReadonlyArray2<'py, u32>,
+    bv: PyReadonlyArray2<'py, f64>,
+    bf: PyReadonlyArray2<'py, u32>,
+    with_coplanar: bool,
+) -> PyResult<(Vec<(Bound<'py, PyArray2<f64>>, bool)>, String)> {
+    let (a, b) = (mesh(&av, &af)?, mesh(&bv, &bf)?);
+    let opts = CurvesOptions {
+        with_coplanar,
+        ..CurvesOptions::default()
+    };
+    let out = py
+        .detach(move || ops::curves(&a, &b, &opts))
+        .map_err(py_err)?;
+    let report = json(&out.report())?;
+    let lines = out
+        .polylines
+        .into_iter()
+        .map(|l| {
+            let k = l.points.len();
+            let points = PyArray1::from_vec(py, l.points.into_flattened()).reshape([k, 3])?;
+            Ok((points, l.closed))
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    Ok((lines, report))
+}
+
+/// Consistent orientation, each component facing as `facing` says.
+#[pyfunction]
+fn orient<'py>(
+    py: Python<'py>,
+    v: PyReadonlyArray2<'py, f64>,
+    f: PyReadonlyArray2<'py, u32>,
+    facing: &str,
+) -> PyResult<WithReport<'py>> {
+    let (m, facing) = (mesh(&v, &f)?, parse::<Facing>(facing)?);
+    let out = py.detach(move || ops::orient(&m, facing)).map_err(py_err)?;
+    let report = json(&out.report())?;
+    let (v, f) = arrays(py, out.mesh)?;
+    Ok((v, f, report))
+}
+
+/// Closing an open mesh into a solid.
+#[pyfunction]
+fn close<'py>(
+    py: Python<'py>,
+    v: PyReadonlyArray2<'py, f64>,
+    f: PyReadonlyArray2<'py, u32>,
+    mode: &str,
+    floor_offset: f64,
+    max_gap: Option<f64>,
+) -> PyResult<WithReport<'py>> {
+    let (m, mode) = (mesh(&v, &f)?, parse::<CloseMode>(mode)?);
+    let opts = CloseOptions {
+        stitch_max_gap: max_gap,
+        floor_offset,
+    };
+    let out = py
+        .detach(move || ops::close(&m, mode, &opts))
+        .map_err(py_err)?;
+    let report = json(&out.report())?;
+    let (v, f) = arrays(py, out.mesh)?;
+    Ok((v, f, report))
+}
+
+/// The repair pipeline, configured by the JSON of a `RepairConfig`.
+#[pyfunction]
+fn repair<'py>(
+    py: Python<'py>,
+    v: PyReadonlyArray2<'py, f64>,
+    f: PyReadonlyArray2<'py, u32>,
+    config: &str,
+) -> PyResult<WithReport<'py>> {
+    let config: RepairConfig = serde_json::from_str(config)
+        .map_err(|e| PyValueError::new_err(format!("not a repair configuration: {e}")))?;
+    let m = mesh(&v, &f)?;
+    let out = py
+        .detach(move || ops::repair(&m, &config))
+        .map_err(py_err)?;
+    let report = json(&out.report())?;
+    let (v, f) = arrays(py, out.mesh)?;
+    Ok((v, f, report))
+}
+
+/// Reads a mesh file as the file has it (operations weld their inputs themselves): its
+/// arrays and the name of the format it was read as.
+#[pyfunction]
+#[pyo3(signature = (path, format=None))]
+#[allow(clippy::type_complexity)]
+fn read<'py>(
+    py: Python<'py>,
+    path: std::path::PathBuf,
+    format: Option<&str>,
+) -> PyResult<(
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray2<u32>>,
+    &'static str,
+)> {
+    let format = format.map(parse::<Format>).transpose()?;
+    let (m, format) = py
+        .detach(move || ops::read(&path, format))
+        .map_err(py_err)?;
+    let (v, f) = arrays(py, m)?;
+    Ok((v, f, format.name()))
+}
+
+/// Writes a mesh file in `format`, or the format the file's name says.
+#[pyfunction]
+#[pyo3(signature = (path, v, f, format=None))]
+fn write(
+    py: Python<'_>,
+    path: std::path::PathBuf,
+    v: PyReadonlyArray2<'_, f64>,
+    f: PyReadonlyArray2<'_, u32>,
+    format: Option<&str>,
+) -> PyResult<()> {
+    let format = format.map(parse::<Format>).transpose()?;
+    let m = mesh(&v, &f)?;
+    py.detach(move || ops::write(&path, &m, format))
+        .map_err(py_err)
+}
+
+/// The extension module.
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("SCHEMA", ops::SCHEMA)?;
+    m.add("VERSION", env!("CARGO_PKG_VERSION"))?;
+    m.add_class::<Split>()?;
+    for f in [
+        wrap_pyfunction!(check, m)?,
+        wrap_pyfunction!(measures, m)?,
+        wrap_pyfunction!(info, m)?,
+        wrap_pyfunction!(boolean, m)?,
+        wrap_pyfunction!(split, m)?,
+        wrap_pyfunction!(pick, m)?,
+        wrap_pyfunction!(curves, m)?,
+        wrap_pyfunction!(orient, m)?,
+        wrap_pyfunction!(close, m)?,
+        wrap_pyfunction!(repair, m)?,
+        wrap_pyfunction!(read, m)?,
+        wrap_pyfunction!(write, m)?,
+    ] {
+        m.add_function(f)?;
+    }
+    Ok(())
+}

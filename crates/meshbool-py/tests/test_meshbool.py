@@ -1,0 +1,279 @@
+"""The Python package end to end: every function, geometry asserted (volumes, identities,
+closedness, counts), and bad input raising the right exception."""
+
+import json
+import math
+import pathlib
+
+import numpy as np
+import pytest
+
+import meshbool
+
+DATA = pathlib.Path(__file__).resolve().parents[3] / "data"
+
+
+def uv_sphere(center, radius, segments, rings):
+    """A closed UV sphere facing outward: poles plus (rings - 1) rings of vertices."""
+    verts = [[0.0, 0.0, radius], [0.0, 0.0, -radius]]
+    for i in range(1, rings):
+        theta = math.pi * i / rings
+        for j in range(segments):
+            phi = 2 * math.pi * j / segments
+            verts.append(
+                [
+                    radius * math.sin(theta) * math.cos(phi),
+                    radius * math.sin(theta) * math.sin(phi),
+                    radius * math.cos(theta),
+                ]
+            )
+    faces = []
+    ring = lambda i, j: 2 + (i - 1) * segments + (j % segments)  # noqa: E731
+    for j in range(segments):
+        faces.append([0, ring(1, j), ring(1, j + 1)])
+        faces.append([1, ring(rings - 1, j + 1), ring(rings - 1, j)])
+    for i in range(1, rings - 1):
+        for j in range(segments):
+            a, b = ring(i, j), ring(i, j + 1)
+            c, d = ring(i + 1, j), ring(i + 1, j + 1)
+            faces.append([a, c, b])
+            faces.append([b, c, d])
+    return np.array(verts) + np.asarray(center, dtype=float), np.array(faces)
+
+
+def test_mesh_holds_arrays_and_measures():
+    m = meshbool.box([0, 0, 0], [2, 1, 1])
+    assert m.vertices.dtype == np.float64 and m.vertices.shape == (8, 3)
+    assert m.faces.dtype == np.uint32 and m.faces.shape == (12, 3)
+    assert m.volume == 2.0 and m.area == 10.0 and m.is_closed
+    s = m.stats()
+    assert s["schema"] == meshbool.SCHEMA
+    assert (s["triangles"], s["boundary_edges"], s["components"]) == (12, 0, 1)
+    assert s["bbox"] == {"min": [0.0, 0.0, 0.0], "max": [2.0, 1.0, 1.0]}
+    assert "file" not in s
+    assert repr(m) == "meshbool.Mesh(8 vertices, 12 faces)"
+    # Any integer and float dtypes are taken.
+    m2 = meshbool.Mesh(m.vertices.astype(np.float32), m.faces.astype(np.int64))
+    assert m2.volume == 2.0
+
+
+@pytest.mark.parametrize(
+    "vertices, faces, message",
+    [
+        (np.zeros((3, 3)), [[0, 1, 3]], "out of range"),
+        (np.zeros((3, 3)), [[0, 1, -1]], "must be in"),
+        (np.zeros((3, 2)), [[0, 1, 2]], "shape"),
+        (np.zeros((3, 3)), [[0, 1]], "shape"),
+        (np.zeros((3, 3)), [[0.0, 1.0, 2.0]], "integers"),
+        (np.array([["a", "b", "c"]] * 3), [[0, 1, 2]], "numbers"),
+    ],
+)
+def test_bad_meshes_raise_value_error(vertices, faces, message):
+    with pytest.raises(ValueError, match=message):
+        meshbool.Mesh(vertices, faces)
+    with pytest.raises(ValueError, match=message):
+        meshbool.boolean((vertices, faces), meshbool.box([0, 0, 0], [1, 1, 1]), "union")
+
+
+def test_non_finite_coordinates_are_refused_by_operations():
+    v = meshbool.box([0, 0, 0], [1, 1, 1]).vertices.copy()
+    v[3, 1] = np.nan
+    bad = meshbool.Mesh(v, meshbool.box([0, 0, 0], [1, 1, 1]).faces)
+    for call in [
+        lambda: meshbool.boolean(bad, meshbool.box([2, 2, 2], [3, 3, 3]), "union"),
+        lambda: meshbool.split(bad, bad),
+        lambda: meshbool.curves(bad, bad),
+        lambda: meshbool.orient(bad),
+        lambda: meshbool.repair(bad),
+        lambda: meshbool.close(bad),
+        lambda: meshbool.pick([bad]),
+    ]:
+        with pytest.raises(ValueError, match="non-finite"):
+            call()
+    with pytest.raises(ValueError, match="unknown operation"):
+        meshbool.boolean(bad, bad, "xor")
+    with pytest.raises(ValueError, match="expected a mesh"):
+        meshbool.boolean(42, bad, "union")
+
+
+def test_volume_identities_on_spheres():
+    a = uv_sphere([0, 0, 0], 1.0, 32, 16)
+    b = uv_sphere([0.6, 0.1, 0.05], 0.8, 28, 14)
+    va, vb = meshbool.Mesh(*a).volume, meshbool.Mesh(*b).volume
+    r = {op: meshbool.boolean(a, b, op) for op in meshbool.OPERATIONS}
+    for op, m in r.items():
+        assert m.is_closed, op
+        assert m.report["boundary_edges"] == 0 and m.report["non_manifold_edges"] == 0
+        assert m.report["volume"] == m.volume
+        assert len(m.provenance["source"]) == len(m.faces)
+    u, i = r["union"].volume, r["intersection"].volume
+    assert abs(u + i - va - vb) < 1e-9 * va
+    assert abs(r["difference"].volume - (va - i)) < 1e-9 * va
+    assert abs(r["reverse_difference"].volume - (vb - i)) < 1e-9 * va
+    # Aliases, and provenance: the subtracted part is flipped and comes from b.
+    d = meshbool.boolean(a, b, "subtract")
+    np.testing.assert_array_equal(d.faces, r["difference"].faces)
+    p = d.provenance
+    assert set(np.unique(p["source"])) == {0, 1}
+    np.testing.assert_array_equal(p["flipped"], p["source"] == 1)
+    assert p["triangle"][p["source"] == 0].max() < len(a[1])
+
+
+def test_kirra_terrain_minus_cylinder_split_and_pick(tmp_path):
+    terrain = meshbool.read(DATA / "kirra_terrain.obj")
+    cylinder = meshbool.read(DATA / "kirra_cylinder.obj")
+    with pytest.raises(ValueError, match="46 inconsistently oriented edges"):
+        meshbool.split(terrain, cylinder)
+    up = meshbool.orient(terrain, "z-up")
+    assert up.report["flipped"] == 22
+    s = meshbool.split(up, cylinder)
+    assert s.groups == ["a_in_b", "a_out_b", "b_in_a", "b_out_a"]
+    counts = {g: len(s.group(g)) for g in s.groups}
+    assert counts == {"a_in_b": 897, "a_out_b": 10645, "b_in_a": 201, "b_out_a": 201}
+    assert len(s.a_on_b_same) == 0
+    assert [len(c) for c in s.components("a_out_b")] == [10645]
+    mined = s.pick("a_out_b", "b_in_a:flip")
+    diff = meshbool.boolean(up, cylinder, "difference")
+    assert len(mined) == len(diff) and mined.report["boundary_edges"] == 560
+    assert abs(mined.volume - diff.volume) < 1e-6 * abs(diff.volume)
+    with pytest.raises(ValueError, match="a piece may be picked once"):
+        s.pick("a_out_b", "a_out_b#0")
+    manifest = s.write(tmp_path / "pieces", "obj")
+    assert manifest == s.report("obj")
+    assert json.loads((tmp_path / "pieces" / "manifest.json").read_text()) == manifest
+    assert (tmp_path / "pieces" / "a_out_b.obj").exists()
+
+
+def test_trimesh_round_trip():
+    trimesh = pytest.importorskip("trimesh")
+    a = trimesh.creation.icosphere(subdivisions=3)
+    b = a.copy()
+    b.apply_translation([0.4, 0.2, 0.1])
+    u = meshbool.boolean(a, b, "union")
+    t = u.to_trimesh()
+    assert t.is_watertight and t.is_winding_consistent
+    assert abs(t.volume - u.volume) < 1e-9 * u.volume
+    i = meshbool.boolean(t, b, "intersection")
+    assert abs(i.volume - b.volume) < 1e-9 * b.volume
+
+
+def test_curves_are_closed_loops():
+    a = meshbool.box([0, 0, 0], [1, 1, 1])
+    b = meshbool.box([0.5, 0.5, -1], [1.5, 1.5, 2])
+    # B pierces a corner of A top to bottom: one loop over A's top, down A's side, along
+    # its bottom and up again, of length 0.5 + 0.5 + 1 + 0.5 + 0.5 + 1.
+    c = meshbool.curves(a, b)
+    assert [p.closed for p in c] == [True]
+    assert c.report["loops"] == 1 and c.report["open_chains"] == 0
+    assert all(p.points.shape[1] == 3 for p in c)
+    length = sum(
+        np.linalg.norm(np.roll(p.points, -1, axis=0) - p.points, axis=1).sum() for p in c
+    )
+    assert abs(length - c.report["total_length"]) < 1e-12
+    assert abs(length - 4.0) < 1e-12
+
+
+def test_orient_close_repair():
+    box = meshbool.box([0, 0, 0], [1, 1, 1])
+    inside_out = meshbool.Mesh(box.vertices, box.faces[:, ::-1])
+    assert inside_out.volume == -1.0
+    assert meshbool.orient(inside_out, "outward").volume == 1.0
+    open_box = meshbool.Mesh(box.vertices, box.faces[:10])
+    assert not open_box.is_closed
+    capped = meshbool.close(open_box, "cap")
+    assert capped.is_closed and capped.volume == 1.0
+    assert capped.report["cap"]["capped"] == 1
+    fixed = meshbool.repair(open_box, close="cap", orient="outward")
+    assert fixed.is_closed and fixed.volume == 1.0
+    assert fixed.report["before"]["boundary_edges"] == 4
+    with pytest.raises(ValueError, match="not a repair configuration"):
+        meshbool.repair(open_box, wled=0.1)
+    with pytest.raises(ValueError, match="floor offset"):
+        meshbool.close(open_box, "curtain", floor_offset=-1.0)
+
+
+def test_touching_cubes_union_is_manifold():
+    a = meshbool.box([0, 0, 0], [1, 1, 1])
+    b = meshbool.box([1, 1, 0], [2, 2, 1])
+    u = meshbool.boolean(a, b, "union", threads=1)
+    assert u.is_closed and u.volume == 2.0
+    assert u.report["split_nonmanifold"]["edges_split"] == 1
+    kept = meshbool.boolean(a, b, "union", keep_nonmanifold=True)
+    assert kept.stats()["non_manifold_edges"] == 1
+    assert meshbool.pick([a, b]).stats()["non_manifold_edges"] == 0
+
+
+def test_forced_inputs_list_what_was_assumed():
+    a = meshbool.box([0, 0, 0], [1, 1, 1])
+    two = meshbool.Mesh(
+        np.vstack([a.vertices, a.vertices + 0.5]), np.vstack([a.faces, a.faces + 8])
+    )
+    with pytest.raises(ValueError, match="self-intersecting triangle pairs"):
+        meshbool.boolean(two, meshbool.box([3, 3, 3], [4, 4, 4]), "union")
+    r = meshbool.boolean(two, meshbool.box([3, 3, 3], [4, 4, 4]), "union", force=True)
+    assert len(r.assumed) == 1 and "taken as given" in r.assumed[0]
+    unchecked = meshbool.boolean(a, a, "union", self_check=False)
+    assert unchecked.volume == 1.0
+    assert unchecked.assumed == [
+        "A: not checked for self-intersections",
+        "B: not checked for self-intersections",
+    ]
+
+
+def test_files_round_trip_and_os_errors(tmp_path):
+    s = meshbool.Mesh(*uv_sphere([478000.0, 6771000.0, 300.0], 5.0, 16, 8))
+    for name in ["s.obj", "s.ply", "s.dxf", "s.json"]:
+        meshbool.write(tmp_path / name, s)
+        back = meshbool.read(tmp_path / name)
+        assert back.volume == s.volume and len(back) == len(s), name
+    meshbool.write(tmp_path / "s.txt", s, format="ply-ascii")
+    assert meshbool.read(tmp_path / "s.txt", format="ply").volume == s.volume
+    with pytest.raises(OSError):
+        meshbool.read(tmp_path / "missing.obj")
+    with pytest.raises(OSError):
+        meshbool.write(tmp_path / "no" / "such" / "dir.obj", s)
+    (tmp_path / "bad.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n")
+    with pytest.raises(ValueError, match="line 3"):
+        meshbool.read(tmp_path / "bad.obj")
+    with pytest.raises(ValueError, match="threads"):
+        meshbool.boolean(s, s, "union", threads=100_000)
+
+
+def test_work_runs_without_the_gil():
+    # While a boolean runs in a worker thread, the main thread keeps running Python:
+    # with the GIL held through the call it would stall until the call returned.
+    import threading
+    import time
+
+    a = uv_sphere([0, 0, 0], 1.0, 160, 80)
+    b = uv_sphere([0.5, 0, 0], 1.0, 160, 80)
+    inside = threading.Event()
+    results = []
+
+    def work():
+        inside.set()
+        for _ in range(3):
+            results.append(meshbool.boolean(a, b, "union").volume)
+
+    worker = threading.Thread(target=work)
+    worker.start()
+    inside.wait()
+    ticks, start = 0, time.perf_counter()
+    while worker.is_alive():
+        ticks += 1
+    elapsed = time.perf_counter() - start
+    assert len(results) == 3 and results[0] == results[2]
+    # Python ran throughout: at least one tick per 10 microseconds of the worker's time.
+    assert elapsed > 0.05 and ticks > elapsed * 1e5, (ticks, elapsed)
+
+
+def test_readme_python_example_runs(monkeypatch, capsys):
+    root = DATA.parent
+    text = (root / "README.md").read_text()
+    block = text.split("## Python", 1)[1].split("```python\n", 1)[1].split("```", 1)[0]
+    monkeypatch.chdir(root)
+    exec(compile(block, "README.md", "exec"), {})
+    out = capsys.readouterr().out.splitlines()
+    assert out[0] == "(5704, 3) uint32 560"
+    assert out[2].startswith("['a_in_b', 'a_out_b', 'b_in_a', 'b_out_a'] 897 [10645]")
+    assert out[3].endswith("True True")
