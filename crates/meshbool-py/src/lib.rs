@@ -126,8 +126,36 @@ fn info(
     json(&InfoReport::new("", stats))
 }
 
+/// What a boolean found besides its mesh: the report is measured when asked for
+/// ([`Boolean::report`]), so that a call that only wants the mesh does not pay for it.
+#[pyclass(module = "meshbool._native", frozen)]
+struct Boolean {
+    /// The output without its mesh and provenance (they went to numpy).
+    out: ops::BooleanOutput,
+}
+
+#[pymethods]
+impl Boolean {
+    /// The report (the `--json` of the CLI) of this boolean, whose result is `v`, `f`.
+    fn report(
+        &self,
+        py: Python<'_>,
+        v: PyReadonlyArray2<'_, f64>,
+        f: PyReadonlyArray2<'_, u32>,
+    ) -> PyResult<String> {
+        let mut out = self.out.clone();
+        out.mesh = mesh(&v, &f)?;
+        json(&py.detach(move || out.report()))
+    }
+
+    /// What the result assumes, one line each.
+    fn assumed(&self) -> Vec<String> {
+        self.out.assumed()
+    }
+}
+
 /// A boolean: the result's arrays, its provenance (source 0 = A / 1 = B, triangle,
-/// flipped) and the report.
+/// flipped) and what else it found ([`Boolean`]).
 #[pyfunction]
 #[pyo3(signature = (av, af, bv, bf, op, force, self_check, threads, keep_nonmanifold))]
 #[allow(clippy::too_many_arguments, clippy::type_complexity)]
@@ -148,7 +176,7 @@ fn boolean<'py>(
     Bound<'py, PyArray1<u8>>,
     Bound<'py, PyArray1<u32>>,
     Bound<'py, PyArray1<bool>>,
-    String,
+    Boolean,
 )> {
     let (a, b, op) = (mesh(&av, &af)?, mesh(&bv, &bf)?, parse::<Op>(op)?);
     let opts = BooleanOptions {
@@ -156,23 +184,20 @@ fn boolean<'py>(
         keep_nonmanifold,
         run: run(threads),
     };
-    let out = py
-        .detach(move || ops::boolean(&a, &b, op, &opts).map(|o| (o.report(), o)))
+    let mut out = py
+        .detach(move || ops::boolean(&a, &b, op, &opts))
         .map_err(py_err)?;
-    let (report, out) = out;
-    let source = out
-        .provenance
-        .iter()
-        .map(|p| u8::from(p.source == Source::B));
-    let triangle = out.provenance.iter().map(|p| p.triangle);
-    let flipped = out.provenance.iter().map(|p| p.flipped);
+    let provenance = std::mem::take(&mut out.provenance);
+    let source = provenance.iter().map(|p| u8::from(p.source == Source::B));
+    let triangle = provenance.iter().map(|p| p.triangle);
+    let flipped = provenance.iter().map(|p| p.flipped);
     let (source, triangle, flipped) = (
         PyArray1::from_iter(py, source),
         PyArray1::from_iter(py, triangle),
         PyArray1::from_iter(py, flipped),
     );
-    let (v, f) = arrays(py, out.mesh)?;
-    Ok((v, f, source, triangle, flipped, json(&report)?))
+    let (v, f) = arrays(py, std::mem::take(&mut out.mesh))?;
+    Ok((v, f, source, triangle, flipped, Boolean { out }))
 }
 
 /// A split of two meshes along their intersection: its groups and their components.
@@ -429,6 +454,7 @@ fn write(
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SCHEMA", ops::SCHEMA)?;
     m.add("VERSION", env!("CARGO_PKG_VERSION"))?;
+    m.add_class::<Boolean>()?;
     m.add_class::<Split>()?;
     for f in [
         wrap_pyfunction!(check, m)?,

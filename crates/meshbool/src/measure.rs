@@ -5,6 +5,7 @@
 //! area) are computed in `f64` relative to the bounding-box centre with compensated
 //! summation, so that UTM-sized coordinates keep their precision.
 
+use rayon::prelude::*;
 use rustc_hash::FxHashSet;
 use serde::Serialize;
 
@@ -47,16 +48,36 @@ impl Sum {
     }
 }
 
-/// Sums `f(corners relative to the bounding-box centre)` over all triangles.
-fn sum_over_triangles(mesh: &Mesh, f: impl Fn([f64; 3], [f64; 3], [f64; 3]) -> f64) -> f64 {
+/// Triangles per piece of a parallel sum. Pieces, and the order their sums are combined
+/// in, depend on the mesh alone: a sum is the same bit for bit on any number of threads.
+const SUM_PIECE: usize = 1 << 14;
+
+/// Sums `f(corners relative to the bounding-box centre)` over all triangles: each piece of
+/// [`SUM_PIECE`] triangles compensated on its own, in parallel, the pieces' sums and
+/// compensations then added in order (one piece: the plain compensated sum).
+fn sum_over_triangles(mesh: &Mesh, f: impl Fn([f64; 3], [f64; 3], [f64; 3]) -> f64 + Sync) -> f64 {
     let Some(b) = mesh.bounds() else { return 0.0 };
     let o = b.center();
-    let mut sum = Sum::default();
-    for t in 0..mesh.triangles.len() {
-        let [a, b, c] = mesh.corners(t);
-        sum.add(f(sub(&a, &o), sub(&b, &o), sub(&c, &o)));
+    let piece = |k: usize| {
+        let mut sum = Sum::default();
+        let end = ((k + 1) * SUM_PIECE).min(mesh.triangles.len());
+        for t in k * SUM_PIECE..end {
+            let [a, b, c] = mesh.corners(t);
+            sum.add(f(sub(&a, &o), sub(&b, &o), sub(&c, &o)));
+        }
+        sum
+    };
+    let pieces = mesh.triangles.len().div_ceil(SUM_PIECE);
+    if pieces == 1 {
+        return piece(0).get();
     }
-    sum.get()
+    let sums: Vec<Sum> = (0..pieces).into_par_iter().map(piece).collect();
+    let mut total = Sum::default();
+    for s in sums {
+        total.add(s.s);
+        total.add(s.c);
+    }
+    total.get()
 }
 
 /// Signed volume enclosed by the mesh: positive when a closed mesh's triangles face
@@ -198,6 +219,28 @@ pub fn mesh_stats(mesh: &Mesh) -> MeshStats {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn sums_over_many_pieces_are_the_same_on_any_number_of_threads() {
+        // 2·128·255 triangles: four pieces of the parallel sum.
+        let s = crate::shapes::uv_sphere([3.0e5, 6.0e6, 100.0], 2.0, 128, 256);
+        assert!(s.triangles.len() > 3 * SUM_PIECE);
+        let on = |threads| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| (signed_volume(&s), area(&s), s.bounds()))
+        };
+        let one = on(1);
+        assert_eq!(one, on(2));
+        assert_eq!(one, on(7));
+        // Close to the sphere's (inscribed polyhedron: slightly less).
+        let exact = 4.0 / 3.0 * std::f64::consts::PI * 8.0;
+        assert!(one.0 > 0.999 * exact && one.0 < exact, "{}", one.0);
+        let b = one.2.unwrap();
+        assert_eq!((b.min[2], b.max[2]), (98.0, 102.0));
+    }
 
     /// An `n`×`n` grid of unit squares in the plane z = 0, two triangles each, facing +z.
     fn grid(n: u32) -> Mesh {

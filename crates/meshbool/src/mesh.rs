@@ -39,6 +39,14 @@ impl Aabb {
         std::array::from_fn(|i| 0.5 * (self.min[i] + self.max[i]))
     }
 
+    /// The box grown to hold `p`.
+    fn grown(self, p: &[f64; 3]) -> Aabb {
+        Aabb {
+            min: std::array::from_fn(|k| self.min[k].min(p[k])),
+            max: std::array::from_fn(|k| self.max[k].max(p[k])),
+        }
+    }
+
     /// The box's edge lengths.
     pub fn size(&self) -> [f64; 3] {
         std::array::from_fn(|i| self.max[i] - self.min[i])
@@ -254,18 +262,28 @@ impl Mesh {
 
     /// The bounding box of the vertices that triangles use; `None` for a mesh without triangles.
     pub fn bounds(&self) -> Option<Aabb> {
-        let mut it = self.triangles.iter().flatten();
-        let first = self.positions[*it.next()? as usize];
-        let mut b = Aabb {
-            min: first,
-            max: first,
+        use rayon::prelude::*;
+        // Pieces of fixed size combined in order: the same box on any number of threads.
+        const PIECE: usize = 1 << 16;
+        let piece = |tris: &[[u32; 3]]| {
+            let mut it = tris.iter().flatten();
+            let first = self.positions[*it.next()? as usize];
+            let mut b = Aabb {
+                min: first,
+                max: first,
+            };
+            for &i in it {
+                b = b.grown(&self.positions[i as usize]);
+            }
+            Some(b)
         };
-        for &i in it {
-            let p = self.positions[i as usize];
-            b.min = std::array::from_fn(|k| b.min[k].min(p[k]));
-            b.max = std::array::from_fn(|k| b.max[k].max(p[k]));
+        if self.triangles.len() <= PIECE {
+            return piece(&self.triangles);
         }
-        Some(b)
+        let boxes: Vec<Option<Aabb>> = self.triangles.par_chunks(PIECE).map(piece).collect();
+        let mut it = boxes.into_iter().flatten();
+        let first = it.next()?;
+        Some(it.fold(first, |b, c| b.grown(&c.min).grown(&c.max)))
     }
 
     /// The same mesh with every triangle's orientation reversed.

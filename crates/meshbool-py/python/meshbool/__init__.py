@@ -113,7 +113,7 @@ class Mesh:
     for booleans, ``provenance``.
     """
 
-    __slots__ = ("vertices", "faces", "report", "provenance")
+    __slots__ = ("vertices", "faces", "provenance", "_report", "_pending")
 
     def __init__(self, vertices: Any, faces: Any) -> None:
         v, f = _arrays(vertices, faces)
@@ -125,16 +125,27 @@ class Mesh:
             )
         self.vertices: np.ndarray = v
         self.faces: np.ndarray = f
-        self.report: Optional[dict] = None
         self.provenance: Optional[dict] = None
+        self._report: Optional[dict] = None
+        self._pending: Any = None
 
     @classmethod
     def _from(cls, v: np.ndarray, f: np.ndarray, report: Optional[str] = None) -> "Mesh":
         m = cls.__new__(cls)
         m.vertices, m.faces = v, f
-        m.report = json.loads(report) if report is not None else None
+        m._report = json.loads(report) if report is not None else None
+        m._pending = None
         m.provenance = None
         return m
+
+    @property
+    def report(self) -> Optional[dict]:
+        """What made this mesh reported: the dict the command line prints with ``--json``
+        (``None`` for a mesh no operation made). A boolean's report is measured on first
+        use."""
+        if self._report is None and self._pending is not None:
+            self._report = json.loads(self._pending.report(self.vertices, self.faces))
+        return self._report
 
     def _measures(self) -> Tuple[float, float, bool]:
         return _native.measures(self.vertices, self.faces)
@@ -157,6 +168,8 @@ class Mesh:
     @property
     def assumed(self) -> list:
         """What a boolean's result assumes (skipped checks, problems taken as given)."""
+        if self._pending is not None:
+            return list(self._pending.assumed())
         return list((self.report or {}).get("assumed", []))
 
     def stats(self) -> dict:
@@ -223,10 +236,11 @@ def boolean(
     """
     av, af = _parts(a)
     bv, bf = _parts(b)
-    v, f, source, triangle, flipped, report = _native.boolean(
+    v, f, source, triangle, flipped, pending = _native.boolean(
         av, af, bv, bf, op, force, self_check, threads, keep_nonmanifold
     )
-    out = Mesh._from(v, f, report)
+    out = Mesh._from(v, f)
+    out._pending = pending
     out.provenance = {"source": source, "triangle": triangle, "flipped": flipped}
     return out
 

@@ -1,0 +1,225 @@
+#!/usr/bin/env python3
+"""Booleans in one Python process: meshbool beside manifold3d, trueform and meshlib (each
+optional), on the meshes of ../shared/bench/gen_meshes.py, same process, same run.
+
+For every case, operation and library, two medians over the repetitions:
+- core: the boolean call alone (each library's own mesh objects already built; for
+  meshbool, numpy in -> numpy out is the call itself, input weld and checks included);
+- numpy: numpy arrays in -> numpy arrays out (building the library's objects and
+  extracting the result included).
+Every result's volume is checked against the inclusion-exclusion identity of the run.
+
+    python3 -m venv venv && venv/bin/pip install ./crates/meshbool-py numpy \\
+        manifold3d trueform meshlib
+    venv/bin/python ../shared/bench/gen_meshes.py --out /tmp/meshes
+    venv/bin/python bench/inprocess.py /tmp/meshes --reps 5 > results.md
+
+meshbool runs with ``self_check=False`` as the peers check nothing (the default check
+is reported in its own column).
+"""
+
+import argparse
+import json
+import statistics
+import sys
+import time
+
+import numpy as np
+
+import meshbool
+
+OPS = ("union", "intersection", "difference")
+
+
+class Meshbool:
+    name = "meshbool"
+
+    def __init__(self, self_check=False):
+        self.self_check = self_check
+        if self_check:
+            self.name = "meshbool (checked)"
+
+    def prepare(self, v, f):
+        return (v, f)
+
+    def boolean(self, a, b, op):
+        return meshbool.boolean(a, b, op, self_check=self.self_check)
+
+    def extract(self, r):
+        return r.vertices, r.faces
+
+
+class Manifold3d:
+    name = "manifold3d"
+
+    def __init__(self):
+        import manifold3d
+
+        self.m = manifold3d
+
+    def prepare(self, v, f):
+        mesh = self.m.Mesh64(np.ascontiguousarray(v), np.ascontiguousarray(f, dtype=np.uint64))
+        return self.m.Manifold(mesh)
+
+    def boolean(self, a, b, op):
+        r = {"union": a + b, "intersection": a ^ b, "difference": a - b}[op]
+        r.num_tri()  # evaluated lazily: force it inside the timing
+        return r
+
+    def extract(self, r):
+        m = r.to_mesh64()
+        return np.asarray(m.vert_properties)[:, :3], np.asarray(m.tri_verts)
+
+
+class Trueform:
+    name = "trueform"
+
+    def __init__(self):
+        import trueform
+
+        self.tf = trueform
+
+    def prepare(self, v, f):
+        return self.tf.Mesh(np.ascontiguousarray(f, dtype=np.int32), np.ascontiguousarray(v))
+
+    def boolean(self, a, b, op):
+        fn = {
+            "union": self.tf.boolean_union,
+            "intersection": self.tf.boolean_intersection,
+            "difference": self.tf.boolean_difference,
+        }[op]
+        (faces, points), _, _ = fn(a, b)
+        return faces, points
+
+    def extract(self, r):
+        return np.asarray(r[1]), np.asarray(r[0])
+
+
+class Meshlib:
+    name = "meshlib"
+
+    def __init__(self):
+        import meshlib.mrmeshnumpy as mn
+        import meshlib.mrmeshpy as mr
+
+        self.mr, self.mn = mr, mn
+
+    def prepare(self, v, f):
+        return self.mn.meshFromFacesVerts(
+            np.ascontiguousarray(f, dtype=np.int32), np.ascontiguousarray(v, dtype=np.float32)
+        )
+
+    def boolean(self, a, b, op):
+        kind = self.mr.BooleanOperation
+        o = {"union": kind.Union, "intersection": kind.Intersection, "difference": kind.DifferenceAB}
+        r = self.mr.boolean(a, b, o[op])
+        if not r.valid():
+            raise RuntimeError(r.errorString)
+        return r
+
+    def extract(self, r):
+        m = r.mesh
+        m.pack()
+        return self.mn.getNumpyVerts(m), self.mn.getNumpyFaces(m.topology)
+
+
+def volume(v, f):
+    v = np.asarray(v, dtype=np.float64)
+    f = np.asarray(f, dtype=np.int64)
+    if len(f) == 0:
+        return 0.0
+    c = v.mean(axis=0)
+    p = v[f] - c
+    return float(np.einsum("ij,ij->i", p[:, 0], np.cross(p[:, 1], p[:, 2])).sum() / 6.0)
+
+
+def median_time(fn, reps):
+    times, out = [], None
+    for _ in range(reps):
+        t = time.perf_counter()
+        out = fn()
+        times.append(time.perf_counter() - t)
+    return statistics.median(times), out
+
+
+def libraries(names):
+    libs = [Meshbool(), Meshbool(self_check=True)]
+    for cls in (Manifold3d, Trueform, Meshlib):
+        if cls.name in names:
+            try:
+                libs.append(cls())
+            except ImportError as e:
+                print(f"<!-- {cls.name} not available: {e} -->", file=sys.stderr)
+    return libs
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("meshes", help="directory written by gen_meshes.py (with cases.json)")
+    ap.add_argument("--cases", default="sphere_5k,sphere_500k,sphere_2m,cube_coplanar_g16,cube_identical_g16")
+    ap.add_argument("--libs", default="manifold3d,trueform,meshlib")
+    ap.add_argument("--reps", type=int, default=5)
+    ap.add_argument("--json", help="also write every measurement to this file")
+    args = ap.parse_args()
+    cases = json.load(open(f"{args.meshes}/cases.json"))
+    libs = libraries(args.libs.split(","))
+    rows, records = [], []
+    for case in args.cases.split(","):
+        c = cases[case]
+        a = meshbool.read(f"{args.meshes}/{c['A']}")
+        b = meshbool.read(f"{args.meshes}/{c['B']}")
+        reps = max(1, args.reps if len(a.faces) < 1_000_000 else (args.reps + 1) // 2)
+        vols = {}
+        for op in OPS:
+            row = {"case": case, "op": op, "triangles": len(a.faces)}
+            for lib in libs:
+                try:
+                    pa, pb = lib.prepare(a.vertices, a.faces), lib.prepare(b.vertices, b.faces)
+                    core, r = median_time(lambda: lib.boolean(pa, pb, op), reps)
+
+                    def whole():
+                        x = lib.boolean(lib.prepare(a.vertices, a.faces), lib.prepare(b.vertices, b.faces), op)
+                        return lib.extract(x)
+
+                    full, (v, f) = median_time(whole, reps)
+                    vol = volume(v, f)
+                    vols.setdefault(op, {})[lib.name] = vol
+                    row[lib.name] = (core, full)
+                    records.append({"case": case, "op": op, "lib": lib.name, "core": core, "numpy": full,
+                                    "triangles": int(len(f)), "volume": vol})
+                except Exception as e:  # a library refusing a case is a result too
+                    row[lib.name] = None
+                    records.append({"case": case, "op": op, "lib": lib.name, "error": str(e)[:200]})
+            rows.append(row)
+        # Inclusion-exclusion per library: vol(A∪B) + vol(A∩B) = vol(A) + vol(B).
+        va, vb = volume(a.vertices, a.faces), volume(b.vertices, b.faces)
+        for lib in libs:
+            try:
+                err = abs(vols["union"][lib.name] + vols["intersection"][lib.name] - va - vb) / (va + vb)
+                records.append({"case": case, "lib": lib.name, "identity_error": err})
+            except KeyError:
+                pass
+    names = [lib.name for lib in libs]
+    peers = [n for n in names if not n.startswith("meshbool")]
+    print("| case | op | " + " | ".join(f"{n} core / numpy (ms)" for n in names) + " | meshbool ÷ fastest peer (core) |")
+    print("|---" * (len(names) + 3) + "|")
+    for row in rows:
+        cells = []
+        for n in names:
+            t = row.get(n)
+            cells.append("fails" if t is None else f"{t[0] * 1e3:.1f} / {t[1] * 1e3:.1f}")
+        best = min((row[n][0] for n in peers if row.get(n)), default=None)
+        ours = row.get("meshbool")
+        ratio = f"{ours[0] / best:.2f}" if best and ours else "–"
+        print(f"| {row['case']} | {row['op']} | " + " | ".join(cells) + f" | {ratio} |")
+    ident = [r for r in records if "identity_error" in r]
+    print()
+    print("Volume identity error |vol(A∪B)+vol(A∩B)−vol(A)−vol(B)| / (vol(A)+vol(B)):")
+    for r in ident:
+        print(f"- {r['case']} {r['lib']}: {r['identity_error']:.1e}")
+    if args.json:
+        json.dump(records, open(args.json, "w"), indent=1)
+
+
+if __name__ == "__main__":
+    main()
