@@ -8,7 +8,7 @@ use clap::{Parser, Subcommand};
 
 mod commands;
 
-use commands::{boolean, close, convert, curves, info, orient, pick, repair, split};
+use commands::{boolean, close, convert, curves, info, orient, pick, repair, resolve, split};
 
 /// mimalloc keeps freed memory for reuse: a boolean's stages allocate and free large
 /// buffers one after another, which with the system allocator cost a fresh mapping and
@@ -64,6 +64,10 @@ enum Command {
     /// Every removed triangle is counted in the report. `--config FILE.json` gives the
     /// whole configuration (the library's `RepairConfig`); flags override it.
     Repair(repair::Args),
+    /// The solid a self-overlapping mesh encloses, as a clean closed mesh: closed parts
+    /// that cross are united, parts nested in others dropped (or kept reversed, as the
+    /// fill rule says). A part that crosses itself is not resolved yet.
+    Resolve(resolve::Args),
     /// Make triangle orientation consistent across every manifold edge, component by
     /// component, and face each component as asked (default: as most triangles already did).
     Orient(orient::Args),
@@ -83,6 +87,7 @@ fn main() -> ExitCode {
         Command::Pick(args) => pick::run(&args),
         Command::Close(args) => close::run(&args),
         Command::Repair(args) => repair::run(&args),
+        Command::Resolve(args) => resolve::run(&args),
         Command::Orient(args) => orient::run(&args),
         Command::Curves(args) => curves::run(&args),
     };

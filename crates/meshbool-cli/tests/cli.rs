@@ -321,10 +321,14 @@ fn oriented_terrain_needs_no_force() {
 
 #[test]
 fn self_intersecting_input_is_refused_with_a_location() {
-    // Two overlapping cubes in one file.
-    let mut m = meshbool::Mesh::unit_cube();
-    m.append(&meshbool::Mesh::cuboid([0.5; 3], [1.5; 3]))
-        .unwrap();
+    // A cube with a corner pushed through its bottom: it crosses itself.
+    let (mut positions, triangles) = meshbool::Mesh::unit_cube().into_parts();
+    for p in &mut positions {
+        if *p == [1.0; 3] {
+            *p = [0.5, 0.5, -0.5];
+        }
+    }
+    let m = meshbool::Mesh::new(positions, triangles).unwrap();
     let bad = tmp("selfx.ply");
     meshbool::io::write_path(&bad, &m).unwrap();
     let c = write_cube("selfx_b.ply", [2.0; 3], [3.0; 3]);
@@ -339,7 +343,9 @@ fn self_intersecting_input_is_refused_with_a_location() {
     assert_eq!(r.status.code(), Some(1));
     let err = String::from_utf8_lossy(&r.stderr);
     assert!(
-        err.contains("self-intersecting triangle pairs") && err.contains("near"),
+        err.contains("self-intersecting triangle pairs")
+            && err.contains("near")
+            && err.contains("crosses itself"),
         "{err}"
     );
 }
@@ -742,4 +748,61 @@ fn json_output_is_exactly_the_library_report() {
         cli,
         json(&ops::repair(&mesh, &Default::default()).unwrap().report())
     );
+}
+
+#[test]
+fn overlapping_parts_are_resolved_alone_and_as_operands() {
+    // Two overlapping cubes in one file: their union, 2 - 1/8.
+    let mut m = meshbool::Mesh::unit_cube();
+    m.append(&meshbool::Mesh::cuboid([0.5; 3], [1.5; 3]))
+        .unwrap();
+    let two = tmp("two_cubes.ply");
+    meshbool::io::write_path(&two, &m).unwrap();
+    let out = tmp("two_cubes_resolved.obj");
+    let v = report(&[
+        "resolve",
+        two.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    assert_eq!(
+        (v["volume"].as_f64(), v["closed"].as_bool()),
+        (Some(1.875), Some(true))
+    );
+    assert_eq!(v["rule"], "positive");
+    assert_eq!(v["resolve"]["united_components"], 2);
+    let written = meshbool::io::read_path(&out).unwrap();
+    assert_eq!(meshbool::measure::signed_volume(&written), 1.875);
+    // As an operand of a union with a cube that touches nothing: 1.875 + 1.
+    let far = write_cube("far_cube.ply", [3.0; 3], [4.0; 3]);
+    let union_out = tmp("two_cubes_union.ply");
+    let args = [
+        "union",
+        two.to_str().unwrap(),
+        far.to_str().unwrap(),
+        "-o",
+        union_out.to_str().unwrap(),
+        "--json",
+    ];
+    let v = report(&args);
+    assert_eq!(
+        (v["volume"].as_f64(), v["closed"].as_bool()),
+        (Some(2.875), Some(true))
+    );
+    assert_eq!(v["operands"][0]["resolved"]["components"], 2);
+    assert_eq!(v["operands"][1]["resolved"], serde_json::Value::Null);
+    // --no-resolve refuses it as before.
+    let r = meshbool(&[&args[..], &["--no-resolve"]].concat());
+    assert_eq!(r.status.code(), Some(1));
+    // An unknown rule is a usage error.
+    let r = meshbool(&[
+        "resolve",
+        two.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--rule",
+        "odd",
+    ]);
+    assert_eq!(r.status.code(), Some(2));
 }

@@ -77,9 +77,10 @@ fn arrays(py: Python<'_>, mesh: Mesh) -> PyResult<Arrays<'_>> {
     ))
 }
 
-fn checks(force: bool, self_check: bool) -> Checks {
+fn checks(force: bool, self_check: bool, resolve: bool) -> Checks {
     Checks {
         self_intersections: self_check,
+        resolve,
         force,
         ..Checks::default()
     }
@@ -157,7 +158,7 @@ impl Boolean {
 /// A boolean: the result's arrays, its provenance (source 0 = A / 1 = B, triangle,
 /// flipped) and what else it found ([`Boolean`]).
 #[pyfunction]
-#[pyo3(signature = (av, af, bv, bf, op, force, self_check, threads, keep_nonmanifold))]
+#[pyo3(signature = (av, af, bv, bf, op, force, self_check, resolve, threads, keep_nonmanifold))]
 #[allow(clippy::too_many_arguments, clippy::type_complexity)]
 fn boolean<'py>(
     py: Python<'py>,
@@ -168,6 +169,7 @@ fn boolean<'py>(
     op: &str,
     force: bool,
     self_check: bool,
+    resolve: bool,
     threads: Option<usize>,
     keep_nonmanifold: bool,
 ) -> PyResult<(
@@ -180,7 +182,7 @@ fn boolean<'py>(
 )> {
     let (a, b, op) = (mesh(&av, &af)?, mesh(&bv, &bf)?, parse::<Op>(op)?);
     let opts = BooleanOptions {
-        checks: checks(force, self_check),
+        checks: checks(force, self_check, resolve),
         keep_nonmanifold,
         run: run(threads),
     };
@@ -274,7 +276,7 @@ impl Split {
 
 /// Splits two meshes along their intersection.
 #[pyfunction]
-#[pyo3(signature = (av, af, bv, bf, force, self_check, threads, merge_small))]
+#[pyo3(signature = (av, af, bv, bf, force, self_check, resolve, threads, merge_small))]
 #[allow(clippy::too_many_arguments)]
 fn split(
     py: Python<'_>,
@@ -284,12 +286,13 @@ fn split(
     bf: PyReadonlyArray2<'_, u32>,
     force: bool,
     self_check: bool,
+    resolve: bool,
     threads: Option<usize>,
     merge_small: usize,
 ) -> PyResult<Split> {
     let (a, b) = (mesh(&av, &af)?, mesh(&bv, &bf)?);
     let opts = SplitOptions {
-        checks: checks(force, self_check),
+        checks: checks(force, self_check, resolve),
         merge_small,
         run: run(threads),
     };
@@ -367,6 +370,38 @@ fn orient<'py>(
     let report = json(&out.report())?;
     let (v, f) = arrays(py, out.mesh)?;
     Ok((v, f, report))
+}
+
+/// The solid a self-overlapping mesh encloses: its arrays, the input triangle of each
+/// result triangle, the report.
+#[pyfunction]
+#[allow(clippy::type_complexity)]
+fn resolve<'py>(
+    py: Python<'py>,
+    v: PyReadonlyArray2<'py, f64>,
+    f: PyReadonlyArray2<'py, u32>,
+    rule: &str,
+    keep_nonmanifold: bool,
+    threads: Option<usize>,
+) -> PyResult<(
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray2<u32>>,
+    Bound<'py, PyArray1<u32>>,
+    String,
+)> {
+    let m = mesh(&v, &f)?;
+    let opts = ops::ResolveOptions {
+        rule: parse::<meshbool::FillRule>(rule)?,
+        keep_nonmanifold,
+        run: run(threads),
+    };
+    let mut out = py
+        .detach(move || ops::resolve(&m, &opts))
+        .map_err(py_err)?;
+    let report = json(&py.detach(|| out.report()))?;
+    let parent = PyArray1::from_vec(py, std::mem::take(&mut out.parent));
+    let (v, f) = arrays(py, out.mesh)?;
+    Ok((v, f, parent, report))
 }
 
 /// Closing an open mesh into a solid.
@@ -464,6 +499,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
         wrap_pyfunction!(split, m)?,
         wrap_pyfunction!(pick, m)?,
         wrap_pyfunction!(curves, m)?,
+        wrap_pyfunction!(resolve, m)?,
         wrap_pyfunction!(orient, m)?,
         wrap_pyfunction!(close, m)?,
         wrap_pyfunction!(repair, m)?,

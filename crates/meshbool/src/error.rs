@@ -84,6 +84,15 @@ pub enum Error {
         /// What was found, one phrase each ("46 inconsistently oriented edges").
         problems: Vec<String>,
     },
+    /// A mesh could not be resolved into the solid it encloses
+    /// ([`crate::ops::resolve()`]): the reason, one phrase.
+    #[error("{name} cannot be resolved: {reason}")]
+    Unresolvable {
+        /// The mesh's name (its file, or `mesh`).
+        name: String,
+        /// Why.
+        reason: String,
+    },
     /// Reading or writing a file failed; the message names the file, then the cause.
     #[error("{action} {}: {error}", path.display())]
     File {

@@ -104,7 +104,7 @@ struct ReadmeDoctests;
 mod vec3;
 mod welder;
 
-pub use boolean::{Group, Keep, Op, Provenance, Rule, Selection, Source, Stage};
+pub use boolean::{FillRule, Group, Keep, Op, Provenance, Rule, Selection, Source, Stage};
 pub use classify::Class;
 pub use edges::EdgeTopology;
 pub use error::{Error, Location, Result};

@@ -39,6 +39,11 @@ impl Aabb {
         std::array::from_fn(|i| 0.5 * (self.min[i] + self.max[i]))
     }
 
+    /// Whether `p` is in the closed box.
+    pub fn contains(&self, p: &[f64; 3]) -> bool {
+        (0..3).all(|k| self.min[k] <= p[k] && p[k] <= self.max[k])
+    }
+
     /// The box grown to hold `p`.
     fn grown(self, p: &[f64; 3]) -> Aabb {
         Aabb {

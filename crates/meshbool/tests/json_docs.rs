@@ -113,6 +113,17 @@ fn samples() -> BTreeMap<&'static str, Vec<Value>> {
     let other = Mesh::cuboid([0.5; 3], [1.5; 3]);
     let union = ops::boolean(&cube, &other, Op::Union, &BooleanOptions::default()).unwrap();
     s.entry("boolean").or_default().push(json(&union.report()));
+    // Two overlapping cubes in one mesh: resolved into their union on the way in.
+    let mut two = Mesh::unit_cube();
+    two.append(&other).unwrap();
+    let far = Mesh::cuboid([3.0; 3], [4.0; 3]);
+    let resolved = ops::boolean(&two, &far, Op::Union, &BooleanOptions::default()).unwrap();
+    assert!(resolved.operands[0].resolved.is_some());
+    s.entry("boolean")
+        .or_default()
+        .push(json(&resolved.report()));
+    let r = ops::resolve(&two, &ops::ResolveOptions::default()).unwrap();
+    s.entry("resolve").or_default().push(json(&r.report()));
 
     let (slab, posts) = slab_and_posts();
     let split = ops::split(&slab, &posts, &SplitOptions::default()).unwrap();
@@ -169,7 +180,7 @@ fn samples() -> BTreeMap<&'static str, Vec<Value>> {
 fn docs_list_every_key_of_every_report_and_no_other() {
     let tables = doc_tables();
     let samples = samples();
-    assert_eq!(samples.len(), 8);
+    assert_eq!(samples.len(), 9);
     for (report, runs) in &samples {
         let mut doc = BTreeSet::new();
         documented(&tables, report, "", &mut doc);
@@ -195,9 +206,15 @@ fn docs_list_every_key_of_every_report_and_no_other() {
 
 #[test]
 fn operand_report_keys_are_documented_when_a_check_finds_something() {
-    // Two overlapping cubes in one mesh: self-intersections found and taken as given.
-    let mut m = Mesh::unit_cube();
-    m.append(&Mesh::cuboid([0.5; 3], [1.5; 3])).unwrap();
+    // A cube with a corner pushed through its bottom: self-intersections that cannot be
+    // resolved, taken as given.
+    let (mut positions, triangles) = Mesh::unit_cube().into_parts();
+    for p in &mut positions {
+        if *p == [1.0; 3] {
+            *p = [0.5, 0.5, -0.5];
+        }
+    }
+    let m = Mesh::new(positions, triangles).unwrap();
     let opts = BooleanOptions {
         checks: Checks {
             force: true,
@@ -211,6 +228,7 @@ fn operand_report_keys_are_documented_when_a_check_finds_something() {
     let s = &v["operands"][0]["self_intersections"];
     assert_eq!(s["first"].as_array().unwrap().len(), 2);
     assert_eq!(s["near"].as_array().unwrap().len(), 3);
+    assert!(s["unresolved"].as_str().unwrap().contains("crosses itself"));
     assert_eq!(v["operands"][0]["forced"], true);
     let tables = doc_tables();
     let mut doc = BTreeSet::new();

@@ -13,6 +13,7 @@ pub mod info;
 pub mod orient;
 pub mod pick;
 pub mod repair;
+pub mod resolve;
 pub mod split;
 
 /// Flags shared by the commands that take two operands (booleans, split).
@@ -29,6 +30,10 @@ pub struct OperandFlags {
     /// on large meshes); only for inputs known to be clean.
     #[arg(long)]
     pub no_self_check: bool,
+    /// Refuse an input whose closed parts cross or nest one another instead of resolving
+    /// it into the solid they enclose (their union; see `meshbool resolve`).
+    #[arg(long)]
+    pub no_resolve: bool,
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
@@ -39,6 +44,7 @@ impl OperandFlags {
     pub fn checks(&self) -> Checks {
         Checks {
             self_intersections: !self.no_self_check,
+            resolve: !self.no_resolve,
             force: self.force,
             ..Checks::default()
         }

@@ -35,6 +35,7 @@ __all__ = [
     "pick",
     "curves",
     "repair",
+    "resolve",
     "orient",
     "close",
     "read",
@@ -214,6 +215,7 @@ def boolean(
     *,
     force: bool = False,
     self_check: bool = True,
+    resolve: bool = True,
     threads: Optional[int] = None,
     keep_nonmanifold: bool = False,
 ) -> Mesh:
@@ -225,7 +227,9 @@ def boolean(
 
     Inputs are checked: inconsistently oriented or non-manifold edges and
     self-intersections make inside/outside ambiguous and raise ``ValueError`` unless
-    ``force`` (then ``result.assumed`` lists what was taken as given). ``self_check=False``
+    ``force`` (then ``result.assumed`` lists what was taken as given), except an input
+    whose closed parts cross or nest one another: it is resolved into the solid they
+    enclose (see :func:`resolve`) unless ``resolve=False``. ``self_check=False``
     skips the self-intersection check (for inputs known to be clean). ``threads``: worker
     threads (default all cores). ``keep_nonmanifold``: keep edges and vertices where the
     result's solids touch instead of splitting them.
@@ -237,7 +241,7 @@ def boolean(
     av, af = _parts(a)
     bv, bf = _parts(b)
     v, f, source, triangle, flipped, pending = _native.boolean(
-        av, af, bv, bf, op, force, self_check, threads, keep_nonmanifold
+        av, af, bv, bf, op, force, self_check, resolve, threads, keep_nonmanifold
     )
     out = Mesh._from(v, f)
     out._pending = pending
@@ -306,6 +310,7 @@ def split(
     *,
     force: bool = False,
     self_check: bool = True,
+    resolve: bool = True,
     threads: Optional[int] = None,
     merge_small: int = 0,
 ) -> Split:
@@ -314,7 +319,9 @@ def split(
     into the nearest larger one of their group."""
     av, af = _parts(a)
     bv, bf = _parts(b)
-    return Split(_native.split(av, af, bv, bf, force, self_check, threads, merge_small))
+    return Split(
+        _native.split(av, af, bv, bf, force, self_check, resolve, threads, merge_small)
+    )
 
 
 def pick(pieces: Iterable[Any], *, keep_nonmanifold: bool = False) -> Mesh:
@@ -354,6 +361,26 @@ def curves(a: MeshLike, b: MeshLike, *, with_coplanar: bool = True) -> Curves:
     lines, report = _native.curves(av, af, bv, bf, with_coplanar)
     out = Curves(Polyline(p, c) for p, c in lines)
     out.report = json.loads(report)
+    return out
+
+
+def resolve(
+    mesh: MeshLike,
+    rule: str = "positive",
+    *,
+    keep_nonmanifold: bool = False,
+    threads: Optional[int] = None,
+) -> Mesh:
+    """The solid a self-overlapping mesh encloses, as a clean closed mesh: closed parts
+    that cross are united, parts nested in others dropped (or kept reversed), as the fill
+    rule says: ``"positive"`` (winding number ≥ 1, the union), ``"nonzero"``,
+    ``"evenodd"``. A part that crosses itself raises ``ValueError`` (not resolved yet).
+    The result's ``provenance["triangle"]`` is the input triangle of each of its
+    triangles; ``report`` is the ``meshbool resolve --json`` dict."""
+    v, f = _parts(mesh)
+    v, f, parent, report = _native.resolve(v, f, rule, keep_nonmanifold, threads)
+    out = Mesh._from(v, f, report)
+    out.provenance = {"triangle": parent}
     return out
 
 

@@ -26,6 +26,7 @@ def boolean(
     op: str,
     force: bool,
     self_check: bool,
+    resolve: bool,
     threads: Optional[int],
     keep_nonmanifold: bool,
 ) -> Tuple[F64, U32, npt.NDArray[np.uint8], U32, npt.NDArray[np.bool_], Boolean]: ...
@@ -45,6 +46,7 @@ def split(
     bf: U32,
     force: bool,
     self_check: bool,
+    resolve: bool,
     threads: Optional[int],
     merge_small: int,
 ) -> Split: ...
@@ -52,6 +54,9 @@ def pick(pieces: List[Tuple[F64, U32, bool]], keep_nonmanifold: bool) -> Tuple[F
 def curves(
     av: F64, af: U32, bv: F64, bf: U32, with_coplanar: bool
 ) -> Tuple[List[Tuple[F64, bool]], str]: ...
+def resolve(
+    v: F64, f: U32, rule: str, keep_nonmanifold: bool, threads: Optional[int]
+) -> Tuple[F64, U32, U32, str]: ...
 def orient(v: F64, f: U32, facing: str) -> Tuple[F64, U32, str]: ...
 def close(
     v: F64, f: U32, mode: str, floor_offset: float, max_gap: Optional[float]

@@ -35,6 +35,9 @@ use crate::repair::nonmanifold::split_at;
 use crate::repair::NonManifoldReport;
 use crate::Mesh;
 
+pub mod resolve;
+pub use resolve::{resolve, FillRule, ResolveReport, Resolved};
+
 /// A boolean operation. Written (and parsed, [`FromStr`]) as `union`, `intersection`,
 /// `difference`, `reverse-difference`; parsing also takes the reference library's
 /// `intersect` and `subtract`, and `_` for `-`.

@@ -139,7 +139,14 @@ pub fn boolean<'a>(
             keep_nonmanifold: opts.keep_nonmanifold,
             ..opts.run.pipeline()
         };
-        let r = crate::boolean::boolean(a.mesh(), b.mesh(), op, &pipeline);
+        let mut r = crate::boolean::boolean(a.mesh(), b.mesh(), op, &pipeline);
+        Operand::to_input_triangles(&mut r.provenance, a, b);
+        for f in &mut r.failed {
+            f.triangle = match f.source {
+                crate::Source::A => a.input_triangle(f.triangle),
+                crate::Source::B => b.input_triangle(f.triangle),
+            };
+        }
         (r, [a.report().clone(), b.report().clone()])
     };
     let ((r, operands), seconds) =

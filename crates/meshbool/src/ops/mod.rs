@@ -59,8 +59,9 @@ pub use boolean::{boolean, BooleanOptions, BooleanOutput, BooleanReport};
 pub use curves::{curves, CurvesOptions, CurvesOutput, CurvesReport};
 pub use operand::{Checks, Input, Operand, OperandReport, SelfIntersections};
 pub use single::{
-    close, info, orient, repair, CloseCommandReport, CloseOutput, InfoReport, OrientCommandReport,
-    OrientOutput, RepairCommandReport, RepairOutput,
+    close, info, orient, repair, resolve, CloseCommandReport, CloseOutput, InfoReport,
+    OrientCommandReport, OrientOutput, RepairCommandReport, RepairOutput, ResolveCommandReport,
+    ResolveOptions, ResolveOutput,
 };
 pub use split::{
     pick, pick_dir, split, GroupInfo, GroupPieces, PickOptions, PickOutput, PickReport, PieceInfo,

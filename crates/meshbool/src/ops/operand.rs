@@ -10,7 +10,7 @@ use std::time::Instant;
 use serde::{Deserialize, Serialize};
 
 use super::{with_threads, RunOptions};
-use crate::boolean::Stage;
+use crate::boolean::{resolve, FillRule, PipelineOptions, ResolveReport, Stage};
 use crate::edges::EdgeCounts;
 use crate::intersect::self_intersections;
 use crate::{weld_exact, Error, Mesh, Result};
@@ -25,6 +25,11 @@ pub struct Checks {
     /// much as the boolean). Turn off only for inputs known to be clean: the report then
     /// says they were not checked.
     pub self_intersections: bool,
+    /// Resolve an operand whose self-intersections are all between its components (parts
+    /// that overlap or nest): the operand becomes the solid they enclose, the union of the
+    /// parts ([`crate::boolean::resolve`], fill rule positive). Needs
+    /// `self_intersections`. Off: such an operand is a problem like any self-intersection.
+    pub resolve: bool,
     /// Proceed when a check finds a problem, taking the input as given; the problems are
     /// listed in the report's `assumed`. Without it they are an [`Error::Operand`].
     pub force: bool,
@@ -36,6 +41,7 @@ impl Default for Checks {
         Checks {
             edges: true,
             self_intersections: true,
+            resolve: true,
             force: false,
         }
     }
@@ -47,6 +53,7 @@ impl Checks {
     pub const NONE: Checks = Checks {
         edges: false,
         self_intersections: false,
+        resolve: false,
         force: true,
     };
 }
@@ -66,6 +73,9 @@ pub struct OperandReport {
     pub non_manifold_edges: Option<usize>,
     /// Self-intersecting triangle pairs; `None`: not checked.
     pub self_intersections: Option<SelfIntersections>,
+    /// How the operand was resolved into the solid its overlapping parts enclose
+    /// ([`Checks::resolve`]); `None`: it was not (no self-intersections, or not asked).
+    pub resolved: Option<ResolveReport>,
     /// True when problems were found and taken as given ([`Checks::force`]).
     pub forced: bool,
 }
@@ -79,6 +89,8 @@ pub struct SelfIntersections {
     pub first: Option<[u32; 2]>,
     /// The centroid of the first pair's first triangle, to find it.
     pub near: Option<[f64; 3]>,
+    /// Why they could not be resolved ([`Checks::resolve`]), if that was tried and failed.
+    pub unresolved: Option<String>,
 }
 
 impl OperandReport {
@@ -91,14 +103,22 @@ impl OperandReport {
         if let Some(n @ 1..) = self.non_manifold_edges {
             problems.push(format!("{n} non-manifold edges"));
         }
-        if let Some(SelfIntersections {
-            pairs,
-            first: Some([i, j]),
-            near: Some(near),
-        }) = &self.self_intersections
+        if let (
+            Some(SelfIntersections {
+                pairs,
+                first: Some([i, j]),
+                near: Some(near),
+                unresolved,
+            }),
+            None,
+        ) = (&self.self_intersections, &self.resolved)
         {
+            let why = match unresolved {
+                Some(why) => format!(" that cannot be resolved: {why}"),
+                None => String::new(),
+            };
             problems.push(format!(
-                "{pairs} self-intersecting triangle pairs (first: triangles {i} and {j}, near {near:?})"
+                "{pairs} self-intersecting triangle pairs (first: triangles {i} and {j}, near {near:?}){why}"
             ));
         }
         problems
@@ -116,6 +136,12 @@ impl OperandReport {
         }
         if self.self_intersections.is_none() {
             lines.push(format!("{}: not checked for self-intersections", self.name));
+        }
+        if let Some(r) = &self.resolved {
+            lines.push(format!(
+                "{}: {} crossing triangle pairs between its {} components resolved: the operand is the solid they enclose (fill rule positive; {} components united, {} nested ones dropped)",
+                self.name, r.crossing_pairs, r.components, r.united_components, r.dropped_components
+            ));
         }
         let problems = self.problems();
         if !problems.is_empty() {
@@ -135,6 +161,8 @@ impl OperandReport {
 pub struct Operand {
     mesh: Mesh,
     report: OperandReport,
+    /// For a resolved operand, the input triangle each triangle of `mesh` is part of.
+    parent: Option<Vec<u32>>,
 }
 
 impl Operand {
@@ -170,10 +198,10 @@ impl Operand {
     }
 
     /// Checks a valid, welded mesh.
-    fn checked(name: String, mesh: Mesh, checks: &Checks) -> Result<Operand> {
+    fn checked(name: String, mut mesh: Mesh, checks: &Checks) -> Result<Operand> {
         let counts = checks.edges.then(|| EdgeCounts::of(&mesh));
-        let self_intersections = checks.self_intersections.then(|| {
-            let found = self_intersections(&mesh);
+        let found = checks.self_intersections.then(|| self_intersections(&mesh));
+        let mut self_intersections = found.as_ref().map(|found| {
             let first = found.first().map(|&(i, j)| [i, j]);
             SelfIntersections {
                 pairs: found.len(),
@@ -182,8 +210,30 @@ impl Operand {
                     let [a, b, c] = mesh.corners(i as usize);
                     std::array::from_fn(|k| (a[k] + b[k] + c[k]) / 3.0)
                 }),
+                unresolved: None,
             }
         });
+        let (mut resolved, mut parent) = (None, None);
+        let clean_edges = counts.is_some_and(|c| c.inconsistent == 0 && c.non_manifold == 0);
+        if let (Some(found), Some(si), true, true) =
+            (&found, &mut self_intersections, checks.resolve, clean_edges)
+        {
+            if !found.is_empty() {
+                match resolve(
+                    &mesh,
+                    found,
+                    FillRule::Positive,
+                    &PipelineOptions::default(),
+                ) {
+                    Ok(r) => {
+                        mesh = r.mesh;
+                        parent = Some(r.parent);
+                        resolved = Some(r.report);
+                    }
+                    Err(why) => si.unresolved = Some(why),
+                }
+            }
+        }
         let mut report = OperandReport {
             name,
             triangles: mesh.triangles.len(),
@@ -191,6 +241,7 @@ impl Operand {
             inconsistent_edges: counts.map(|c| c.inconsistent),
             non_manifold_edges: counts.map(|c| c.non_manifold),
             self_intersections,
+            resolved,
             forced: false,
         };
         let problems = report.problems();
@@ -203,10 +254,42 @@ impl Operand {
             }
             report.forced = true;
         }
-        Ok(Operand { mesh, report })
+        Ok(Operand {
+            mesh,
+            report,
+            parent,
+        })
     }
 
-    /// The checked, welded mesh.
+    /// The input triangle that triangle `t` of [`Operand::mesh`] is part of: `t` itself
+    /// unless the operand was resolved.
+    pub fn input_triangle(&self, t: u32) -> u32 {
+        match &self.parent {
+            Some(p) => p[t as usize],
+            None => t,
+        }
+    }
+
+    /// Rewrites provenance from triangles of the operands' meshes (`a`'s for source A,
+    /// `b`'s for B) to the input triangles they are part of.
+    pub(crate) fn to_input_triangles(
+        provenance: &mut [crate::boolean::Provenance],
+        a: &Operand,
+        b: &Operand,
+    ) {
+        if a.parent.is_none() && b.parent.is_none() {
+            return;
+        }
+        for p in provenance {
+            p.triangle = match p.source {
+                crate::Source::A => a.input_triangle(p.triangle),
+                crate::Source::B => b.input_triangle(p.triangle),
+            };
+        }
+    }
+
+    /// The checked, welded mesh (the resolved solid when the operand was resolved: see
+    /// [`OperandReport::resolved`] and [`Operand::input_triangle`]).
     pub fn mesh(&self) -> &Mesh {
         &self.mesh
     }

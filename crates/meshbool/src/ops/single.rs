@@ -6,13 +6,15 @@
 
 use serde::Serialize;
 
-use super::{Checks, Input, Operand, SCHEMA};
+use super::{with_threads, Checks, Input, Measures, Operand, RunOptions, SCHEMA};
+use crate::boolean::{FillRule, PipelineOptions, ResolveReport, Stage};
 use crate::edges::EdgeCounts;
+use crate::intersect::self_intersections;
 use crate::measure::{mesh_stats, MeshStats};
 use crate::repair::{
     self, CloseMode, CloseOptions, CloseReport, Facing, OrientReport, RepairConfig, RepairReport,
 };
-use crate::{Mesh, Result};
+use crate::{Error, Mesh, Result};
 
 /// The JSON of `meshbool info --json` for one file (an array of them for several).
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -169,4 +171,98 @@ impl RepairOutput {
 pub fn repair<'a>(mesh: impl Into<Input<'a>>, config: &RepairConfig) -> Result<RepairOutput> {
     let (mesh, repair) = repair::repair(welded(mesh)?.mesh(), config)?;
     Ok(RepairOutput { mesh, repair })
+}
+
+/// Options of [`resolve()`].
+#[derive(Clone, Debug, Default)]
+pub struct ResolveOptions {
+    /// Which points the mesh encloses, by winding number.
+    pub rule: FillRule,
+    /// Keep the result's topology where it is not manifold (parts touching along an edge
+    /// or at a vertex then share it).
+    pub keep_nonmanifold: bool,
+    /// Threads and progress.
+    pub run: RunOptions,
+}
+
+/// The result of [`resolve()`].
+#[derive(Clone, Debug)]
+pub struct ResolveOutput {
+    /// The solid's surface.
+    pub mesh: Mesh,
+    /// For every triangle of `mesh`, the triangle of the (welded) input it is part of.
+    pub parent: Vec<u32>,
+    /// The fill rule.
+    pub rule: FillRule,
+    /// Self-intersecting triangle pairs found in the input.
+    pub self_intersections: usize,
+    /// What resolving did.
+    pub resolve: ResolveReport,
+    /// Time of the whole call, in seconds.
+    pub seconds: f64,
+}
+
+/// The JSON of `meshbool resolve --json`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ResolveCommandReport {
+    /// [`SCHEMA`].
+    pub schema: u32,
+    /// The fill rule.
+    pub rule: FillRule,
+    /// Self-intersecting triangle pairs found in the input.
+    pub self_intersections: usize,
+    /// Measures of the result.
+    #[serde(flatten)]
+    pub result: Measures,
+    /// What resolving did.
+    pub resolve: ResolveReport,
+    /// [`ResolveOutput::seconds`].
+    pub seconds: f64,
+}
+
+impl ResolveOutput {
+    /// The report, with the result's measures.
+    pub fn report(&self) -> ResolveCommandReport {
+        ResolveCommandReport {
+            schema: SCHEMA,
+            rule: self.rule,
+            self_intersections: self.self_intersections,
+            result: Measures::of(&self.mesh),
+            resolve: self.resolve.clone(),
+            seconds: self.seconds,
+        }
+    }
+}
+
+/// The solid a self-overlapping mesh encloses under `opts.rule`, as a closed mesh
+/// ([`crate::boolean::resolve`]): overlapping parts united, nested ones dropped. Built
+/// today for meshes whose closed components overlap or nest one another; a component
+/// that crosses itself is an [`Error::Unresolvable`](crate::Error::Unresolvable).
+pub fn resolve<'a>(mesh: impl Into<Input<'a>>, opts: &ResolveOptions) -> Result<ResolveOutput> {
+    let input: Input<'a> = mesh.into();
+    with_threads(opts.run.threads, || {
+        let start = std::time::Instant::now();
+        let input = welded(input)?;
+        opts.run.stage(Stage::Check);
+        let pairs = self_intersections(input.mesh());
+        opts.run.stage(Stage::Intersect);
+        let pipeline = PipelineOptions {
+            keep_nonmanifold: opts.keep_nonmanifold,
+            ..opts.run.pipeline()
+        };
+        let r = crate::boolean::resolve(input.mesh(), &pairs, opts.rule, &pipeline).map_err(
+            |reason| Error::Unresolvable {
+                name: input.name().to_string(),
+                reason,
+            },
+        )?;
+        Ok(ResolveOutput {
+            mesh: r.mesh,
+            parent: r.parent.iter().map(|&t| input.input_triangle(t)).collect(),
+            rule: opts.rule,
+            self_intersections: pairs.len(),
+            resolve: r.report,
+            seconds: start.elapsed().as_secs_f64(),
+        })
+    })?
 }

@@ -120,7 +120,8 @@ pub fn split<'a>(
         let groups = Group::ALL
             .into_iter()
             .filter_map(|group| {
-                let (mesh, provenance) = s.group(group);
+                let (mesh, mut provenance) = s.group(group);
+                Operand::to_input_triangles(&mut provenance, a, b);
                 (!mesh.is_empty()).then(|| group_pieces(group, mesh, provenance, opts.merge_small))
             })
             .collect();

@@ -10,11 +10,15 @@ fn cubes() -> (Mesh, Mesh) {
     (Mesh::unit_cube(), Mesh::cuboid([0.5; 3], [1.5; 3]))
 }
 
-/// Two cubes overlapping in one mesh.
+/// A cube with a corner pushed through its bottom: one component crossing itself.
 fn self_intersecting() -> Mesh {
-    let (mut m, other) = cubes();
-    m.append(&other).unwrap();
-    m
+    let (mut positions, triangles) = Mesh::unit_cube().into_parts();
+    for p in &mut positions {
+        if *p == [1.0; 3] {
+            *p = [0.5, 0.5, -0.5];
+        }
+    }
+    Mesh::new(positions, triangles).unwrap()
 }
 
 #[test]
@@ -106,12 +110,12 @@ fn operands_with_problems_are_refused_unless_forced() {
 
     // A self-intersecting operand names its first pair.
     let m = self_intersecting();
-    let err = Operand::new("two cubes", &m, &Checks::default()).unwrap_err();
+    let err = Operand::new("folded cube", &m, &Checks::default()).unwrap_err();
     let pairs = crate::intersect::self_intersections(&crate::weld_exact(&m).mesh).len();
     assert!(pairs > 0);
     assert!(
         err.to_string().starts_with(&format!(
-            "two cubes: {pairs} self-intersecting triangle pairs (first: triangles"
+            "folded cube: {pairs} self-intersecting triangle pairs (first: triangles"
         )),
         "{err}"
     );
@@ -120,10 +124,10 @@ fn operands_with_problems_are_refused_unless_forced() {
         self_intersections: false,
         ..Checks::default()
     };
-    let o = Operand::new("two cubes", &m, &unchecked).unwrap();
+    let o = Operand::new("folded cube", &m, &unchecked).unwrap();
     assert_eq!(
         o.report().assumed(),
-        ["two cubes: not checked for self-intersections"]
+        ["folded cube: not checked for self-intersections"]
     );
     assert!(Operand::new("none", &m, &Checks::NONE).is_ok());
 }

@@ -1,0 +1,71 @@
+//! `meshbool resolve`: the solid a self-overlapping mesh encloses, as a clean closed mesh.
+
+use std::path::PathBuf;
+
+use anyhow::Result;
+use meshbool::ops::{self, Checks, Operand, ResolveOptions, RunOptions};
+use meshbool::FillRule;
+
+use super::{one_of, print_json, Spinner};
+
+/// Arguments of `resolve`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Input mesh.
+    input: PathBuf,
+    /// Output mesh file.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Which points are inside, by winding number w: `positive` (w >= 1, the union of the
+    /// parts), `nonzero` (w != 0), `evenodd` (w odd).
+    #[arg(long, default_value = "positive", ignore_case = true,
+          value_parser = one_of::<FillRule>(FillRule::ALL.map(FillRule::name)))]
+    rule: FillRule,
+    /// Keep non-manifold edges and vertices (parts touching along an edge or at a vertex)
+    /// instead of splitting them.
+    #[arg(long)]
+    keep_nonmanifold: bool,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    threads: Option<usize>,
+    /// Print a JSON report on stdout.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Resolves the input, writes the result, prints the report.
+pub fn run(args: &Args) -> Result<()> {
+    let spinner = Spinner::new("reading the input");
+    let input = Operand::read(&args.input, &Checks::NONE)?;
+    spinner.set_message("resolving");
+    let opts = ResolveOptions {
+        rule: args.rule,
+        keep_nonmanifold: args.keep_nonmanifold,
+        run: RunOptions {
+            threads: args.threads,
+            progress: None,
+        },
+    };
+    let out = ops::resolve(&input, &opts)?;
+    spinner.set_message("writing the result");
+    ops::write(&args.output, &out.mesh, None)?;
+    drop(spinner);
+    let report = out.report();
+    if args.json {
+        return print_json(&report);
+    }
+    let r = &report.resolve;
+    eprintln!(
+        "wrote {}: {} triangles, volume {}, {} ({} self-intersecting pairs; {} components: {} united, {} dropped, {} flipped)",
+        args.output.display(),
+        report.result.triangles,
+        report.result.volume,
+        if report.result.closed { "closed" } else { "NOT closed" },
+        report.self_intersections,
+        r.components,
+        r.united_components,
+        r.dropped_components,
+        r.flipped_components
+    );
+    Ok(())
+}
