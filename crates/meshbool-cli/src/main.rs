@@ -36,11 +36,11 @@ enum Command {
     Info(info::Args),
     /// Convert a mesh file to another format (chosen by the output's extension or --to).
     Convert(convert::Args),
-    /// A ∪ B: the union of two meshes.
-    Union(boolean::Args),
-    /// A ∩ B: the intersection of two meshes.
+    /// A ∪ B (∪ C ...): the union of two meshes or more.
+    Union(boolean::ManyArgs),
+    /// A ∩ B (∩ C ...): the intersection of two meshes or more.
     #[command(alias = "intersect")]
-    Intersection(boolean::Args),
+    Intersection(boolean::ManyArgs),
     /// A − B (or B − A with --reverse).
     #[command(alias = "subtract")]
     Difference(boolean::DifferenceArgs),
@@ -80,8 +80,8 @@ fn main() -> ExitCode {
     let result = match Cli::parse().command {
         Command::Info(args) => info::run(&args),
         Command::Convert(args) => convert::run(&args),
-        Command::Union(args) => boolean::run(&args, meshbool::Op::Union),
-        Command::Intersection(args) => boolean::run(&args, meshbool::Op::Intersection),
+        Command::Union(args) => args.run(meshbool::Op::Union),
+        Command::Intersection(args) => args.run(meshbool::Op::Intersection),
         Command::Difference(args) => boolean::run(&args.args, args.op()),
         Command::Split(args) => split::run(&args),
         Command::Pick(args) => pick::run(&args),

@@ -806,3 +806,43 @@ fn overlapping_parts_are_resolved_alone_and_as_operands() {
     ]);
     assert_eq!(r.status.code(), Some(2));
 }
+
+#[test]
+fn union_and_intersection_take_more_than_two_inputs() {
+    let a = write_cube("many_a.ply", [0.0; 3], [2.0; 3]);
+    let b = write_cube("many_b.ply", [1.0; 3], [3.0; 3]);
+    let c = write_cube("many_c.ply", [1.5, 1.5, -1.0], [2.5, 2.5, 4.0]);
+    let out = tmp("many_out.ply");
+    let run = |op: &str| {
+        report(&[
+            op,
+            a.to_str().unwrap(),
+            b.to_str().unwrap(),
+            c.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--json",
+        ])
+    };
+    // 8 + 8 + 5 - 1 (A∩B) - 0.5 (C∩A) - 2 (C∩B) + 0.25 (A∩B∩C) = 17.75
+    let v = run("union");
+    assert_eq!(
+        (v["volume"].as_f64(), v["closed"].as_bool()),
+        (Some(17.75), Some(true))
+    );
+    assert_eq!(v["operands"].as_array().unwrap().len(), 3);
+    let v = run("intersection");
+    assert_eq!(v["volume"].as_f64(), Some(0.25));
+    let written = meshbool::io::read_path(&out).unwrap();
+    assert_eq!(meshbool::measure::signed_volume(&written), 0.25);
+    // Differences take two.
+    let r = meshbool(&[
+        "difference",
+        a.to_str().unwrap(),
+        b.to_str().unwrap(),
+        c.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(r.status.code(), Some(2));
+}

@@ -302,6 +302,51 @@ fn split(
     Ok(Split { out })
 }
 
+/// The union or intersection of several meshes in one call: the result's arrays, the
+/// input and triangle of each result triangle, the report.
+#[pyfunction]
+#[pyo3(signature = (meshes, op, force, self_check, resolve, threads, keep_nonmanifold))]
+#[allow(clippy::type_complexity, clippy::too_many_arguments)]
+fn boolean_many<'py>(
+    py: Python<'py>,
+    meshes: Vec<(PyReadonlyArray2<'py, f64>, PyReadonlyArray2<'py, u32>)>,
+    op: &str,
+    force: bool,
+    self_check: bool,
+    resolve: bool,
+    threads: Option<usize>,
+    keep_nonmanifold: bool,
+) -> PyResult<(
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray2<u32>>,
+    Bound<'py, PyArray1<u32>>,
+    Bound<'py, PyArray1<u32>>,
+    String,
+)> {
+    let meshes = meshes
+        .iter()
+        .map(|(v, f)| mesh(v, f))
+        .collect::<PyResult<Vec<_>>>()?;
+    let op = parse::<Op>(op)?;
+    let opts = BooleanOptions {
+        checks: checks(force, self_check, resolve),
+        keep_nonmanifold,
+        run: run(threads),
+    };
+    let (out, report) = py
+        .detach(move || {
+            let inputs: Vec<ops::Input> = meshes.iter().map(ops::Input::from).collect();
+            let out = ops::boolean_many(&inputs, op, &opts)?;
+            let report = out.report();
+            Ok::<_, Error>((out, report))
+        })
+        .map_err(py_err)?;
+    let input = PyArray1::from_iter(py, out.provenance.iter().map(|p| p[0]));
+    let triangle = PyArray1::from_iter(py, out.provenance.iter().map(|p| p[1]));
+    let (v, f) = arrays(py, out.mesh)?;
+    Ok((v, f, input, triangle, json(&report)?))
+}
+
 /// Merges meshes, each flipped where its flag says, welding exactly equal positions.
 #[pyfunction]
 fn pick<'py>(
@@ -496,6 +541,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
         wrap_pyfunction!(measures, m)?,
         wrap_pyfunction!(info, m)?,
         wrap_pyfunction!(boolean, m)?,
+        wrap_pyfunction!(boolean_many, m)?,
         wrap_pyfunction!(split, m)?,
         wrap_pyfunction!(pick, m)?,
         wrap_pyfunction!(curves, m)?,

@@ -247,6 +247,22 @@ def test_overlapping_parts_are_resolved():
         meshbool.resolve(two, "odd")
 
 
+def test_union_of_many_in_one_call():
+    cubes = [
+        meshbool.box([0, 0, 0], [2, 2, 2]),
+        meshbool.box([1, 1, 1], [3, 3, 3]),
+        meshbool.box([1.5, 1.5, -1], [2.5, 2.5, 4]),
+    ]
+    u = meshbool.boolean_many(cubes, "union")
+    assert u.is_closed and u.volume == 17.75
+    assert set(np.unique(u.provenance["input"])) == {0, 1, 2}
+    assert len(u.report["operands"]) == 3
+    i = meshbool.boolean_many(cubes, "intersection", threads=1)
+    assert i.volume == 0.25
+    with pytest.raises(ValueError, match="only union and intersection"):
+        meshbool.boolean_many(cubes, "difference")
+
+
 def test_files_round_trip_and_os_errors(tmp_path):
     s = meshbool.Mesh(*uv_sphere([478000.0, 6771000.0, 300.0], 5.0, 16, 8))
     for name in ["s.obj", "s.ply", "s.dxf", "s.json"]:

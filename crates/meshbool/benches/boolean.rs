@@ -49,3 +49,47 @@ fn union_crossing_terrains() -> usize {
         .mesh
         .triangle_count()
 }
+
+/// Ten overlapping 20k-triangle spheres (a ring of centres, each crossing its neighbours
+/// and the middle one).
+static TEN: std::sync::LazyLock<Vec<meshbool::Mesh>> = std::sync::LazyLock::new(|| {
+    use meshbool::shapes::uv_sphere;
+    (0..10)
+        .map(|k| {
+            let a = k as f64 * std::f64::consts::TAU / 9.0;
+            let c = if k == 9 {
+                [0.0; 3]
+            } else {
+                [1.6 * a.cos(), 1.6 * a.sin(), 0.1 * k as f64]
+            };
+            uv_sphere(c, 1.0, 142, 71)
+        })
+        .collect()
+});
+
+/// Union of the ten spheres in one call: pairwise in a balanced tree, a round in parallel.
+#[divan::bench(sample_count = 10)]
+fn union_10_spheres_tree() -> usize {
+    let parts = TEN
+        .iter()
+        .enumerate()
+        .map(|(k, m)| meshbool::boolean::nary::Part {
+            mesh: m.clone(),
+            parent: vec![k as u32; m.triangle_count()],
+        })
+        .collect();
+    meshbool::boolean::nary::reduce(parts, Op::Union, &Default::default())
+        .part
+        .mesh
+        .triangle_count()
+}
+
+/// The same union as a chain of nine pairwise unions.
+#[divan::bench(sample_count = 10)]
+fn union_10_spheres_chain() -> usize {
+    let mut acc = TEN[0].clone();
+    for m in &TEN[1..] {
+        acc = boolean(&acc, m, Op::Union, &Default::default()).mesh;
+    }
+    acc.triangle_count()
+}

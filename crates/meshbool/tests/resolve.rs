@@ -234,3 +234,72 @@ fn fill_rules_read_and_write_by_name() {
     assert!(FillRule::NonZero.inside(-1) && !FillRule::NonZero.inside(0));
     assert!(FillRule::EvenOdd.inside(-3) && !FillRule::EvenOdd.inside(2));
 }
+
+/// The union or intersection of `meshes` one at a time, left to right.
+fn chained(meshes: &[Mesh], op: Op) -> Mesh {
+    let opts = BooleanOptions::default();
+    let mut acc = meshes[0].clone();
+    for m in &meshes[1..] {
+        acc = ops::boolean(&acc, m, op, &opts).unwrap().mesh;
+    }
+    acc
+}
+
+#[test]
+fn union_of_ten_spheres_in_one_call_equals_the_chain() {
+    let spheres = random_spheres(10);
+    let inputs: Vec<ops::Input> = spheres.iter().map(ops::Input::from).collect();
+    let out = ops::boolean_many(&inputs, Op::Union, &BooleanOptions::default()).unwrap();
+    let v = closed_manifold_volume(&out.mesh);
+    let w = signed_volume(&chained(&spheres, Op::Union));
+    assert!((v - w).abs() <= 1e-9 * w, "{v} vs {w}");
+    // Provenance names an input and one of its triangles; every sphere that reaches the
+    // surface of the union is there.
+    assert_eq!(out.provenance.len(), out.mesh.triangles().len());
+    for &[i, t] in &out.provenance {
+        assert!((t as usize) < spheres[i as usize].triangles().len());
+    }
+    let mut seen: Vec<u32> = out.provenance.iter().map(|p| p[0]).collect();
+    seen.dedup();
+    seen.sort_unstable();
+    seen.dedup();
+    assert!(seen.len() >= 8, "{seen:?}");
+    let r = out.report();
+    assert_eq!(r.operands.len(), 10);
+    assert_eq!(r.operands[3].name, "4");
+    assert!(r.result.closed && r.assumed.is_empty(), "{:?}", r.assumed);
+}
+
+#[test]
+fn intersection_of_many_equals_the_chain_and_differences_are_refused() {
+    let spheres: Vec<Mesh> = [[0.0, 0.0, 0.0], [0.7, 0.1, 0.0], [0.3, 0.6, 0.2]]
+        .iter()
+        .map(|&c| uv_sphere(c, 1.0, 48, 24))
+        .collect();
+    let inputs: Vec<ops::Input> = spheres.iter().map(ops::Input::from).collect();
+    let out = ops::boolean_many(&inputs, Op::Intersection, &BooleanOptions::default()).unwrap();
+    let v = closed_manifold_volume(&out.mesh);
+    let w = signed_volume(&chained(&spheres, Op::Intersection));
+    assert!((v - w).abs() <= 1e-9 * w, "{v} vs {w}");
+    assert!(v > 0.0 && v < signed_volume(&spheres[0]));
+    for op in [Op::Difference, Op::ReverseDifference] {
+        let err = ops::boolean_many(&inputs, op, &BooleanOptions::default()).unwrap_err();
+        assert!(matches!(err, Error::InvalidParameter(_)), "{err}");
+    }
+    assert!(ops::boolean_many(&[], Op::Union, &BooleanOptions::default()).is_err());
+    // One input: itself.
+    let one = ops::boolean_many(&inputs[..1], Op::Union, &BooleanOptions::default()).unwrap();
+    assert_eq!(signed_volume(&one.mesh), signed_volume(&spheres[0]));
+    // A self-overlapping input is resolved first; provenance maps to its own triangles.
+    let two = joined(&[Mesh::unit_cube(), Mesh::cuboid([0.5; 3], [1.5; 3])]);
+    let far = Mesh::cuboid([3.0; 3], [4.0; 3]);
+    let inputs = [
+        ops::Input::from(&far),
+        ops::Input::from(&two),
+        ops::Input::from(&far),
+    ];
+    let out = ops::boolean_many(&inputs, Op::Union, &BooleanOptions::default()).unwrap();
+    assert_eq!(closed_manifold_volume(&out.mesh), 1.0 + 1.875);
+    assert!(out.operands[1].resolved.is_some());
+    assert!(out.provenance.iter().any(|&[i, t]| i == 1 && t >= 12));
+}

@@ -1,10 +1,12 @@
-//! `meshbool union | intersection | difference`: a boolean of two mesh files.
+//! `meshbool union | intersection | difference`: a boolean of two mesh files (union and
+//! intersection: of two or more).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::Result;
-use meshbool::ops::{self, BooleanOptions, Operand};
+use meshbool::ops::{self, BooleanOptions, BooleanReport, Input, Operand};
 use meshbool::Op;
+use rayon::prelude::*;
 
 use super::{print_json, warn, OperandFlags, Spinner};
 
@@ -24,6 +26,63 @@ pub struct Args {
     keep_nonmanifold: bool,
     #[command(flatten)]
     flags: OperandFlags,
+}
+
+/// `union` and `intersection`: two inputs or more.
+#[derive(clap::Args, Clone)]
+pub struct ManyArgs {
+    /// The meshes: A and B, or more (computed in one call, pairwise in a balanced tree).
+    #[arg(num_args = 2.., required = true)]
+    inputs: Vec<PathBuf>,
+    /// Output mesh file.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Keep the result's non-manifold edges and vertices (solids touching along an edge or
+    /// at a vertex) instead of splitting them.
+    #[arg(long)]
+    keep_nonmanifold: bool,
+    #[command(flatten)]
+    flags: OperandFlags,
+}
+
+impl ManyArgs {
+    /// Runs `op` (union or intersection): the two-input boolean for two inputs.
+    pub fn run(&self, op: Op) -> Result<()> {
+        if let [a, b] = &self.inputs[..] {
+            let args = Args {
+                a: a.clone(),
+                b: b.clone(),
+                output: self.output.clone(),
+                keep_nonmanifold: self.keep_nonmanifold,
+                flags: self.flags.clone(),
+            };
+            return run(&args, op);
+        }
+        let flags = &self.flags;
+        ops::with_threads(flags.threads, || {
+            let spinner = Spinner::new(flags.reading());
+            let operands: Vec<Operand> = self
+                .inputs
+                .par_iter()
+                .map(|p| Operand::read(p, &flags.checks()))
+                .collect::<meshbool::Result<_>>()?;
+            let inputs: Vec<Input> = operands.iter().map(Input::from).collect();
+            let opts = BooleanOptions {
+                keep_nonmanifold: self.keep_nonmanifold,
+                run: flags.run(&spinner),
+                ..BooleanOptions::default()
+            };
+            let out = ops::boolean_many(&inputs, op, &opts)?;
+            spinner.set_message("writing");
+            let (written, report) = rayon::join(
+                || ops::write(&self.output, &out.mesh, None),
+                || out.report(),
+            );
+            drop(spinner);
+            written?;
+            finish(&report, &self.output, flags.json)
+        })?
+    }
 }
 
 /// `difference`: the boolean's arguments and the direction.
@@ -68,20 +127,25 @@ pub fn run(args: &Args, op: Op) -> Result<()> {
         );
         drop(spinner);
         written?;
-        warn(&report.assumed);
-        warn(&report.failed_triangles);
-        if flags.json {
-            print_json(&report)
-        } else {
-            eprintln!(
-                "wrote {} ({} triangles, volume {}, {} boundary edges, {:.3} s)",
-                args.output.display(),
-                report.result.triangles,
-                report.result.volume,
-                report.result.boundary_edges,
-                report.seconds
-            );
-            Ok(())
-        }
+        finish(&report, &args.output, flags.json)
     })?
+}
+
+/// Warns about what the result assumes, then prints the report or a summary line.
+fn finish(report: &BooleanReport, output: &Path, json: bool) -> Result<()> {
+    warn(&report.assumed);
+    warn(&report.failed_triangles);
+    if json {
+        print_json(report)
+    } else {
+        eprintln!(
+            "wrote {} ({} triangles, volume {}, {} boundary edges, {:.3} s)",
+            output.display(),
+            report.result.triangles,
+            report.result.volume,
+            report.result.boundary_edges,
+            report.seconds
+        );
+        Ok(())
+    }
 }

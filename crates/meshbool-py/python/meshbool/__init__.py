@@ -31,6 +31,7 @@ __all__ = [
     "Polyline",
     "Curves",
     "boolean",
+    "boolean_many",
     "split",
     "pick",
     "curves",
@@ -246,6 +247,29 @@ def boolean(
     out = Mesh._from(v, f)
     out._pending = pending
     out.provenance = {"source": source, "triangle": triangle, "flipped": flipped}
+    return out
+
+
+def boolean_many(
+    meshes: Iterable[MeshLike],
+    op: str = "union",
+    *,
+    force: bool = False,
+    self_check: bool = True,
+    resolve: bool = True,
+    threads: Optional[int] = None,
+    keep_nonmanifold: bool = False,
+) -> Mesh:
+    """The union (``op="union"``) or intersection (``"intersection"``) of any number of
+    meshes in one call: pairwise booleans in a balanced tree, in parallel, rather than a
+    chain. Checks and options as for :func:`boolean`. The result's ``provenance`` has
+    ``input`` (position in ``meshes``) and ``triangle`` (in that input)."""
+    parts = [_parts(m) for m in meshes]
+    v, f, input, triangle, report = _native.boolean_many(
+        parts, op, force, self_check, resolve, threads, keep_nonmanifold
+    )
+    out = Mesh._from(v, f, report)
+    out.provenance = {"input": input, "triangle": triangle}
     return out
 
 

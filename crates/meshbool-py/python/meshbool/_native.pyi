@@ -31,6 +31,16 @@ def boolean(
     keep_nonmanifold: bool,
 ) -> Tuple[F64, U32, npt.NDArray[np.uint8], U32, npt.NDArray[np.bool_], Boolean]: ...
 
+def boolean_many(
+    meshes: List[Tuple[F64, U32]],
+    op: str,
+    force: bool,
+    self_check: bool,
+    resolve: bool,
+    threads: Optional[int],
+    keep_nonmanifold: bool,
+) -> Tuple[F64, U32, U32, U32, str]: ...
+
 class Split:
     def groups(self) -> List[str]: ...
     def group(self, name: str) -> Optional[Tuple[F64, U32]]: ...

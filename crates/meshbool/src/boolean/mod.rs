@@ -35,6 +35,7 @@ use crate::repair::nonmanifold::split_at;
 use crate::repair::NonManifoldReport;
 use crate::Mesh;
 
+pub mod nary;
 pub mod resolve;
 pub use resolve::{resolve, FillRule, ResolveReport, Resolved};
 

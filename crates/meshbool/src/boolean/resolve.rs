@@ -13,7 +13,8 @@
 use rayon::prelude::*;
 use serde::Serialize;
 
-use super::{boolean, Op, PipelineOptions, Source};
+use super::nary::{reduce, Part, Reduced};
+use super::{Op, PipelineOptions};
 use crate::classify::winding_number;
 use crate::edges::{EdgeKind, EdgeTopology};
 use crate::measure::signed_volume;
@@ -213,13 +214,33 @@ pub fn resolve(
         .map(|c| c.iter().map(|&i| slots[i].take().expect("once")).collect())
         .collect();
     let pipeline = PipelineOptions {
-        progress: None,
         keep_nonmanifold: true,
         ..*opts
     };
-    let united: Vec<(Piece, Stats)> = grouped
+    let united: Vec<(Piece, Reduced)> = grouped
         .into_par_iter()
-        .map(|pieces| unite(pieces, &pipeline))
+        .map(|mut pieces| {
+            if pieces.len() == 1 {
+                return (pieces.pop().expect("one"), Reduced::default());
+            }
+            let components = pieces.len();
+            let parts = pieces
+                .into_iter()
+                .map(|p| Part {
+                    mesh: p.mesh,
+                    parent: p.parent,
+                })
+                .collect();
+            let mut r = reduce(parts, Op::Union, &pipeline);
+            let part = std::mem::take(&mut r.part);
+            let piece = Piece {
+                mesh: part.mesh,
+                parent: part.parent,
+                facing: 1,
+                components,
+            };
+            (piece, r)
+        })
         .collect();
     // Keep a piece where the rule's inside changes across it, facing away from the inside.
     let boxes: Vec<Option<Aabb>> = united.par_iter().map(|(p, _)| p.mesh.bounds()).collect();
@@ -246,7 +267,7 @@ pub fn resolve(
     let mut parent = Vec::new();
     for ((p, stats), keep) in united.into_iter().zip(keep) {
         report.seam_points += stats.seam_points;
-        report.failed_triangles += stats.failed;
+        report.failed_triangles += stats.failed.len();
         report.rounding_flips += stats.rounding_flips;
         let Some(flip) = keep else {
             report.dropped_components += p.components;
@@ -273,62 +294,6 @@ pub fn resolve(
         parent,
         report,
     })
-}
-
-/// What the unions of one cluster found.
-#[derive(Default)]
-struct Stats {
-    seam_points: usize,
-    failed: usize,
-    rounding_flips: usize,
-}
-
-/// The union of `pieces` (outward-facing, closed), pairwise in a balanced tree.
-fn unite(mut pieces: Vec<Piece>, opts: &PipelineOptions) -> (Piece, Stats) {
-    let mut stats = Stats::default();
-    while pieces.len() > 1 {
-        let odd = (pieces.len() % 2 == 1).then(|| pieces.pop().expect("non-empty"));
-        let mut pairs = Vec::with_capacity(pieces.len() / 2);
-        let mut it = pieces.into_iter();
-        while let (Some(a), Some(b)) = (it.next(), it.next()) {
-            pairs.push((a, b));
-        }
-        let done: Vec<(Piece, Stats)> = pairs
-            .into_par_iter()
-            .map(|(a, b)| {
-                let r = boolean(&a.mesh, &b.mesh, Op::Union, opts);
-                let parent = r
-                    .provenance
-                    .iter()
-                    .map(|p| match p.source {
-                        Source::A => a.parent[p.triangle as usize],
-                        Source::B => b.parent[p.triangle as usize],
-                    })
-                    .collect();
-                let s = Stats {
-                    seam_points: r.seam_points,
-                    failed: r.failed.len(),
-                    rounding_flips: r.rounding_flips,
-                };
-                let piece = Piece {
-                    mesh: r.mesh,
-                    parent,
-                    facing: 1,
-                    components: a.components + b.components,
-                };
-                (piece, s)
-            })
-            .collect();
-        pieces = Vec::with_capacity(done.len() + 1);
-        for (p, s) in done {
-            stats.seam_points += s.seam_points;
-            stats.failed += s.failed;
-            stats.rounding_flips += s.rounding_flips;
-            pieces.push(p);
-        }
-        pieces.extend(odd);
-    }
-    (pieces.pop().expect("a cluster has a component"), stats)
 }
 
 /// A point of `mesh` away from its vertices (the centroid of its largest triangle), where

@@ -3,10 +3,16 @@
 
 use serde::Serialize;
 
-use super::{Checks, Input, Measures, Operand, OperandReport, RunOptions, SCHEMA};
-use crate::boolean::{FailedTriangle, Op, PipelineOptions, Provenance};
+use std::time::Instant;
+
+use rayon::prelude::*;
+
+use super::{with_threads, Checks, Input, Measures, Operand, OperandReport, RunOptions, SCHEMA};
+use crate::arrange::FailReason;
+use crate::boolean::nary::{reduce, Part};
+use crate::boolean::{FailedTriangle, Op, PipelineOptions, Provenance, Stage};
 use crate::repair::NonManifoldReport;
-use crate::{Mesh, Result};
+use crate::{Error, Mesh, Result};
 
 /// Options of [`boolean`].
 #[derive(Clone, Debug, Default)]
@@ -73,8 +79,8 @@ pub struct BooleanReport {
     /// What the result assumes: skipped checks, problems taken as given, rounding and
     /// left-out degenerate triangles, one line each.
     pub assumed: Vec<String>,
-    /// What the checks found in A and B.
-    pub operands: [OperandReport; 2],
+    /// What the checks found in A and B (in every input, for [`boolean_many`]).
+    pub operands: Vec<OperandReport>,
     /// [`BooleanOutput::seconds`].
     pub seconds: f64,
 }
@@ -117,7 +123,7 @@ impl BooleanOutput {
             failed_triangles: self.failed_lines(),
             split_nonmanifold: self.nonmanifold.clone(),
             assumed: self.assumed(),
-            operands: self.operands.clone(),
+            operands: self.operands.to_vec(),
             seconds: self.seconds,
         }
     }
@@ -163,4 +169,135 @@ pub fn boolean<'a>(
         rounding_flips: r.rounding_flips,
         seconds,
     })
+}
+
+/// The result of [`boolean_many`]: as [`BooleanOutput`], with provenance naming the input
+/// by its position.
+#[derive(Clone, Debug)]
+pub struct BooleanManyOutput {
+    /// The operation ([`Op::Union`] or [`Op::Intersection`]).
+    pub op: Op,
+    /// The result.
+    pub mesh: Mesh,
+    /// For every triangle of `mesh`: `[input, triangle of that input]` (never flipped).
+    pub provenance: Vec<[u32; 2]>,
+    /// Where the result was not manifold and was split.
+    pub nonmanifold: NonManifoldReport,
+    /// What the checks found in each input.
+    pub operands: Vec<OperandReport>,
+    /// Points of the intersection curves of all the pairwise booleans.
+    pub seam_points: usize,
+    /// Input triangles kept uncut (`[input, triangle]`, reason); empty for valid inputs.
+    pub failed: Vec<([u32; 2], FailReason)>,
+    /// Result triangles that turn over when their seam points are rounded to `f64`.
+    pub rounding_flips: usize,
+    /// Time of the booleans (not of checking the inputs), in seconds.
+    pub seconds: f64,
+}
+
+impl BooleanManyOutput {
+    /// The report, as for two inputs (`operands` lists every input).
+    pub fn report(&self) -> BooleanReport {
+        let mut assumed: Vec<String> = self.operands.iter().flat_map(|o| o.assumed()).collect();
+        if self.rounding_flips > 0 {
+            assumed.push(format!(
+                "{} result triangles are thinner than f64 rounding of their seam points and turned over when written (exact before rounding)",
+                self.rounding_flips
+            ));
+        }
+        BooleanReport {
+            schema: SCHEMA,
+            operation: self.op,
+            result: Measures::of(&self.mesh),
+            seam_points: self.seam_points,
+            rounding_flips: self.rounding_flips,
+            failed_triangles: self
+                .failed
+                .iter()
+                .map(|([i, t], reason)| {
+                    format!("{} triangle {t}: {reason}", self.operands[*i as usize].name)
+                })
+                .collect(),
+            split_nonmanifold: self.nonmanifold.clone(),
+            assumed,
+            operands: self.operands.clone(),
+            seconds: self.seconds,
+        }
+    }
+}
+
+/// The union or intersection of any number of inputs (at least one), in one call: pairwise
+/// booleans in a balanced tree, a round's pairs in parallel ([`crate::boolean::nary`]),
+/// rather than a chain. Inputs are meshes, checked as `opts.checks` say and named `1`,
+/// `2`, ..., or [`Operand`]s.
+///
+/// Errors: a difference (not associative: use [`boolean`]), no input, an invalid mesh, an
+/// operand failing its checks, a thread count out of range.
+pub fn boolean_many<'a>(
+    inputs: &[Input<'a>],
+    op: Op,
+    opts: &BooleanOptions,
+) -> Result<BooleanManyOutput> {
+    if !matches!(op, Op::Union | Op::Intersection) {
+        return Err(Error::InvalidParameter(format!(
+            "{op} of many inputs: only union and intersection take more than two"
+        )));
+    }
+    if inputs.is_empty() {
+        return Err(Error::InvalidParameter(format!("{op} of no inputs")));
+    }
+    with_threads(opts.run.threads, || {
+        if inputs.iter().any(|i| matches!(i, Input::Mesh(_))) {
+            opts.run.stage(Stage::Check);
+        }
+        let operands: Vec<_> = inputs
+            .par_iter()
+            .enumerate()
+            .map(|(k, i)| i.operand(&(k + 1).to_string(), &opts.checks))
+            .collect::<Result<_>>()?;
+        let start = Instant::now();
+        opts.run.stage(Stage::Intersect);
+        let mut offsets = Vec::with_capacity(operands.len() + 1);
+        offsets.push(0u32);
+        for o in &operands {
+            let next = offsets[offsets.len() - 1] as usize + o.mesh().triangles().len();
+            offsets.push(u32::try_from(next).map_err(|_| {
+                Error::InvalidParameter("more than 2^32 triangles in all".to_string())
+            })?);
+        }
+        let parts = operands
+            .iter()
+            .zip(&offsets)
+            .map(|(o, &first)| Part {
+                mesh: o.mesh().clone(),
+                parent: (0..o.mesh().triangles().len() as u32)
+                    .map(|t| first + o.input_triangle(t))
+                    .collect(),
+            })
+            .collect();
+        let pipeline = PipelineOptions {
+            keep_nonmanifold: opts.keep_nonmanifold,
+            ..opts.run.pipeline()
+        };
+        let r = reduce(parts, op, &pipeline);
+        let input_of = |g: u32| {
+            let k = offsets.partition_point(|&o| o <= g) - 1;
+            [k as u32, g - offsets[k]]
+        };
+        Ok(BooleanManyOutput {
+            op,
+            provenance: r.part.parent.iter().map(|&g| input_of(g)).collect(),
+            mesh: r.part.mesh,
+            nonmanifold: r.nonmanifold,
+            operands: operands.iter().map(|o| o.report().clone()).collect(),
+            seam_points: r.seam_points,
+            failed: r
+                .failed
+                .iter()
+                .map(|&(g, why)| (input_of(g), why))
+                .collect(),
+            rounding_flips: r.rounding_flips,
+            seconds: start.elapsed().as_secs_f64(),
+        })
+    })?
 }

@@ -55,7 +55,9 @@ mod single;
 mod split;
 
 pub use crate::boolean::FailedTriangle;
-pub use boolean::{boolean, BooleanOptions, BooleanOutput, BooleanReport};
+pub use boolean::{
+    boolean, boolean_many, BooleanManyOutput, BooleanOptions, BooleanOutput, BooleanReport,
+};
 pub use curves::{curves, CurvesOptions, CurvesOutput, CurvesReport};
 pub use operand::{Checks, Input, Operand, OperandReport, SelfIntersections};
 pub use single::{
