@@ -440,9 +440,7 @@ fn resolve<'py>(
         keep_nonmanifold,
         run: run(threads),
     };
-    let mut out = py
-        .detach(move || ops::resolve(&m, &opts))
-        .map_err(py_err)?;
+    let mut out = py.detach(move || ops::resolve(&m, &opts)).map_err(py_err)?;
     let report = json(&py.detach(|| out.report()))?;
     let parent = PyArray1::from_vec(py, std::mem::take(&mut out.parent));
     let (v, f) = arrays(py, out.mesh)?;
