@@ -71,8 +71,8 @@ enum Command {
     /// Make triangle orientation consistent across every manifold edge, component by
     /// component, and face each component as asked (default: as most triangles already did).
     Orient(orient::Args),
-    /// Compute the exact intersection curves of two meshes and write them as polylines
-    /// (.obj `l` elements, .dxf 3D POLYLINEs, or .json).
+    /// Compute the exact intersection curves of two meshes (of one mesh: where it crosses
+    /// itself) and write them as polylines (.obj `l` elements, .dxf 3D POLYLINEs, or .json).
     Curves(curves::Args),
 }
 

@@ -846,3 +846,32 @@ fn union_and_intersection_take_more_than_two_inputs() {
     ]);
     assert_eq!(r.status.code(), Some(2));
 }
+
+#[test]
+fn curves_of_one_mesh_are_where_it_crosses_itself() {
+    let mut m = meshbool::Mesh::unit_cube();
+    m.append(&meshbool::Mesh::cuboid([0.5; 3], [1.5; 3]))
+        .unwrap();
+    let two = tmp("self_curves_in.ply");
+    meshbool::io::write_path(&two, &m).unwrap();
+    let out = tmp("self_curves.obj");
+    let v = report(&[
+        "curves",
+        two.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    assert_eq!(
+        (v["loops"].as_u64(), v["open_chains"].as_u64()),
+        (Some(1), Some(0))
+    );
+    assert!((v["total_length"].as_f64().unwrap() - 3.0).abs() < 1e-12);
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert_eq!(text.lines().filter(|l| l.starts_with("l ")).count(), 1);
+    // A clean mesh: nothing, and a length of 0 (not -0).
+    let cube = write_cube("self_curves_clean.ply", [0.0; 3], [1.0; 3]);
+    let v = report(&["curves", cube.to_str().unwrap(), "--json"]);
+    assert_eq!(v["points"], 0);
+    assert_eq!(v["total_length"].to_string(), "0.0");
+}

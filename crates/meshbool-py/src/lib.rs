@@ -377,17 +377,20 @@ fn curves<'py>(
     py: Python<'py>,
     av: PyReadonlyArray2<'py, f64>,
     af: PyReadonlyArray2<'py, u32>,
-    bv: PyReadonlyArray2<'py, f64>,
-    bf: PyReadonlyArray2<'py, u32>,
+    b: Option<(PyReadonlyArray2<'py, f64>, PyReadonlyArray2<'py, u32>)>,
     with_coplanar: bool,
 ) -> PyResult<(Vec<(Bound<'py, PyArray2<f64>>, bool)>, String)> {
-    let (a, b) = (mesh(&av, &af)?, mesh(&bv, &bf)?);
+    let a = mesh(&av, &af)?;
+    let b = b.map(|(bv, bf)| mesh(&bv, &bf)).transpose()?;
     let opts = CurvesOptions {
         with_coplanar,
         ..CurvesOptions::default()
     };
     let out = py
-        .detach(move || ops::curves(&a, &b, &opts))
+        .detach(move || match &b {
+            Some(b) => ops::curves(&a, b, &opts),
+            None => ops::self_curves(&a, &opts),
+        })
         .map_err(py_err)?;
     let report = json(&out.report())?;
     let lines = out

@@ -247,6 +247,17 @@ def test_overlapping_parts_are_resolved():
         meshbool.resolve(two, "odd")
 
 
+def test_self_curves():
+    a = meshbool.box([0, 0, 0], [1, 1, 1])
+    two = meshbool.Mesh(
+        np.vstack([a.vertices, a.vertices + 0.5]), np.vstack([a.faces, a.faces + 8])
+    )
+    own = meshbool.curves(two)
+    assert len(own) == 1 and own[0].closed
+    assert abs(own.report["total_length"] - 3.0) < 1e-12
+    assert meshbool.curves(a).report["points"] == 0
+
+
 def test_union_of_many_in_one_call():
     cubes = [
         meshbool.box([0, 0, 0], [2, 2, 2]),

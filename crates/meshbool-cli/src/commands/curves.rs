@@ -1,4 +1,5 @@
-//! `meshbool curves`: the exact intersection curves of two meshes as polylines.
+//! `meshbool curves`: the exact intersection curves of two meshes (or where one mesh
+//! crosses itself) as polylines.
 
 use std::path::PathBuf;
 
@@ -12,8 +13,8 @@ use super::{print_json, warn};
 pub struct Args {
     /// First mesh.
     a: PathBuf,
-    /// Second mesh.
-    b: PathBuf,
+    /// Second mesh; without it, the curves where the first crosses itself.
+    b: Option<PathBuf>,
     /// Output file for the polylines (.obj, .dxf or .json).
     #[arg(short, long)]
     output: Option<PathBuf>,
@@ -27,12 +28,17 @@ pub struct Args {
 
 /// Reads both meshes, computes the curves, writes them if asked, prints the summary.
 pub fn run(args: &Args) -> Result<()> {
-    let (a, b) = Operand::read_pair(&args.a, &args.b, &Checks::NONE)?;
     let opts = CurvesOptions {
         with_coplanar: !args.no_coplanar,
         ..CurvesOptions::default()
     };
-    let out = ops::curves(&a, &b, &opts)?;
+    let out = match &args.b {
+        Some(b) => {
+            let (a, b) = Operand::read_pair(&args.a, b, &Checks::NONE)?;
+            ops::curves(&a, &b, &opts)?
+        }
+        None => ops::self_curves(&Operand::read(&args.a, &Checks::NONE)?, &opts)?,
+    };
     if let Some(path) = &args.output {
         out.write(path)?;
     }

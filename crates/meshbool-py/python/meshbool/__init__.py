@@ -376,13 +376,17 @@ class Curves(list):
     report: dict
 
 
-def curves(a: MeshLike, b: MeshLike, *, with_coplanar: bool = True) -> Curves:
+def curves(
+    a: MeshLike, b: Optional[MeshLike] = None, *, with_coplanar: bool = True
+) -> Curves:
     """The exact intersection curves of ``a`` and ``b``, chained into polylines: closed
-    loops and open chains (ending on an open surface's boundary). ``with_coplanar=False``
-    leaves out segments that only bound shared faces."""
+    loops and open chains (ending on an open surface's boundary). Without ``b``: where
+    ``a`` crosses itself. ``with_coplanar=False`` leaves out segments that only bound
+    shared faces."""
     av, af = _parts(a)
-    bv, bf = _parts(b)
-    lines, report = _native.curves(av, af, bv, bf, with_coplanar)
+    lines, report = _native.curves(
+        av, af, None if b is None else _parts(b), with_coplanar
+    )
     out = Curves(Polyline(p, c) for p, c in lines)
     out.report = json.loads(report)
     return out

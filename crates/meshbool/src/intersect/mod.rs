@@ -189,24 +189,39 @@ pub(crate) fn intersect_with(a: &Mesh, b: &Mesh, grid_from: usize) -> Seam {
         tris_b.iter().filter(|t| t.is_none()).count(),
     );
 
-    let mut seam = Seam {
-        degenerate: [da, db],
-        candidate_pairs: pairs.len(),
-        from_grid,
-        ..Seam::default()
-    };
+    let mut seam = assemble(&results, |l| l);
+    seam.degenerate = [da, db];
+    seam.candidate_pairs = pairs.len();
+    seam.from_grid = from_grid;
+    seam.exact = seam
+        .points
+        .par_iter()
+        .map(|l| label_point(l, a, b))
+        .collect();
+    seam.positions = seam.exact.par_iter().map(Point::approx).collect();
+    seam
+}
+
+/// A seam from the triangle pairs' intersections: points named by `name(label)` (one
+/// point per name), distinct segments with every pair they were found in, touching
+/// points. Exact constructions and positions are left to the caller.
+fn assemble(results: &[(u32, u32, TriTri)], name: impl Fn(Label) -> Label) -> Seam {
+    let mut seam = Seam::default();
     let mut point_ids: FxHashMap<Label, u32> = FxHashMap::default();
     let mut seg_ids: FxHashMap<[u32; 2], u32> = FxHashMap::default();
     let mut touching = Vec::new();
     let mut id_of = |l: Label, seam: &mut Seam| -> u32 {
-        *point_ids.entry(l).or_insert_with(|| {
-            seam.points.push(l);
+        *point_ids.entry(name(l)).or_insert_with(|| {
+            seam.points.push(name(l));
             (seam.points.len() - 1) as u32
         })
     };
-    for (i, j, r) in &results {
+    for (i, j, r) in results {
         let mut add_segment = |s: [Label; 2], coplanar: bool, seam: &mut Seam| {
             let (x, y) = (id_of(s[0], seam), id_of(s[1], seam));
+            if x == y {
+                return;
+            }
             let ends = [x.min(y), x.max(y)];
             let id = *seg_ids.entry(ends).or_insert_with(|| {
                 seam.segments.push(SeamSegment { ends, coplanar });
@@ -242,10 +257,72 @@ pub(crate) fn intersect_with(a: &Mesh, b: &Mesh, grid_from: usize) -> Seam {
             seam.touching.push(id);
         }
     }
+    seam
+}
+
+/// The name of a point where two triangles of one mesh meet: a vertex by itself, else the
+/// two features in order, so that the pair `(i, j)` and the pair `(j, i)` name it alike.
+fn own_label(l: Label) -> Label {
+    match (l.a, l.b) {
+        (Feature::Vertex(v), _) | (_, Feature::Vertex(v)) => Label {
+            a: Feature::Vertex(v),
+            b: Feature::Vertex(v),
+        },
+        (a, b) => Label {
+            a: a.min(b),
+            b: a.max(b),
+        },
+    }
+}
+
+/// Where a mesh crosses itself: the seam of the mesh with itself over the triangle pairs
+/// `pairs` (as [`self_intersections`] finds them), without what neighbouring triangles
+/// share (their common vertex or edge). Points are named by the features of the one mesh
+/// ([`Label::a`] ≤ [`Label::b`]; a vertex as itself twice), segments' sources name the
+/// two triangles (`tri_a < tri_b`). `m` valid and exactly welded.
+pub fn self_seam(m: &Mesh, pairs: &[(u32, u32)]) -> Seam {
+    let results: Vec<(u32, u32, TriTri)> = pairs
+        .par_iter()
+        .filter_map(|&(i, j)| {
+            let (x, y) = (tri(m, i as usize)?, tri(m, j as usize)?);
+            let (vi, vj) = (m.triangles[i as usize], m.triangles[j as usize]);
+            let shared: Vec<u32> = vi.iter().copied().filter(|v| vj.contains(v)).collect();
+            // What the two share: their common vertices and the edge between them.
+            let in_shared = |l: &Label| match own_label(*l) {
+                Label {
+                    a: Feature::Vertex(v),
+                    ..
+                } => shared.contains(&v),
+                Label {
+                    a: Feature::Edge(u, v),
+                    b,
+                } => b == Feature::Edge(u, v) && shared.contains(&u) && shared.contains(&v),
+                _ => false,
+            };
+            let r = match tritri::intersect(&x, &y) {
+                TriTri::Point(l) if in_shared(&l) => TriTri::None,
+                TriTri::Segment(s) if s.iter().all(in_shared) => TriTri::None,
+                TriTri::Coplanar { segments, points } => TriTri::Coplanar {
+                    segments: segments
+                        .into_iter()
+                        .filter(|s| !s.iter().all(in_shared))
+                        .collect(),
+                    points: points.into_iter().filter(|l| !in_shared(l)).collect(),
+                },
+                r => r,
+            };
+            match r {
+                TriTri::None => None,
+                r => Some((i, j, r)),
+            }
+        })
+        .collect();
+    let mut seam = assemble(&results, own_label);
+    seam.candidate_pairs = pairs.len();
     seam.exact = seam
         .points
         .par_iter()
-        .map(|l| label_point(l, a, b))
+        .map(|l| label_point(l, m, m))
         .collect();
     seam.positions = seam.exact.par_iter().map(Point::approx).collect();
     seam

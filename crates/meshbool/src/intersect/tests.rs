@@ -551,3 +551,45 @@ fn separating_axis_filter_only_answers_apart_when_apart() {
         "{apart} {said_apart}"
     );
 }
+
+#[test]
+fn self_seam_points_lie_on_both_triangles_and_match_the_two_mesh_seam() {
+    use crate::kernel::{orient3d_plane, Sign};
+    // Two overlapping spheres given as one mesh: the self-seam is the seam of the two.
+    let a = uv_sphere([0.0; 3], 1.0, 32, 16);
+    let b = rigid_motion(
+        &uv_sphere([0.0; 3], 1.0, 24, 12),
+        [1.0, 2.0, 3.0],
+        0.3,
+        [0.5, 0.1, 0.0],
+    );
+    let mut both = a.clone();
+    both.append(&b).unwrap();
+    let own = self_seam(&both, &self_intersections(&both));
+    let two = intersect(&a, &b);
+    assert_eq!(own.points.len(), two.points.len());
+    assert_eq!(own.segments.len(), two.segments.len());
+    for s in &own.sources {
+        assert!(s.tri_a < s.tri_b);
+        for &p in &own.segments[s.segment as usize].ends {
+            for t in [s.tri_a, s.tri_b] {
+                let [x, y, z] = both.corners(t as usize);
+                assert_eq!(
+                    orient3d_plane(&x, &y, &z, &own.exact[p as usize]),
+                    Sign::Zero
+                );
+            }
+        }
+    }
+    // Every seam point is on a segment, and each has two segments (closed loops).
+    let mut degree = vec![0; own.points.len()];
+    for s in &own.segments {
+        degree[s.ends[0] as usize] += 1;
+        degree[s.ends[1] as usize] += 1;
+    }
+    assert!(degree.iter().all(|&d| d == 2), "{degree:?}");
+    // Neighbours sharing an edge or a vertex contribute nothing of what they share.
+    let cube = Mesh::unit_cube();
+    let seam = self_seam(&cube, &self_intersections(&cube));
+    assert!(seam.points.is_empty() && seam.segments.is_empty());
+}

@@ -227,7 +227,7 @@ impl BooleanManyOutput {
 }
 
 /// The union or intersection of any number of inputs (at least one), in one call: pairwise
-/// booleans in a balanced tree, a round's pairs in parallel ([`crate::boolean::nary`]),
+/// booleans in a balanced tree, a round's pairs in parallel (`boolean::nary`),
 /// rather than a chain. Inputs are meshes, checked as `opts.checks` say and named `1`,
 /// `2`, ..., or [`Operand`]s.
 ///

@@ -5,9 +5,11 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use super::{Checks, Input, Operand, RunOptions, SCHEMA};
+use std::time::Instant;
+
+use super::{with_threads, Checks, Input, Operand, RunOptions, SCHEMA};
 use crate::boolean::Stage;
-use crate::intersect::{chain, intersect, PolylineXyz, Seam};
+use crate::intersect::{chain, intersect, self_intersections, self_seam, PolylineXyz, Seam};
 use crate::io::write_polylines;
 use crate::{Error, Format, Result};
 
@@ -81,7 +83,8 @@ impl CurvesOutput {
             schema: SCHEMA,
             loops: self.polylines.iter().filter(|c| c.closed).count(),
             open_chains: self.polylines.iter().filter(|c| !c.closed).count(),
-            total_length: self.polylines.iter().map(PolylineXyz::length).sum(),
+            // `+ 0.0`: an empty sum is -0.0.
+            total_length: self.polylines.iter().map(PolylineXyz::length).sum::<f64>() + 0.0,
             points: seam.points.len(),
             segments: seam.segments.len(),
             coplanar_segments: seam.segments.iter().filter(|s| s.coplanar).count(),
@@ -146,4 +149,31 @@ pub fn curves<'a>(
         names,
         seconds,
     })
+}
+
+/// Where one input crosses itself, exactly, chained into polylines: the seam of the mesh
+/// with itself ([`crate::intersect::self_seam`]), without what neighbouring triangles
+/// share. The input is validated and welded (`opts.checks` are not used: a self-crossing
+/// mesh is what this looks at). The report's `candidate_pairs` counts the
+/// self-intersecting triangle pairs.
+pub fn self_curves<'a>(mesh: impl Into<Input<'a>>, opts: &CurvesOptions) -> Result<CurvesOutput> {
+    let input: Input<'a> = mesh.into();
+    with_threads(opts.run.threads, || {
+        let operand = input.operand("mesh", &Checks::NONE)?;
+        let start = Instant::now();
+        opts.run.stage(Stage::Intersect);
+        let m = operand.mesh();
+        let seam = self_seam(m, &self_intersections(m));
+        let polylines = chain(&seam, opts.with_coplanar)
+            .iter()
+            .map(|c| c.to_xyz(&seam))
+            .collect();
+        let name = operand.name().to_string();
+        Ok(CurvesOutput {
+            polylines,
+            seam,
+            names: [name.clone(), name],
+            seconds: start.elapsed().as_secs_f64(),
+        })
+    })?
 }

@@ -58,7 +58,7 @@ pub use crate::boolean::FailedTriangle;
 pub use boolean::{
     boolean, boolean_many, BooleanManyOutput, BooleanOptions, BooleanOutput, BooleanReport,
 };
-pub use curves::{curves, CurvesOptions, CurvesOutput, CurvesReport};
+pub use curves::{curves, self_curves, CurvesOptions, CurvesOutput, CurvesReport};
 pub use operand::{Checks, Input, Operand, OperandReport, SelfIntersections};
 pub use single::{
     close, info, orient, repair, resolve, CloseCommandReport, CloseOutput, InfoReport,

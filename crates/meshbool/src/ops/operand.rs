@@ -27,7 +27,7 @@ pub struct Checks {
     pub self_intersections: bool,
     /// Resolve an operand whose self-intersections are all between its components (parts
     /// that overlap or nest): the operand becomes the solid they enclose, the union of the
-    /// parts ([`crate::boolean::resolve`], fill rule positive). Needs
+    /// parts (`boolean::resolve`, fill rule positive; see [`super::resolve()`]). Needs
     /// `self_intersections`. Off: such an operand is a problem like any self-intersection.
     pub resolve: bool,
     /// Proceed when a check finds a problem, taking the input as given; the problems are

@@ -235,7 +235,7 @@ impl ResolveOutput {
 }
 
 /// The solid a self-overlapping mesh encloses under `opts.rule`, as a closed mesh
-/// ([`crate::boolean::resolve`]): overlapping parts united, nested ones dropped. Built
+/// (`boolean::resolve`): overlapping parts united, nested ones dropped. Built
 /// today for meshes whose closed components overlap or nest one another; a component
 /// that crosses itself is an [`Error::Unresolvable`](crate::Error::Unresolvable).
 pub fn resolve<'a>(mesh: impl Into<Input<'a>>, opts: &ResolveOptions) -> Result<ResolveOutput> {

@@ -399,3 +399,43 @@ fn touching_solids_come_out_closed_and_manifold() {
     assert_eq!((p.non_manifold_edges, p.components, p.volume), (0, 2, 2.0));
     assert_eq!(picked.nonmanifold.edges_split, 1);
 }
+
+#[test]
+fn self_curves_are_the_curves_between_the_parts() {
+    // Two overlapping cubes given as one mesh cross themselves where the two cubes cross.
+    let (a, b) = cubes();
+    let mut joined = a.clone();
+    joined.append(&b).unwrap();
+    let own = self_curves(&joined, &CurvesOptions::default()).unwrap();
+    let two = curves(&a, &b, &CurvesOptions::default()).unwrap();
+    let (r, s) = (own.report(), two.report());
+    assert_eq!((r.loops, r.open_chains), (s.loops, s.open_chains));
+    assert_eq!((r.points, r.segments), (s.points, s.segments));
+    assert_eq!(r.total_length, s.total_length);
+    assert_eq!(r.loops, 1);
+    // Six segments of length 1/2 (the cubes are offset by 1/2 along every axis), split
+    // where they run over the other cube's triangle diagonals.
+    assert!((r.total_length - 3.0).abs() < 1e-12, "{}", r.total_length);
+    // Every point of the loop lies on both cubes' surfaces.
+    for p in &own.polylines[0].points {
+        let on = |lo: f64, hi: f64| {
+            p.iter().all(|&x| (lo..=hi).contains(&x)) && p.iter().any(|&x| x == lo || x == hi)
+        };
+        assert!(on(0.0, 1.0) && on(0.5, 1.5), "{p:?}");
+    }
+
+    // A cube with a corner pushed through its bottom: one closed loop where the three
+    // faces at that corner pass through the bottom face.
+    let folded = self_intersecting();
+    let r = self_curves(&folded, &CurvesOptions::default())
+        .unwrap()
+        .report();
+    assert_eq!((r.loops, r.open_chains), (1, 0), "{r:?}");
+    assert!(r.total_length > 0.0);
+    // A clean mesh does not cross itself.
+    let clean = self_curves(&a, &CurvesOptions::default()).unwrap().report();
+    assert_eq!(
+        (clean.points, clean.segments, clean.candidate_pairs),
+        (0, 0, 0)
+    );
+}
