@@ -179,7 +179,9 @@ pub struct BooleanManyOutput {
     pub op: Op,
     /// The result.
     pub mesh: Mesh,
-    /// For every triangle of `mesh`: `[input, triangle of that input]` (never flipped).
+    /// For every triangle of `mesh`: `[input, triangle of that input]` (facing as that
+    /// triangle, except for inside-out components reversed at the door:
+    /// [`OperandReport::reversed_components`]).
     pub provenance: Vec<[u32; 2]>,
     /// Where the result was not manifold and was split.
     pub nonmanifold: NonManifoldReport,

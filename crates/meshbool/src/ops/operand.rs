@@ -73,6 +73,11 @@ pub struct OperandReport {
     pub non_manifold_edges: Option<usize>,
     /// Self-intersecting triangle pairs; `None`: not checked.
     pub self_intersections: Option<SelfIntersections>,
+    /// Closed components that faced inward without enclosing anything (inside out, as
+    /// written with the other winding convention) and were reversed at the door
+    /// ([`crate::repair::inside_out`]); 0 when none or not checked (an open or
+    /// inconsistent operand, or [`Checks::edges`] off).
+    pub reversed_components: usize,
     /// How the operand was resolved into the solid its overlapping parts enclose
     /// ([`Checks::resolve`]); `None`: it was not (no self-intersections, or not asked).
     pub resolved: Option<ResolveReport>,
@@ -137,6 +142,12 @@ impl OperandReport {
         if self.self_intersections.is_none() {
             lines.push(format!("{}: not checked for self-intersections", self.name));
         }
+        if self.reversed_components > 0 {
+            lines.push(format!(
+                "{}: {} closed components faced inward without enclosing anything (inside out) and were reversed",
+                self.name, self.reversed_components
+            ));
+        }
         if let Some(r) = &self.resolved {
             lines.push(format!(
                 "{}: {} crossing triangle pairs between its {} components resolved: the operand is the solid they enclose (fill rule positive; {} components united, {} nested ones dropped)",
@@ -163,6 +174,8 @@ pub struct Operand {
     report: OperandReport,
     /// For a resolved operand, the input triangle each triangle of `mesh` is part of.
     parent: Option<Vec<u32>>,
+    /// Input triangles reversed at the door (inside-out components), sorted.
+    reversed: Vec<u32>,
 }
 
 impl Operand {
@@ -215,6 +228,17 @@ impl Operand {
         });
         let (mut resolved, mut parent) = (None, None);
         let clean_edges = counts.is_some_and(|c| c.inconsistent == 0 && c.non_manifold == 0);
+        // Inside-out closed components are reversed (a closed mesh's inside is where its
+        // normals point away from; written the other way round it would be its complement).
+        let (reversed, reversed_components) =
+            if clean_edges && counts.is_some_and(|c| c.boundary == 0) {
+                crate::repair::inside_out(&mesh)
+            } else {
+                (Vec::new(), 0)
+            };
+        for &t in &reversed {
+            mesh.triangles[t as usize].swap(1, 2);
+        }
         if let (Some(found), Some(si), true, true) =
             (&found, &mut self_intersections, checks.resolve, clean_edges)
         {
@@ -241,6 +265,7 @@ impl Operand {
             inconsistent_edges: counts.map(|c| c.inconsistent),
             non_manifold_edges: counts.map(|c| c.non_manifold),
             self_intersections,
+            reversed_components,
             resolved,
             forced: false,
         };
@@ -258,6 +283,7 @@ impl Operand {
             mesh,
             report,
             parent,
+            reversed,
         })
     }
 
@@ -270,21 +296,30 @@ impl Operand {
         }
     }
 
+    /// Whether input triangle `t` was reversed at the door (an inside-out component).
+    pub fn reversed(&self, t: u32) -> bool {
+        self.reversed.binary_search(&t).is_ok()
+    }
+
     /// Rewrites provenance from triangles of the operands' meshes (`a`'s for source A,
-    /// `b`'s for B) to the input triangles they are part of.
+    /// `b`'s for B) to the input triangles they are part of, and `flipped` to say whether
+    /// the result triangle faces against its input triangle.
     pub(crate) fn to_input_triangles(
         provenance: &mut [crate::boolean::Provenance],
         a: &Operand,
         b: &Operand,
     ) {
-        if a.parent.is_none() && b.parent.is_none() {
+        let plain = |o: &Operand| o.parent.is_none() && o.reversed.is_empty();
+        if plain(a) && plain(b) {
             return;
         }
         for p in provenance {
-            p.triangle = match p.source {
-                crate::Source::A => a.input_triangle(p.triangle),
-                crate::Source::B => b.input_triangle(p.triangle),
+            let o = match p.source {
+                crate::Source::A => a,
+                crate::Source::B => b,
             };
+            p.triangle = o.input_triangle(p.triangle);
+            p.flipped ^= o.reversed(p.triangle);
         }
     }
 

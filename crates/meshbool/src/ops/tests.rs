@@ -439,3 +439,35 @@ fn self_curves_are_the_curves_between_the_parts() {
         (0, 0, 0)
     );
 }
+
+#[test]
+fn inside_out_operands_are_reversed_with_a_line_in_assumed() {
+    // Before: an inside-out cube was taken as its complement (the union came out with a
+    // negative volume).
+    let (a, b) = cubes();
+    let out = boolean(&a.flipped(), &b, Op::Union, &BooleanOptions::default()).unwrap();
+    let r = out.report();
+    assert_eq!(r.result.volume, 1.875);
+    assert!(r.result.closed);
+    assert_eq!(r.operands[0].reversed_components, 1);
+    assert_eq!(
+        r.assumed,
+        ["A: 1 closed components faced inward without enclosing anything (inside out) and were reversed"]
+    );
+    // A's triangles in the result face against their (reversed) input triangles.
+    assert!(out
+        .provenance
+        .iter()
+        .all(|p| p.flipped == (p.source == crate::Source::A)));
+    let d = boolean(&b, &a.flipped(), Op::Difference, &BooleanOptions::default()).unwrap();
+    assert_eq!(signed_volume(&d.mesh), 1.0 - 0.125);
+    // A hollow box (outer outward, cavity inward) is left alone.
+    let mut hollow = Mesh::cuboid([0.0; 3], [3.0; 3]);
+    hollow
+        .append(&Mesh::cuboid([1.0; 3], [2.0; 3]).flipped())
+        .unwrap();
+    let far = Mesh::cuboid([5.0; 3], [6.0; 3]);
+    let out = boolean(&hollow, &far, Op::Union, &BooleanOptions::default()).unwrap();
+    assert_eq!(out.operands[0].reversed_components, 0);
+    assert_eq!(signed_volume(&out.mesh), 26.0 + 1.0);
+}

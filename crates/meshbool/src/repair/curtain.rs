@@ -10,6 +10,10 @@ use crate::Mesh;
 /// What [`curtain`] did.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct CurtainReport {
+    /// Triangles reversed first so that every component faces up (a down-facing or
+    /// inconsistently oriented surface would otherwise give a solid turned inside out);
+    /// 0 when the surface already faced up.
+    pub faced_up: usize,
     /// The floor height: lowest z of the surface minus the offset.
     pub floor: f64,
     /// Boundary loops given walls.
@@ -25,11 +29,14 @@ pub struct CurtainReport {
 }
 
 /// Drops a vertical wall from every boundary loop of `mesh` to the floor
-/// `z = min z − floor_offset` and caps the floor, so that a consistently oriented,
-/// up-facing surface becomes a closed solid with outward normals (volume > 0). Loops are
-/// walled in the direction the surface runs along them; orient the surface first
-/// ([`super::orient`] with [`super::Facing::ZUp`]).
+/// `z = min z − floor_offset` and caps the floor, so that the surface becomes a closed
+/// solid with outward normals (volume > 0). The surface is first oriented consistently
+/// with every component facing up ([`super::orient`] with [`super::Facing::ZUp`]; the
+/// report's `faced_up` counts the triangles that reversed); loops are then walled in the
+/// direction the surface runs along them.
 pub fn curtain(mesh: &Mesh, floor_offset: f64) -> (Mesh, CurtainReport) {
+    let (up, oriented) = super::orient(mesh, super::Facing::ZUp);
+    let mesh = &up;
     let floor = mesh.bounds().map_or(0.0, |b| b.min[2]) - floor_offset;
     let (loops, open) = boundary_loops(mesh);
     let mut out = mesh.clone();
@@ -54,6 +61,7 @@ pub fn curtain(mesh: &Mesh, floor_offset: f64) -> (Mesh, CurtainReport) {
     }
     let (capped, cap) = cap_holes(&out);
     let report = CurtainReport {
+        faced_up: oriented.flipped,
         floor,
         loops: loops.len(),
         wall_triangles: walls,
@@ -70,6 +78,30 @@ mod tests {
     use crate::measure::{mesh_stats, signed_volume};
     use crate::repair::{orient, Facing};
     use crate::shapes::heightfield;
+
+    #[test]
+    fn a_down_facing_surface_is_faced_up_first() {
+        // Before: the solid came out inside out (closed, negative volume).
+        let m = heightfield([0.0, 0.0], [4.0, 3.0], 4, 3, |x, _| 0.5 * x + 10.0);
+        let (up, r_up) = curtain(&m, 2.0);
+        assert_eq!(r_up.faced_up, 0);
+        let (down, r) = curtain(&m.flipped(), 2.0);
+        assert_eq!(r.faced_up, m.triangles.len());
+        let v = signed_volume(&down);
+        assert!(mesh_stats(&down).closed);
+        assert_eq!(v, signed_volume(&up));
+        // Prism over 4 x 3 down to z = 8: mean height above the floor 2 + 1 = 3.
+        assert!((v - 36.0).abs() < 1e-12, "{v}");
+        // Half the triangles wound the other way: oriented, same solid.
+        let (positions, mut triangles) = m.clone().into_parts();
+        for t in triangles.iter_mut().step_by(2) {
+            t.swap(1, 2);
+        }
+        let mixed = Mesh::new(positions, triangles).unwrap();
+        let (solid, r) = curtain(&mixed, 2.0);
+        assert_eq!(r.faced_up, m.triangles.len() / 2);
+        assert_eq!(signed_volume(&solid), v);
+    }
 
     #[test]
     fn tilted_plane_curtained_is_the_analytic_prism() {

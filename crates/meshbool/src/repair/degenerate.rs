@@ -4,7 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::measure::is_degenerate;
+use crate::measure::{is_degenerate, signed_volume};
 use crate::vec3::{cross, dot, norm, sub};
 use crate::Mesh;
 
@@ -30,7 +30,7 @@ impl Default for DegenerateOptions {
 }
 
 /// What [`remove_degenerates`] did.
-#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct DegenerateReport {
     /// Bad triangles at the start (zero area, or beyond the thresholds).
     pub found: usize,
@@ -53,6 +53,13 @@ pub struct DegenerateReport {
     /// Bad triangles left: no collapse or flip possible without making an edge
     /// non-manifold, folding a neighbour over, or creating another degenerate triangle.
     pub left: usize,
+    /// Fixes that changed the shape of the surface (only under the thresholds): collapses
+    /// that moved a vertex, and flips or boundary drops of triangles with non-zero area.
+    /// 0 when every fix was exact.
+    pub shape_changes: usize,
+    /// Signed volume of the result minus that of the input (meaningful for closed
+    /// meshes); 0 when every fix was exact.
+    pub volume_change: f64,
 }
 
 /// Passes over the bad triangles; each pass touches every vertex at most once.
@@ -273,6 +280,8 @@ pub fn remove_degenerates(mesh: &Mesh, opts: &DegenerateOptions) -> (Mesh, Degen
             tris.push(*t);
         }
     }
+    // Flips and boundary drops of triangles with non-zero area (shape changes).
+    let mut area_fixes = 0;
     for _ in 0..MAX_PASSES {
         let todo: Vec<u32> = (0..tris.len() as u32)
             .filter(|&t| bad(&tris[t as usize]))
@@ -329,6 +338,7 @@ pub fn remove_degenerates(mesh: &Mesh, opts: &DegenerateOptions) -> (Mesh, Degen
                     } else {
                         report.boundary_dropped += 1;
                     }
+                    area_fixes += usize::from(!exact_zero);
                 })
             };
             // The natural fix first, the other where it is blocked.
@@ -351,7 +361,12 @@ pub fn remove_degenerates(mesh: &Mesh, opts: &DegenerateOptions) -> (Mesh, Degen
     }
     report.left = tris.iter().filter(|t| bad(t)).count();
     report.triangles_removed = mesh.triangles.len() - tris.len();
-    (Mesh::new_unchecked(positions.clone(), tris), report)
+    let out = Mesh::new_unchecked(positions.clone(), tris);
+    report.shape_changes = report.vertices_moved + area_fixes;
+    if report.shape_changes > 0 {
+        report.volume_change = signed_volume(&out) - signed_volume(mesh);
+    }
+    (out, report)
 }
 
 #[cfg(test)]
@@ -366,6 +381,60 @@ mod tests {
             (s.boundary_edges, s.non_manifold_edges, s.inconsistent_edges),
             (0, 0, 0)
         );
+    }
+
+    #[test]
+    fn thin_cap_flipped_under_a_threshold_reports_the_shape_change() {
+        // As below, with the split point raised 1e-3 above the top face: a thin cap of
+        // non-zero area. Before: flipped silently (vertices_moved 0, volume changed).
+        // The cube's top face (a, c, b) + (c, a, d) with its diagonal a–c: the first
+        // triangle is split at the diagonal's midpoint into two proper triangles and a
+        // zero-area cap (a, c, mid) still facing the second across the diagonal.
+        let mut m = Mesh::unit_cube();
+        let s0 = mesh_stats(&m);
+        assert_eq!(s0.volume, 1.0);
+        // Find the two triangles of the top face (z = 1) and their shared diagonal.
+        let top: Vec<usize> = (0..m.triangles.len())
+            .filter(|&t| m.corners(t).iter().all(|p| p[2] == 1.0))
+            .collect();
+        assert_eq!(top.len(), 2);
+        let (t0, t1) = (m.triangles[top[0]], m.triangles[top[1]]);
+        let k = (0..3)
+            .find(|&k| t1.contains(&t0[k]) && t1.contains(&t0[(k + 1) % 3]))
+            .unwrap();
+        let (a, c, b) = (t0[k], t0[(k + 1) % 3], t0[(k + 2) % 3]);
+        let (pa, pc) = (m.positions[a as usize], m.positions[c as usize]);
+        let mid = m.positions.len() as u32;
+        m.positions.push(std::array::from_fn(|i| {
+            (pa[i] + pc[i]) / 2.0 + if i == 2 { 1e-3 } else { 0.0 }
+        }));
+        // t0 = (a, c, b) becomes (a, mid, b), (mid, c, b) and the cap (a, c, mid) —
+        // which uses a -> c as t0 did, so t1 still meets it across that edge.
+        m.triangles[top[0]] = [a, mid, b];
+        m.triangles.push([mid, c, b]);
+        m.triangles.push([a, c, mid]);
+        closed_consistent(&m);
+        let before = mesh_stats(&m).volume;
+        assert!(before > 1.0);
+        let exact = remove_degenerates(&m, &DegenerateOptions::default()).1;
+        assert_eq!(
+            (exact.found, exact.shape_changes, exact.volume_change),
+            (0, 0, 0.0)
+        );
+        let opts = DegenerateOptions {
+            max_aspect: Some(100.0),
+            ..DegenerateOptions::default()
+        };
+        let (r, rep) = remove_degenerates(&m, &opts);
+        closed_consistent(&r);
+        assert_eq!(
+            (rep.found, rep.flipped_edges, rep.vertices_moved),
+            (1, 1, 0)
+        );
+        assert_eq!(rep.shape_changes, 1);
+        let after = mesh_stats(&r).volume;
+        assert_ne!(after, before);
+        assert_eq!(rep.volume_change, after - before);
     }
 
     #[test]

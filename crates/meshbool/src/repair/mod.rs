@@ -11,6 +11,7 @@ mod curtain;
 mod degenerate;
 mod duplicates;
 mod folds;
+mod inside_out;
 pub(crate) mod nonmanifold;
 mod orient;
 mod pipeline;
@@ -23,6 +24,7 @@ pub use curtain::{curtain, CurtainReport};
 pub use degenerate::{remove_degenerates, DegenerateOptions, DegenerateReport};
 pub use duplicates::{remove_duplicates, DuplicateReport};
 pub use folds::{remove_folds, FoldReport};
+pub use inside_out::inside_out;
 pub use nonmanifold::{split_nonmanifold, NonManifoldReport};
 pub use orient::{orient, Facing, OrientReport};
 pub use pipeline::{
