@@ -109,6 +109,11 @@ pub enum Point {
         /// The dropped coordinate of the projection used to intersect the lines.
         axis: u8,
     },
+    /// Where three planes meet, each given by three points (a triangle's corners): the
+    /// point where three triangles of a self-crossing mesh meet. Precondition: the planes'
+    /// normals are independent (the point exists and is unique). Boxed: the nine corners
+    /// would triple the size of every point.
+    Tpi(Box<[[[f64; 3]; 3]; 3]>),
 }
 
 fn lift<T: Num>(p: &[f64; 3]) -> [T; 3] {
@@ -160,6 +165,23 @@ impl Point {
                 let n = cross(&vsub(&b, &a), &vsub(&c, &a));
                 let d = vsub(&q, &p);
                 along(&p, &d, &dot(&n, &vsub(&a, &p)), &dot(&n, &d))
+            }
+            Point::Tpi(planes) => {
+                // n_i · x = d_i for each plane: x = Σ d_i (n_j × n_k) / (n_1 · (n_2 × n_3)).
+                let plane = |[a, b, c]: &[[f64; 3]; 3]| {
+                    let (a, b, c) = (lift::<T>(a), lift(b), lift(c));
+                    let n = cross(&vsub(&b, &a), &vsub(&c, &a));
+                    let d = dot(&n, &a);
+                    (n, d)
+                };
+                let [(n1, d1), (n2, d2), (n3, d3)] = [0, 1, 2].map(|i| plane(&planes[i]));
+                let (c23, c31, c12) = (cross(&n2, &n3), cross(&n3, &n1), cross(&n1, &n2));
+                let w = dot(&n1, &c23);
+                let x: [T; 3] = std::array::from_fn(|k| {
+                    d1.mul(&c23[k]).add(&d2.mul(&c31[k])).add(&d3.mul(&c12[k]))
+                });
+                let [x, y, z] = x;
+                [x, y, z, w]
             }
             Point::Ssi { p, q, r, s, axis } => {
                 let (p, q, r, s) = (lift(p), lift(q), lift(r), lift(s));

@@ -58,7 +58,22 @@ fn oracle_point(p: &Point) -> [Q; 3] {
             let t = c2(&f, &e) / c2(&d, &e);
             [&p[0] + &t * &d[0], &p[1] + &t * &d[1], &p[2] + &t * &d[2]]
         }
+        Point::Tpi(planes) => oracle_tpi(planes),
     }
+}
+
+/// Where three planes meet, by Cramer's rule in rationals.
+fn oracle_tpi(planes: &[[[f64; 3]; 3]; 3]) -> [Q; 3] {
+    let pl = |t: &[[f64; 3]; 3]| {
+        let (a, b, c) = (qv(&t[0]), qv(&t[1]), qv(&t[2]));
+        let n = crs(&sub(&b, &a), &sub(&c, &a));
+        let d = dt(&n, &a);
+        (n, d)
+    };
+    let [(n1, d1), (n2, d2), (n3, d3)] = [0, 1, 2].map(|i| pl(&planes[i]));
+    let w = dt(&n1, &crs(&n2, &n3));
+    let (c23, c31, c12) = (crs(&n2, &n3), crs(&n3, &n1), crs(&n1, &n2));
+    std::array::from_fn(|k| (&d1 * &c23[k] + &d2 * &c31[k] + &d3 * &c12[k]) / &w)
 }
 
 fn sign_q(x: &Q) -> Sign {
@@ -128,12 +143,71 @@ fn random_lpi(rng: &mut Rng, offset: [f64; 3], scale: f64) -> Point {
     }
 }
 
-fn random_point(rng: &mut Rng, offset: [f64; 3], scale: f64) -> Point {
-    if rng.next() % 2 == 0 {
-        Point::Explicit(rng.point(offset, scale))
-    } else {
-        random_lpi(rng, offset, scale)
+/// Three random planes meeting in one point (independent normals).
+fn random_tpi(rng: &mut Rng, offset: [f64; 3], scale: f64) -> Point {
+    loop {
+        let planes: [[[f64; 3]; 3]; 3] =
+            std::array::from_fn(|_| std::array::from_fn(|_| rng.point(offset, scale)));
+        if oracle_det(&planes) != Sign::Zero {
+            return Point::Tpi(Box::new(planes));
+        }
     }
+}
+
+/// The sign of the determinant of the three planes' normals.
+fn oracle_det(planes: &[[[f64; 3]; 3]; 3]) -> Sign {
+    let n = planes.map(|t| {
+        let (a, b, c) = (qv(&t[0]), qv(&t[1]), qv(&t[2]));
+        crs(&sub(&b, &a), &sub(&c, &a))
+    });
+    sign_q(&dt(&n[0], &crs(&n[1], &n[2])))
+}
+
+fn random_point(rng: &mut Rng, offset: [f64; 3], scale: f64) -> Point {
+    match rng.next() % 3 {
+        0 => Point::Explicit(rng.point(offset, scale)),
+        1 => random_lpi(rng, offset, scale),
+        _ => random_tpi(rng, offset, scale),
+    }
+}
+
+/// A three-plane point lies exactly on each of its planes, and equals the same point
+/// built from the planes in another order, or from other points of the same planes.
+#[test]
+fn three_plane_points_lie_on_their_planes() {
+    let mut rng = Rng(7);
+    for offset in [[0.0; 3], UTM] {
+        for _ in 0..100 {
+            let tpi = random_tpi(&mut rng, offset, 10.0);
+            let Point::Tpi(planes) = &tpi else {
+                unreachable!()
+            };
+            for [a, b, c] in planes.iter() {
+                assert_plane_side(a, b, c, &tpi, Sign::Zero);
+            }
+            let [p1, p2, p3] = **planes;
+            let again = Point::Tpi(Box::new([p3, [p2[1], p2[2], p2[0]], p1]));
+            assert!(same_point(&tpi, &again));
+            // The approximation is close to the exact point (a few ulps of the scale).
+            let exact = oracle_point(&tpi);
+            let got = tpi.approx();
+            for k in 0..3 {
+                let err = (q(got[k]) - &exact[k]).abs();
+                assert!(err < q(1e-6 * (1.0 + offset[k].abs())), "{k}: {got:?}");
+            }
+        }
+    }
+    // Axis planes x = 1, y = 2, z = 3: the explicit point (1, 2, 3).
+    let x = [[1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [1.0, 0.0, 1.0]];
+    let y = [[0.0, 2.0, 0.0], [0.0, 2.0, 1.0], [1.0, 2.0, 0.0]];
+    let z = [[0.0, 0.0, 3.0], [1.0, 0.0, 3.0], [0.0, 1.0, 3.0]];
+    let tpi = Point::Tpi(Box::new([x, y, z]));
+    assert!(same_point(&tpi, &Point::Explicit([1.0, 2.0, 3.0])));
+    assert_eq!(tpi.approx(), [1.0, 2.0, 3.0]);
+    assert!(!same_point(
+        &tpi,
+        &Point::Explicit([1.0, 2.0, 3.0f64.next_up()])
+    ));
 }
 
 #[test]
