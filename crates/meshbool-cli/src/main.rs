@@ -66,7 +66,7 @@ enum Command {
     Repair(repair::Args),
     /// The solid a self-overlapping mesh encloses, as a clean closed mesh: closed parts
     /// that cross are united, parts nested in others dropped (or kept reversed, as the
-    /// fill rule says). A part that crosses itself is not resolved yet.
+    /// fill rule says); a part that crosses itself is cut along its own seam.
     Resolve(resolve::Args),
     /// Make triangle orientation consistent across every manifold edge, component by
     /// component, and face each component as asked (default: as most triangles already did).

@@ -238,11 +238,18 @@ def test_overlapping_parts_are_resolved():
     assert u.report["operands"][0]["resolved"]["components"] == 2
     assert u.is_closed and i.is_closed
     assert abs(u.volume + i.volume - r.volume - b.volume) < 1e-12
-    # A cube with a corner pushed through its bottom crosses itself: not resolved yet.
+    # A cube with a corner pushed through its bottom crosses itself: cut along its own
+    # seam. Winding 1, 0 or -1: vol(nonzero) + signed volume = 2 vol(positive).
     v = a.vertices.copy()
     v[np.all(v == 1.0, axis=1)] = [0.5, 0.5, -0.5]
-    with pytest.raises(ValueError, match="crosses itself"):
-        meshbool.resolve(meshbool.Mesh(v, a.faces))
+    folded = meshbool.Mesh(v, a.faces)
+    pos, nonzero = meshbool.resolve(folded), meshbool.resolve(folded, "nonzero")
+    assert pos.is_closed and nonzero.is_closed
+    assert abs(nonzero.volume + folded.volume - 2 * pos.volume) < 1e-12
+    assert pos.report["resolve"]["patches"] >= 3
+    # Open and crossing itself: cannot be resolved.
+    with pytest.raises(ValueError, match="not closed"):
+        meshbool.resolve(meshbool.Mesh(v, a.faces[1:]))
     with pytest.raises(ValueError, match="fill rule"):
         meshbool.resolve(two, "odd")
 

@@ -194,18 +194,6 @@ fn booleans_take_self_overlapping_operands_without_force() {
 
 #[test]
 fn what_cannot_be_resolved_is_refused_with_the_reason() {
-    // A component that crosses itself.
-    let err = ops::resolve(&folded_cube(), &ResolveOptions::default()).unwrap_err();
-    assert!(matches!(err, Error::Unresolvable { .. }), "{err}");
-    assert!(err.to_string().contains("crosses itself"), "{err}");
-    let b = Mesh::cuboid([2.0; 3], [3.0; 3]);
-    let err = ops::boolean(&folded_cube(), &b, Op::Union, &BooleanOptions::default())
-        .unwrap_err()
-        .to_string();
-    assert!(
-        err.contains("that cannot be resolved: component 0 crosses itself"),
-        "{err}"
-    );
     // An open part crossing another.
     let (positions, mut triangles) = Mesh::unit_cube().into_parts();
     triangles.truncate(10);
@@ -214,14 +202,69 @@ fn what_cannot_be_resolved_is_refused_with_the_reason() {
         Mesh::cuboid([0.5; 3], [1.5; 3]),
     ]);
     let err = ops::resolve(&open, &ResolveOptions::default()).unwrap_err();
+    assert!(matches!(err, Error::Unresolvable { .. }), "{err}");
     assert!(err.to_string().contains("not closed"), "{err}");
-    // Crossing parts under the even-odd rule are not built yet: said so, not guessed.
+}
+
+#[test]
+fn crossing_parts_under_even_odd_keep_their_symmetric_difference() {
+    // Two overlapping cubes: odd winding outside their common part, 2 - 2/8.
     let two = joined(&[Mesh::unit_cube(), Mesh::cuboid([0.5; 3], [1.5; 3])]);
-    let opts = ResolveOptions {
-        rule: FillRule::EvenOdd,
-        ..ResolveOptions::default()
-    };
-    assert!(ops::resolve(&two, &opts).is_err());
+    let out = resolve(&two, FillRule::EvenOdd);
+    assert_eq!(closed_manifold_volume(&out.mesh), 1.75);
+    let r = &out.resolve;
+    assert!(
+        r.patches >= 4 && r.patches_flipped >= 2 && r.patches_dropped == 0,
+        "{r:?}"
+    );
+    assert_eq!(r.failed_triangles, 0);
+}
+
+#[test]
+fn an_inward_part_crossing_an_outward_one_cuts_it() {
+    // [0,2]³ facing out and [1,3]³ facing in, as one mesh: winding 1 in A − B, 0 in
+    // A ∩ B, −1 in B − A.
+    let m = joined(&[
+        Mesh::cuboid([0.0; 3], [2.0; 3]),
+        Mesh::cuboid([1.0; 3], [3.0; 3]).flipped(),
+    ]);
+    for (rule, want) in [
+        (FillRule::Positive, 7.0),
+        (FillRule::NonZero, 14.0),
+        (FillRule::EvenOdd, 14.0),
+    ] {
+        let out = resolve(&m, rule);
+        assert_eq!(closed_manifold_volume(&out.mesh), want, "{rule}");
+        assert!(out.resolve.patches > 0, "{rule}: {:?}", out.resolve);
+    }
+}
+
+#[test]
+fn a_component_crossing_itself_is_cut_along_its_own_seam() {
+    // The folded cube's dent passes through its bottom: winding 1 in the cube, 0 in the
+    // dent inside it, -1 in the tip outside. Positive keeps w = 1, non-zero and even-odd
+    // w = ±1, and the signed volume is vol(w = 1) - vol(w = -1), so
+    // vol(nonzero) + signed = 2 vol(positive).
+    let m = folded_cube();
+    let signed = signed_volume(&m);
+    let pos = resolve(&m, FillRule::Positive);
+    let nonzero = resolve(&m, FillRule::NonZero);
+    let even = resolve(&m, FillRule::EvenOdd);
+    let (vp, vn) = (
+        closed_manifold_volume(&pos.mesh),
+        closed_manifold_volume(&nonzero.mesh),
+    );
+    assert_eq!(closed_manifold_volume(&even.mesh), vn);
+    assert!(vp > signed && vn > vp, "{signed} {vp} {vn}");
+    assert!((vn + signed - 2.0 * vp).abs() < 1e-12, "{signed} {vp} {vn}");
+    assert!(pos.resolve.patches >= 3, "{:?}", pos.resolve);
+    assert_eq!(pos.resolve.failed_triangles, 0);
+    // As a boolean operand it is resolved on the way in too.
+    let b = Mesh::cuboid([2.0; 3], [3.0; 3]);
+    let u = ops::boolean(&m, &b, Op::Union, &BooleanOptions::default()).unwrap();
+    let vu = closed_manifold_volume(&u.mesh);
+    assert!((vu - (vp + 1.0)).abs() < 1e-12, "{vu} vs {vp} + 1");
+    assert!(u.operands[0].resolved.as_ref().unwrap().patches > 0);
 }
 
 #[test]

@@ -402,7 +402,8 @@ def resolve(
     """The solid a self-overlapping mesh encloses, as a clean closed mesh: closed parts
     that cross are united, parts nested in others dropped (or kept reversed), as the fill
     rule says: ``"positive"`` (winding number ≥ 1, the union), ``"nonzero"``,
-    ``"evenodd"``. A part that crosses itself raises ``ValueError`` (not resolved yet).
+    ``"evenodd"``; a part that crosses itself is cut along its own seam. A mesh that
+    cannot be given a meaning (open and crossing itself) raises ``ValueError``.
     The result's ``provenance["triangle"]`` is the input triangle of each of its
     triangles; ``report`` is the ``meshbool resolve --json`` dict."""
     v, f = _parts(mesh)

@@ -14,6 +14,9 @@ use crate::kernel::{orient2d, Point, Triangle};
 use crate::Mesh;
 
 mod local;
+mod own;
+
+pub use own::arrange_self;
 
 /// Why a cut triangle could not be re-triangulated (the inputs broke an assumption of the
 /// arrangement, as a self-intersecting mesh does); the triangle is then kept whole.

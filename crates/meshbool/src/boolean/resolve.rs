@@ -1,22 +1,25 @@
 //! Resolving a self-overlapping mesh: the solid it encloses under a fill rule, as a clean
 //! closed mesh.
 //!
-//! What is built today: meshes made of closed, consistently oriented components that
-//! overlap or nest one another (CAD exports of touching parts, models made of overlapping
-//! primitives). Components that cross are united with exact booleans, in a balanced tree
+//! For meshes of closed, consistently oriented components. Where components only overlap
+//! or nest one another (CAD exports of touching parts, models made of overlapping
+//! primitives), components that cross are united with exact booleans, in a balanced tree
 //! (`log2 k` rounds, pairs of a round in parallel); a component or united cluster that
 //! crosses nothing is kept or dropped by the winding number of the others at one of its
-//! points. A component that crosses *itself* needs the self-arrangement (cutting a mesh
-//! along its own seams, `DESIGN.md`), which is not built yet: such meshes are refused
-//! with the reason.
+//! points. A component that crosses *itself*, an inward-facing component crossing
+//! another, and crossing components under the even-odd rule go through the
+//! self-arrangement instead ([`crate::arrange::arrange_self`]): the mesh cut along its own
+//! seam, each piece kept, dropped or reversed by the winding number on its two sides.
 
 use rayon::prelude::*;
 use serde::Serialize;
 
 use super::nary::{reduce, Part, Reduced};
 use super::{Op, PipelineOptions};
-use crate::classify::winding_number;
+use crate::arrange::arrange_self;
+use crate::classify::{winding_number, winding_number_without, winding_term, FastWinding};
 use crate::edges::{EdgeKind, EdgeTopology};
+use crate::intersect::self_seam;
 use crate::measure::signed_volume;
 use crate::repair::{split_nonmanifold, NonManifoldReport};
 use crate::vec3::{cross, norm, sub};
@@ -77,7 +80,18 @@ pub struct ResolveReport {
     /// Components (or united clusters) kept with their orientation reversed, to face away
     /// from the solid (a part nested in another under the even-odd rule).
     pub flipped_components: usize,
-    /// Points of the intersection curves of the unions.
+    /// Pieces the mesh was cut into along where it crosses itself (the self-arrangement,
+    /// used when a component crosses itself, an inward-facing one crosses another, or
+    /// under the even-odd rule); 0 when resolved by uniting parts.
+    pub patches: usize,
+    /// Of those, pieces dropped (not on the boundary of the solid under the rule).
+    pub patches_dropped: usize,
+    /// Of those, pieces kept reversed (facing away from the solid).
+    pub patches_flipped: usize,
+    /// Points where three sheets of the mesh meet (three-plane points of the
+    /// self-arrangement).
+    pub triple_points: usize,
+    /// Points of the intersection curves of the unions (or of the self-arrangement).
     pub seam_points: usize,
     /// Input triangles that could not be cut along a seam and were kept whole (empty for
     /// valid inputs); triangle ids of the input.
@@ -114,9 +128,8 @@ struct Piece {
 /// [`crate::intersect::self_intersections`] finds them): the solid its winding number
 /// encloses under `rule`, as a closed mesh (manifold unless `opts.keep_nonmanifold`).
 ///
-/// Errors (the reason, one phrase): a component that crosses itself, a component that is
-/// not closed and consistently oriented, a component of zero volume, an inward-facing
-/// component crossing another, crossing components under [`FillRule::EvenOdd`].
+/// Errors (the reason, one phrase): a component that is not closed and consistently
+/// oriented, a component of zero volume.
 pub fn resolve(
     mesh: &Mesh,
     pairs: &[(u32, u32)],
@@ -156,9 +169,8 @@ pub fn resolve(
             component[j as usize] as usize,
         );
         if ci == cj {
-            return Err(format!(
-                "component {ci} crosses itself (triangles {i} and {j}): resolving a self-crossing component needs the self-arrangement, not built yet"
-            ));
+            // A component crosses itself: cut the mesh along its own seam.
+            return resolve_self(mesh, pairs, rule, opts, report);
         }
         report.crossing_pairs += 1;
         let (ri, rj) = (find(&mut root, ci), find(&mut root, cj));
@@ -175,10 +187,8 @@ pub fn resolve(
     }
     clusters.retain(|c| !c.is_empty());
     if rule == FillRule::EvenOdd && clusters.iter().any(|c| c.len() > 1) {
-        return Err(
-            "crossing components under the even-odd rule need the self-arrangement, not built yet"
-                .into(),
-        );
+        // Parts cut one another's inside into pieces of alternating parity.
+        return resolve_self(mesh, pairs, rule, opts, report);
     }
     let components: Vec<Piece> = members
         .par_iter()
@@ -200,10 +210,9 @@ pub fn resolve(
         return Err(format!("component {c} encloses no volume"));
     }
     for cluster in clusters.iter().filter(|c| c.len() > 1) {
-        if let Some(&c) = cluster.iter().find(|&&c| components[c].facing < 0) {
-            return Err(format!(
-                "component {c} faces inward and crosses another component"
-            ));
+        if cluster.iter().any(|&c| components[c].facing < 0) {
+            // An inward-facing part crossing others: not a union of solids.
+            return resolve_self(mesh, pairs, rule, opts, report);
         }
         report.united_components += cluster.len();
     }
@@ -310,4 +319,178 @@ fn probe(mesh: &Mesh) -> [f64; 3] {
         .expect("a piece has triangles");
     let [a, b, c] = mesh.corners(t);
     std::array::from_fn(|k| (a[k] + b[k] + c[k]) / 3.0)
+}
+
+/// Resolves `mesh` through its self-arrangement: the mesh cut along where it crosses
+/// itself ([`crate::arrange::arrange_self`]) into patches bounded by the crossings; each
+/// patch is kept, dropped or reversed by the fill rule applied to the winding number of
+/// the whole mesh just in front of and behind it (which differ by one). The winding
+/// number is the floating-point sum of solid angles at the centroid of the patch's
+/// largest piece, its own piece left out (a half-integer, rounded), as in classification's
+/// fallback: a measure, not an exact predicate, wrong only for a point within rounding of
+/// another sheet.
+fn resolve_self(
+    mesh: &Mesh,
+    pairs: &[(u32, u32)],
+    rule: FillRule,
+    opts: &PipelineOptions,
+    mut report: ResolveReport,
+) -> Result<Resolved, String> {
+    report.crossing_pairs = pairs.len();
+    report.united_components = 0;
+    let seam = self_seam(mesh, pairs);
+    let arr = arrange_self(mesh, &seam);
+    report.seam_points = seam.points.len();
+    report.triple_points = arr
+        .added_points
+        .iter()
+        .filter(|p| matches!(p, crate::kernel::Point::Tpi(_)))
+        .count();
+    report.failed_triangles = arr.failed.len();
+    report.rounding_flips = arr.rounding_flips.len();
+    let m = &arr.mesh;
+    let topo = EdgeTopology::new(m);
+    // Patches: pieces joined across edges of exactly two triangles (the crossings have
+    // four or more).
+    let (count, patch) = topo.components_across(|e| topo.uses_of(e).len() == 2);
+    report.patches = count;
+    let twice_area = |t: usize| {
+        let [a, b, c] = m.corners(t);
+        norm(&cross(&sub(&b, &a), &sub(&c, &a)))
+    };
+    let mut best = vec![(0.0f64, usize::MAX); count];
+    for (t, &p) in patch.iter().enumerate() {
+        let a = twice_area(t);
+        if a > best[p as usize].0 {
+            best[p as usize] = (a, t);
+        }
+    }
+    // The winding number just in front of each patch: at the centroid of its largest
+    // piece, that piece left out (exact sums while they are cheap, the hierarchical
+    // approximation with the piece's own term taken out beyond).
+    let probes: Vec<(usize, [f64; 3])> = best
+        .iter()
+        .filter(|&&(_, t)| t != usize::MAX)
+        .map(|&(_, t)| {
+            let [a, b, c] = m.corners(t);
+            (t, std::array::from_fn(|k| (a[k] + b[k] + c[k]) / 3.0))
+        })
+        .collect();
+    let around: Vec<f64> =
+        if (m.triangles.len() as f64) * (probes.len() as f64) <= opts.exact_winding_up_to {
+            probes
+                .par_iter()
+                .map(|&(t, p)| winding_number_without(m, p, t))
+                .collect()
+        } else {
+            let points: Vec<[f64; 3]> = probes.iter().map(|&(_, p)| p).collect();
+            let all = FastWinding::new(m).at_many(&points);
+            probes
+                .iter()
+                .zip(all)
+                .map(|(&(t, p), w)| {
+                    let [a, b, c] = m.corners(t);
+                    w - winding_term(&a, &b, &c, &p)
+                })
+                .collect()
+        };
+    let mut front = vec![None; count];
+    for (&(t, _), w) in probes.iter().zip(around) {
+        front[patch[t] as usize] = Some((w - 0.5).round() as i64);
+    }
+    // Per patch: None dropped (or only zero-area pieces), Some(flip) kept.
+    let keep: Vec<Option<bool>> = front
+        .iter()
+        .map(|f| {
+            let front = (*f)?;
+            let behind = front + 1;
+            (rule.inside(behind) != rule.inside(front)).then(|| !rule.inside(behind))
+        })
+        .collect();
+    report.patches_dropped = keep.iter().filter(|k| k.is_none()).count();
+    report.patches_flipped = keep.iter().filter(|k| **k == Some(true)).count();
+    let kept: Vec<u32> = (0..m.triangles.len() as u32)
+        .filter(|&t| keep[patch[t as usize] as usize].is_some())
+        .collect();
+    let mut out = m.subset(&kept);
+    for (i, &t) in kept.iter().enumerate() {
+        if keep[patch[t as usize] as usize] == Some(true) {
+            out.triangles[i].swap(1, 2);
+        }
+    }
+    let parent = kept.iter().map(|&t| arr.parent[t as usize]).collect();
+    if !opts.keep_nonmanifold {
+        let (split, r) = split_nonmanifold(&out);
+        out = split;
+        report.split_nonmanifold = r;
+    }
+    Ok(Resolved {
+        mesh: out,
+        parent,
+        report,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::intersect::self_intersections;
+    use crate::measure::mesh_stats;
+    use crate::shapes::uv_sphere;
+    use crate::test_util::Rng;
+
+    /// Overlapping spheres in one mesh: the self-arrangement (cutting all of them along
+    /// one another at once, with the points where three meet) encloses the same solid as
+    /// uniting them with exact booleans, to rounding.
+    #[test]
+    fn self_arrangement_agrees_with_uniting_the_parts() {
+        let mut rng = Rng(0x5eed_1234_abcd_0011);
+        let mut m = Mesh::default();
+        for _ in 0..30 {
+            let c = [3.0 * rng.unit(), 3.0 * rng.unit(), 3.0 * rng.unit()];
+            m.append(&uv_sphere(c, 0.6 + 0.6 * rng.unit(), 24, 12))
+                .unwrap();
+        }
+        let pairs = self_intersections(&m);
+        let opts = PipelineOptions::default();
+        let parts = resolve(&m, &pairs, FillRule::Positive, &opts).unwrap();
+        let own = resolve_self(
+            &m,
+            &pairs,
+            FillRule::Positive,
+            &opts,
+            ResolveReport::default(),
+        )
+        .unwrap();
+        assert_eq!(parts.report.patches, 0);
+        assert!(
+            own.report.patches > 12 && own.report.triple_points > 0,
+            "{:?}",
+            own.report
+        );
+        assert_eq!(own.report.failed_triangles, 0);
+        for r in [&parts, &own] {
+            let s = mesh_stats(&r.mesh);
+            assert!(s.closed, "{s:?}");
+            assert_eq!((s.non_manifold_edges, s.inconsistent_edges), (0, 0));
+        }
+        let (a, b) = (signed_volume(&parts.mesh), signed_volume(&own.mesh));
+        assert!((a - b).abs() <= 1e-9 * a, "{a} vs {b}");
+        // The same with the hierarchical winding numbers.
+        let approx = PipelineOptions {
+            exact_winding_up_to: 0.0,
+            ..opts
+        };
+        let fast = resolve_self(
+            &m,
+            &pairs,
+            FillRule::Positive,
+            &approx,
+            ResolveReport::default(),
+        )
+        .unwrap();
+        assert_eq!(fast.mesh, own.mesh);
+        // Every result triangle names an input triangle of a sphere it lies on.
+        assert!(own.parent.iter().all(|&t| (t as usize) < m.triangles.len()));
+    }
 }

@@ -18,6 +18,7 @@ use crate::Mesh;
 
 mod winding;
 pub use winding::{winding_number, FastWinding};
+pub(crate) use winding::{winding_number_without, winding_term};
 
 /// Where a triangle of one mesh lies relative to the other mesh.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -42,6 +42,27 @@ pub fn winding_number(mesh: &Mesh, p: [f64; 3]) -> f64 {
     half * HALF_ANGLE_TO_WINDING
 }
 
+/// [`winding_number`] of `mesh` at `p` without triangle `skip`: at a point on `skip`
+/// itself, whose own solid angle there is a half sphere of either sign, the other
+/// triangles' sum is `w + 1/2` with `w` the winding number just in front of `skip`.
+pub(crate) fn winding_number_without(mesh: &Mesh, p: [f64; 3], skip: usize) -> f64 {
+    let half: f64 = (0..mesh.triangles.len())
+        .into_par_iter()
+        .filter(|&t| t != skip)
+        .map(|t| {
+            let [a, b, c] = mesh.corners(t);
+            half_solid_angle(&a, &b, &c, &p)
+        })
+        .sum();
+    half * HALF_ANGLE_TO_WINDING
+}
+
+/// Triangle `abc`'s term of a winding number at `p` (what [`winding_number`] and the near
+/// field of [`FastWinding`] add for it, computed the same way).
+pub(crate) fn winding_term(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], p: &[f64; 3]) -> f64 {
+    half_solid_angle(a, b, c, p) * HALF_ANGLE_TO_WINDING
+}
+
 /// Triangles per leaf of [`FastWinding`].
 const LEAF: usize = 8;
 

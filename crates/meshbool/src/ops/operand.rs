@@ -25,10 +25,11 @@ pub struct Checks {
     /// much as the boolean). Turn off only for inputs known to be clean: the report then
     /// says they were not checked.
     pub self_intersections: bool,
-    /// Resolve an operand whose self-intersections are all between its components (parts
-    /// that overlap or nest): the operand becomes the solid they enclose, the union of the
-    /// parts (`boolean::resolve`, fill rule positive; see [`super::resolve()`]). Needs
-    /// `self_intersections`. Off: such an operand is a problem like any self-intersection.
+    /// Resolve a self-intersecting operand made of closed, consistently oriented
+    /// components into the solid it encloses (fill rule positive: the union of its
+    /// overlapping parts, a self-crossing part cut along its own seam; see
+    /// [`super::resolve()`]). Needs `self_intersections`. Off: self-intersections are a
+    /// problem.
     pub resolve: bool,
     /// Proceed when a check finds a problem, taking the input as given; the problems are
     /// listed in the report's `assumed`. Without it they are an [`Error::Operand`].
@@ -149,9 +150,20 @@ impl OperandReport {
             ));
         }
         if let Some(r) = &self.resolved {
+            let how = if r.patches > 0 {
+                format!(
+                    "cut along its own seam into {} pieces, {} dropped, {} reversed",
+                    r.patches, r.patches_dropped, r.patches_flipped
+                )
+            } else {
+                format!(
+                    "{} of its {} components united, {} nested ones dropped",
+                    r.united_components, r.components, r.dropped_components
+                )
+            };
             lines.push(format!(
-                "{}: {} crossing triangle pairs between its {} components resolved: the operand is the solid they enclose (fill rule positive; {} components united, {} nested ones dropped)",
-                self.name, r.crossing_pairs, r.components, r.united_components, r.dropped_components
+                "{}: {} self-intersecting triangle pairs resolved: the operand is the solid it encloses (fill rule positive; {how})",
+                self.name, r.crossing_pairs
             ));
         }
         let problems = self.problems();

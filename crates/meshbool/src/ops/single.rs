@@ -236,8 +236,8 @@ impl ResolveOutput {
 
 /// The solid a self-overlapping mesh encloses under `opts.rule`, as a closed mesh
 /// (`boolean::resolve`): overlapping parts united, nested ones dropped. Built
-/// today for meshes whose closed components overlap or nest one another; a component
-/// that crosses itself is an [`Error::Unresolvable`](crate::Error::Unresolvable).
+/// for meshes of closed, consistently oriented components; anything else that crosses
+/// itself is an [`Error::Unresolvable`](crate::Error::Unresolvable).
 pub fn resolve<'a>(mesh: impl Into<Input<'a>>, opts: &ResolveOptions) -> Result<ResolveOutput> {
     let input: Input<'a> = mesh.into();
     with_threads(opts.run.threads, || {

@@ -11,13 +11,25 @@ fn cubes() -> (Mesh, Mesh) {
 }
 
 /// A cube with a corner pushed through its bottom: one component crossing itself.
-fn self_intersecting() -> Mesh {
+fn folded_cube() -> Mesh {
     let (mut positions, triangles) = Mesh::unit_cube().into_parts();
     for p in &mut positions {
         if *p == [1.0; 3] {
             *p = [0.5, 0.5, -0.5];
         }
     }
+    Mesh::new(positions, triangles).unwrap()
+}
+
+/// The folded cube with a triangle of its face x = 0 taken out: it crosses itself and
+/// is open, so it cannot be resolved into a solid.
+fn self_intersecting() -> Mesh {
+    let m = folded_cube();
+    let (positions, mut triangles) = m.clone().into_parts();
+    let t = (0..triangles.len())
+        .find(|&t| m.corners(t).iter().all(|p| p[0] == 0.0))
+        .unwrap();
+    triangles.remove(t);
     Mesh::new(positions, triangles).unwrap()
 }
 
@@ -426,7 +438,7 @@ fn self_curves_are_the_curves_between_the_parts() {
 
     // A cube with a corner pushed through its bottom: one closed loop where the three
     // faces at that corner pass through the bottom face.
-    let folded = self_intersecting();
+    let folded = folded_cube();
     let r = self_curves(&folded, &CurvesOptions::default())
         .unwrap()
         .report();

@@ -1,0 +1,158 @@
+//! The self-arrangement: a mesh cut along where it crosses itself
+//! ([`crate::intersect::self_seam`]), so that every sheet that passes through another is
+//! split along the crossing and the two share its vertices and edges.
+//!
+//! Differences from cutting one mesh along another's seam: a seam point lies on two
+//! features of the same mesh and is inserted into the triangles of both; a seam segment is
+//! a constraint of both its triangles; and two constraints of one triangle can cross,
+//! where three of the mesh's triangles meet: the crossing becomes a three-plane point
+//! ([`Point::Tpi`]), named by the sorted triangle triple so that the three triangles share
+//! one vertex, and inserted into all three (each splits its constraints there).
+
+use rayon::prelude::*;
+use rustc_hash::FxHashMap;
+
+use super::{cut_triangle, cut_triangles, reassemble, seam_edges, Arranged, SeamPoints};
+use crate::intersect::{Feature, Seam};
+use crate::kernel::{orient2d, Point, Sign, Triangle};
+use crate::Mesh;
+
+/// Per triangle: its constraints (seam edges), each with the triangle it comes from
+/// (`None` for coplanar overlaps, which cross nothing at a three-plane point).
+type Sourced = FxHashMap<u32, Vec<([u32; 2], Option<u32>)>>;
+
+/// Cuts `mesh` along its own seam `seam` (from [`crate::intersect::self_seam`] on the
+/// same mesh). Degenerate coincidences (four planes through one point, a crossing exactly
+/// at another seam point) may leave triangles that do not share a vertex where they
+/// should; such triangles are kept uncut and listed in [`Arranged::failed`] when their
+/// re-triangulation fails.
+pub fn arrange_self(mesh: &Mesh, seam: &Seam) -> Arranged {
+    let mut points = index_own_points(mesh, seam);
+    let seam_edges = seam_edges(seam, &points.seam_vertex);
+    let mut with_other: Sourced = FxHashMap::default();
+    for src in &seam.sources {
+        let e = seam_edges[src.segment as usize];
+        let coplanar = seam.segments[src.segment as usize].coplanar;
+        for (t, o) in [(src.tri_a, src.tri_b), (src.tri_b, src.tri_a)] {
+            let list = with_other.entry(t).or_default();
+            if !list.iter().any(|(x, _)| *x == e) {
+                list.push((e, (!coplanar).then_some(o)));
+            }
+        }
+    }
+    add_crossings(mesh, &mut points, &with_other);
+    let constraints: FxHashMap<u32, Vec<[u32; 2]>> = with_other
+        .into_iter()
+        .map(|(t, list)| (t, list.into_iter().map(|(e, _)| e).collect()))
+        .collect();
+    let cut = cut_triangles(mesh, &points, &constraints);
+    let results: Vec<_> = cut
+        .par_iter()
+        .map(|&t| (t, cut_triangle(mesh, t, &points, &constraints)))
+        .collect();
+    let out = reassemble(mesh, results);
+    Arranged {
+        mesh: Mesh::new_unchecked(points.positions, out.triangles),
+        input_vertices: points.input_vertices,
+        added_points: points.added,
+        parent: out.parent,
+        seam_vertex: points.seam_vertex,
+        seam_edges,
+        failed: out.failed,
+        rounding_flips: out.rounding_flips,
+    }
+}
+
+/// Every seam point as a vertex: an input vertex as itself, any other point new, noted on
+/// both features of the mesh it lies on.
+fn index_own_points(mesh: &Mesh, seam: &Seam) -> SeamPoints {
+    let mut points = SeamPoints {
+        positions: mesh.positions.clone(),
+        input_vertices: mesh.positions.len(),
+        added: Vec::new(),
+        on_face: FxHashMap::default(),
+        on_edge: FxHashMap::default(),
+        seam_vertex: Vec::with_capacity(seam.points.len()),
+    };
+    for (s, l) in seam.points.iter().enumerate() {
+        if let Feature::Vertex(v) = l.a {
+            points.seam_vertex.push(v);
+            continue;
+        }
+        let id = points.positions.len() as u32;
+        points.positions.push(seam.positions[s]);
+        points.added.push(seam.exact[s].clone());
+        for (k, f) in [l.a, l.b].into_iter().enumerate() {
+            if k == 1 && f == l.a {
+                break;
+            }
+            match f {
+                Feature::Face(t) => points.on_face.entry(t).or_default().push(id),
+                Feature::Edge(u, v) => points.on_edge.entry((u, v)).or_default().push(id),
+                Feature::Vertex(_) => {}
+            }
+        }
+        points.seam_vertex.push(id);
+    }
+    points
+}
+
+/// Finds, in every triangle, the constraints that cross each other in their interiors;
+/// each crossing becomes a three-plane point shared by the three triangles, inserted in
+/// their faces.
+fn add_crossings(
+    mesh: &Mesh,
+    points: &mut SeamPoints,
+    cons: &Sourced,
+) {
+    let exact = |v: u32| -> Point {
+        match (v as usize).checked_sub(points.input_vertices) {
+            Some(i) => points.added[i].clone(),
+            None => Point::Explicit(mesh.positions[v as usize]),
+        }
+    };
+    let mut triples: Vec<[u32; 3]> = cons
+        .par_iter()
+        .filter(|(_, list)| list.len() > 1)
+        .flat_map_iter(|(&t, list)| {
+            let mut found = Vec::new();
+            let Some(shape) = Triangle::new(mesh.corners(t as usize)) else {
+                return found;
+            };
+            let axis = shape.axis();
+            let ends: Vec<[Point; 2]> = list.iter().map(|(e, _)| e.map(exact)).collect();
+            for i in 0..list.len() {
+                for j in i + 1..list.len() {
+                    let ((e, Some(u)), (f, Some(w))) = (list[i], list[j]) else {
+                        continue;
+                    };
+                    if u == w || e.iter().any(|v| f.contains(v)) {
+                        continue;
+                    }
+                    let ([p, q], [r, s]) = (&ends[i], &ends[j]);
+                    let apart = |a: &Point, b: &Point, c: &Point, d: &Point| {
+                        orient2d(a, b, c, axis).times(orient2d(a, b, d, axis)) == Sign::Negative
+                    };
+                    if apart(p, q, r, s) && apart(r, s, p, q) {
+                        let mut tri = [t, u, w];
+                        tri.sort_unstable();
+                        found.push(tri);
+                    }
+                }
+            }
+            found
+        })
+        .collect();
+    triples.par_sort_unstable();
+    triples.dedup();
+    for tri in triples {
+        let id = points.positions.len() as u32;
+        let planes = tri.map(|t| mesh.corners(t as usize));
+        let p = Point::Tpi(Box::new(planes));
+        points.positions.push(p.approx());
+        points.added.push(p);
+        for t in tri {
+            points.on_face.entry(t).or_default().push(id);
+        }
+    }
+}
