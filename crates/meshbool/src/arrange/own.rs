@@ -100,11 +100,7 @@ fn index_own_points(mesh: &Mesh, seam: &Seam) -> SeamPoints {
 /// Finds, in every triangle, the constraints that cross each other in their interiors;
 /// each crossing becomes a three-plane point shared by the three triangles, inserted in
 /// their faces.
-fn add_crossings(
-    mesh: &Mesh,
-    points: &mut SeamPoints,
-    cons: &Sourced,
-) {
+fn add_crossings(mesh: &Mesh, points: &mut SeamPoints, cons: &Sourced) {
     let exact = |v: u32| -> Point {
         match (v as usize).checked_sub(points.input_vertices) {
             Some(i) => points.added[i].clone(),
