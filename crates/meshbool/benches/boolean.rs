@@ -93,3 +93,44 @@ fn union_10_spheres_chain() -> usize {
     }
     acc.triangle_count()
 }
+
+/// A real model pair from `../shared/data/real/` (read once, welded), or `None` with a
+/// message when the shared data is not there.
+fn real_pair(a: &str, b: &str) -> Option<(meshbool::Mesh, meshbool::Mesh)> {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data/real");
+    let read = |f: &str| {
+        let m = meshbool::io::read_path(format!("{dir}/{f}")).ok()?;
+        Some(meshbool::weld_exact(&m).mesh)
+    };
+    let pair = read(a).zip(read(b));
+    if pair.is_none() {
+        eprintln!("skipped: {dir}/{a} and {b} not found (shared data)");
+    }
+    pair
+}
+
+static THINGI_79741_65004: std::sync::LazyLock<Option<(meshbool::Mesh, meshbool::Mesh)>> =
+    std::sync::LazyLock::new(|| real_pair("thingi_79741.obj", "thingi_65004.obj"));
+static THINGI_908460_73416: std::sync::LazyLock<Option<(meshbool::Mesh, meshbool::Mesh)>> =
+    std::sync::LazyLock::new(|| real_pair("thingi_908460.obj", "thingi_73416.obj"));
+
+/// 79741 − 65004: huge triangles of B each crossed by thousands of A's seam points (the
+/// exact fallback storm of issue 16).
+#[divan::bench(sample_count = 5)]
+fn difference_thingi_79741_65004() -> usize {
+    THINGI_79741_65004.as_ref().map_or(0, |(a, b)| {
+        boolean(a, b, Op::Difference, &Default::default())
+            .mesh
+            .triangle_count()
+    })
+}
+
+/// 908460 − 73416: dense overlap.
+#[divan::bench(sample_count = 5)]
+fn difference_thingi_908460_73416() -> usize {
+    THINGI_908460_73416.as_ref().map_or(0, |(a, b)| {
+        boolean(a, b, Op::Difference, &Default::default())
+            .mesh
+            .triangle_count()
+    })
+}

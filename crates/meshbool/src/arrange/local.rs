@@ -6,7 +6,7 @@
 //! orientation test allows it).
 
 use super::FailReason;
-use crate::kernel::{orient2d_prepared, Point, Prepared, Sign};
+use crate::kernel::{boxes_apart, orient2d_prepared, Point, Prepared, Sign};
 
 const NONE: u32 = u32::MAX;
 
@@ -278,10 +278,30 @@ impl Local {
         if p == q || self.mark_fixed(p, q) {
             return Ok(());
         }
-        // A vertex exactly on the open segment splits it.
-        let side: Vec<Sign> = (0..self.pts.len() as u32)
-            .map(|v| self.orient(p, q, v))
-            .collect();
+        // Sides of vertices against the line p q, computed only where needed: a vertex
+        // or an edge whose box is certainly apart from the segment's can neither lie on it
+        // nor cross it (with thousands of seam points in one triangle, most are far, and
+        // the collinear ones near it would each need the exact evaluation).
+        let side_cache: Vec<std::cell::Cell<Option<Sign>>> =
+            vec![std::cell::Cell::new(None); self.pts.len()];
+        let side = |l: &Local, v: u32| -> Sign {
+            let c = &side_cache[v as usize];
+            c.get().unwrap_or_else(|| {
+                let s = l.orient(p, q, v);
+                c.set(Some(s));
+                s
+            })
+        };
+        let apart = |l: &Local, a: u32, b: u32| {
+            let pts = &l.pts;
+            boxes_apart(
+                &pts[a as usize],
+                &pts[b as usize],
+                &pts[p as usize],
+                &pts[q as usize],
+                l.axis,
+            )
+        };
         // Order along p q by a coordinate in which they differ.
         let k = crate::kernel::longest_axis(&self.approx[p as usize], &self.approx[q as usize]);
         let axis_cmp = |a: u32, b: u32| {
@@ -291,8 +311,9 @@ impl Local {
                 k,
             )
         };
+        // A vertex exactly on the open segment splits it.
         for v in 0..self.pts.len() as u32 {
-            if v != p && v != q && side[v as usize] == Sign::Zero {
+            if v != p && v != q && !apart(self, v, v) && side(self, v) == Sign::Zero {
                 let (x, y) = (axis_cmp(p, v), axis_cmp(v, q));
                 if x != std::cmp::Ordering::Equal && x == y {
                     self.constrain(p, v)?;
@@ -301,7 +322,8 @@ impl Local {
             }
         }
         let crosses = |l: &Local, a: u32, b: u32| {
-            side[a as usize].times(side[b as usize]) == Sign::Negative
+            !apart(l, a, b)
+                && side(l, a).times(side(l, b)) == Sign::Negative
                 && l.orient(a, b, p).times(l.orient(a, b, q)) == Sign::Negative
         };
         let mut queue: Vec<(u32, u32)> = Vec::new();

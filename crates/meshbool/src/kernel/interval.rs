@@ -19,6 +19,42 @@ impl Interval {
         hi: f64::INFINITY,
     };
 
+    /// The quotient `self / o`, or `None` when `o` may be zero. IEEE division is
+    /// correctly rounded, so widening by an ulp encloses the exact quotient.
+    pub(crate) fn div(&self, o: &Interval) -> Option<Interval> {
+        if !(o.lo > 0.0 || o.hi < 0.0) {
+            return None;
+        }
+        let q = [
+            self.lo / o.lo,
+            self.lo / o.hi,
+            self.hi / o.lo,
+            self.hi / o.hi,
+        ];
+        if q.iter().any(|x| !x.is_finite()) {
+            return None;
+        }
+        Some(Self::widened(
+            q.iter().copied().fold(f64::INFINITY, f64::min),
+            q.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        ))
+    }
+
+    /// The lower end.
+    pub(crate) fn lo(&self) -> f64 {
+        self.lo
+    }
+
+    /// The upper end.
+    pub(crate) fn hi(&self) -> f64 {
+        self.hi
+    }
+
+    /// Whether the two intervals share no point.
+    pub(crate) fn disjoint(&self, o: &Interval) -> bool {
+        self.hi < o.lo || o.hi < self.lo
+    }
+
     fn widened(lo: f64, hi: f64) -> Interval {
         if lo.is_nan() || hi.is_nan() {
             return Self::EVERYTHING;

@@ -560,13 +560,43 @@ pub fn orient2d(a: &Point, b: &Point, c: &Point, axis: usize) -> Sign {
 pub(crate) struct Prepared {
     point: Point,
     enclosure: [Interval; 4],
+    /// Enclosures of the point's coordinates themselves (`X/W`, ...), when `W`'s enclosure
+    /// excludes zero: a point's coordinates are known to a few ulps of their own size,
+    /// while its homogeneous coordinates carry the (large) scale of the planes that made
+    /// it, so predicates on close points decide here where the homogeneous filter cannot.
+    coords: Option<[Interval; 3]>,
+    /// The exact homogeneous coordinates, computed on the first exact evaluation that
+    /// needs them and kept: in a triangulation the same points meet the exact fallback
+    /// again and again, and building an implicit point's coordinates is most of its cost.
+    exact: std::cell::OnceCell<[Dyadic; 4]>,
 }
 
 impl Prepared {
     /// Prepares `point`.
     pub(crate) fn new(point: Point) -> Prepared {
         let enclosure = point.homogeneous::<Interval>();
-        Prepared { point, enclosure }
+        let coords = match &point {
+            Point::Explicit(p) => Some(p.map(Interval::from_f64)),
+            _ => {
+                let [x, y, z, w] = &enclosure;
+                match (x.div(w), y.div(w), z.div(w)) {
+                    (Some(x), Some(y), Some(z)) => Some([x, y, z]),
+                    _ => None,
+                }
+            }
+        };
+        Prepared {
+            point,
+            enclosure,
+            coords,
+            exact: std::cell::OnceCell::new(),
+        }
+    }
+
+    /// The exact homogeneous coordinates (computed once).
+    fn exact(&self) -> &[Dyadic; 4] {
+        self.exact
+            .get_or_init(|| self.point.homogeneous::<Dyadic>())
     }
 
     /// The point itself.
@@ -584,6 +614,29 @@ impl Prepared {
     }
 }
 
+/// True when the boxes around `a`–`b` and around `c`–`d` (hulls of the enclosures of the
+/// points' coordinates) are certainly apart in one of the two coordinates of the
+/// projection dropping `axis`: then no point of segment `a b` is on segment `c d`, and the
+/// segments do not cross. False when it cannot tell (an enclosure is missing, or the
+/// boxes overlap). A filter, never a decision on its own.
+pub(crate) fn boxes_apart(
+    a: &Prepared,
+    b: &Prepared,
+    c: &Prepared,
+    d: &Prepared,
+    axis: usize,
+) -> bool {
+    let (Some(ca), Some(cb), Some(cc), Some(cd)) = (&a.coords, &b.coords, &c.coords, &d.coords)
+    else {
+        return false;
+    };
+    [(axis + 1) % 3, (axis + 2) % 3].into_iter().any(|k| {
+        let (lo1, hi1) = (ca[k].lo().min(cb[k].lo()), ca[k].hi().max(cb[k].hi()));
+        let (lo2, hi2) = (cc[k].lo().min(cd[k].lo()), cc[k].hi().max(cd[k].hi()));
+        hi1 < lo2 || hi2 < lo1
+    })
+}
+
 /// [`orient2d`] of prepared points: the same exact answer, the interval filter from the
 /// stored enclosures.
 pub(crate) fn orient2d_prepared(a: &Prepared, b: &Prepared, c: &Prepared, axis: usize) -> Sign {
@@ -591,12 +644,25 @@ pub(crate) fn orient2d_prepared(a: &Prepared, b: &Prepared, c: &Prepared, axis: 
         return s;
     }
     let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+    // First on the coordinates themselves: (b − a) × (c − a).
+    if let (Some(pa), Some(pb), Some(pc)) = (&a.coords, &b.coords, &c.coords) {
+        let (u, v) = (
+            [pb[i].sub(&pa[i]), pb[j].sub(&pa[j])],
+            [pc[i].sub(&pa[i]), pc[j].sub(&pa[j])],
+        );
+        if let Some(s) = u[0].mul(&v[1]).sub(&u[1].mul(&v[0])).sign() {
+            return s;
+        }
+    }
     let rows = [a, b, c].map(|p| [p.enclosure[i], p.enclosure[j], p.enclosure[3]]);
     let det = match det3(rows).sign() {
         Some(s) => s,
-        None => orient2d_rows::<Dyadic>(&a.point, &b.point, &c.point, axis)
-            .sign()
-            .expect("exact signs are always decided"),
+        None => det3([a, b, c].map(|p| {
+            let h = p.exact();
+            [h[i].clone(), h[j].clone(), h[3].clone()]
+        }))
+        .sign()
+        .expect("exact signs are always decided"),
     };
     [a, b, c].iter().fold(det, |s, p| s.times(p.sign_of_w()))
 }
@@ -607,12 +673,26 @@ pub(crate) fn cmp_coord_prepared(a: &Prepared, b: &Prepared, axis: usize) -> Ord
     if let (Some(pa), Some(pb)) = (a.point.explicit(), b.point.explicit()) {
         return pa[axis].partial_cmp(&pb[axis]).unwrap_or(Ordering::Equal);
     }
+    if let (Some(ca), Some(cb)) = (&a.coords, &b.coords) {
+        if ca[axis].disjoint(&cb[axis]) {
+            return if ca[axis].lo() < cb[axis].lo() {
+                Ordering::Less
+            } else {
+                Ordering::Greater
+            };
+        }
+    }
     let (ea, eb) = (&a.enclosure, &b.enclosure);
     let diff = match ea[axis].mul(&eb[3]).sub(&eb[axis].mul(&ea[3])).sign() {
         Some(s) => s,
-        None => coord_diff::<Dyadic>(&a.point, &b.point, axis)
-            .sign()
-            .expect("exact signs are always decided"),
+        None => {
+            let (ha, hb) = (a.exact(), b.exact());
+            ha[axis]
+                .mul(&hb[3])
+                .sub(&hb[axis].mul(&ha[3]))
+                .sign()
+                .expect("exact signs are always decided")
+        }
     };
     (diff.times(a.sign_of_w()).times(b.sign_of_w()) as i8).cmp(&0)
 }

@@ -634,3 +634,68 @@ fn sides_of_three_points_agree_with_single_tests() {
     }
     assert!(zeros > 2000, "{zeros}");
 }
+
+/// Seam points of a fine mesh crossing one huge triangle: close edge-plane points whose
+/// homogeneous coordinates carry the huge plane's scale. The prepared predicates (which
+/// first look at enclosures of the coordinates themselves) agree with the oracle.
+#[test]
+fn close_points_on_a_huge_plane_agree_with_the_oracle() {
+    let mut rng = Rng(0xfeed_5eed);
+    for offset in [[0.0; 3], UTM] {
+        let big = [
+            rng.point(offset, 4000.0),
+            rng.point(offset, 4000.0),
+            rng.point(offset, 4000.0),
+        ];
+        let n = {
+            let (u, v) = (
+                std::array::from_fn::<f64, 3, _>(|k| big[1][k] - big[0][k]),
+                std::array::from_fn::<f64, 3, _>(|k| big[2][k] - big[0][k]),
+            );
+            [
+                u[1] * v[2] - u[2] * v[1],
+                u[2] * v[0] - u[0] * v[2],
+                u[0] * v[1] - u[1] * v[0],
+            ]
+        };
+        let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        let centre: [f64; 3] = std::array::from_fn(|k| (big[0][k] + big[1][k] + big[2][k]) / 3.0);
+        let mut pts = Vec::new();
+        while pts.len() < 40 {
+            // Short segments straddling the plane near its centre.
+            let c = rng.point(centre, 0.01);
+            let d: [f64; 3] =
+                std::array::from_fn(|k| 1e-3 * n[k] / len + 1e-4 * (rng.unit() - 0.5));
+            let (p, q) = (
+                std::array::from_fn(|k| c[k] + d[k]),
+                std::array::from_fn(|k| c[k] - d[k]),
+            );
+            let (sp, sq) = (
+                orient3d_explicit(&big[0], &big[1], &big[2], &p),
+                orient3d_explicit(&big[0], &big[1], &big[2], &q),
+            );
+            if sp != Sign::Zero && sq == sp.reversed() {
+                pts.push(Point::Lpi {
+                    p,
+                    q,
+                    a: big[0],
+                    b: big[1],
+                    c: big[2],
+                });
+            }
+        }
+        let prepared: Vec<Prepared> = pts.iter().cloned().map(Prepared::new).collect();
+        for i in 0..pts.len() - 2 {
+            let (a, b, c) = (i, i + 1, i + 2);
+            for axis in 0..3 {
+                assert_eq!(
+                    orient2d_prepared(&prepared[a], &prepared[b], &prepared[c], axis),
+                    oracle_orient2d(&pts[a], &pts[b], &pts[c], axis)
+                );
+                let want = oracle_point(&pts[a])[axis].cmp(&oracle_point(&pts[b])[axis]);
+                assert_eq!(cmp_coord_prepared(&prepared[a], &prepared[b], axis), want);
+            }
+            assert!(!same_point_prepared(&prepared[a], &prepared[b]));
+        }
+    }
+}
