@@ -109,16 +109,22 @@ pub fn arrange(mesh: &Mesh, seam: &Seam, side: Source) -> Arranged {
         .par_iter()
         .map(|&t| (t, cut_triangle(mesh, t, &points, &constraints)))
         .collect();
-    let out = reassemble(mesh, results);
-    Arranged {
-        mesh: Mesh::new_unchecked(points.positions, out.triangles),
-        input_vertices: points.input_vertices,
-        added_points: points.added,
-        parent: out.parent,
-        seam_vertex: points.seam_vertex,
-        seam_edges,
-        failed: out.failed,
-        rounding_flips: out.rounding_flips,
+    Arranged::assemble(points, seam_edges, reassemble(mesh, results))
+}
+
+impl Arranged {
+    /// The arranged mesh from the seam points' vertices and the reassembled triangles.
+    fn assemble(points: SeamPoints, seam_edges: Vec<[u32; 2]>, out: Reassembled) -> Arranged {
+        Arranged {
+            mesh: Mesh::new_unchecked(points.positions, out.triangles),
+            input_vertices: points.input_vertices,
+            added_points: points.added,
+            parent: out.parent,
+            seam_vertex: points.seam_vertex,
+            seam_edges,
+            failed: out.failed,
+            rounding_flips: out.rounding_flips,
+        }
     }
 }
 

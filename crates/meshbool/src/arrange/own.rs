@@ -50,17 +50,7 @@ pub fn arrange_self(mesh: &Mesh, seam: &Seam) -> Arranged {
         .par_iter()
         .map(|&t| (t, cut_triangle(mesh, t, &points, &constraints)))
         .collect();
-    let out = reassemble(mesh, results);
-    Arranged {
-        mesh: Mesh::new_unchecked(points.positions, out.triangles),
-        input_vertices: points.input_vertices,
-        added_points: points.added,
-        parent: out.parent,
-        seam_vertex: points.seam_vertex,
-        seam_edges,
-        failed: out.failed,
-        rounding_flips: out.rounding_flips,
-    }
+    Arranged::assemble(points, seam_edges, reassemble(mesh, results))
 }
 
 /// Every seam point as a vertex: an input vertex as itself, any other point new, noted on

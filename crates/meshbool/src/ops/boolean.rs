@@ -89,12 +89,7 @@ impl BooleanOutput {
     /// What the result assumes, one line each (see [`BooleanReport::assumed`]).
     pub fn assumed(&self) -> Vec<String> {
         let mut lines: Vec<String> = self.operands.iter().flat_map(|o| o.assumed()).collect();
-        if self.rounding_flips > 0 {
-            lines.push(format!(
-                "{} result triangles are thinner than f64 rounding of their seam points and turned over when written (exact before rounding)",
-                self.rounding_flips
-            ));
-        }
+        lines.extend(rounding_line(self.rounding_flips));
         if self.degenerate != [0, 0] {
             lines.push(format!(
                 "degenerate (zero-area) triangles where the meshes meet were left out: {} in A, {} in B",
@@ -201,12 +196,7 @@ impl BooleanManyOutput {
     /// The report, as for two inputs (`operands` lists every input).
     pub fn report(&self) -> BooleanReport {
         let mut assumed: Vec<String> = self.operands.iter().flat_map(|o| o.assumed()).collect();
-        if self.rounding_flips > 0 {
-            assumed.push(format!(
-                "{} result triangles are thinner than f64 rounding of their seam points and turned over when written (exact before rounding)",
-                self.rounding_flips
-            ));
-        }
+        assumed.extend(rounding_line(self.rounding_flips));
         BooleanReport {
             schema: SCHEMA,
             operation: self.op,
@@ -302,4 +292,13 @@ pub fn boolean_many<'a>(
             seconds: start.elapsed().as_secs_f64(),
         })
     })?
+}
+
+/// The `assumed` line for result triangles turned over by rounding, if any.
+fn rounding_line(flips: usize) -> Option<String> {
+    (flips > 0).then(|| {
+        format!(
+            "{flips} result triangles are thinner than f64 rounding of their seam points and turned over when written (exact before rounding)"
+        )
+    })
 }

@@ -383,16 +383,13 @@ mod tests {
         );
     }
 
-    #[test]
-    fn thin_cap_flipped_under_a_threshold_reports_the_shape_change() {
-        // As below, with the split point raised 1e-3 above the top face: a thin cap of
-        // non-zero area. Before: flipped silently (vertices_moved 0, volume changed).
-        // The cube's top face (a, c, b) + (c, a, d) with its diagonal a–c: the first
-        // triangle is split at the diagonal's midpoint into two proper triangles and a
-        // zero-area cap (a, c, mid) still facing the second across the diagonal.
+    /// The unit cube with its top face (a, c, b) + (c, a, d), diagonal a–c, changed: the
+    /// first triangle split at the diagonal's midpoint raised by `lift` into two proper
+    /// triangles and a cap (a, c, mid) still facing the second across the diagonal
+    /// (zero area when `lift` is 0).
+    fn cube_with_cap(lift: f64) -> Mesh {
         let mut m = Mesh::unit_cube();
-        let s0 = mesh_stats(&m);
-        assert_eq!(s0.volume, 1.0);
+        assert_eq!(mesh_stats(&m).volume, 1.0);
         // Find the two triangles of the top face (z = 1) and their shared diagonal.
         let top: Vec<usize> = (0..m.triangles.len())
             .filter(|&t| m.corners(t).iter().all(|p| p[2] == 1.0))
@@ -406,7 +403,7 @@ mod tests {
         let (pa, pc) = (m.positions[a as usize], m.positions[c as usize]);
         let mid = m.positions.len() as u32;
         m.positions.push(std::array::from_fn(|i| {
-            (pa[i] + pc[i]) / 2.0 + if i == 2 { 1e-3 } else { 0.0 }
+            (pa[i] + pc[i]) / 2.0 + if i == 2 { lift } else { 0.0 }
         }));
         // t0 = (a, c, b) becomes (a, mid, b), (mid, c, b) and the cap (a, c, mid) —
         // which uses a -> c as t0 did, so t1 still meets it across that edge.
@@ -414,6 +411,14 @@ mod tests {
         m.triangles.push([mid, c, b]);
         m.triangles.push([a, c, mid]);
         closed_consistent(&m);
+        m
+    }
+
+    #[test]
+    fn thin_cap_flipped_under_a_threshold_reports_the_shape_change() {
+        // The split point raised 1e-3 above the top face: a thin cap of non-zero area.
+        // Before: flipped silently (vertices_moved 0, volume changed).
+        let m = cube_with_cap(1e-3);
         let before = mesh_stats(&m).volume;
         assert!(before > 1.0);
         let exact = remove_degenerates(&m, &DegenerateOptions::default()).1;
@@ -439,32 +444,7 @@ mod tests {
 
     #[test]
     fn zero_area_cap_is_flipped_away_exactly() {
-        // The cube's top face (a, c, b) + (c, a, d) with its diagonal a–c: the first
-        // triangle is split at the diagonal's midpoint into two proper triangles and a
-        // zero-area cap (a, c, mid) still facing the second across the diagonal.
-        let mut m = Mesh::unit_cube();
-        let s0 = mesh_stats(&m);
-        assert_eq!(s0.volume, 1.0);
-        // Find the two triangles of the top face (z = 1) and their shared diagonal.
-        let top: Vec<usize> = (0..m.triangles.len())
-            .filter(|&t| m.corners(t).iter().all(|p| p[2] == 1.0))
-            .collect();
-        assert_eq!(top.len(), 2);
-        let (t0, t1) = (m.triangles[top[0]], m.triangles[top[1]]);
-        let k = (0..3)
-            .find(|&k| t1.contains(&t0[k]) && t1.contains(&t0[(k + 1) % 3]))
-            .unwrap();
-        let (a, c, b) = (t0[k], t0[(k + 1) % 3], t0[(k + 2) % 3]);
-        let (pa, pc) = (m.positions[a as usize], m.positions[c as usize]);
-        let mid = m.positions.len() as u32;
-        m.positions
-            .push(std::array::from_fn(|i| (pa[i] + pc[i]) / 2.0));
-        // t0 = (a, c, b) becomes (a, mid, b), (mid, c, b) and the cap (a, c, mid) —
-        // which uses a -> c as t0 did, so t1 still meets it across that edge.
-        m.triangles[top[0]] = [a, mid, b];
-        m.triangles.push([mid, c, b]);
-        m.triangles.push([a, c, mid]);
-        closed_consistent(&m);
+        let m = cube_with_cap(0.0);
         assert_eq!(degenerate_triangles(&m), 1);
         let (r, rep) = remove_degenerates(&m, &DegenerateOptions::default());
         closed_consistent(&r);
