@@ -219,7 +219,7 @@ fn boolean_commands_give_exact_cube_volumes() {
 }
 
 #[test]
-fn boolean_refuses_inconsistent_input_without_force() {
+fn boolean_orients_inconsistent_input_or_refuses_it_with_no_orient() {
     let t = data("kirra_terrain.obj");
     let c = data("kirra_cylinder.obj");
     let out = tmp("forced.ply");
@@ -230,10 +230,18 @@ fn boolean_refuses_inconsistent_input_without_force() {
         "-o",
         out.to_str().unwrap(),
     ];
-    let r = meshbool(&args);
+    // Oriented at the door by default, with a line in `assumed`.
+    let v = report(&[&args[..], &["--json"]].concat());
+    assert_eq!(v["operands"][0]["reoriented_triangles"], 22);
+    let assumed = v["assumed"].as_array().unwrap();
+    assert_eq!(assumed.len(), 1);
+    assert!(assumed[0].as_str().unwrap().contains("made consistent"));
+    // Refused with --no-orient, taken as given with --force.
+    let strict = [&args[..], &["--no-orient"]].concat();
+    let r = meshbool(&strict);
     assert_eq!(r.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&r.stderr).contains("46 inconsistently oriented edges"));
-    let mut forced = args.to_vec();
+    let mut forced = strict.to_vec();
     forced.extend(["--force", "--json"]);
     let v = report(&forced);
     assert_eq!(v["boundary_edges"], 560);

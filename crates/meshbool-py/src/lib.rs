@@ -77,10 +77,11 @@ fn arrays(py: Python<'_>, mesh: Mesh) -> PyResult<Arrays<'_>> {
     ))
 }
 
-fn checks(force: bool, self_check: bool, resolve: bool) -> Checks {
+fn checks(force: bool, self_check: bool, resolve: bool, orient: bool) -> Checks {
     Checks {
         self_intersections: self_check,
         resolve,
+        orient,
         force,
         ..Checks::default()
     }
@@ -158,7 +159,7 @@ impl Boolean {
 /// A boolean: the result's arrays, its provenance (source 0 = A / 1 = B, triangle,
 /// flipped) and what else it found ([`Boolean`]).
 #[pyfunction]
-#[pyo3(signature = (av, af, bv, bf, op, force, self_check, resolve, threads, keep_nonmanifold))]
+#[pyo3(signature = (av, af, bv, bf, op, force, self_check, resolve, orient, threads, keep_nonmanifold))]
 #[allow(clippy::too_many_arguments, clippy::type_complexity)]
 fn boolean<'py>(
     py: Python<'py>,
@@ -170,6 +171,7 @@ fn boolean<'py>(
     force: bool,
     self_check: bool,
     resolve: bool,
+    orient: bool,
     threads: Option<usize>,
     keep_nonmanifold: bool,
 ) -> PyResult<(
@@ -182,7 +184,7 @@ fn boolean<'py>(
 )> {
     let (a, b, op) = (mesh(&av, &af)?, mesh(&bv, &bf)?, parse::<Op>(op)?);
     let opts = BooleanOptions {
-        checks: checks(force, self_check, resolve),
+        checks: checks(force, self_check, resolve, orient),
         keep_nonmanifold,
         run: run(threads),
     };
@@ -276,7 +278,7 @@ impl Split {
 
 /// Splits two meshes along their intersection.
 #[pyfunction]
-#[pyo3(signature = (av, af, bv, bf, force, self_check, resolve, threads, merge_small))]
+#[pyo3(signature = (av, af, bv, bf, force, self_check, resolve, orient, threads, merge_small))]
 #[allow(clippy::too_many_arguments)]
 fn split(
     py: Python<'_>,
@@ -287,12 +289,13 @@ fn split(
     force: bool,
     self_check: bool,
     resolve: bool,
+    orient: bool,
     threads: Option<usize>,
     merge_small: usize,
 ) -> PyResult<Split> {
     let (a, b) = (mesh(&av, &af)?, mesh(&bv, &bf)?);
     let opts = SplitOptions {
-        checks: checks(force, self_check, resolve),
+        checks: checks(force, self_check, resolve, orient),
         merge_small,
         run: run(threads),
     };
@@ -305,7 +308,7 @@ fn split(
 /// The union or intersection of several meshes in one call: the result's arrays, the
 /// input and triangle of each result triangle, the report.
 #[pyfunction]
-#[pyo3(signature = (meshes, op, force, self_check, resolve, threads, keep_nonmanifold))]
+#[pyo3(signature = (meshes, op, force, self_check, resolve, orient, threads, keep_nonmanifold))]
 #[allow(clippy::type_complexity, clippy::too_many_arguments)]
 fn boolean_many<'py>(
     py: Python<'py>,
@@ -314,6 +317,7 @@ fn boolean_many<'py>(
     force: bool,
     self_check: bool,
     resolve: bool,
+    orient: bool,
     threads: Option<usize>,
     keep_nonmanifold: bool,
 ) -> PyResult<(
@@ -329,7 +333,7 @@ fn boolean_many<'py>(
         .collect::<PyResult<Vec<_>>>()?;
     let op = parse::<Op>(op)?;
     let opts = BooleanOptions {
-        checks: checks(force, self_check, resolve),
+        checks: checks(force, self_check, resolve, orient),
         keep_nonmanifold,
         run: run(threads),
     };

@@ -123,8 +123,12 @@ def test_kirra_terrain_minus_cylinder_split_and_pick(tmp_path):
     terrain = meshbool.read(DATA / "kirra_terrain.obj")
     cylinder = meshbool.read(DATA / "kirra_cylinder.obj")
     with pytest.raises(ValueError, match="46 inconsistently oriented edges"):
-        meshbool.split(terrain, cylinder)
+        meshbool.split(terrain, cylinder, orient=False)
+    # Oriented at the door by default: the same as orienting it first.
+    d = meshbool.boolean(terrain, cylinder, "difference")
+    assert d.report["operands"][0]["reoriented_triangles"] == 22
     up = meshbool.orient(terrain, "z-up")
+    np.testing.assert_array_equal(d.faces, meshbool.boolean(up, cylinder, "difference").faces)
     assert up.report["flipped"] == 22
     s = meshbool.split(up, cylinder)
     assert s.groups == ["a_in_b", "a_out_b", "b_in_a", "b_out_a"]

@@ -19,8 +19,10 @@ pub mod split;
 /// Flags shared by the commands that take two operands (booleans, split).
 #[derive(clap::Args, Clone)]
 pub struct OperandFlags {
-    /// Proceed even when an input has inconsistently oriented or non-manifold edges (the
-    /// result then assumes the orientation as given; the JSON report lists what was assumed).
+    /// Proceed even when an input has problems the door cannot fix: non-manifold edges,
+    /// orientation that cannot be made consistent, self-intersections that cannot be
+    /// resolved (the result takes the input as given; the JSON report lists what was
+    /// assumed).
     #[arg(long)]
     pub force: bool,
     /// Print a JSON report on stdout.
@@ -34,6 +36,10 @@ pub struct OperandFlags {
     /// it into the solid they enclose (their union; see `meshbool resolve`).
     #[arg(long)]
     pub no_resolve: bool,
+    /// Refuse an input whose triangles are not consistently oriented instead of orienting
+    /// it at the door (each component facing as most of its triangles do).
+    #[arg(long)]
+    pub no_orient: bool,
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
@@ -45,6 +51,7 @@ impl OperandFlags {
         Checks {
             self_intersections: !self.no_self_check,
             resolve: !self.no_resolve,
+            orient: !self.no_orient,
             force: self.force,
             ..Checks::default()
         }

@@ -217,6 +217,7 @@ def boolean(
     force: bool = False,
     self_check: bool = True,
     resolve: bool = True,
+    orient: bool = True,
     threads: Optional[int] = None,
     keep_nonmanifold: bool = False,
 ) -> Mesh:
@@ -226,11 +227,14 @@ def boolean(
     (``"subtract"``: a − b) or ``"reverse_difference"`` (b − a). Closed meshes must face
     outward; an open surface's inside is behind it (the side its normals point away from).
 
-    Inputs are checked: inconsistently oriented or non-manifold edges and
-    self-intersections make inside/outside ambiguous and raise ``ValueError`` unless
-    ``force`` (then ``result.assumed`` lists what was taken as given), except an input
-    whose closed parts cross or nest one another: it is resolved into the solid they
-    enclose (see :func:`resolve`) unless ``resolve=False``. ``self_check=False``
+    Inputs are checked. What the door can fix it fixes, with a line in ``result.assumed``:
+    inconsistently oriented triangles are made consistent (each component facing as most
+    of its triangles do; ``orient=False`` refuses instead), inside-out closed parts are
+    reversed, and self-intersecting closed parts are resolved into the solid they enclose
+    (see :func:`resolve`; ``resolve=False`` refuses instead). What it cannot fix
+    (non-manifold edges, an orientation that cannot be made consistent, open
+    self-crossing surfaces) raises ``ValueError`` unless ``force`` (then ``assumed`` lists
+    what was taken as given). ``self_check=False``
     skips the self-intersection check (for inputs known to be clean). ``threads``: worker
     threads (default all cores). ``keep_nonmanifold``: keep edges and vertices where the
     result's solids touch instead of splitting them.
@@ -242,7 +246,7 @@ def boolean(
     av, af = _parts(a)
     bv, bf = _parts(b)
     v, f, source, triangle, flipped, pending = _native.boolean(
-        av, af, bv, bf, op, force, self_check, resolve, threads, keep_nonmanifold
+        av, af, bv, bf, op, force, self_check, resolve, orient, threads, keep_nonmanifold
     )
     out = Mesh._from(v, f)
     out._pending = pending
@@ -257,6 +261,7 @@ def boolean_many(
     force: bool = False,
     self_check: bool = True,
     resolve: bool = True,
+    orient: bool = True,
     threads: Optional[int] = None,
     keep_nonmanifold: bool = False,
 ) -> Mesh:
@@ -266,7 +271,7 @@ def boolean_many(
     ``input`` (position in ``meshes``) and ``triangle`` (in that input)."""
     parts = [_parts(m) for m in meshes]
     v, f, input, triangle, report = _native.boolean_many(
-        parts, op, force, self_check, resolve, threads, keep_nonmanifold
+        parts, op, force, self_check, resolve, orient, threads, keep_nonmanifold
     )
     out = Mesh._from(v, f, report)
     out.provenance = {"input": input, "triangle": triangle}
@@ -335,6 +340,7 @@ def split(
     force: bool = False,
     self_check: bool = True,
     resolve: bool = True,
+    orient: bool = True,
     threads: Optional[int] = None,
     merge_small: int = 0,
 ) -> Split:
@@ -344,7 +350,7 @@ def split(
     av, af = _parts(a)
     bv, bf = _parts(b)
     return Split(
-        _native.split(av, af, bv, bf, force, self_check, resolve, threads, merge_small)
+        _native.split(av, af, bv, bf, force, self_check, resolve, orient, threads, merge_small)
     )
 
 

@@ -27,6 +27,7 @@ def boolean(
     force: bool,
     self_check: bool,
     resolve: bool,
+    orient: bool,
     threads: Optional[int],
     keep_nonmanifold: bool,
 ) -> Tuple[F64, U32, npt.NDArray[np.uint8], U32, npt.NDArray[np.bool_], Boolean]: ...
@@ -37,6 +38,7 @@ def boolean_many(
     force: bool,
     self_check: bool,
     resolve: bool,
+    orient: bool,
     threads: Optional[int],
     keep_nonmanifold: bool,
 ) -> Tuple[F64, U32, U32, U32, str]: ...
@@ -57,6 +59,7 @@ def split(
     force: bool,
     self_check: bool,
     resolve: bool,
+    orient: bool,
     threads: Optional[int],
     merge_small: int,
 ) -> Split: ...

@@ -25,6 +25,11 @@ pub struct Checks {
     /// much as the boolean). Turn off only for inputs known to be clean: the report then
     /// says they were not checked.
     pub self_intersections: bool,
+    /// Make an operand whose triangles are not consistently oriented consistent at the
+    /// door, each component facing as most of its triangles do
+    /// ([`crate::repair::orient`], majority), where that makes every edge consistent.
+    /// Needs `edges`. Off: inconsistent edges are a problem.
+    pub orient: bool,
     /// Resolve a self-intersecting operand made of closed, consistently oriented
     /// components into the solid it encloses (fill rule positive: the union of its
     /// overlapping parts, a self-crossing part cut along its own seam; see
@@ -42,6 +47,7 @@ impl Default for Checks {
         Checks {
             edges: true,
             self_intersections: true,
+            orient: true,
             resolve: true,
             force: false,
         }
@@ -54,6 +60,7 @@ impl Checks {
     pub const NONE: Checks = Checks {
         edges: false,
         self_intersections: false,
+        orient: false,
         resolve: false,
         force: true,
     };
@@ -68,8 +75,11 @@ pub struct OperandReport {
     pub triangles: usize,
     /// Vertices after the exact weld.
     pub vertices: usize,
-    /// Edges used twice in the same direction; `None`: not checked.
+    /// Edges used twice in the same direction in the input; `None`: not checked.
     pub inconsistent_edges: Option<usize>,
+    /// Triangles reversed at the door to make the orientation consistent (each component
+    /// facing as most of its triangles did; [`Checks::orient`]); 0 when none.
+    pub reoriented_triangles: usize,
     /// Edges used by more than two triangles; `None`: not checked.
     pub non_manifold_edges: Option<usize>,
     /// Self-intersecting triangle pairs; `None`: not checked.
@@ -103,7 +113,7 @@ impl OperandReport {
     /// What makes inside/outside ambiguous, one phrase each; empty for a clean operand.
     pub fn problems(&self) -> Vec<String> {
         let mut problems = Vec::new();
-        if let Some(n @ 1..) = self.inconsistent_edges {
+        if let (Some(n @ 1..), 0) = (self.inconsistent_edges, self.reoriented_triangles) {
             problems.push(format!("{n} inconsistently oriented edges"));
         }
         if let Some(n @ 1..) = self.non_manifold_edges {
@@ -142,6 +152,14 @@ impl OperandReport {
         }
         if self.self_intersections.is_none() {
             lines.push(format!("{}: not checked for self-intersections", self.name));
+        }
+        if self.reoriented_triangles > 0 {
+            lines.push(format!(
+                "{}: {} inconsistently oriented edges made consistent: {} triangles reversed (each component faces as most of its triangles did)",
+                self.name,
+                self.inconsistent_edges.unwrap_or(0),
+                self.reoriented_triangles
+            ));
         }
         if self.reversed_components > 0 {
             lines.push(format!(
@@ -186,7 +204,8 @@ pub struct Operand {
     report: OperandReport,
     /// For a resolved operand, the input triangle each triangle of `mesh` is part of.
     parent: Option<Vec<u32>>,
-    /// Input triangles reversed at the door (inside-out components), sorted.
+    /// Input triangles reversed at the door (orientation made consistent, inside-out
+    /// components), sorted.
     reversed: Vec<u32>,
 }
 
@@ -224,7 +243,25 @@ impl Operand {
 
     /// Checks a valid, welded mesh.
     fn checked(name: String, mut mesh: Mesh, checks: &Checks) -> Result<Operand> {
-        let counts = checks.edges.then(|| EdgeCounts::of(&mesh));
+        let found_counts = checks.edges.then(|| EdgeCounts::of(&mesh));
+        // Triangles reversed at the door (orientation, inside-out components).
+        let mut flipped = vec![false; mesh.triangles.len()];
+        let mut counts = found_counts;
+        let mut reoriented_triangles = 0;
+        if checks.orient && found_counts.is_some_and(|c| c.inconsistent > 0) {
+            let (oriented, r) = crate::repair::orient(&mesh, crate::repair::Facing::Majority);
+            let after = EdgeCounts::of(&oriented);
+            // Only where that makes every edge consistent; otherwise the input stays as
+            // it is and its inconsistent edges are a problem.
+            if after.inconsistent == 0 {
+                for (t, f) in flipped.iter_mut().enumerate() {
+                    *f = oriented.triangles[t] != mesh.triangles[t];
+                }
+                reoriented_triangles = r.flipped;
+                mesh = oriented;
+                counts = Some(after);
+            }
+        }
         let found = checks.self_intersections.then(|| self_intersections(&mesh));
         let mut self_intersections = found.as_ref().map(|found| {
             let first = found.first().map(|&(i, j)| [i, j]);
@@ -250,7 +287,11 @@ impl Operand {
             };
         for &t in &reversed {
             mesh.triangles[t as usize].swap(1, 2);
+            flipped[t as usize] ^= true;
         }
+        let reversed: Vec<u32> = (0..flipped.len() as u32)
+            .filter(|&t| flipped[t as usize])
+            .collect();
         if let (Some(found), Some(si), true, true) =
             (&found, &mut self_intersections, checks.resolve, clean_edges)
         {
@@ -274,7 +315,8 @@ impl Operand {
             name,
             triangles: mesh.triangles.len(),
             vertices: mesh.positions.len(),
-            inconsistent_edges: counts.map(|c| c.inconsistent),
+            inconsistent_edges: found_counts.map(|c| c.inconsistent),
+            reoriented_triangles,
             non_manifold_edges: counts.map(|c| c.non_manifold),
             self_intersections,
             reversed_components,
@@ -308,7 +350,8 @@ impl Operand {
         }
     }
 
-    /// Whether input triangle `t` was reversed at the door (an inside-out component).
+    /// Whether input triangle `t` was reversed at the door (orientation made consistent,
+    /// an inside-out component).
     pub fn reversed(&self, t: u32) -> bool {
         self.reversed.binary_search(&t).is_ok()
     }

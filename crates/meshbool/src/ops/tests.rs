@@ -92,11 +92,44 @@ fn invalid_meshes_are_errors_at_the_door() {
 fn operands_with_problems_are_refused_unless_forced() {
     let terrain = data("kirra_terrain.obj");
     let cylinder = data("kirra_cylinder.obj");
-    let err = boolean(
+    // By default the terrain's orientation is made consistent at the door: the same
+    // result as orienting it first.
+    let out = boolean(
         &terrain,
         &cylinder,
         Op::Difference,
         &BooleanOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(out.operands[0].inconsistent_edges, Some(46));
+    assert_eq!(out.operands[0].reoriented_triangles, 22);
+    assert_eq!(
+        out.assumed(),
+        ["A: 46 inconsistently oriented edges made consistent: 22 triangles reversed (each component faces as most of its triangles did)"]
+    );
+    let up = crate::repair::orient(&terrain, Facing::ZUp).0;
+    let first = boolean(&up, &cylinder, Op::Difference, &BooleanOptions::default()).unwrap();
+    assert_eq!(out.mesh, first.mesh);
+    // Reversed triangles face against their input triangles in the provenance.
+    let flipped_a = out
+        .provenance
+        .iter()
+        .filter(|p| p.source == crate::Source::A && p.flipped)
+        .count();
+    assert!(flipped_a > 0);
+    // Asked not to orient, the inconsistent operand is a problem.
+    let strict = Checks {
+        orient: false,
+        ..Checks::default()
+    };
+    let err = boolean(
+        &terrain,
+        &cylinder,
+        Op::Difference,
+        &BooleanOptions {
+            checks: strict,
+            ..BooleanOptions::default()
+        },
     )
     .unwrap_err();
     let Error::Operand { name, problems } = &err else {
@@ -107,7 +140,7 @@ fn operands_with_problems_are_refused_unless_forced() {
     let opts = BooleanOptions {
         checks: Checks {
             force: true,
-            ..Checks::default()
+            ..strict
         },
         ..BooleanOptions::default()
     };
