@@ -49,7 +49,8 @@ enum Command {
     /// connected components; writes one file per group and per component plus manifest.json.
     Split(split::Args),
     /// Merge pieces of a split into one welded mesh: `--keep a_out_b --keep b_in_a:flip
-    /// --keep a_in_b#2` (group, optional #component, optional :flip).
+    /// --keep a_in_b#2` (group, optional #component, optional :flip), or the pieces a
+    /// boolean keeps: `--op union|intersection|difference|reverse-difference`.
     Pick(pick::Args),
     /// Close open meshes into solids. Modes: `cap` (triangulate every boundary loop,
     /// non-planar loops too), `stitch` (join pairs of loops with bands of triangles),

@@ -889,3 +889,48 @@ fn curves_of_one_mesh_are_where_it_crosses_itself() {
     assert_eq!(v["points"], 0);
     assert_eq!(v["total_length"].to_string(), "0.0");
 }
+
+#[test]
+fn pick_by_op_gives_the_boolean() {
+    let a = write_cube("pickop_a.ply", [0.0; 3], [1.0; 3]);
+    let b = write_cube("pickop_b.ply", [0.5; 3], [1.5; 3]);
+    let dir = tmp("pickop_split");
+    let r = meshbool(&[
+        "split",
+        a.to_str().unwrap(),
+        b.to_str().unwrap(),
+        "-o",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let out = tmp("pickop.ply");
+    for (op, volume) in [
+        ("union", 1.875),
+        ("intersection", 0.125),
+        ("difference", 0.875),
+    ] {
+        report(&[
+            "pick",
+            dir.to_str().unwrap(),
+            "--op",
+            op,
+            "-o",
+            out.to_str().unwrap(),
+            "--json",
+        ]);
+        let m = meshbool::io::read_path(&out).unwrap();
+        assert_eq!(meshbool::measure::signed_volume(&m), volume, "{op}");
+    }
+    // --op and --keep together: a usage error.
+    let r = meshbool(&[
+        "pick",
+        dir.to_str().unwrap(),
+        "--op",
+        "union",
+        "--keep",
+        "a_out_b",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(r.status.code(), Some(2));
+}

@@ -4,8 +4,9 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use meshbool::ops::{self, PickOptions, PieceSpec};
+use meshbool::Op;
 
-use super::{parse_value, print_json};
+use super::{one_of, parse_value, print_json};
 
 /// Arguments of `pick`.
 #[derive(clap::Args)]
@@ -13,8 +14,13 @@ pub struct Args {
     /// Directory written by `meshbool split`.
     dir: PathBuf,
     /// A piece to keep: GROUP[#COMPONENT][:flip].
-    #[arg(long = "keep", required = true, value_parser = parse_value::<PieceSpec>)]
+    #[arg(long = "keep", required_unless_present = "op", conflicts_with = "op",
+          value_parser = parse_value::<PieceSpec>)]
     keep: Vec<PieceSpec>,
+    /// Keep the pieces a boolean keeps instead: `union`, `intersection`, `difference`,
+    /// `reverse-difference` (the same result as the boolean of the split's inputs).
+    #[arg(long, ignore_case = true, value_parser = one_of::<Op>(Op::ALL.map(Op::name)))]
+    op: Option<Op>,
     /// Output mesh file.
     #[arg(short, long)]
     output: PathBuf,
@@ -32,7 +38,10 @@ pub fn run(args: &Args) -> Result<()> {
     let opts = PickOptions {
         keep_nonmanifold: args.keep_nonmanifold,
     };
-    let out = ops::pick_dir(&args.dir, &args.keep, &opts)?;
+    let out = match args.op {
+        Some(op) => ops::pick_dir_op(&args.dir, op, &opts)?,
+        None => ops::pick_dir(&args.dir, &args.keep, &opts)?,
+    };
     ops::write(&args.output, &out.mesh, None)?;
     let report = out.report();
     if args.json {

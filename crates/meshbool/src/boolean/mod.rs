@@ -633,7 +633,7 @@ impl Group {
     }
 
     /// The side and class of the group's triangles.
-    fn side_and_class(self) -> (Source, Class) {
+    pub fn side_and_class(self) -> (Source, Class) {
         match self {
             Group::AInB => (Source::A, Class::Inside),
             Group::AOutB => (Source::A, Class::Outside),

@@ -66,8 +66,8 @@ pub use single::{
     ResolveOptions, ResolveOutput,
 };
 pub use split::{
-    pick, pick_dir, split, GroupInfo, GroupPieces, PickOptions, PickOutput, PickReport, PieceInfo,
-    PieceSpec, SplitOptions, SplitOutput, SplitReport,
+    pick, pick_dir, pick_dir_op, split, GroupInfo, GroupPieces, PickOptions, PickOutput,
+    PickReport, PieceInfo, PieceSpec, SplitOptions, SplitOutput, SplitReport,
 };
 
 /// The version of the JSON reports (the `schema` key of every report). Raised when a key

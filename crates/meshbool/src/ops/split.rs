@@ -11,7 +11,7 @@ use std::str::FromStr;
 use serde::{Deserialize, Serialize};
 
 use super::{Checks, Input, Operand, OperandReport, RunOptions, SCHEMA};
-use crate::boolean::{Group, Provenance, Stage};
+use crate::boolean::{Group, Keep, Op, Provenance, Stage};
 use crate::edges::components_merged;
 use crate::measure::{area, mesh_stats, signed_volume, MeshStats};
 use crate::repair::{split_nonmanifold, NonManifoldReport};
@@ -221,6 +221,15 @@ impl SplitOutput {
         Ok(report)
     }
 
+    /// The boolean `op` of the split's inputs from its pieces ([`PieceSpec::for_op`]).
+    pub fn pick_op(&self, op: Op, opts: &PickOptions) -> Result<PickOutput> {
+        let specs: Vec<PieceSpec> = PieceSpec::for_op(op)
+            .into_iter()
+            .filter(|s| self.groups.iter().any(|g| g.group == s.group))
+            .collect();
+        self.pick(&specs, opts)
+    }
+
     /// Merges the pieces `specs` names, each flipped where it says so, into one welded
     /// mesh ([`pick`]). A piece may be named once.
     pub fn pick(&self, specs: &[PieceSpec], opts: &PickOptions) -> Result<PickOutput> {
@@ -294,6 +303,30 @@ pub struct PieceSpec {
     pub component: Option<usize>,
     /// Reverse the piece's orientation.
     pub flip: bool,
+}
+
+impl PieceSpec {
+    /// The pieces the boolean `op` keeps, by its [`Op::rule`]: whole groups, the
+    /// subtrahend's inside flipped, one copy of shared faces. Picking them (those the
+    /// split has) gives the boolean's result (the reference's `mergeSplitGroups`).
+    pub fn for_op(op: Op) -> Vec<PieceSpec> {
+        let rule = op.rule();
+        Group::ALL
+            .into_iter()
+            .filter_map(|group| {
+                let (side, class) = group.side_and_class();
+                let keep = match side {
+                    crate::Source::A => rule.a.of(class),
+                    crate::Source::B => rule.b.of(class),
+                };
+                (keep != Keep::Drop).then_some(PieceSpec {
+                    group,
+                    component: None,
+                    flip: keep == Keep::Flipped,
+                })
+            })
+            .collect()
+    }
 }
 
 impl fmt::Display for PieceSpec {
@@ -409,7 +442,30 @@ pub fn pick_dir(
     specs: &[PieceSpec],
     opts: &PickOptions,
 ) -> Result<PickOutput> {
-    let dir = dir.as_ref();
+    pick_dir_with(dir.as_ref(), |_| specs.to_vec(), opts)
+}
+
+/// A boolean from a split's directory: the pieces `op` keeps ([`PieceSpec::for_op`]),
+/// merged as [`pick_dir`] does — the same result as the boolean of the split's inputs.
+pub fn pick_dir_op(dir: impl AsRef<Path>, op: Op, opts: &PickOptions) -> Result<PickOutput> {
+    pick_dir_with(
+        dir.as_ref(),
+        |manifest| {
+            PieceSpec::for_op(op)
+                .into_iter()
+                .filter(|s| manifest.groups.iter().any(|g| g.name == s.group))
+                .collect()
+        },
+        opts,
+    )
+}
+
+/// [`pick_dir`] of the pieces `specs` chooses from the split's manifest.
+fn pick_dir_with(
+    dir: &Path,
+    specs: impl FnOnce(&SplitReport) -> Vec<PieceSpec>,
+    opts: &PickOptions,
+) -> Result<PickOutput> {
     let path = dir.join("manifest.json");
     let bytes = std::fs::read(&path).map_err(|e| Error::from(e).in_file("reading", &path))?;
     let manifest: SplitReport = serde_json::from_slice(&bytes).map_err(|e| {
@@ -419,7 +475,8 @@ pub fn pick_dir(
         }
         .in_file("reading", &path)
     })?;
-    let files = resolve(specs, |group| {
+    let specs = specs(&manifest);
+    let files = resolve(&specs, |group| {
         let g = manifest.groups.iter().find(|g| g.name == group)?;
         Some((&g.piece, &g.components[..]))
     })?;

@@ -516,3 +516,24 @@ fn inside_out_operands_are_reversed_with_a_line_in_assumed() {
     assert_eq!(out.operands[0].reversed_components, 0);
     assert_eq!(signed_volume(&out.mesh), 26.0 + 1.0);
 }
+
+#[test]
+fn picking_the_pieces_of_an_op_gives_the_boolean() {
+    let (a, b) = cubes();
+    let split = split(&a, &b, &SplitOptions::default()).unwrap();
+    for op in Op::ALL {
+        let picked = split.pick_op(op, &PickOptions::default()).unwrap();
+        let direct = boolean(&a, &b, op, &BooleanOptions::default()).unwrap();
+        let (p, d) = (picked.report(), direct.report());
+        assert!(p.stats.closed, "{op}");
+        assert_eq!(p.stats.volume, d.result.volume, "{op}");
+        assert_eq!(p.stats.triangles, d.result.triangles, "{op}");
+    }
+    // The rule's pieces: difference keeps A outside, B inside flipped, and one copy of
+    // faces the two share facing opposite ways.
+    let names: Vec<String> = PieceSpec::for_op(Op::Difference)
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+    assert_eq!(names, ["a_out_b", "b_in_a:flip", "a_on_b_opposite"]);
+}
