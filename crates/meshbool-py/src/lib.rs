@@ -351,6 +351,15 @@ fn boolean_many<'py>(
     Ok((v, f, input, triangle, json(&report)?))
 }
 
+/// The pieces of a split that the boolean `op` keeps (`GROUP[:flip]`), by its rule.
+#[pyfunction]
+fn pieces_for_op(op: &str) -> PyResult<Vec<String>> {
+    Ok(PieceSpec::for_op(parse::<Op>(op)?)
+        .iter()
+        .map(ToString::to_string)
+        .collect())
+}
+
 /// Merges meshes, each flipped where its flag says, welding exactly equal positions.
 #[pyfunction]
 fn pick<'py>(
@@ -547,6 +556,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
         wrap_pyfunction!(info, m)?,
         wrap_pyfunction!(boolean, m)?,
         wrap_pyfunction!(boolean_many, m)?,
+        wrap_pyfunction!(pieces_for_op, m)?,
         wrap_pyfunction!(split, m)?,
         wrap_pyfunction!(pick, m)?,
         wrap_pyfunction!(curves, m)?,

@@ -269,6 +269,18 @@ def test_self_curves():
     assert meshbool.curves(a).report["points"] == 0
 
 
+def test_split_pick_by_op_is_the_boolean():
+    a = meshbool.box([0, 0, 0], [1, 1, 1])
+    b = meshbool.box([0.5, 0.5, 0.5], [1.5, 1.5, 1.5])
+    s = meshbool.split(a, b)
+    for op, volume in [("union", 1.875), ("intersection", 0.125), ("difference", 0.875)]:
+        r = s.pick(op=op)
+        assert r.is_closed and r.volume == volume
+        assert r.volume == meshbool.boolean(a, b, op).volume
+    with pytest.raises(ValueError, match="not both"):
+        s.pick("a_out_b", op="union")
+
+
 def test_union_of_many_in_one_call():
     cubes = [
         meshbool.box([0, 0, 0], [2, 2, 2]),

@@ -310,11 +310,21 @@ class Split:
         """A group's connected components, largest first (``GROUP#k`` in :meth:`pick`)."""
         return [Mesh._from(v, f) for v, f in self._native.components(group)]
 
-    def pick(self, *pieces: str, keep_nonmanifold: bool = False) -> Mesh:
+    def pick(
+        self, *pieces: str, op: Optional[str] = None, keep_nonmanifold: bool = False
+    ) -> Mesh:
         """Merges pieces into one welded mesh: ``"a_out_b"``, ``"b_in_a:flip"``,
         ``"a_in_b#2"`` (group, optional ``#component``, optional ``:flip``). A piece may be
-        named once. Where pieces touch along an edge or at a vertex the result is made
-        manifold unless ``keep_nonmanifold``."""
+        named once. ``op="difference"`` (or another boolean) picks the pieces that boolean
+        keeps instead: its result, from the pieces. Where pieces touch along an edge or at
+        a vertex the result is made manifold unless ``keep_nonmanifold``."""
+        if op is not None:
+            if pieces:
+                raise ValueError("name pieces or an op, not both")
+            groups = set(self.groups)
+            pieces = tuple(
+                p for p in _native.pieces_for_op(op) if p.split(":")[0] in groups
+            )
         if len(pieces) == 1 and not isinstance(pieces[0], str):
             pieces = tuple(pieces[0])
         v, f, report = self._native.pick(list(pieces), keep_nonmanifold)
