@@ -190,6 +190,27 @@ impl Mesh {
         ]
     }
 
+    /// Twice the area of triangle `t` (the length of its normal `(b − a) × (c − a)`).
+    pub(crate) fn twice_area(&self, t: usize) -> f64 {
+        use crate::vec3::{cross, norm, sub};
+        let [a, b, c] = self.corners(t);
+        norm(&cross(&sub(&b, &a), &sub(&c, &a)))
+    }
+
+    /// The centroid of triangle `t`.
+    pub(crate) fn centroid(&self, t: usize) -> [f64; 3] {
+        let [a, b, c] = self.corners(t);
+        std::array::from_fn(|k| (a[k] + b[k] + c[k]) / 3.0)
+    }
+
+    /// The centroid of the largest of the triangles `tris` (none: `None`): a point on the
+    /// surface as far from its edges as the triangles allow, where winding numbers of
+    /// other surfaces are evaluated.
+    pub(crate) fn probe(&self, tris: impl Iterator<Item = usize>) -> Option<[f64; 3]> {
+        let t = tris.max_by(|&i, &j| self.twice_area(i).total_cmp(&self.twice_area(j)))?;
+        Some(self.centroid(t))
+    }
+
     /// A mesh from a triangle soup (three corner positions per triangle), with corners at
     /// exactly equal positions welded into one vertex ([`weld_exact`]).
     pub fn from_soup(soup: &[[[f64; 3]; 3]]) -> Self {

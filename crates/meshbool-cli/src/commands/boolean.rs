@@ -73,14 +73,13 @@ impl ManyArgs {
                 ..BooleanOptions::default()
             };
             let out = ops::boolean_many(&inputs, op, &opts)?;
-            spinner.set_message("writing");
-            let (written, report) = rayon::join(
-                || ops::write(&self.output, &out.mesh, None),
+            finish(
+                spinner,
+                &out.mesh,
                 || out.report(),
-            );
-            drop(spinner);
-            written?;
-            finish(&report, &self.output, flags.json)
+                &self.output,
+                flags.json,
+            )
         })?
     }
 }
@@ -120,19 +119,30 @@ pub fn run(args: &Args, op: Op) -> Result<()> {
             ..BooleanOptions::default()
         };
         let out = ops::boolean(&a, &b, op, &opts)?;
-        spinner.set_message("writing");
-        let (written, report) = rayon::join(
-            || ops::write(&args.output, &out.mesh, None),
+        finish(
+            spinner,
+            &out.mesh,
             || out.report(),
-        );
-        drop(spinner);
-        written?;
-        finish(&report, &args.output, flags.json)
+            &args.output,
+            flags.json,
+        )
     })?
 }
 
-/// Warns about what the result assumes, then prints the report or a summary line.
-fn finish(report: &BooleanReport, output: &Path, json: bool) -> Result<()> {
+/// Writes the result while its report measures it, then warns about what the result
+/// assumes and prints the report or a summary line.
+fn finish(
+    spinner: Spinner,
+    mesh: &meshbool::Mesh,
+    report: impl FnOnce() -> BooleanReport + Send,
+    output: &Path,
+    json: bool,
+) -> Result<()> {
+    spinner.set_message("writing");
+    let (written, report) = rayon::join(|| ops::write(output, mesh, None), report);
+    drop(spinner);
+    written?;
+    let report = &report;
     warn(&report.assumed);
     warn(&report.failed_triangles);
     if json {

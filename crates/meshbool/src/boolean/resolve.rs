@@ -22,7 +22,6 @@ use crate::edges::{EdgeKind, EdgeTopology};
 use crate::intersect::self_seam;
 use crate::measure::signed_volume;
 use crate::repair::{split_nonmanifold, NonManifoldReport};
-use crate::vec3::{cross, norm, sub};
 use crate::{Aabb, Mesh};
 
 /// Which points a self-overlapping mesh encloses, by their winding number `w` (how many
@@ -190,23 +189,21 @@ pub fn resolve(
         // Parts cut one another's inside into pieces of alternating parity.
         return resolve_self(mesh, pairs, rule, opts, report);
     }
-    let components: Vec<Piece> = members
+    let (components, volumes): (Vec<Piece>, Vec<f64>) = members
         .par_iter()
         .map(|tris| {
             let m = mesh.subset(tris);
             let v = signed_volume(&m);
-            Piece {
+            let piece = Piece {
                 facing: if v > 0.0 { 1 } else { -1 },
                 mesh: m,
                 parent: tris.clone(),
                 components: 1,
-            }
+            };
+            (piece, v)
         })
-        .collect();
-    if let Some(c) = components
-        .iter()
-        .position(|p| signed_volume(&p.mesh) == 0.0)
-    {
+        .unzip();
+    if let Some(c) = volumes.iter().position(|&v| v == 0.0) {
         return Err(format!("component {c} encloses no volume"));
     }
     for cluster in clusters.iter().filter(|c| c.len() > 1) {
@@ -308,17 +305,8 @@ pub fn resolve(
 /// A point of `mesh` away from its vertices (the centroid of its largest triangle), where
 /// the winding number of the other pieces, which it does not touch, is evaluated.
 fn probe(mesh: &Mesh) -> [f64; 3] {
-    let t = (0..mesh.triangles.len())
-        .max_by(|&i, &j| {
-            let twice_area = |t: usize| {
-                let [a, b, c] = mesh.corners(t);
-                norm(&cross(&sub(&b, &a), &sub(&c, &a)))
-            };
-            twice_area(i).total_cmp(&twice_area(j))
-        })
-        .expect("a piece has triangles");
-    let [a, b, c] = mesh.corners(t);
-    std::array::from_fn(|k| (a[k] + b[k] + c[k]) / 3.0)
+    mesh.probe(0..mesh.triangles.len())
+        .expect("a piece has triangles")
 }
 
 /// Resolves `mesh` through its self-arrangement: the mesh cut along where it crosses
@@ -354,13 +342,9 @@ fn resolve_self(
     // four or more).
     let (count, patch) = topo.components_across(|e| topo.uses_of(e).len() == 2);
     report.patches = count;
-    let twice_area = |t: usize| {
-        let [a, b, c] = m.corners(t);
-        norm(&cross(&sub(&b, &a), &sub(&c, &a)))
-    };
     let mut best = vec![(0.0f64, usize::MAX); count];
     for (t, &p) in patch.iter().enumerate() {
-        let a = twice_area(t);
+        let a = m.twice_area(t);
         if a > best[p as usize].0 {
             best[p as usize] = (a, t);
         }
@@ -371,10 +355,7 @@ fn resolve_self(
     let probes: Vec<(usize, [f64; 3])> = best
         .iter()
         .filter(|&&(_, t)| t != usize::MAX)
-        .map(|&(_, t)| {
-            let [a, b, c] = m.corners(t);
-            (t, std::array::from_fn(|k| (a[k] + b[k] + c[k]) / 3.0))
-        })
+        .map(|&(_, t)| (t, m.centroid(t)))
         .collect();
     let around: Vec<f64> =
         if (m.triangles.len() as f64) * (probes.len() as f64) <= opts.exact_winding_up_to {

@@ -268,10 +268,7 @@ impl Operand {
             SelfIntersections {
                 pairs: found.len(),
                 first,
-                near: first.map(|[i, _]| {
-                    let [a, b, c] = mesh.corners(i as usize);
-                    std::array::from_fn(|k| (a[k] + b[k] + c[k]) / 3.0)
-                }),
+                near: first.map(|[i, _]| mesh.centroid(i as usize)),
                 unresolved: None,
             }
         });

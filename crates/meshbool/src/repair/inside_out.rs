@@ -9,7 +9,7 @@
 use rayon::prelude::*;
 
 use crate::classify::winding_number;
-use crate::vec3::{cross, dot, norm, sub};
+use crate::vec3::{cross, dot, sub};
 use crate::Mesh;
 
 /// The triangles of the inside-out components of `mesh` (valid, closed, consistently
@@ -61,16 +61,9 @@ pub fn inside_out(mesh: &Mesh) -> (Vec<u32>, usize) {
                 return true;
             }
             // The centroid of the component's largest triangle: on it, off the rest.
-            let twice_area = |t: u32| {
-                let [a, b, p] = mesh.corners(t as usize);
-                norm(&cross(&sub(&b, &a), &sub(&p, &a)))
-            };
-            let t = *mine
-                .iter()
-                .max_by(|&&i, &&j| twice_area(i).total_cmp(&twice_area(j)))
+            let at = mesh
+                .probe(mine.iter().map(|&t| t as usize))
                 .expect("a component has triangles");
-            let [a, b, p] = mesh.corners(t as usize);
-            let at = std::array::from_fn(|k| (a[k] + b[k] + p[k]) / 3.0);
             winding_number(&mesh.subset(&rest), at).round() < 1.0
         })
         .collect();
