@@ -286,7 +286,12 @@ fn cut_triangle(
         }
     }
     for (g, on_edge) in mine {
-        let exact = points.added[g as usize - points.input_vertices].clone();
+        // An input vertex here is one of the mesh's own lying on this triangle (the
+        // self-arrangement); the rest are constructed seam points.
+        let exact = match (g as usize).checked_sub(points.input_vertices) {
+            Some(i) => points.added[i].clone(),
+            None => Point::Explicit(mesh.positions[g as usize]),
+        };
         let l = lt.insert(exact, points.positions[g as usize], on_edge)?;
         if l as usize == ids.len() {
             ids.push(g);

@@ -84,6 +84,14 @@ fn index_own_points(mesh: &Mesh, seam: &Seam) -> SeamPoints {
         }
         points.seam_vertex.push(id);
     }
+    // A vertex on another triangle's edge or face is a point of that feature too.
+    for &(v, f) in &seam.vertex_on {
+        match f {
+            Feature::Face(t) => points.on_face.entry(t).or_default().push(v),
+            Feature::Edge(u, w) => points.on_edge.entry((u, w)).or_default().push(v),
+            Feature::Vertex(_) => {}
+        }
+    }
     points
 }
 

@@ -12,6 +12,7 @@
 //! seam, each piece kept, dropped or reversed by the winding number on its two sides.
 
 use rayon::prelude::*;
+use rustc_hash::FxHashMap;
 use serde::Serialize;
 
 use super::nary::{reduce, Part, Reduced};
@@ -20,6 +21,7 @@ use crate::arrange::arrange_self;
 use crate::classify::{winding_number, winding_number_without, winding_term, FastWinding};
 use crate::edges::{EdgeKind, EdgeTopology};
 use crate::intersect::self_seam;
+use crate::kernel::{orient3d_explicit, Sign};
 use crate::measure::signed_volume;
 use crate::repair::{split_nonmanifold, NonManifoldReport};
 use crate::{Aabb, Mesh};
@@ -302,6 +304,93 @@ pub fn resolve(
     })
 }
 
+/// The pieces of a self-arrangement that lie on pieces of another sheet (exactly coplanar
+/// input triangles that overlap), to find the stack of coincident sheets at a probe.
+struct CoincidentPieces {
+    /// Per input triangle with coplanar overlapping partners: the partners.
+    partners: FxHashMap<u32, Vec<u32>>,
+    /// Per such input triangle: its pieces in the arrangement.
+    pieces: FxHashMap<u32, Vec<u32>>,
+    /// The input triangle of each piece.
+    parent: Vec<u32>,
+}
+
+impl CoincidentPieces {
+    fn new(mesh: &Mesh, pairs: &[(u32, u32)], parent: &[u32]) -> Self {
+        let coplanar = |i: u32, j: u32| {
+            let [a, b, c] = mesh.corners(i as usize);
+            mesh.corners(j as usize)
+                .iter()
+                .all(|d| orient3d_explicit(&a, &b, &c, d) == Sign::Zero)
+        };
+        let found: Vec<(u32, u32)> = pairs
+            .par_iter()
+            .copied()
+            .filter(|&(i, j)| coplanar(i, j))
+            .collect();
+        let mut partners: FxHashMap<u32, Vec<u32>> = FxHashMap::default();
+        for (i, j) in found {
+            partners.entry(i).or_default().push(j);
+            partners.entry(j).or_default().push(i);
+        }
+        let mut pieces: FxHashMap<u32, Vec<u32>> = FxHashMap::default();
+        for (t, &p) in parent.iter().enumerate() {
+            if partners.contains_key(&p) {
+                pieces.entry(p).or_default().push(t as u32);
+            }
+        }
+        CoincidentPieces {
+            partners,
+            pieces,
+            parent: parent.to_vec(),
+        }
+    }
+
+    /// The pieces of other sheets that piece `t` of `m` (the arrangement) lies on at `p`
+    /// (a point inside `t`), each with +1 when it faces as `t` does, −1 when opposite.
+    /// Located in floating point in the plane's dominant projection: a probe, like the
+    /// winding number it corrects.
+    fn at(&self, m: &Mesh, t: usize, p: &[f64; 3]) -> Vec<(u32, i64)> {
+        let Some(partners) = self.partners.get(&self.parent[t]) else {
+            return Vec::new();
+        };
+        let normal = |u: usize| {
+            let [a, b, c] = m.corners(u);
+            let (e, f) = (sub(&b, &a), sub(&c, &a));
+            [
+                e[1] * f[2] - e[2] * f[1],
+                e[2] * f[0] - e[0] * f[2],
+                e[0] * f[1] - e[1] * f[0],
+            ]
+        };
+        let n = normal(t);
+        let axis = (0..3)
+            .max_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()))
+            .unwrap_or(2);
+        let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+        let c2 = |q: &[f64; 3]| robust::Coord { x: q[i], y: q[j] };
+        let mut out = Vec::new();
+        for q in partners {
+            for &u in self.pieces.get(q).map(Vec::as_slice).unwrap_or(&[]) {
+                let [a, b, c] = m.corners(u as usize);
+                let s =
+                    [(a, b), (b, c), (c, a)].map(|(x, y)| robust::orient2d(c2(&x), c2(&y), c2(p)));
+                let inside = s.iter().all(|&v| v >= 0.0) || s.iter().all(|&v| v <= 0.0);
+                if inside {
+                    let nu = normal(u as usize);
+                    let same = n[0] * nu[0] + n[1] * nu[1] + n[2] * nu[2] > 0.0;
+                    out.push((u, if same { 1 } else { -1 }));
+                }
+            }
+        }
+        out
+    }
+}
+
+fn sub(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
 /// A point of `mesh` away from its vertices (the centroid of its largest triangle), where
 /// the winding number of the other pieces, which it does not touch, is evaluated.
 fn probe(mesh: &Mesh) -> [f64; 3] {
@@ -375,19 +464,28 @@ fn resolve_self(
                 })
                 .collect()
         };
-    let mut front = vec![None; count];
-    for (&(t, _), w) in probes.iter().zip(around) {
-        front[patch[t] as usize] = Some((w - 0.5).round() as i64);
+    // Per patch: None dropped (or only zero-area pieces), Some(flip) kept. A patch in a
+    // stack of coincident sheets (coplanar overlaps) counts the whole stack: the winding
+    // numbers in front of and behind it differ by the stack's net orientation, and only
+    // the stack's first patch is kept.
+    let stacks = CoincidentPieces::new(mesh, pairs, &arr.parent);
+    let mut keep: Vec<Option<bool>> = vec![None; count];
+    for (&(t, p), w) in probes.iter().zip(around) {
+        let stack = stacks.at(m, t, &p);
+        let rest = w - stack
+            .iter()
+            .map(|&(u, _)| {
+                let [a, b, c] = m.corners(u as usize);
+                winding_term(&a, &b, &c, &p)
+            })
+            .sum::<f64>();
+        let net = 1 + stack.iter().map(|&(_, s)| s).sum::<i64>();
+        let front = (rest - net as f64 / 2.0).round() as i64;
+        let behind = front + net;
+        let first = stack.iter().all(|&(u, _)| patch[u as usize] > patch[t]);
+        keep[patch[t] as usize] =
+            (first && rule.inside(behind) != rule.inside(front)).then(|| !rule.inside(behind));
     }
-    // Per patch: None dropped (or only zero-area pieces), Some(flip) kept.
-    let keep: Vec<Option<bool>> = front
-        .iter()
-        .map(|f| {
-            let front = (*f)?;
-            let behind = front + 1;
-            (rule.inside(behind) != rule.inside(front)).then(|| !rule.inside(behind))
-        })
-        .collect();
     report.patches_dropped = keep.iter().filter(|k| k.is_none()).count();
     report.patches_flipped = keep.iter().filter(|k| **k == Some(true)).count();
     let kept: Vec<u32> = (0..m.triangles.len() as u32)
@@ -473,5 +571,51 @@ mod tests {
         assert_eq!(fast.mesh, own.mesh);
         // Every result triangle names an input triangle of a sphere it lies on.
         assert!(own.parent.iter().all(|&t| (t as usize) < m.triangles.len()));
+    }
+
+    /// Two cubes overlapping with coplanar faces (a vertex of each on the other's edges and
+    /// faces): the self-arrangement inserts those vertices into the features they lie on,
+    /// so no triangle fails, and each fill rule gives its exact solid (coincident sheets
+    /// count once).
+    #[test]
+    fn self_arrangement_of_cubes_sharing_coplanar_faces() {
+        let mut m = Mesh::cuboid([-1.0; 3], [1.0; 3]);
+        m.append(&Mesh::cuboid([0.0, -1.0, -1.0], [2.0, 1.0, 1.0]))
+            .unwrap();
+        let pairs = self_intersections(&m);
+        let opts = PipelineOptions::default();
+        for (rule, volume) in [
+            (FillRule::Positive, 12.0),
+            (FillRule::NonZero, 12.0),
+            (FillRule::EvenOdd, 8.0),
+        ] {
+            let r = resolve_self(&m, &pairs, rule, &opts, ResolveReport::default()).unwrap();
+            assert_eq!(r.report.failed_triangles, 0, "{rule:?}");
+            let s = mesh_stats(&r.mesh);
+            assert!(s.closed, "{rule:?} {s:?}");
+            assert_eq!((s.non_manifold_edges, s.inconsistent_edges), (0, 0));
+            assert_eq!(signed_volume(&r.mesh), volume, "{rule:?}");
+        }
+        // The same cube twice: one copy under positive and non-zero, nothing under
+        // even-odd; a cube and its reversed copy (a zero-thickness membrane) cancel.
+        let cube = Mesh::cuboid([0.0; 3], [1.0; 3]);
+        let mut twice = cube.clone();
+        twice.append(&cube).unwrap();
+        let mut membrane = cube.clone();
+        membrane.append(&cube.flipped()).unwrap();
+        for (m, rule, volume, triangles) in [
+            (&twice, FillRule::Positive, 1.0, 12),
+            (&twice, FillRule::NonZero, 1.0, 12),
+            (&twice, FillRule::EvenOdd, 0.0, 0),
+            (&membrane, FillRule::NonZero, 0.0, 0),
+        ] {
+            let pairs = self_intersections(m);
+            let r = resolve_self(m, &pairs, rule, &opts, ResolveReport::default()).unwrap();
+            assert_eq!(r.mesh.triangles.len(), triangles, "{rule:?}");
+            assert_eq!(signed_volume(&r.mesh), volume, "{rule:?}");
+            if triangles > 0 {
+                assert!(mesh_stats(&r.mesh).closed);
+            }
+        }
     }
 }

@@ -76,6 +76,11 @@ pub struct Seam {
     /// True when the candidates came from the grid broad phase ([`crate::broad`]), false
     /// when from two trees.
     pub from_grid: bool,
+    /// Of a mesh's own seam ([`self_seam`]): each vertex that lies on an edge or in the
+    /// face of another of the mesh's triangles, with that feature (sorted, unique). The
+    /// labels name such a point by the vertex alone; the arrangement inserts the vertex
+    /// into those features. Empty for the seam of two meshes.
+    pub vertex_on: Vec<(u32, Feature)>,
 }
 
 /// The canonical exact construction of a labelled seam point.
@@ -318,6 +323,7 @@ pub fn self_seam(m: &Mesh, pairs: &[(u32, u32)]) -> Seam {
         })
         .collect();
     let mut seam = assemble(&results, own_label);
+    seam.vertex_on = vertices_on_features(&results);
     seam.candidate_pairs = pairs.len();
     seam.exact = seam
         .points
@@ -326,6 +332,31 @@ pub fn self_seam(m: &Mesh, pairs: &[(u32, u32)]) -> Seam {
         .collect();
     seam.positions = seam.exact.par_iter().map(Point::approx).collect();
     seam
+}
+
+/// The vertices that lie on another triangle's edge or face, from the raw labels of the
+/// self-intersection results (before [`own_label`] names such points by the vertex).
+fn vertices_on_features(results: &[(u32, u32, TriTri)]) -> Vec<(u32, Feature)> {
+    let mut found = Vec::new();
+    let mut note = |l: &Label| match (l.a, l.b) {
+        (Feature::Vertex(v), f @ (Feature::Edge(..) | Feature::Face(_)))
+        | (f @ (Feature::Edge(..) | Feature::Face(_)), Feature::Vertex(v)) => found.push((v, f)),
+        _ => {}
+    };
+    for (_, _, r) in results {
+        match r {
+            TriTri::None => {}
+            TriTri::Point(l) => note(l),
+            TriTri::Segment(s) => s.iter().for_each(&mut note),
+            TriTri::Coplanar { segments, points } => {
+                segments.iter().flatten().for_each(&mut note);
+                points.iter().for_each(&mut note);
+            }
+        }
+    }
+    found.sort_unstable();
+    found.dedup();
+    found
 }
 
 /// Pairs of triangles of one mesh that meet anywhere other than in the vertices and edges
