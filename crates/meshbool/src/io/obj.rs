@@ -12,7 +12,34 @@ use crate::Mesh;
 pub(super) fn looks_like(bytes: &[u8]) -> bool {
     let head = &bytes[..bytes.len().min(1 << 16)];
     let starts = |p: &[u8]| lines(head).any(|(_, l)| l.trim_ascii_start().starts_with(p));
-    starts(b"v ") && (starts(b"f ") || head.len() == bytes.len())
+    // A large file's faces may come after the first 64 KiB of vertices: then every whole
+    // line of the head must be one an OBJ file has.
+    let obj_lines = || {
+        let whole = match head.iter().rposition(|&b| b == b'\n') {
+            Some(i) => &head[..i],
+            None => head,
+        };
+        lines(whole).all(|(_, l)| {
+            let keyword = tokens(l).next().unwrap_or(b"");
+            keyword.is_empty()
+                || keyword.starts_with(b"#")
+                || [
+                    &b"v"[..],
+                    b"vn",
+                    b"vt",
+                    b"vp",
+                    b"f",
+                    b"l",
+                    b"o",
+                    b"g",
+                    b"s",
+                    b"usemtl",
+                    b"mtllib",
+                ]
+                .contains(&keyword)
+        })
+    };
+    starts(b"v ") && (starts(b"f ") || head.len() == bytes.len() || obj_lines())
 }
 
 pub(super) fn read(bytes: &[u8]) -> Result<Mesh> {

@@ -429,6 +429,21 @@ fn detection_by_name_and_content() {
 }
 
 #[test]
+fn a_large_obj_whose_faces_start_after_the_first_64_kib_is_detected() {
+    let s = crate::shapes::uv_sphere([0.0; 3], 1.0, 64, 48);
+    let bytes = write_to_vec(&s, Format::Obj);
+    let first_face = bytes.windows(3).position(|w| w == b"\nf ").unwrap();
+    assert!(first_face > 1 << 16, "{first_face}");
+    assert_eq!(detect_format(&bytes, None), Some(Format::Obj));
+    // A text that is not OBJ past its vertex-like lines is still not taken for one.
+    let mut other = b"v 1 2 3\n".repeat(7000);
+    other.extend_from_slice(b"hello world\n");
+    assert!(other.len() < 1 << 16);
+    other.extend(b"v 1 2 3\n".repeat(9000));
+    assert_eq!(detect_format(&other, None), None);
+}
+
+#[test]
 fn writing_invalid_mesh_is_an_error() {
     let mut m = Mesh::unit_cube();
     m.positions[0][0] = f64::INFINITY;
