@@ -3,7 +3,7 @@
 
 use serde::Serialize;
 
-use std::time::Instant;
+use web_time::Instant;
 
 use rayon::prelude::*;
 

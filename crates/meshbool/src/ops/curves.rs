@@ -5,7 +5,7 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use std::time::Instant;
+use web_time::Instant;
 
 use super::{with_threads, Checks, Input, Operand, RunOptions, SCHEMA};
 use crate::boolean::Stage;

@@ -5,7 +5,7 @@
 
 use std::borrow::Cow;
 use std::path::Path;
-use std::time::Instant;
+use web_time::Instant;
 
 use serde::{Deserialize, Serialize};
 

@@ -241,7 +241,7 @@ impl ResolveOutput {
 pub fn resolve<'a>(mesh: impl Into<Input<'a>>, opts: &ResolveOptions) -> Result<ResolveOutput> {
     let input: Input<'a> = mesh.into();
     with_threads(opts.run.threads, || {
-        let start = std::time::Instant::now();
+        let start = web_time::Instant::now();
         let input = welded(input)?;
         opts.run.stage(Stage::Check);
         let pairs = self_intersections(input.mesh());

@@ -1,0 +1,583 @@
+//! WebAssembly bindings of meshbool: the native layer of the `meshbool` npm package
+//! (`js/`). A thin layer over the library's front door (`meshbool::ops`), as the Python
+//! package's is: flat typed arrays in, one call per operation, typed arrays and JSON
+//! reports out. The JavaScript package (`js/src/index.js`) builds the reference API's
+//! shapes (soups of `{v0,v1,v2}`, `{soup, points, triangles}`, the four groups) on top.
+//!
+//! Meshes cross as two arrays: `positions` (`Float64Array`, three numbers per vertex) and
+//! `index` (`Uint32Array`, three vertex indices per triangle). A result is a plain object
+//! `{positions, index, report}` (`report`: the JSON text of the command's report, the
+//! same as the CLI's `--json`), with extra arrays where an operation has more to say.
+//!
+//! Errors are thrown as JavaScript `Error`s carrying the library's message. A panic (a bug)
+//! aborts the WebAssembly call; [`last_panic`] then gives its message so that the package
+//! can throw an `Error` that says what happened instead of "unreachable".
+#![forbid(unsafe_code)]
+
+use std::cell::RefCell;
+
+use js_sys::{Array, Float64Array, Object, Reflect, Uint32Array, Uint8Array};
+use meshbool::ops::{
+    self, BooleanOptions, Checks, CurvesOptions, Measures, PickOptions, ResolveOptions,
+    SplitOptions,
+};
+use meshbool::repair::{CloseMode, CloseOptions, Facing, RepairConfig};
+use meshbool::{EdgeTopology, Error, FillRule, Format, Mesh, Op, Source};
+use serde_json::Value;
+use wasm_bindgen::prelude::*;
+
+thread_local! {
+    static PANIC: RefCell<Option<String>> = const { RefCell::new(None) };
+}
+
+/// Installs the panic hook that keeps a panic's message for [`last_panic`]. Runs when the
+/// module is instantiated.
+#[wasm_bindgen(start)]
+pub fn start() {
+    std::panic::set_hook(Box::new(|info| {
+        let text = info.to_string();
+        PANIC.with(|p| *p.borrow_mut() = Some(text));
+    }));
+}
+
+/// The message of the last panic, if any, cleared by reading it.
+#[wasm_bindgen(js_name = lastPanic)]
+pub fn last_panic() -> Option<String> {
+    PANIC.with(|p| p.borrow_mut().take())
+}
+
+/// Panics, to test that a panic reaches JavaScript as an `Error` with its message.
+#[doc(hidden)]
+#[wasm_bindgen(js_name = __panicForTest)]
+pub fn panic_for_test() {
+    panic!("a test panic");
+}
+
+fn js_err(e: Error) -> JsError {
+    JsError::new(&e.to_string())
+}
+
+fn bad(msg: impl AsRef<str>) -> JsError {
+    JsError::new(msg.as_ref())
+}
+
+/// A mesh from flat arrays, validated (finite coordinates, indices in range).
+fn mesh(positions: &[f64], index: &[u32]) -> Result<Mesh, JsError> {
+    if positions.len() % 3 != 0 {
+        return Err(bad(format!(
+            "positions must hold three numbers per vertex, got {} numbers",
+            positions.len()
+        )));
+    }
+    if index.len() % 3 != 0 {
+        return Err(bad(format!(
+            "index must hold three vertex indices per triangle, got {} indices",
+            index.len()
+        )));
+    }
+    let p = positions.chunks_exact(3).map(|c| [c[0], c[1], c[2]]);
+    let t = index.chunks_exact(3).map(|c| [c[0], c[1], c[2]]);
+    let m = Mesh::new(p.collect(), t.collect()).map_err(js_err)?;
+    m.validate().map_err(js_err)?;
+    Ok(m)
+}
+
+/// A plain JavaScript object built key by key.
+struct Out(Object);
+
+impl Out {
+    fn new() -> Self {
+        Out(Object::new())
+    }
+
+    fn set(self, key: &str, value: impl Into<JsValue>) -> Self {
+        // Setting a property of a fresh plain object cannot fail.
+        let _ = Reflect::set(&self.0, &JsValue::from_str(key), &value.into());
+        self
+    }
+
+    fn mesh(self, m: &Mesh) -> Self {
+        let p = m.positions().as_flattened();
+        let t = m.triangles().as_flattened();
+        self.set("positions", Float64Array::from(p))
+            .set("index", Uint32Array::from(t))
+    }
+
+    fn report(self, report: &impl serde::Serialize) -> Result<Self, JsError> {
+        let text = serde_json::to_string(report).map_err(|e| bad(e.to_string()))?;
+        Ok(self.set("report", text))
+    }
+
+    fn done(self) -> JsValue {
+        self.0.into()
+    }
+}
+
+/// The options object's JSON text, parsed (empty text: no options).
+fn options(text: &str) -> Result<Value, JsError> {
+    if text.trim().is_empty() {
+        return Ok(Value::Object(Default::default()));
+    }
+    let v: Value = serde_json::from_str(text).map_err(|e| bad(format!("bad options: {e}")))?;
+    if !v.is_object() {
+        return Err(bad("options must be an object"));
+    }
+    Ok(v)
+}
+
+fn flag(o: &Value, key: &str, default: bool) -> Result<bool, JsError> {
+    match o.get(key) {
+        None | Some(Value::Null) => Ok(default),
+        Some(Value::Bool(b)) => Ok(*b),
+        Some(v) => Err(bad(format!("option {key} must be true or false, got {v}"))),
+    }
+}
+
+fn number(o: &Value, key: &str) -> Result<Option<f64>, JsError> {
+    match o.get(key) {
+        None | Some(Value::Null) => Ok(None),
+        Some(Value::Number(n)) => Ok(n.as_f64()),
+        Some(v) => Err(bad(format!("option {key} must be a number, got {v}"))),
+    }
+}
+
+/// The operand checks from options `force`, `selfCheck`, `resolve`, `orient` (all on but
+/// `force` by default, as on the command line).
+fn checks(o: &Value) -> Result<Checks, JsError> {
+    Ok(Checks {
+        self_intersections: flag(o, "selfCheck", true)?,
+        resolve: flag(o, "resolve", true)?,
+        orient: flag(o, "orient", true)?,
+        force: flag(o, "force", false)?,
+        ..Checks::default()
+    })
+}
+
+fn provenance_arrays(out: Out, prov: &[meshbool::Provenance]) -> Out {
+    let source: Vec<u8> = prov
+        .iter()
+        .map(|p| u8::from(p.source == Source::B))
+        .collect();
+    let triangle: Vec<u32> = prov.iter().map(|p| p.triangle).collect();
+    let flipped: Vec<u8> = prov.iter().map(|p| u8::from(p.flipped)).collect();
+    out.set("source", Uint8Array::from(&source[..]))
+        .set("triangle", Uint32Array::from(&triangle[..]))
+        .set("flipped", Uint8Array::from(&flipped[..]))
+}
+
+/// A boolean of two meshes: `{positions, index, source, triangle, flipped, report}`
+/// (`source[t]`: 0 when result triangle `t` comes from A, 1 from B; `triangle[t]`: the
+/// input triangle it is part of; `flipped[t]`: 1 when reversed). `op`: `union`,
+/// `intersection` (`intersect`), `difference` (`subtract`), `reverse-difference`.
+/// Options (JSON): `force`, `selfCheck`, `resolve`, `orient`, `keepNonmanifold`.
+#[wasm_bindgen]
+pub fn boolean(
+    a_positions: &[f64],
+    a_index: &[u32],
+    b_positions: &[f64],
+    b_index: &[u32],
+    op: &str,
+    opts: &str,
+) -> Result<JsValue, JsError> {
+    let (a, b) = (mesh(a_positions, a_index)?, mesh(b_positions, b_index)?);
+    let op: Op = op.parse().map_err(js_err)?;
+    let o = options(opts)?;
+    let opts = BooleanOptions {
+        checks: checks(&o)?,
+        keep_nonmanifold: flag(&o, "keepNonmanifold", false)?,
+        ..BooleanOptions::default()
+    };
+    let out = ops::boolean(&a, &b, op, &opts).map_err(js_err)?;
+    let res = Out::new().mesh(&out.mesh).report(&out.report())?;
+    Ok(provenance_arrays(res, &out.provenance).done())
+}
+
+/// Splits two meshes along their intersection: `{groups, report}` where `groups` is an
+/// array of `{name, positions, index, source, triangle, flipped}`, one per group of the
+/// library (`a_in_b`, `a_out_b`, `b_in_a`, `b_out_a` and the four coplanar groups), each
+/// group's mesh welded. Options as for [`boolean`].
+#[wasm_bindgen]
+pub fn split(
+    a_positions: &[f64],
+    a_index: &[u32],
+    b_positions: &[f64],
+    b_index: &[u32],
+    opts: &str,
+) -> Result<JsValue, JsError> {
+    let (a, b) = (mesh(a_positions, a_index)?, mesh(b_positions, b_index)?);
+    let o = options(opts)?;
+    let opts = SplitOptions {
+        checks: checks(&o)?,
+        ..SplitOptions::default()
+    };
+    let out = ops::split(&a, &b, &opts).map_err(js_err)?;
+    let groups = Array::new();
+    for g in &out.groups {
+        let item = Out::new().set("name", g.group.name()).mesh(&g.mesh);
+        groups.push(&provenance_arrays(item, &g.provenance).done());
+    }
+    Ok(Out::new()
+        .set("groups", groups)
+        .report(&out.report(Format::PlyBinaryLe))?
+        .done())
+}
+
+/// The names of the groups a boolean keeps and whether each is reversed, as
+/// `"name"` or `"name:flip"` (`op` as for [`boolean`]).
+#[wasm_bindgen(js_name = groupsForOp)]
+pub fn groups_for_op(op: &str) -> Result<Vec<String>, JsError> {
+    let op: Op = op.parse().map_err(js_err)?;
+    Ok(ops::PieceSpec::for_op(op)
+        .iter()
+        .map(|s| {
+            let name = s.group.name();
+            if s.flip {
+                format!("{name}:flip")
+            } else {
+                name.to_string()
+            }
+        })
+        .collect())
+}
+
+/// The raw intersection segments of two meshes, exact points rounded once:
+/// `{segments, triA, triB, coplanar}`: `segments` six numbers per segment (its two ends),
+/// `triA`/`triB` the triangle of each input it lies in (a segment along an edge is listed
+/// once per pair of triangles it lies in), `coplanar[s]` 1 for segments of coplanar
+/// overlaps. Options (JSON): `withCoplanar` (default true).
+#[wasm_bindgen]
+pub fn intersect(
+    a_positions: &[f64],
+    a_index: &[u32],
+    b_positions: &[f64],
+    b_index: &[u32],
+    opts: &str,
+) -> Result<JsValue, JsError> {
+    let (a, b) = (mesh(a_positions, a_index)?, mesh(b_positions, b_index)?);
+    let o = options(opts)?;
+    let with_coplanar = flag(&o, "withCoplanar", true)?;
+    let out = ops::curves(&a, &b, &CurvesOptions::default()).map_err(js_err)?;
+    let seam = &out.seam;
+    let (mut segments, mut tri_a, mut tri_b, mut coplanar) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for s in &seam.sources {
+        let seg = &seam.segments[s.segment as usize];
+        if seg.coplanar && !with_coplanar {
+            continue;
+        }
+        for e in seg.ends {
+            segments.extend_from_slice(&seam.positions[e as usize]);
+        }
+        tri_a.push(s.tri_a);
+        tri_b.push(s.tri_b);
+        coplanar.push(u8::from(seg.coplanar));
+    }
+    Ok(Out::new()
+        .set("segments", Float64Array::from(&segments[..]))
+        .set("triA", Uint32Array::from(&tri_a[..]))
+        .set("triB", Uint32Array::from(&tri_b[..]))
+        .set("coplanar", Uint8Array::from(&coplanar[..]))
+        .report(&out.report())?
+        .done())
+}
+
+/// The intersection curves of two meshes (or of one mesh with itself when `b_positions`
+/// is empty), chained into polylines: `{polylines, closed, report}` (`polylines`: an array
+/// of `Float64Array`s, three numbers per point; `closed[i]` 1 for loops). Options (JSON):
+/// `withCoplanar` (default false).
+#[wasm_bindgen]
+pub fn curves(
+    a_positions: &[f64],
+    a_index: &[u32],
+    b_positions: &[f64],
+    b_index: &[u32],
+    opts: &str,
+) -> Result<JsValue, JsError> {
+    let a = mesh(a_positions, a_index)?;
+    let o = options(opts)?;
+    let copts = CurvesOptions {
+        with_coplanar: flag(&o, "withCoplanar", false)?,
+        ..CurvesOptions::default()
+    };
+    let out = if b_positions.is_empty() && b_index.is_empty() {
+        ops::self_curves(&a, &copts)
+    } else {
+        ops::curves(&a, &mesh(b_positions, b_index)?, &copts)
+    }
+    .map_err(js_err)?;
+    let lines = Array::new();
+    let mut closed = Vec::new();
+    for l in &out.polylines {
+        lines.push(&Float64Array::from(l.points.as_flattened()));
+        closed.push(u8::from(l.closed));
+    }
+    Ok(Out::new()
+        .set("polylines", lines)
+        .set("closed", Uint8Array::from(&closed[..]))
+        .report(&out.report())?
+        .done())
+}
+
+/// Merges picked pieces into one mesh the way `meshbool pick` does: welded exactly, with
+/// edges used by more than two triangles split apart (unless `keep_nonmanifold`). With
+/// `dedupe`, exactly coincident triangles are removed first (same orientation: one kept;
+/// opposite orientations: the pair cancels, a zero-thickness wall). `{positions, index,
+/// duplicates, report}` (`duplicates`: triangles removed by `dedupe`).
+#[wasm_bindgen]
+pub fn merge(
+    positions: &[f64],
+    index: &[u32],
+    keep_nonmanifold: bool,
+    dedupe: bool,
+) -> Result<JsValue, JsError> {
+    let mut m = mesh(positions, index)?;
+    let mut removed = 0;
+    if dedupe {
+        let (d, r) = meshbool::repair::remove_duplicates(&meshbool::weld_exact(&m).mesh);
+        removed = r.same_orientation_removed + r.anti_parallel_removed;
+        m = d;
+    }
+    let out = ops::pick(&[(&m, false)], &PickOptions { keep_nonmanifold }).map_err(js_err)?;
+    Ok(Out::new()
+        .mesh(&out.mesh)
+        .set("duplicates", removed as u32)
+        .report(&out.report())?
+        .done())
+}
+
+/// Triangulates a closed polygon loop in 3-D (three numbers per point, not repeating the
+/// first), as meshbool caps holes (ear clipping in the loop's Newell plane): the triangles
+/// as indices into the loop, wound as the loop runs. Empty for fewer than three points.
+#[wasm_bindgen(js_name = triangulateLoop)]
+pub fn triangulate_loop(points: &[f64]) -> Result<Vec<u32>, JsError> {
+    let n = points.len() / 3;
+    if points.len() % 3 != 0 {
+        return Err(bad("a loop needs three numbers per point"));
+    }
+    if n < 3 {
+        return Ok(Vec::new());
+    }
+    // A cone over the loop (apex off its plane) has the loop as its one boundary; capping
+    // that boundary triangulates the loop. The cap runs against the cone, so against the
+    // loop: its triangles are turned back.
+    let mut p: Vec<[f64; 3]> = points.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+    let (mut c, mut nn) = ([0.0; 3], [0.0; 3]);
+    for i in 0..n {
+        let (a, b) = (p[i], p[(i + 1) % n]);
+        for k in 0..3 {
+            c[k] += a[k] / n as f64;
+        }
+        nn[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        nn[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        nn[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    let size = p
+        .iter()
+        .map(|q| (0..3).map(|k| (q[k] - c[k]).abs()).fold(0.0, f64::max))
+        .fold(1.0, f64::max);
+    let len = (nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]).sqrt();
+    let dir = if len > 0.0 {
+        nn.map(|x| x / len)
+    } else {
+        [0.0, 0.0, 1.0]
+    };
+    p.push([0, 1, 2].map(|k| c[k] + dir[k] * size));
+    let apex = n as u32;
+    let cone = (0..n as u32)
+        .map(|i| [apex, i, (i + 1) % n as u32])
+        .collect();
+    let m = Mesh::new(p, cone).map_err(js_err)?;
+    m.validate().map_err(js_err)?;
+    let (capped, _) = meshbool::repair::cap_holes(&m);
+    Ok(capped.triangles()[n..]
+        .iter()
+        .flat_map(|t| [t[0], t[2], t[1]])
+        .collect())
+}
+
+/// The solid a self-overlapping mesh encloses under a fill rule (`positive`, `nonzero`,
+/// `evenodd`): `{positions, index, parent, report}` (`parent[t]`: the input triangle of
+/// result triangle `t`).
+#[wasm_bindgen]
+pub fn resolve(
+    positions: &[f64],
+    index: &[u32],
+    rule: &str,
+    keep_nonmanifold: bool,
+) -> Result<JsValue, JsError> {
+    let m = mesh(positions, index)?;
+    let opts = ResolveOptions {
+        rule: rule.parse::<FillRule>().map_err(js_err)?,
+        keep_nonmanifold,
+        ..ResolveOptions::default()
+    };
+    let out = ops::resolve(&m, &opts).map_err(js_err)?;
+    Ok(Out::new()
+        .mesh(&out.mesh)
+        .set("parent", Uint32Array::from(&out.parent[..]))
+        .report(&out.report())?
+        .done())
+}
+
+/// The repair pipeline, configured by the JSON of the library's `RepairConfig`
+/// (`docs/json.md`): `{positions, index, report}`.
+#[wasm_bindgen]
+pub fn repair(positions: &[f64], index: &[u32], config: &str) -> Result<JsValue, JsError> {
+    let m = mesh(positions, index)?;
+    let config: RepairConfig = if config.trim().is_empty() {
+        RepairConfig::default()
+    } else {
+        serde_json::from_str(config).map_err(|e| bad(format!("not a repair configuration: {e}")))?
+    };
+    let out = ops::repair(&m, &config).map_err(js_err)?;
+    Ok(Out::new().mesh(&out.mesh).report(&out.report())?.done())
+}
+
+/// Closes an open mesh into a solid: `mode` `cap`, `stitch`, `curtain` or
+/// `stitch+curtain`; options (JSON) `floorOffset`, `maxGap`. `{positions, index, report}`.
+#[wasm_bindgen]
+pub fn close(positions: &[f64], index: &[u32], mode: &str, opts: &str) -> Result<JsValue, JsError> {
+    let m = mesh(positions, index)?;
+    let mode: CloseMode = mode.parse().map_err(js_err)?;
+    let o = options(opts)?;
+    let copts = CloseOptions {
+        stitch_max_gap: number(&o, "maxGap")?,
+        floor_offset: number(&o, "floorOffset")?.unwrap_or(CloseOptions::default().floor_offset),
+    };
+    let out = ops::close(&m, mode, &copts).map_err(js_err)?;
+    Ok(Out::new().mesh(&out.mesh).report(&out.report())?.done())
+}
+
+/// Consistent orientation, each component facing `majority`, `z-up` or `outward`:
+/// `{positions, index, report}`.
+#[wasm_bindgen]
+pub fn orient(positions: &[f64], index: &[u32], facing: &str) -> Result<JsValue, JsError> {
+    let m = mesh(positions, index)?;
+    let facing: Facing = facing.parse().map_err(js_err)?;
+    let out = ops::orient(&m, facing).map_err(js_err)?;
+    Ok(Out::new().mesh(&out.mesh).report(&out.report())?.done())
+}
+
+/// The measures of a mesh as the JSON of `meshbool info` (its `stats`), after an exact
+/// weld (vertices with equal coordinates are one vertex, as every operation takes them).
+#[wasm_bindgen]
+pub fn info(positions: &[f64], index: &[u32]) -> Result<String, JsError> {
+    let m = meshbool::weld_exact(&mesh(positions, index)?).mesh;
+    let stats = ops::info(&m).map_err(js_err)?;
+    serde_json::to_string(&stats).map_err(|e| bad(e.to_string()))
+}
+
+/// `[volume, area, closed (0 or 1), boundary edges, non-manifold edges]` of a mesh, as
+/// is (not welded): the cheap measures every result carries.
+#[wasm_bindgen]
+pub fn measures(positions: &[f64], index: &[u32]) -> Result<Vec<f64>, JsError> {
+    let m = mesh(positions, index)?;
+    let r = Measures::of(&m);
+    Ok(vec![
+        r.volume,
+        r.area,
+        f64::from(u8::from(r.closed)),
+        r.boundary_edges as f64,
+        r.non_manifold_edges as f64,
+    ])
+}
+
+/// Welds vertices: exactly equal ones when `tolerance` is 0, else within `tolerance`.
+/// `{positions, index, map}` (`map[v]`: the new index of input vertex `v`; with a
+/// tolerance, triangles that collapse are dropped and `map` is absent).
+#[wasm_bindgen]
+pub fn weld(positions: &[f64], index: &[u32], tolerance: f64) -> Result<JsValue, JsError> {
+    let m = mesh(positions, index)?;
+    if !(tolerance >= 0.0 && tolerance.is_finite()) {
+        return Err(bad(format!(
+            "the weld tolerance must be a finite number ≥ 0, got {tolerance}"
+        )));
+    }
+    if tolerance == 0.0 {
+        let w = meshbool::weld_exact(&m);
+        return Ok(Out::new()
+            .mesh(&w.mesh)
+            .set("map", Uint32Array::from(&w.vertex_map[..]))
+            .done());
+    }
+    let (welded, report) = meshbool::repair::weld_within(&m, tolerance);
+    Ok(Out::new().mesh(&welded).report(&report)?.done())
+}
+
+/// Edge-connected components of a mesh welded exactly: `{count, ids}` (`ids[t]`: the
+/// component of triangle `t`, numbered in order of first triangle).
+#[wasm_bindgen]
+pub fn components(positions: &[f64], index: &[u32]) -> Result<JsValue, JsError> {
+    let m = meshbool::weld_exact(&mesh(positions, index)?).mesh;
+    let (count, ids) = EdgeTopology::new(&m).components();
+    Ok(Out::new()
+        .set("count", count as u32)
+        .set("ids", Uint32Array::from(&ids[..]))
+        .done())
+}
+
+/// The boundary loops of a mesh welded exactly: `{positions, loops, nonManifold}`
+/// (`loops`: an array of `Uint32Array`s of vertex indices into the welded `positions`;
+/// `nonManifold`: edges used by more than two triangles).
+#[wasm_bindgen(js_name = boundaryLoops)]
+pub fn boundary_loops(positions: &[f64], index: &[u32]) -> Result<JsValue, JsError> {
+    let m = meshbool::weld_exact(&mesh(positions, index)?).mesh;
+    let (loops, non_manifold) = meshbool::repair::boundary_loops(&m);
+    let arr = Array::new();
+    for l in &loops {
+        arr.push(&Uint32Array::from(&l[..]));
+    }
+    Ok(Out::new()
+        .set(
+            "positions",
+            Float64Array::from(m.positions().as_flattened()),
+        )
+        .set("loops", arr)
+        .set("nonManifold", non_manifold as u32)
+        .done())
+}
+
+/// Reads a mesh file's bytes: `{positions, index, format}`. `format`: `stl`, `obj`,
+/// `ply`, `off`, ... or empty to detect it from the bytes.
+#[wasm_bindgen]
+pub fn read(bytes: &[u8], format: &str) -> Result<JsValue, JsError> {
+    let hint = if format.is_empty() {
+        None
+    } else {
+        Some(format.parse::<Format>().map_err(js_err)?)
+    };
+    let format = meshbool::io::detect_format(bytes, hint)
+        .ok_or_else(|| bad("cannot tell the file's format from its contents; name it"))?;
+    let m = meshbool::io::read_bytes(bytes, format).map_err(js_err)?;
+    Ok(Out::new().mesh(&m).set("format", format.name()).done())
+}
+
+/// A mesh file's bytes in `format` (`stl`, `obj`, `ply`, ...).
+#[wasm_bindgen]
+pub fn write(positions: &[f64], index: &[u32], format: &str) -> Result<Vec<u8>, JsError> {
+    let m = mesh(positions, index)?;
+    let format: Format = format.parse().map_err(js_err)?;
+    let mut bytes = Vec::new();
+    meshbool::io::write(&mut bytes, &m, format).map_err(js_err)?;
+    Ok(bytes)
+}
+
+/// The library's version.
+#[wasm_bindgen]
+pub fn version() -> String {
+    env!("CARGO_PKG_VERSION").to_string()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use meshbool::Group;
+
+    #[test]
+    fn groups_for_each_op_are_named() {
+        let union = groups_for_op("union").unwrap_or_default();
+        assert!(union.iter().any(|g| g == Group::AOutB.name()));
+        let diff = groups_for_op("subtract").unwrap_or_default();
+        assert!(diff.iter().any(|g| g == "b_in_a:flip"), "{diff:?}");
+    }
+}

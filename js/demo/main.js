@@ -1,0 +1,387 @@
+// The demo page: two meshes (files read by meshbool's WebAssembly readers, or the bundled
+// Kirra examples), a boolean or a split-and-pick of the two, the result drawn with three.js
+// and measured, and an STL download of it.
+import * as THREE from "three";
+import { OrbitControls } from "three/addons/controls/OrbitControls.js";
+import { booleanIndexed, meshInfo, readMesh, splitIndexed, version, writeMesh } from "../src/index.js";
+import { indexedToGeometry } from "../src/three.js";
+
+const $ = (id) => document.getElementById(id);
+
+const COLORS = { a: 0x6fb3ff, b: 0xffb15e, result: 0x7fd18b };
+const GROUPS = ["a_in_b", "a_out_b", "b_in_a", "b_out_a"];
+const FORMATS = { stl: "stl", obj: "obj", ply: "ply", off: "off", dxf: "dxf", json: "json" };
+
+/** What the page holds: the two inputs `{name, mesh}` and the last result `{mesh, name}`. */
+const state = { a: null, b: null, result: null };
+
+// ── viewer ───────────────────────────────────────────────────────────────────────────────
+
+const viewer = createViewer($("viewport"));
+
+/**
+ * The 3-D view: renderer, Z-up camera with orbit controls, lights, and one group per
+ * shown mesh. Draws on demand. Coordinates are shifted by `origin` (the inputs' centre)
+ * before they are rounded to single precision, so that far-off (UTM) data draws cleanly.
+ */
+function createViewer(container) {
+	let renderer;
+	try {
+		renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+	} catch (e) {
+		$("overlay").textContent = `WebGL is not available in this browser (${e.message}); the operations and statistics still work.`;
+		container.dataset.webgl = "failed";
+		return null;
+	}
+	container.dataset.webgl = "ok";
+	renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
+	renderer.setClearColor(0x14171c);
+	container.prepend(renderer.domElement);
+
+	const scene = new THREE.Scene();
+	const camera = new THREE.PerspectiveCamera(45, 1, 0.1, 1000);
+	camera.up.set(0, 0, 1);
+	camera.position.set(1, -1.5, 1);
+	scene.add(camera);
+	scene.add(new THREE.HemisphereLight(0xffffff, 0x303040, 1.4));
+	const headlight = new THREE.DirectionalLight(0xffffff, 1.6);
+	headlight.position.set(0.4, 0.6, 1);
+	camera.add(headlight);
+
+	const controls = new OrbitControls(camera, renderer.domElement);
+	const layers = { a: new THREE.Group(), b: new THREE.Group(), result: new THREE.Group() };
+	for (const g of Object.values(layers)) scene.add(g);
+	const origin = new THREE.Vector3();
+
+	let pending = false;
+	function render() {
+		if (pending) return;
+		pending = true;
+		requestAnimationFrame(() => {
+			pending = false;
+			renderer.render(scene, camera);
+		});
+	}
+	controls.addEventListener("change", render);
+
+	new ResizeObserver(() => {
+		const w = Math.max(container.clientWidth, 1), h = Math.max(container.clientHeight, 1);
+		renderer.setSize(w, h, false);
+		camera.aspect = w / h;
+		camera.updateProjectionMatrix();
+		render();
+	}).observe(container);
+
+	function clear(group) {
+		for (const child of [...group.children]) {
+			group.remove(child);
+			child.geometry.dispose();
+			child.material.dispose();
+		}
+	}
+
+	function geometryOf(mesh) {
+		const p = new Float64Array(mesh.positions.length);
+		for (let i = 0; i < p.length; i += 3) {
+			p[i] = mesh.positions[i] - origin.x;
+			p[i + 1] = mesh.positions[i + 1] - origin.y;
+			p[i + 2] = mesh.positions[i + 2] - origin.z;
+		}
+		return indexedToGeometry({ positions: p, index: mesh.index });
+	}
+
+	return {
+		/** Shows an input faint: a thin wireframe over a barely visible surface. */
+		setInput(slot, mesh) {
+			clear(layers[slot]);
+			if (mesh) {
+				const geometry = geometryOf(mesh);
+				layers[slot].add(new THREE.Mesh(geometry, new THREE.MeshBasicMaterial({ color: COLORS[slot], wireframe: true, transparent: true, opacity: 0.22, depthWrite: false })));
+				layers[slot].add(new THREE.Mesh(geometry, new THREE.MeshBasicMaterial({ color: COLORS[slot], transparent: true, opacity: 0.06, side: THREE.DoubleSide, depthWrite: false })));
+			}
+			render();
+		},
+		/** Shows the result solid (flat shaded, both faces, the back darker). */
+		setResult(mesh) {
+			clear(layers.result);
+			if (mesh) {
+				const geometry = geometryOf(mesh);
+				layers.result.add(new THREE.Mesh(geometry, new THREE.MeshPhongMaterial({ color: COLORS.result, flatShading: true, side: THREE.FrontSide, shininess: 20 })));
+				layers.result.add(new THREE.Mesh(geometry, new THREE.MeshPhongMaterial({ color: 0x8a5a9e, flatShading: true, side: THREE.BackSide, shininess: 5 })));
+			}
+			render();
+		},
+		showInputs(visible) {
+			layers.a.visible = layers.b.visible = visible;
+			render();
+		},
+		/** Centres the drawing on the inputs' box and frames the camera on it. */
+		frame(meshes) {
+			const box = new THREE.Box3();
+			const p = new THREE.Vector3();
+			for (const m of meshes) {
+				for (let i = 0; i < m.positions.length; i += 3) {
+					box.expandByPoint(p.set(m.positions[i], m.positions[i + 1], m.positions[i + 2]));
+				}
+			}
+			if (box.isEmpty()) return;
+			box.getCenter(origin);
+			const radius = Math.max(box.getSize(new THREE.Vector3()).length() / 2, 1e-6);
+			const half = Math.atan(Math.tan(THREE.MathUtils.degToRad(camera.fov / 2)) * Math.min(camera.aspect, 1));
+			const dist = (1.05 * radius) / Math.sin(half);
+			camera.near = dist / 1000;
+			camera.far = dist * 100;
+			camera.position.set(0.55, -0.75, 0.45).normalize().multiplyScalar(dist);
+			camera.updateProjectionMatrix();
+			controls.target.set(0, 0, 0);
+			controls.update();
+		},
+		/** How many distinct colours the last frame has (a check that something was drawn). */
+		colourCount() {
+			renderer.render(scene, camera);
+			const gl = renderer.getContext();
+			const w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
+			const px = new Uint8Array(4 * w * h);
+			gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px);
+			const seen = new Set();
+			for (let i = 0; i < px.length; i += 4 * 97) seen.add((px[i] << 16) | (px[i + 1] << 8) | px[i + 2]);
+			return seen.size;
+		},
+	};
+}
+
+// ── inputs ───────────────────────────────────────────────────────────────────────────────
+
+/** The format name readMesh takes for a file name ("" to let it detect the format). */
+function formatOf(name) {
+	const ext = name.toLowerCase().split(".").pop();
+	return FORMATS[ext] || "";
+}
+
+function setMessage(text, isError = false) {
+	$("message").textContent = text;
+	$("message").classList.toggle("error", isError);
+}
+
+/** Reads a mesh file's bytes into slot "a" or "b" and shows it. */
+function loadInto(slot, name, bytes) {
+	const mesh = readMesh(new Uint8Array(bytes), formatOf(name));
+	state[slot] = { name, mesh: { positions: mesh.positions, index: mesh.index } };
+	const info = meshInfo(mesh);
+	const shape = info.closed ? "closed" : `open, ${info.boundary_edges} boundary edges`;
+	$(`info-${slot}`).textContent = `${name}: ${info.triangles} triangles, ${info.vertices} vertices, ${shape}`;
+	$(`slot-${slot}`).dataset.loaded = name;
+	inputsChanged();
+}
+
+/** After an input changes: forget the result, redraw and reframe. */
+function inputsChanged() {
+	setResult(null);
+	const meshes = ["a", "b"].filter((s) => state[s]).map((s) => state[s].mesh);
+	if (viewer) {
+		viewer.frame(meshes);
+		viewer.setInput("a", state.a && state.a.mesh);
+		viewer.setInput("b", state.b && state.b.mesh);
+		$("overlay").hidden = meshes.length > 0;
+	}
+	$("run").disabled = !(state.a && state.b);
+	for (const g of GROUPS) $(`count-${g}`).textContent = "";
+}
+
+async function loadExample(slot, file) {
+	setMessage(`loading ${file}…`);
+	$(`file-${slot}`).value = "";
+	const response = await fetch(new URL(`../data/${file}`, document.baseURI));
+	if (!response.ok) throw new Error(`cannot load ${file}: HTTP ${response.status}`);
+	loadInto(slot, file, await response.arrayBuffer());
+	setMessage("");
+}
+
+async function loadFile(slot, input) {
+	const file = input.files && input.files[0];
+	if (!file) return;
+	setMessage(`reading ${file.name}…`);
+	loadInto(slot, file.name, await file.arrayBuffer());
+	setMessage("");
+}
+
+/** Runs an async UI action, showing its error instead of letting it escape. */
+function guarded(action) {
+	return (...args) =>
+		action(...args).catch((e) => {
+			setMessage(e.message, true);
+			$("stats").dataset.state = "error";
+		});
+}
+
+// ── operations ───────────────────────────────────────────────────────────────────────────
+
+/**
+ * The chosen split groups concatenated into one mesh: each group's vertices appended, its
+ * triangles renumbered, flipped ones with their corners in reverse order.
+ */
+function concatGroups(picks) {
+	let vertices = 0, corners = 0;
+	for (const { group } of picks) {
+		vertices += group.positions.length;
+		corners += group.index.length;
+	}
+	const positions = new Float64Array(vertices);
+	const index = new Uint32Array(corners);
+	let v = 0, c = 0;
+	for (const { group, flip } of picks) {
+		positions.set(group.positions, v);
+		const base = v / 3, src = group.index;
+		for (let i = 0; i < src.length; i += 3, c += 3) {
+			index[c] = base + src[i];
+			index[c + 1] = base + src[flip ? i + 2 : i + 1];
+			index[c + 2] = base + src[flip ? i + 1 : i + 2];
+		}
+		v += group.positions.length;
+	}
+	return { positions, index };
+}
+
+/**
+ * Vertices with exactly equal coordinates merged (the groups of a split meet on the
+ * intersection curves at equal points; merged, the edge counts of the pick are meaningful).
+ */
+function weldExact(mesh) {
+	const ids = new Map();
+	const remap = new Uint32Array(mesh.positions.length / 3);
+	const out = [];
+	for (let i = 0; i < remap.length; i++) {
+		const x = mesh.positions[3 * i], y = mesh.positions[3 * i + 1], z = mesh.positions[3 * i + 2];
+		const key = `${x} ${y} ${z}`;
+		let id = ids.get(key);
+		if (id === undefined) {
+			id = out.length / 3;
+			ids.set(key, id);
+			out.push(x, y, z);
+		}
+		remap[i] = id;
+	}
+	return { positions: Float64Array.from(out), index: mesh.index.map((i) => remap[i]) };
+}
+
+/** A boolean of the two inputs: the result mesh and its statistics from the report. */
+function runBoolean(op) {
+	const t0 = performance.now();
+	const out = booleanIndexed(state.a.mesh, state.b.mesh, op);
+	const ms = performance.now() - t0;
+	const r = out.report;
+	return {
+		mesh: { positions: out.positions, index: out.index },
+		stats: { triangles: r.triangles, closed: r.closed, volume: r.volume, area: r.area, ms },
+		notes: [...(r.assumed || []), `${r.vertices} vertices, ${r.boundary_edges} boundary edges, ${r.seam_points} seam points`],
+	};
+}
+
+/** A split of the inputs with the groups ticked in the table, concatenated and measured. */
+function runSplit() {
+	const t0 = performance.now();
+	const { groups, report } = splitIndexed(state.a.mesh, state.b.mesh);
+	const picks = [];
+	for (const g of GROUPS) {
+		const group = groups[g];
+		$(`count-${g}`).textContent = group ? String(group.index.length / 3) : "0";
+		if (group && $(`pick-${g}`).checked) picks.push({ group, flip: $(`flip-${g}`).checked });
+	}
+	const mesh = weldExact(concatGroups(picks));
+	const ms = performance.now() - t0;
+	const info = meshInfo(mesh);
+	const others = Object.keys(groups).filter((g) => !GROUPS.includes(g) && groups[g].index.length > 0);
+	const notes = [...(report.assumed || []), `${info.vertices} vertices, ${info.boundary_edges} boundary edges, ${info.non_manifold_edges} non-manifold edges`];
+	if (others.length > 0) notes.push(`coplanar groups not offered here: ${others.join(", ")}`);
+	return { mesh, stats: { triangles: info.triangles, closed: info.closed, volume: info.volume, area: info.area, ms }, notes };
+}
+
+function showStats(stats, notes) {
+	$("stat-triangles").textContent = stats ? String(stats.triangles) : "–";
+	$("stat-closed").textContent = stats ? (stats.closed ? "yes" : "no") : "–";
+	$("stat-volume").textContent = stats ? stats.volume.toFixed(3) : "–";
+	$("stat-area").textContent = stats ? stats.area.toFixed(3) : "–";
+	$("stat-time").textContent = stats ? stats.ms.toFixed(1) : "–";
+	$("notes").replaceChildren(...(notes || []).map((n) => Object.assign(document.createElement("li"), { textContent: n })));
+}
+
+function setResult(result) {
+	state.result = result;
+	$("download").disabled = !result || result.mesh.index.length === 0;
+	if (viewer) viewer.setResult(result && result.mesh);
+	if (!result) {
+		showStats(null);
+		$("stats").dataset.state = "idle";
+	}
+}
+
+/** Lets the browser paint (the operations run on this thread). */
+function nextPaint() {
+	return new Promise((resolve) => requestAnimationFrame(() => setTimeout(resolve, 0)));
+}
+
+async function run() {
+	if (!state.a || !state.b) throw new Error("load both meshes first");
+	const op = $("op").value;
+	$("stats").dataset.state = "running";
+	$("run").disabled = true;
+	setMessage("computing…");
+	await nextPaint();
+	try {
+		const { mesh, stats, notes } = op === "split" ? runSplit() : runBoolean(op);
+		const label = op === "split" ? "split" : op;
+		setResult({ mesh, name: `${stem(state.a.name)}-${label}-${stem(state.b.name)}` });
+		showStats(stats, notes);
+		setMessage(mesh.index.length === 0 ? "the result is empty" : "");
+		$("stats").dataset.state = "done";
+	} finally {
+		$("run").disabled = false;
+	}
+}
+
+function stem(name) {
+	return name.replace(/\.[^.]*$/, "");
+}
+
+function download() {
+	if (!state.result) return;
+	const bytes = writeMesh(state.result.mesh, "stl");
+	const url = URL.createObjectURL(new Blob([bytes], { type: "model/stl" }));
+	const a = Object.assign(document.createElement("a"), { href: url, download: `${state.result.name}.stl` });
+	document.body.append(a);
+	a.click();
+	a.remove();
+	setTimeout(() => URL.revokeObjectURL(url), 1000);
+}
+
+// ── wiring ───────────────────────────────────────────────────────────────────────────────
+
+for (const button of document.querySelectorAll("button[data-file]")) {
+	button.addEventListener("click", guarded(() => loadExample(button.dataset.slot, button.dataset.file)));
+}
+for (const slot of ["a", "b"]) {
+	$(`file-${slot}`).addEventListener("change", guarded((e) => loadFile(slot, e.target)));
+}
+$("swap").addEventListener("click", () => {
+	[state.a, state.b] = [state.b, state.a];
+	$("file-a").value = $("file-b").value = "";
+	const [infoA, infoB] = [$("info-a").textContent, $("info-b").textContent];
+	[$("info-a").textContent, $("info-b").textContent] = [infoB, infoA];
+	for (const slot of ["a", "b"]) {
+		if (state[slot]) $(`slot-${slot}`).dataset.loaded = state[slot].name;
+		else delete $(`slot-${slot}`).dataset.loaded;
+	}
+	inputsChanged();
+});
+$("op").addEventListener("change", () => {
+	$("picks").hidden = $("op").value !== "split";
+});
+$("run").addEventListener("click", guarded(run));
+$("download").addEventListener("click", download);
+$("show-inputs").addEventListener("change", (e) => viewer && viewer.showInputs(e.target.checked));
+$("picks").hidden = $("op").value !== "split";
+$("version").textContent = `meshbool ${version}, three.js r${THREE.REVISION}`;
+
+// For tests and the console: the page's state and a rendering check.
+window.meshboolDemo = { state, colourCount: () => (viewer ? viewer.colourCount() : 0) };
+document.body.dataset.ready = "true";

@@ -1,0 +1,385 @@
+// Type declarations of the `meshbool` package (js/src/index.js).
+
+// ── data model ─────────────────────────────────────────────────────────────────────────
+
+/** A point. */
+export interface Vertex {
+	x: number;
+	y: number;
+	z: number;
+}
+
+/** A triangle of a soup; its normal follows v0 → v1 → v2 (right hand). */
+export interface Triangle {
+	v0: Vertex;
+	v1: Vertex;
+	v2: Vertex;
+}
+
+/** Triangles that share no vertex objects. */
+export type TriangleSoup = Triangle[];
+
+/** A triangle of an indexed mesh: its three point objects. */
+export interface WeldedTriangle {
+	vertices: [Vertex, Vertex, Vertex];
+}
+
+/** An indexed ("welded") mesh of point objects. */
+export interface WeldedMesh {
+	points: Vertex[];
+	triangles: WeldedTriangle[];
+}
+
+/** A result: the soup and the same mesh indexed. `report` is meshbool's report (non-enumerable). */
+export interface BooleanResult extends WeldedMesh {
+	soup: TriangleSoup;
+	readonly report?: Report;
+}
+
+/** The typed-array mesh of the fast path: three numbers per vertex, three indices per triangle. */
+export interface IndexedMesh {
+	positions: Float64Array;
+	index: Uint32Array;
+}
+
+/** A JSON report of the library (the CLI's `--json`; keys in docs/json.md). */
+export type Report = Record<string, any>;
+
+/** An axis-aligned box. */
+export interface AABB {
+	minX: number;
+	maxX: number;
+	minY: number;
+	maxY: number;
+	minZ: number;
+	maxZ: number;
+}
+
+/** An intersection segment. */
+export interface Segment {
+	p0: Vertex;
+	p1: Vertex;
+}
+
+/** An intersection segment with the triangle of A and of B it lies in. */
+export interface TaggedSegment extends Segment {
+	idxA: number;
+	idxB: number;
+}
+
+/** The reference's operation names, and meshbool's. */
+export type Operation = "union" | "intersect" | "subtract" | "intersection" | "difference" | "reverse-difference" | "reverseDifference";
+
+/** meshbool's operand checks (all on but `force` by default). */
+export interface CheckOptions {
+	/** Proceed when a check finds a problem (listed in the report's `assumed`). */
+	force?: boolean;
+	/** Look for self-intersections (exact). */
+	selfCheck?: boolean;
+	/** Resolve self-intersecting closed operands into the solid they enclose. */
+	resolve?: boolean;
+	/** Make inconsistently oriented operands consistent. */
+	orient?: boolean;
+	/** Keep edges used by more than two triangles (default: split apart). */
+	keepNonmanifold?: boolean;
+}
+
+export interface BooleanOptions extends CheckOptions {
+	/** Exact T-junction repair of the inputs (and a weld within `tolerance` when given). */
+	preRepair?: boolean;
+	/** Cap the result's holes. */
+	fillGaps?: boolean;
+	/** Cap the result's holes. */
+	forceClose?: boolean;
+	/** Weld distance for `preRepair`. */
+	tolerance?: number;
+	/** No effect (the T-junction repair is exact). */
+	tjunctionPasses?: number;
+}
+
+// ── boolean ────────────────────────────────────────────────────────────────────────────
+
+export interface SoupGroups {
+	aInside: TriangleSoup;
+	aOutside: TriangleSoup;
+	bInside: TriangleSoup;
+	bOutside: TriangleSoup;
+}
+
+export interface SplitResult {
+	groups: SoupGroups;
+	segments: TaggedSegment[];
+	readonly report?: Report;
+}
+
+export type GroupChoice = boolean | "flip";
+
+export interface SplitSelection {
+	aInside?: GroupChoice;
+	aOutside?: GroupChoice;
+	bInside?: GroupChoice;
+	bOutside?: GroupChoice;
+}
+
+export interface SplitComponent {
+	mesh: "A" | "B";
+	side: "inside" | "outside";
+	index: number;
+	soup: TriangleSoup;
+	triCount: number;
+}
+
+export interface Pick {
+	soup: TriangleSoup;
+	flip?: boolean;
+}
+
+export function boolean(soupA: TriangleSoup | null, soupB: TriangleSoup | null, operation: Operation, options?: BooleanOptions): BooleanResult | null;
+export function splitMeshPair(soupA: TriangleSoup | null, soupB: TriangleSoup | null, options?: CheckOptions): SplitResult | null;
+export function mergeSplitGroups(groups: SoupGroups, operation: Operation): BooleanResult | null;
+export function selectSplits(groups: SoupGroups, selection: SplitSelection): BooleanResult | null;
+export function splitToComponents(groups: SoupGroups): SplitComponent[];
+export function mergeSmallComponents(components: SplitComponent[], threshold?: number): SplitComponent[];
+export function mergeComponents(picks: Pick[]): BooleanResult | null;
+
+// ── typed-array fast path ──────────────────────────────────────────────────────────────
+
+export interface IndexedResult extends IndexedMesh {
+	report: Report;
+}
+
+export interface IndexedBooleanResult extends IndexedResult {
+	/** 0: the triangle comes from A, 1: from B. */
+	source: Uint8Array;
+	/** The input triangle each result triangle is part of. */
+	triangle: Uint32Array;
+	/** 1 where the triangle's orientation was reversed. */
+	flipped: Uint8Array;
+}
+
+export interface IndexedGroup extends IndexedMesh {
+	name: string;
+	source: Uint8Array;
+	triangle: Uint32Array;
+	flipped: Uint8Array;
+}
+
+export function booleanIndexed(a: IndexedMesh, b: IndexedMesh, operation: Operation, options?: CheckOptions): IndexedBooleanResult;
+export function splitIndexed(a: IndexedMesh, b: IndexedMesh, options?: CheckOptions): { groups: Record<string, IndexedGroup>; report: Report };
+export function curvesIndexed(a: IndexedMesh, b: IndexedMesh | null, options?: { withCoplanar?: boolean }): { polylines: Float64Array[]; closed: boolean[]; report: Report };
+export function resolveIndexed(mesh: IndexedMesh, options?: { rule?: "positive" | "nonzero" | "evenodd"; keepNonmanifold?: boolean }): IndexedResult & { parent: Uint32Array };
+export function repairIndexed(mesh: IndexedMesh, config?: Record<string, any>): IndexedResult;
+export function closeIndexed(mesh: IndexedMesh, mode: "cap" | "stitch" | "curtain" | "stitch+curtain", options?: { floorOffset?: number; maxGap?: number }): IndexedResult;
+export function orientIndexed(mesh: IndexedMesh, facing?: "majority" | "z-up" | "outward"): IndexedResult;
+export function meshInfo(mesh: IndexedMesh | TriangleSoup): Report;
+export function readMesh(bytes: Uint8Array | ArrayBuffer, format?: string): IndexedMesh & { format: string };
+export function writeMesh(mesh: IndexedMesh | TriangleSoup, format?: string): Uint8Array;
+export function soupToTyped(soup: TriangleSoup): IndexedMesh;
+export function typedToSoup(mesh: IndexedMesh): TriangleSoup;
+export function isIndexed(value: unknown): value is IndexedMesh;
+export const version: string;
+
+// ── intersection ───────────────────────────────────────────────────────────────────────
+
+export function intersectMeshPair(soupA: TriangleSoup, soupB: TriangleSoup, options?: { withCoplanar?: boolean }): Segment[];
+export function intersectMeshPairTagged(soupA: TriangleSoup, soupB: TriangleSoup, options?: { withCoplanar?: boolean }): TaggedSegment[];
+export function triTriIntersection(triA: Triangle, triB: Triangle): Segment | null;
+export function triTriIntersectionDetailed(triA: Triangle, triB: Triangle): (Segment & { dA: [number, number, number]; dB: [number, number, number]; segLen: number }) | null;
+export function chainSegments(segments: Segment[], threshold?: number): Vertex[][];
+export function simplifyPolyline(points: Vertex[], spacing: number): Vertex[];
+export type SpatialGrid = Record<string, number[]>;
+export function buildSpatialGrid(tris: TriangleSoup, cellSize: number): SpatialGrid;
+export function buildSpatialGridOnAxes(tris: TriangleSoup, cellSize: number, getA: (v: Vertex) => number, getB: (v: Vertex) => number): SpatialGrid;
+export function queryGrid(grid: SpatialGrid, bb: AABB, cellSize: number): number[];
+export function queryGridOnAxes(grid: SpatialGrid, a: number, b: number, cellSize: number): number[];
+export function computeBBox(tris: TriangleSoup): AABB;
+export function triBBox(tri: Triangle): AABB;
+export function bboxOverlap(a: AABB, b: AABB): boolean;
+export function estimateAvgEdge(tris: TriangleSoup): number;
+
+// ── repair ─────────────────────────────────────────────────────────────────────────────
+
+export interface RepairConfig {
+	closeMode?: "none" | "weld" | "stitch";
+	snapTolerance?: number;
+	stitchTolerance?: number;
+	removeDegenerate?: boolean;
+	sliverRatio?: number;
+	cleanCrossings?: boolean;
+	removeOverlapping?: boolean;
+	overlapTolerance?: number;
+}
+
+export interface BoundaryLoopResult {
+	loops: Vertex[][];
+	boundaryEdgeCount: number;
+	overSharedEdgeCount: number;
+}
+
+export function repairMesh(soup: TriangleSoup, config?: RepairConfig, onProgress?: (fraction: number, message: string) => void): Promise<BooleanResult>;
+export function deduplicateSeamVertices(tris: TriangleSoup, tolerance?: number): TriangleSoup;
+export function resolveTJunctions(soup: TriangleSoup, tolerance?: number, passes?: number): TriangleSoup;
+export function resolveTJunctionsHoleFree(soup: TriangleSoup, tolerance?: number, maxPasses?: number): TriangleSoup;
+export function weldVertices(tris: TriangleSoup, tolerance: number): WeldedMesh;
+export function soupToIndexed(tris: TriangleSoup, tolerance: number): WeldedMesh;
+export function weldedToSoup(triangles: WeldedTriangle[]): TriangleSoup;
+export function indexedToSoup(triangles: WeldedTriangle[]): TriangleSoup;
+export function removeDegenerateTriangles(tris: TriangleSoup, minArea?: number, sliverRatio?: number): TriangleSoup;
+export function extractBoundaryLoops(tris: TriangleSoup): BoundaryLoopResult;
+export function triangulateLoop(loop: Vertex[]): TriangleSoup;
+export function capBoundaryLoops(tris: TriangleSoup): TriangleSoup;
+export function capBoundaryLoopsSequential(soup: TriangleSoup, snapTolerance: number, passes?: number): TriangleSoup;
+export function stitchByProximity(tris: TriangleSoup, tolerance?: number): TriangleSoup;
+export function cleanCrossingTriangles(tris: TriangleSoup): TriangleSoup;
+export function removeOverlappingTriangles(tris: TriangleSoup, tolerance?: number): TriangleSoup;
+export function cancelCoincidentFaces(soup: TriangleSoup, tolerance?: number): TriangleSoup;
+export function forceCloseIndexedMesh(points: Vertex[], triangles: WeldedTriangle[]): WeldedMesh;
+export function fillOpenEdgeLoops(soup: TriangleSoup, tolerance?: number): TriangleSoup;
+export function weldBoundaryVertices(tris: TriangleSoup, tolerance: number): TriangleSoup;
+export function buildCurtainAndCap(tris: TriangleSoup, floorOffset?: number): TriangleSoup;
+export function generateClosingTriangles(tris: TriangleSoup, maxDist: number): TriangleSoup;
+export function closeSolid(soup: TriangleSoup, options?: { snapTolerance?: number }): BooleanResult & { diagnostics: Report };
+export function orientSolid(soup: TriangleSoup, options?: { outward?: boolean; coherenceOnly?: boolean }): { soup: TriangleSoup; diagnostics: Report | null };
+export function bmsSelfResolve(soup: TriangleSoup, options?: { rule?: "positive" | "nonzero" | "evenodd"; keepNonmanifold?: boolean }): { soup: TriangleSoup; changed: boolean; diagnostics: Report | null };
+export function bmsSelfResolveIndexed(mesh: IndexedMesh, options?: { rule?: "positive" | "nonzero" | "evenodd"; keepNonmanifold?: boolean }): IndexedMesh & { changed: boolean; diagnostics: Report };
+
+// ── normals, measures, winding ─────────────────────────────────────────────────────────
+
+export function triNormal(tri: Triangle): Vertex;
+export function ensureZUpNormals(tris: TriangleSoup): TriangleSoup;
+export function flipAllNormals(tris: TriangleSoup): TriangleSoup;
+export function classifyNormalDirection(tris: TriangleSoup, isClosed: boolean, signedVolume?: number): string;
+export function computeSignedVolume(tris: TriangleSoup): number;
+export function computeProjectedArea(tris: TriangleSoup, plane?: "xy" | "yz" | "xz"): number;
+export function compute3DSurfaceArea(tris: TriangleSoup): number;
+export function solidAngleAt(px: number, py: number, pz: number, ax: number, ay: number, az: number, bx: number, by: number, bz: number, cx: number, cy: number, cz: number): number;
+export function solidAngle(p: Vertex, tri: Triangle): number;
+export function windingNumber(p: Vertex, soup: TriangleSoup): number;
+export function windingNumberIndexed(px: number, py: number, pz: number, positions: ArrayLike<number>, index: ArrayLike<number>): number;
+export function classifyPointMultiAxis(p: Vertex, tris: TriangleSoup, grids?: unknown): 1 | -1;
+
+// ── utilities ──────────────────────────────────────────────────────────────────────────
+
+export function dist3(a: Vertex, b: Vertex): number;
+export function distSq3(a: Vertex, b: Vertex): number;
+export function triangleArea3D(tri: Triangle): number;
+export function computeBounds(points: Vertex[]): AABB;
+export function cross(a: Vertex, b: Vertex): Vertex;
+export function lerpVert(a: Vertex, b: Vertex, t: number): Vertex;
+export function vKey(v: Vertex): string;
+export function edgeKey(ka: string, kb: string): string;
+export function countOpenEdges(tris: TriangleSoup): { openEdges: number; overShared: number; total: number };
+export function findConnectedComponents(soup: TriangleSoup): TriangleSoup[];
+export function findConnectedComponentsPooled(soup: TriangleSoup, options?: { tolerance?: number }): TriangleSoup[];
+
+// ── BMS pipeline ───────────────────────────────────────────────────────────────────────
+
+export interface MegaTriangle extends Triangle {
+	mesh: "A" | "B";
+	origIdx: number;
+}
+
+export interface BmsResult {
+	groups: SoupGroups;
+	segments: TaggedSegment[];
+	polylines: Vertex[][];
+	rawPolylines: Vertex[][];
+	meshEdgePolys: never[];
+	componentWalks: never[];
+	megaSoup: MegaTriangle[];
+	pool: null;
+	result?: BooleanResult | null;
+	/** With the option `indexed: true`. */
+	indexed?: IndexedGroups;
+}
+
+export function bmsBooleanOp(soupA: TriangleSoup, soupB: TriangleSoup, operation?: Operation | null, options?: BooleanOptions & { indexed?: boolean }): BmsResult;
+export function reclassifyTriangles(groups: SoupGroups, mesh: "A" | "B", fromSide: "inside" | "outside", indices: number[]): number;
+export function reclassifyAtPoint(groups: SoupGroups, x: number, y: number, z: number, tol?: number): { moved: boolean; mesh?: "A" | "B"; from?: string; to?: string };
+export function reclassifyRegion(groups: SoupGroups, mesh: "A" | "B", fromSide: "inside" | "outside", seedIdx: number): number;
+
+// ── verification, finishing, indexed groups (the reference's 0.6–0.7 exports) ─────────
+
+export interface OutputCheck {
+	check: string;
+	ok: boolean;
+	count: number;
+	detail: string;
+}
+
+export interface VerifyOutputResult {
+	ok: boolean;
+	checks: OutputCheck[];
+	stats: { triangles: number; vertices: number; openEdges: number; nonManifoldEdges: number; area: number; components: number; volume: number };
+}
+
+export interface CheckOptionsOfOutput {
+	tolerance?: number;
+	expectClosed?: boolean;
+	minArea?: number;
+}
+
+export interface RepairAssessment {
+	harmful: boolean;
+	recommend: "keep" | "discard";
+	benefits: string[];
+	damage: string[];
+	before: VerifyOutputResult;
+	after: VerifyOutputResult;
+	violationsBefore: number;
+	violationsAfter: number;
+	trisDelta: number;
+	volumeDeltaPct: number;
+}
+
+export interface FinishStage {
+	name: string;
+	run: (soup: TriangleSoup, ctx: { tolerance: number; options: object }) => TriangleSoup;
+}
+
+export interface FinishMeshResult {
+	soup: TriangleSoup;
+	ok: boolean;
+	before: VerifyOutputResult;
+	after: VerifyOutputResult;
+	applied: string[];
+	skipped: Array<{ stage: string; reason: string; violations: string }>;
+	stages: Array<{ stage: string; assessment: RepairAssessment }>;
+}
+
+export interface IndexedGroups {
+	points: Vertex[];
+	groups: { aInside: number[][]; aOutside: number[][]; bInside: number[][]; bOutside: number[][] };
+}
+
+export interface IndexedComponent {
+	mesh: "A" | "B";
+	side: "inside" | "outside";
+	index: number;
+	tris: number[][];
+	triCount: number;
+}
+
+export interface BooleanAutoResult {
+	soup: TriangleSoup;
+	ok: boolean;
+	operation: string;
+	report: FinishMeshResult | null;
+	verification: null;
+	classifier: null;
+	boolean: BmsResult | null;
+}
+
+export function verifyOutput(soup: TriangleSoup, options?: CheckOptionsOfOutput): VerifyOutputResult;
+export function violationCount(report: VerifyOutputResult): number;
+export function assessRepair(before: TriangleSoup, after: TriangleSoup, options?: CheckOptionsOfOutput & { volumeTolPct?: number }): RepairAssessment;
+export function describeAssessment(assessment: RepairAssessment): string;
+export const DEFAULT_STAGES: readonly FinishStage[];
+export function finishMesh(soup: TriangleSoup, options?: CheckOptionsOfOutput & { volumeTolPct?: number; stages?: FinishStage[]; force?: boolean }): FinishMeshResult;
+export function booleanAuto(soupA: TriangleSoup | null, soupB: TriangleSoup | null, operation: Operation, options?: BooleanOptions & CheckOptionsOfOutput & { quality?: "strict" | "raw"; volumeTolPct?: number }): BooleanAutoResult | null;
+export function indexGroups(groups: SoupGroups, tolerance?: number): IndexedGroups;
+export function indexGroupsToTypedArrays(indexed: IndexedGroups): { positions: Float64Array; index: { aInside: Uint32Array; aOutside: Uint32Array; bInside: Uint32Array; bOutside: Uint32Array } };
+export function connectedComponentsIndexed(tris: number[][]): number[][][];
+export function mergeSmallIndexedComponents(comps: number[][][], threshold: number): number[][][];
+export function decomposeIndexedGroups(indexed: IndexedGroups, smallThreshold?: number): IndexedComponent[];
+export function dedupCoincidentTriangles(tris: TriangleSoup, options?: { minAreaRatio?: number }): { soup: TriangleSoup; duplicateGroups: number; duplicatesRemoved: number; clusters: number; clusterTrisIn: number; clusterTrisOut: number };

@@ -1,0 +1,273 @@
+// meshbool/three: the three.js adapter. Converts THREE objects to the core's triangle
+// soups (`meshToSoup`, `soupToMesh`, and the reference adapter's one-call helpers), and
+// to the typed-array meshes of the fast path (`geometryToIndexed`, `indexedToGeometry`,
+// `booleanGeometry`), which never build an object per vertex.
+//
+// three is a peer dependency: this module imports "three" and leaves resolving it to the
+// application (node_modules, a bundler or an import map).
+import * as THREE from "three";
+import { boolean, booleanIndexed, intersectMeshPairTagged, repairMesh } from "./index.js";
+
+export { boolean, repairMesh as repair, intersectMeshPairTagged as intersect };
+
+const DEFAULT_COLOR = 0x4488ff;
+
+// ── reading THREE objects ────────────────────────────────────────────────────────────────
+
+/**
+ * Calls `visit(geometry, matrix)` for every mesh geometry of `source` that has positions:
+ * a BufferGeometry itself (matrix null), or every THREE.Mesh in an Object3D's subtree
+ * with its world matrix (brought up to date first).
+ */
+function eachGeometry(source, visit) {
+	if (source == null || typeof source !== "object") {
+		throw new Error("meshbool/three: expected a THREE.Object3D or THREE.BufferGeometry");
+	}
+	if (source.isBufferGeometry) {
+		if (source.getAttribute("position")) visit(source, null);
+		return;
+	}
+	if (!source.isObject3D) {
+		throw new Error("meshbool/three: expected a THREE.Object3D or THREE.BufferGeometry");
+	}
+	source.updateWorldMatrix(true, true);
+	source.traverse((child) => {
+		if (child.isMesh && child.geometry && child.geometry.getAttribute("position")) {
+			visit(child.geometry, child.matrixWorld);
+		}
+	});
+}
+
+/** The number of triangles a geometry draws from its index, or from its positions when it has none. */
+function triangleCount(geometry) {
+	const n = geometry.index ? geometry.index.count : geometry.getAttribute("position").count;
+	return Math.floor(n / 3);
+}
+
+/**
+ * Copies a geometry's positions into `out` from `offset` (three numbers per vertex), in
+ * double precision, transformed by `matrix` when given (three's `applyMatrix4`: affine
+ * part, then the division by w).
+ */
+function copyPositions(geometry, matrix, out, offset) {
+	const attr = geometry.getAttribute("position");
+	const n = attr.count;
+	const plain = !attr.isInterleavedBufferAttribute && attr.itemSize === 3 && !attr.normalized;
+	if (plain) {
+		out.set(attr.array.subarray(0, 3 * n), offset);
+	} else {
+		for (let i = 0, o = offset; i < n; i++, o += 3) {
+			out[o] = attr.getX(i);
+			out[o + 1] = attr.getY(i);
+			out[o + 2] = attr.getZ(i);
+		}
+	}
+	if (matrix) {
+		const e = matrix.elements;
+		const projective = e[3] !== 0 || e[7] !== 0 || e[11] !== 0 || e[15] !== 1;
+		for (let i = 0, o = offset; i < n; i++, o += 3) {
+			const x = out[o], y = out[o + 1], z = out[o + 2];
+			const w = projective ? 1 / (e[3] * x + e[7] * y + e[11] * z + e[15]) : 1;
+			out[o] = (e[0] * x + e[4] * y + e[8] * z + e[12]) * w;
+			out[o + 1] = (e[1] * x + e[5] * y + e[9] * z + e[13]) * w;
+			out[o + 2] = (e[2] * x + e[6] * y + e[10] * z + e[14]) * w;
+		}
+	}
+	return n;
+}
+
+/**
+ * Writes a geometry's triangles into `out` from `offset` as vertex numbers shifted by
+ * `base`; each triangle reversed when `mirror` (a world matrix of negative determinant
+ * turns the winding inside out, which three compensates for when drawing).
+ */
+function copyTriangles(geometry, base, mirror, out, offset) {
+	const count = 3 * triangleCount(geometry);
+	const index = geometry.index;
+	for (let i = 0; i < count; i += 3) {
+		const a = index ? index.getX(i) : i;
+		const b = index ? index.getX(i + 1) : i + 1;
+		const c = index ? index.getX(i + 2) : i + 2;
+		out[offset + i] = base + a;
+		out[offset + i + 1] = base + (mirror ? c : b);
+		out[offset + i + 2] = base + (mirror ? b : c);
+	}
+	return count;
+}
+
+/**
+ * The triangles of a THREE object as one typed-array mesh `{positions: Float64Array,
+ * index: Uint32Array}`: every THREE.Mesh in the subtree of an Object3D (world matrices
+ * applied, `updateWorldMatrix(true, true)` called first; meshes whose world matrix
+ * mirrors have their triangles reversed so that they keep facing outward), or a
+ * BufferGeometry as it is. Float32 positions are copied into doubles; indexed and
+ * non-indexed geometries are both read (a non-indexed one gives vertices `0, 1, 2, ...`).
+ * Vertices are not welded here (BoxGeometry, for one, has separate vertices per face):
+ * the booleans weld equal coordinates themselves, but edge counts such as meshInfo's
+ * `closed` need a welded mesh.
+ *
+ * @param {THREE.Object3D | THREE.BufferGeometry} source
+ * @returns {{positions: Float64Array, index: Uint32Array}}
+ */
+export function geometryToIndexed(source) {
+	const parts = [];
+	let vertices = 0, corners = 0;
+	eachGeometry(source, (geometry, matrix) => {
+		parts.push({ geometry, matrix });
+		vertices += geometry.getAttribute("position").count;
+		corners += 3 * triangleCount(geometry);
+	});
+	const positions = new Float64Array(3 * vertices);
+	const index = new Uint32Array(corners);
+	let v = 0, c = 0;
+	for (const { geometry, matrix } of parts) {
+		const mirror = matrix != null && matrix.determinant() < 0;
+		c += copyTriangles(geometry, v, mirror, index, c);
+		v += copyPositions(geometry, matrix, positions, 3 * v);
+	}
+	return { positions, index };
+}
+
+/**
+ * The triangles of a THREE object as a soup `[{v0, v1, v2}]` with `{x, y, z}` corners:
+ * every THREE.Mesh in the subtree of `object3d` (a Mesh or a Group), world matrices
+ * applied, indexed or non-indexed BufferGeometry (see geometryToIndexed).
+ *
+ * @param {THREE.Object3D} object3d
+ * @returns {Array<{v0: {x: number, y: number, z: number}, v1: {x: number, y: number, z: number}, v2: {x: number, y: number, z: number}}>}
+ */
+export function meshToSoup(object3d) {
+	const { positions: p, index } = geometryToIndexed(object3d);
+	const soup = new Array(index.length / 3);
+	for (let t = 0; t < soup.length; t++) {
+		const a = 3 * index[3 * t], b = 3 * index[3 * t + 1], c = 3 * index[3 * t + 2];
+		soup[t] = {
+			v0: { x: p[a], y: p[a + 1], z: p[a + 2] },
+			v1: { x: p[b], y: p[b + 1], z: p[b + 2] },
+			v2: { x: p[c], y: p[c + 1], z: p[c + 2] },
+		};
+	}
+	return soup;
+}
+
+// ── building THREE objects ───────────────────────────────────────────────────────────────
+
+/** The adapter's material: MeshPhongMaterial, double-sided unless `doubleSide` is false. */
+function makeMaterial(options) {
+	const o = options || {};
+	return new THREE.MeshPhongMaterial({
+		color: o.color !== undefined ? o.color : DEFAULT_COLOR,
+		side: o.doubleSide === false ? THREE.FrontSide : THREE.DoubleSide,
+		wireframe: !!o.wireframe,
+	});
+}
+
+/**
+ * A THREE.Mesh of a soup: a non-indexed BufferGeometry (Float32 positions, vertex normals
+ * computed, so each triangle is shaded flat) and a MeshPhongMaterial.
+ *
+ * @param {Array<{v0: {x: number, y: number, z: number}, v1: {x: number, y: number, z: number}, v2: {x: number, y: number, z: number}}>} soup
+ * @param {{color?: number | string, doubleSide?: boolean, wireframe?: boolean}} [options]
+ *   `color` default 0x4488ff, `doubleSide` default true, `wireframe` default false.
+ * @returns {THREE.Mesh}
+ */
+export function soupToMesh(soup, options) {
+	if (!Array.isArray(soup)) throw new Error("meshbool/three: soupToMesh takes an array of triangles {v0, v1, v2}");
+	const positions = new Float32Array(9 * soup.length);
+	for (let t = 0, o = 0; t < soup.length; t++, o += 9) {
+		const { v0, v1, v2 } = soup[t];
+		positions[o] = v0.x; positions[o + 1] = v0.y; positions[o + 2] = v0.z;
+		positions[o + 3] = v1.x; positions[o + 4] = v1.y; positions[o + 5] = v1.z;
+		positions[o + 6] = v2.x; positions[o + 7] = v2.y; positions[o + 8] = v2.z;
+	}
+	const geometry = new THREE.BufferGeometry();
+	geometry.setAttribute("position", new THREE.BufferAttribute(positions, 3));
+	geometry.computeVertexNormals();
+	return new THREE.Mesh(geometry, makeMaterial(options));
+}
+
+/**
+ * A BufferGeometry of a typed-array mesh `{positions, index}`: positions rounded to a
+ * Float32 attribute (translate far-off coordinates, such as UTM, near the origin first
+ * if single precision is not enough), the index as a Uint32 index attribute, vertex
+ * normals computed.
+ *
+ * @param {{positions: ArrayLike<number>, index: ArrayLike<number>}} mesh
+ * @returns {THREE.BufferGeometry}
+ */
+export function indexedToGeometry(mesh) {
+	if (mesh == null || mesh.positions == null || mesh.index == null) {
+		throw new Error("meshbool/three: indexedToGeometry takes {positions, index}");
+	}
+	const geometry = new THREE.BufferGeometry();
+	geometry.setAttribute("position", new THREE.BufferAttribute(Float32Array.from(mesh.positions), 3));
+	const index = mesh.index instanceof Uint32Array ? mesh.index.slice() : Uint32Array.from(mesh.index);
+	geometry.setIndex(new THREE.BufferAttribute(index, 1));
+	geometry.computeVertexNormals();
+	return geometry;
+}
+
+// ── one-call helpers ─────────────────────────────────────────────────────────────────────
+
+/**
+ * The boolean of two THREE objects (their meshes in world coordinates) through the core's
+ * soup API `boolean`: a new THREE.Mesh (see soupToMesh), or null when the result is empty.
+ *
+ * @param {THREE.Object3D} a
+ * @param {THREE.Object3D} b
+ * @param {"union" | "intersect" | "subtract" | "intersection" | "difference" | "reverse-difference"} op
+ * @param {{color?: number | string, doubleSide?: boolean, wireframe?: boolean}} [meshOptions]
+ * @returns {THREE.Mesh | null}
+ */
+export function booleanFromMeshes(a, b, op, meshOptions) {
+	const result = boolean(meshToSoup(a), meshToSoup(b), op);
+	return result ? soupToMesh(result.soup, meshOptions) : null;
+}
+
+/**
+ * The intersection segments of two THREE objects (world coordinates):
+ * `[{p0, p1, idxA, idxB}]`, `idxA`/`idxB` the crossing triangles in meshToSoup's order.
+ *
+ * @param {THREE.Object3D} a
+ * @param {THREE.Object3D} b
+ * @returns {Array<{p0: {x: number, y: number, z: number}, p1: {x: number, y: number, z: number}, idxA: number, idxB: number}>}
+ */
+export function intersectFromMeshes(a, b) {
+	return intersectMeshPairTagged(meshToSoup(a), meshToSoup(b));
+}
+
+/**
+ * The core's repair pipeline (`repairMesh`) on a THREE object: resolves to a new
+ * THREE.Mesh (see soupToMesh).
+ *
+ * @param {THREE.Object3D} mesh
+ * @param {object} [config] repairMesh's config (`closeMode`, `snapTolerance`, ...)
+ * @param {(fraction: number, message: string) => void} [onProgress]
+ * @param {{color?: number | string, doubleSide?: boolean, wireframe?: boolean}} [meshOptions]
+ * @returns {Promise<THREE.Mesh>}
+ */
+export async function repairFromMesh(mesh, config, onProgress, meshOptions) {
+	const result = await repairMesh(meshToSoup(mesh), config, onProgress);
+	return soupToMesh(result.soup, meshOptions);
+}
+
+/**
+ * The boolean of two THREE objects or geometries on the typed-array fast path
+ * (geometryToIndexed → booleanIndexed → indexedToGeometry): a new indexed BufferGeometry
+ * whose `userData.report` is the library's report (triangles, volume, area, closed, ...),
+ * or null when the result has no triangles.
+ *
+ * @param {THREE.Object3D | THREE.BufferGeometry} a
+ * @param {THREE.Object3D | THREE.BufferGeometry} b
+ * @param {"union" | "intersect" | "subtract" | "intersection" | "difference" | "reverse-difference"} op
+ * @param {{force?: boolean, selfCheck?: boolean, resolve?: boolean, orient?: boolean, keepNonmanifold?: boolean}} [options]
+ *   booleanIndexed's operand options.
+ * @returns {THREE.BufferGeometry | null}
+ */
+export function booleanGeometry(a, b, op, options) {
+	const out = booleanIndexed(geometryToIndexed(a), geometryToIndexed(b), op, options);
+	if (out.index.length === 0) return null;
+	const geometry = indexedToGeometry(out);
+	geometry.userData.report = out.report;
+	return geometry;
+}

@@ -1,0 +1,442 @@
+// The package's API against geometry: volumes and volume identities, exact triangle and
+// edge counts, the Kirra terrain cases against the CLI's numbers, the typed-array path
+// against the soup path, and bad input. Run: node --test test/
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { readFileSync } from "node:fs";
+import * as mb from "../src/index.js";
+import { call } from "../src/native.js";
+
+const data = (name) => new URL(`../../data/${name}`, import.meta.url);
+
+function cube(cx, cy, cz, size) {
+	const h = size / 2;
+	const v = [
+		[cx - h, cy - h, cz - h], [cx + h, cy - h, cz - h], [cx + h, cy + h, cz - h], [cx - h, cy + h, cz - h],
+		[cx - h, cy - h, cz + h], [cx + h, cy - h, cz + h], [cx + h, cy + h, cz + h], [cx - h, cy + h, cz + h],
+	];
+	const f = [[0, 2, 1], [0, 3, 2], [4, 5, 6], [4, 6, 7], [0, 1, 5], [0, 5, 4], [1, 2, 6], [1, 6, 5], [2, 3, 7], [2, 7, 6], [3, 0, 4], [3, 4, 7]];
+	const p = (i) => ({ x: v[i][0], y: v[i][1], z: v[i][2] });
+	return f.map(([a, b, c]) => ({ v0: p(a), v1: p(b), v2: p(c) }));
+}
+
+/** A flat square grid patch at height z facing up. */
+function patch(cx, cy, z, size, n) {
+	const out = [];
+	const s = size / n, x0 = cx - size / 2, y0 = cy - size / 2;
+	for (let i = 0; i < n; i++) for (let j = 0; j < n; j++) {
+		const a = { x: x0 + i * s, y: y0 + j * s, z }, b = { x: x0 + (i + 1) * s, y: y0 + j * s, z };
+		const c = { x: x0 + (i + 1) * s, y: y0 + (j + 1) * s, z }, d = { x: x0 + i * s, y: y0 + (j + 1) * s, z };
+		out.push({ v0: a, v1: b, v2: c }, { v0: a, v1: c, v2: d });
+	}
+	return out;
+}
+
+const vol = (r) => mb.computeSignedVolume(r.soup);
+const closed = (soup) => {
+	const c = mb.countOpenEdges(soup);
+	return c.openEdges === 0 && c.overShared === 0;
+};
+
+test("booleans of overlapping cubes: exact volumes, closed, and the volume identity", () => {
+	const a = cube(0, 0, 0, 2), b = cube(0.5, 0.25, 0.125, 2);
+	const u = mb.boolean(a, b, "union"), i = mb.boolean(a, b, "intersect");
+	const d = mb.boolean(a, b, "subtract"), r = mb.boolean(a, b, "reverse-difference");
+	const inter = 1.5 * 1.75 * 1.875;
+	assert.equal(vol(i), inter);
+	assert.equal(vol(d), 8 - inter);
+	assert.equal(vol(r), 8 - inter);
+	assert.equal(vol(u) + vol(i), 16);
+	for (const res of [u, i, d, r]) {
+		assert.ok(closed(res.soup));
+		assert.equal(res.triangles.length, res.soup.length);
+		assert.equal(res.report.closed, true);
+	}
+	// points and triangles describe the same mesh as the soup
+	assert.equal(mb.computeSignedVolume(mb.weldedToSoup(u.triangles)), vol(u));
+	assert.ok(u.points.length < 3 * u.soup.length);
+});
+
+test("identical and touching meshes", () => {
+	const a = cube(0, 0, 0, 2);
+	assert.equal(vol(mb.boolean(a, a, "union")), 8);
+	assert.equal(vol(mb.boolean(a, a, "intersect")), 8);
+	assert.equal(mb.boolean(a, a, "subtract"), null);
+	const b = cube(2, 0, 0, 2); // shares the face x = 1
+	const u = mb.boolean(a, b, "union");
+	assert.equal(vol(u), 16);
+	assert.ok(closed(u.soup));
+	assert.equal(mb.boolean(a, b, "intersect"), null);
+	assert.equal(vol(mb.boolean(a, b, "subtract")), 8);
+	// disjoint: union keeps both, intersection is empty, difference is A
+	const far = cube(10, 10, 10, 1);
+	assert.equal(vol(mb.boolean(a, far, "union")), 9);
+	assert.equal(mb.boolean(a, far, "intersect"), null);
+	assert.equal(vol(mb.boolean(a, far, "subtract")), 8);
+	// nested: the difference is a shell
+	const inner = cube(0, 0, 0, 1);
+	const shell = mb.boolean(a, inner, "subtract");
+	assert.equal(vol(shell), 7);
+	assert.equal(mb.findConnectedComponents(shell.soup).length, 2);
+});
+
+test("split, merge, select and components give the booleans", () => {
+	const a = cube(0, 0, 0, 2), b = cube(1, 0, 0, 2); // coplanar faces at y, z = ±1
+	const s = mb.splitMeshPair(a, b);
+	assert.ok(s.segments.length > 0);
+	for (const seg of s.segments) {
+		assert.ok(Number.isInteger(seg.idxA) && seg.idxA < a.length);
+		assert.ok(Number.isInteger(seg.idxB) && seg.idxB < b.length);
+	}
+	const g = s.groups;
+	// Every group lies wholly on its side: centroids inside or outside the other cube.
+	const inside = (t, cx) => {
+		const c = { x: (t.v0.x + t.v1.x + t.v2.x) / 3, y: (t.v0.y + t.v1.y + t.v2.y) / 3, z: (t.v0.z + t.v1.z + t.v2.z) / 3 };
+		return c.x >= cx - 1 && c.x <= cx + 1;
+	};
+	assert.ok(g.aOutside.every((t) => !inside(t, 1)));
+	assert.ok(g.bOutside.filter((t) => !inside(t, 0)).length > 0);
+	for (const op of ["union", "intersect", "subtract"]) {
+		const m = mb.mergeSplitGroups(g, op), d = mb.boolean(a, b, op);
+		assert.equal(vol(m), vol(d), op);
+		assert.equal(m.soup.length, d.soup.length, op);
+		assert.ok(closed(m.soup), op);
+	}
+	assert.equal(vol(mb.selectSplits(g, { aOutside: true, bInside: "flip" })), 4);
+	assert.equal(mb.selectSplits(g, {}), null);
+	const comps = mb.splitToComponents(g);
+	assert.deepEqual(comps.map((c) => c.mesh + c.side), ["Ainside", "Aoutside", "Binside", "Boutside"]);
+	assert.equal(comps.reduce((n, c) => n + c.triCount, 0), g.aInside.length + g.aOutside.length + g.bInside.length + g.bOutside.length);
+	const picked = mb.mergeComponents([{ soup: comps[1].soup }, { soup: comps[2].soup, flip: true }]);
+	assert.equal(vol(picked), 4);
+	assert.equal(mb.mergeSmallComponents(comps, 0).length, 4);
+	assert.equal(mb.splitMeshPair(null, b), null);
+	const bms = mb.bmsBooleanOp(a, b, "union");
+	assert.equal(vol(bms.result), 12);
+	assert.ok(bms.polylines.length >= 1 && bms.megaSoup.length > 0);
+	assert.ok(bms.megaSoup.every((t) => (t.mesh === "A" ? t.origIdx < a.length : t.origIdx < b.length)));
+});
+
+test("reclassify functions move triangles between sides", () => {
+	const s = mb.splitMeshPair(cube(0, 0, 0, 2), cube(1, 0.5, 0.25, 2));
+	const g = s.groups;
+	const n = g.aInside.length;
+	assert.equal(mb.reclassifyTriangles(g, "A", "inside", [0]), 1);
+	assert.equal(g.aInside.length, n - 1);
+	const t = g.aOutside[g.aOutside.length - 1];
+	const c = { x: (t.v0.x + t.v1.x + t.v2.x) / 3, y: (t.v0.y + t.v1.y + t.v2.y) / 3, z: (t.v0.z + t.v1.z + t.v2.z) / 3 };
+	assert.deepEqual(mb.reclassifyAtPoint(g, c.x, c.y, c.z, 1e-9), { moved: true, mesh: "A", from: "outside", to: "inside" });
+	const before = g.bInside.length;
+	const moved = mb.reclassifyRegion(g, "B", "inside", 0);
+	assert.equal(moved, before);
+	assert.equal(g.bInside.length, 0);
+});
+
+test("Kirra terrain − cylinder and terrain ∩ cup equal the CLI's numbers", () => {
+	const read = (name) => mb.readMesh(readFileSync(data(name)), name);
+	const terrain = read("kirra_terrain.obj"), cyl = read("kirra_cylinder.obj"), cup = read("kirra_cup.obj");
+	assert.equal(terrain.format, "obj");
+	// meshbool difference data/kirra_terrain.obj data/kirra_cylinder.obj -o out.ply --json
+	const d = mb.booleanIndexed(terrain, cyl, "subtract");
+	assert.equal(d.index.length / 3, 10846);
+	assert.equal(d.report.volume, 179953.76307633775);
+	assert.equal(d.report.area, 36079.86143207988);
+	assert.equal(d.report.boundary_edges, 560);
+	assert.ok(d.report.assumed[0].includes("46 inconsistently oriented edges"));
+	// meshbool intersection data/kirra_terrain.obj data/kirra_cup.obj -o out.ply --json
+	const i = mb.booleanIndexed(terrain, cup, "intersect");
+	assert.equal(i.index.length / 3, 846);
+	assert.equal(i.report.volume, 33457.89820801892);
+	assert.equal(i.report.closed, true);
+	// the soup path gives the same mesh
+	const soup = mb.boolean(mb.typedToSoup(terrain), mb.typedToSoup(cup), "intersect");
+	assert.equal(soup.soup.length, 846);
+	assert.equal(mb.computeSignedVolume(soup.soup), i.report.volume);
+	const s = mb.splitIndexed(terrain, cyl);
+	assert.ok(s.groups.a_in_b.index.length > 0 && s.groups.b_in_a.index.length > 0);
+});
+
+test("typed-array path equals the soup path", () => {
+	const a = cube(0, 0, 0, 2), b = cube(0.5, 0.5, 0.5, 2);
+	const ta = mb.soupToTyped(a), tb = mb.soupToTyped(b);
+	assert.equal(ta.positions.length, 24);
+	assert.equal(ta.index.length, 36);
+	for (const op of ["union", "intersect", "subtract"]) {
+		const t = mb.booleanIndexed(ta, tb, op), s = mb.boolean(a, b, op);
+		assert.deepEqual(mb.typedToSoup(t), s.soup, op);
+		assert.equal(t.source.length, t.index.length / 3);
+		assert.equal(t.triangle.length, t.index.length / 3);
+	}
+	const d = mb.booleanIndexed(ta, tb, "subtract");
+	assert.ok(Array.from(d.flipped).some((f, k) => f === 1 && d.source[k] === 1));
+	const bytes = mb.writeMesh(ta, "ply");
+	const back = mb.readMesh(bytes);
+	assert.equal(back.format, "ply");
+	assert.deepEqual(Array.from(back.positions), Array.from(ta.positions));
+	assert.deepEqual(Array.from(back.index), Array.from(ta.index));
+	const info = mb.meshInfo(ta);
+	assert.equal(info.volume, 8);
+	assert.equal(info.closed, true);
+	assert.equal(info.boundary_edges, 0);
+});
+
+test("intersection curves and segments", () => {
+	const a = cube(0, 0, 0, 2), b = cube(0.5, 0.5, 0.5, 2);
+	const segs = mb.intersectMeshPairTagged(a, b);
+	assert.ok(segs.length > 0);
+	assert.equal(mb.intersectMeshPair(a, b).length, segs.length);
+	const lines = mb.chainSegments(segs, 0);
+	assert.equal(lines.length, 1); // one closed loop
+	const loop = lines[0];
+	assert.deepEqual(loop[0], loop[loop.length - 1]);
+	const c = mb.curvesIndexed(mb.soupToTyped(a), mb.soupToTyped(b));
+	assert.equal(c.polylines.length, 1);
+	assert.equal(c.closed[0], true);
+	// the loop's length: three unit... the seam of two offset cubes is 6 edges of length 1.5
+	assert.equal(c.report.total_length, 9);
+	const t = mb.triTriIntersectionDetailed(a[0], b[4]);
+	assert.equal(t, null);
+	const crossing = mb.triTriIntersection(
+		{ v0: { x: 0, y: 0, z: 0 }, v1: { x: 2, y: 0, z: 0 }, v2: { x: 0, y: 2, z: 0 } },
+		{ v0: { x: 0.5, y: 0.5, z: -1 }, v1: { x: 0.5, y: 0.5, z: 1 }, v2: { x: 3, y: 0.5, z: 0 } },
+	);
+	assert.ok(crossing);
+	assert.equal(crossing.p0.y, 0.5);
+	assert.equal(mb.simplifyPolyline(loop, 100).length, 2);
+});
+
+test("repair functions", async () => {
+	const a = cube(0, 0, 0, 2);
+	const open = a.slice(2); // bottom face removed: one square hole
+	const loops = mb.extractBoundaryLoops(open);
+	assert.equal(loops.loops.length, 1);
+	assert.equal(loops.boundaryEdgeCount, 4);
+	const capped = mb.capBoundaryLoops(open);
+	assert.equal(capped.length, 12);
+	assert.equal(mb.computeSignedVolume(capped), 8);
+	assert.equal(mb.fillOpenEdgeLoops(open).length, 12);
+	assert.equal(mb.triangulateLoop(loops.loops[0]).length, 2);
+	const closedRes = mb.closeSolid(open);
+	assert.equal(closedRes.diagnostics.closed, true);
+	assert.equal(closedRes.diagnostics.volume, 8);
+	const fc = mb.forceCloseIndexedMesh([], mb.weldVertices(open, 1e-9).triangles);
+	assert.equal(fc.triangles.length, 12);
+	// a terrain patch closed by a curtain to a floor 10 below: walls + floor added
+	const p = patch(0, 0, 5, 4, 4);
+	const added = mb.buildCurtainAndCap(p, 10);
+	const solid = p.concat(added);
+	assert.ok(closed(solid));
+	assert.equal(mb.computeSignedVolume(solid), 4 * 4 * 10);
+	// duplicates: an exact copy removed, an anti-parallel pair cancels
+	assert.equal(mb.cleanCrossingTriangles(a.concat([a[0]])).length, 12);
+	assert.equal(mb.removeOverlappingTriangles(a.concat(mb.flipAllNormals([a[0]]))).length, 11);
+	// weld: vertices within the tolerance merged
+	const shifted = a.map((t) => ({ v0: t.v0, v1: t.v1, v2: { x: t.v2.x + 1e-7, y: t.v2.y, z: t.v2.z } }));
+	assert.ok(mb.countOpenEdges(shifted).openEdges > 0);
+	assert.ok(closed(mb.deduplicateSeamVertices(shifted, 1e-5)));
+	const w = mb.weldVertices(shifted, 1e-5);
+	assert.equal(w.points.length, 8);
+	assert.equal(mb.weldVertices(a, 0).points.length, 36);
+	// T-junction: a vertex on an edge of the neighbour gets the edge split
+	const tj = [
+		{ v0: { x: 0, y: 0, z: 0 }, v1: { x: 2, y: 0, z: 0 }, v2: { x: 1, y: 1, z: 0 } },
+		{ v0: { x: 0, y: 0, z: 0 }, v1: { x: 1, y: -1, z: 0 }, v2: { x: 1, y: 0, z: 0 } },
+		{ v0: { x: 1, y: 0, z: 0 }, v1: { x: 1, y: -1, z: 0 }, v2: { x: 2, y: 0, z: 0 } },
+	];
+	assert.equal(mb.countOpenEdges(tj).openEdges, 7);
+	const fixed = mb.resolveTJunctions(tj);
+	assert.equal(fixed.length, 4);
+	assert.equal(mb.countOpenEdges(fixed).openEdges, 4);
+	// degenerate: a zero-area triangle removed
+	const degenerate = { v0: { x: 0, y: 0, z: 0 }, v1: { x: 1, y: 0, z: 0 }, v2: { x: 2, y: 0, z: 0 } };
+	assert.deepEqual(mb.removeDegenerateTriangles([degenerate, ...cube(5, 5, 5, 2)], 0, 0).length, 12);
+	const cleaned = mb.removeDegenerateTriangles([...tj, degenerate], 0, 0);
+	assert.ok(cleaned.every((t) => mb.triangleArea3D(t) > 0));
+	assert.equal(mb.compute3DSurfaceArea(cleaned), mb.compute3DSurfaceArea(tj));
+	// the async pipeline
+	let calls = 0;
+	const r = await mb.repairMesh(shifted, { closeMode: "weld", snapTolerance: 1e-5 }, () => calls++);
+	assert.ok(closed(r.soup));
+	// welded within 1e-5: each vertex lands on the first of its cluster (moved at most 1e-7)
+	assert.ok(Math.abs(mb.computeSignedVolume(r.soup) - 8) < 1e-6);
+	assert.ok(calls >= 2);
+	const st = await mb.repairMesh(open, { closeMode: "stitch" });
+	assert.ok(closed(st.soup));
+	// orientation
+	const messy = a.map((t, k) => (k % 3 === 0 ? mb.flipAllNormals([t])[0] : t));
+	const o = mb.orientSolid(messy);
+	assert.equal(mb.computeSignedVolume(o.soup), 8);
+	const inward = mb.orientSolid(mb.flipAllNormals(a));
+	assert.equal(mb.computeSignedVolume(inward.soup), 8);
+	const stitchAdded = mb.stitchByProximity(open, 1);
+	assert.ok(Array.isArray(stitchAdded));
+});
+
+test("self-overlapping input resolved", () => {
+	// (cubes sharing coplanar faces: the even-odd self-arrangement fails there, issue 14)
+	const two = cube(0, 0, 0, 2).concat(cube(0.5, 0.25, 0.125, 2));
+	const inter = 1.5 * 1.75 * 1.875;
+	assert.equal(mb.computeSignedVolume(two), 16);
+	const r = mb.bmsSelfResolve(two);
+	assert.equal(r.changed, true);
+	assert.equal(mb.computeSignedVolume(r.soup), 16 - inter);
+	assert.ok(closed(r.soup));
+	const e = mb.bmsSelfResolveIndexed(mb.soupToTyped(two), { rule: "evenodd" });
+	assert.equal(mb.meshInfo(e).volume, 16 - 2 * inter);
+	// two solids touching along the seam: closed and manifold with the seam's vertices
+	// doubled (an exact weld joins them again: 14 edges of four triangles)
+	assert.equal(e.diagnostics.closed, true);
+	assert.equal(e.diagnostics.non_manifold_edges, 0);
+	assert.equal(mb.meshInfo(e).non_manifold_edges, 14);
+});
+
+test("measures, normals and utilities", () => {
+	const a = cube(0, 0, 0, 2);
+	assert.equal(mb.computeSignedVolume(a), 8);
+	assert.equal(mb.compute3DSurfaceArea(a), 24);
+	assert.equal(mb.computeProjectedArea(a, "xy"), 4);
+	assert.equal(mb.computeProjectedArea(patch(0, 0, 1, 2, 2), "yz"), 0);
+	assert.deepEqual(mb.triNormal(patch(0, 0, 0, 1, 1)[0]), { x: 0, y: 0, z: 1 });
+	assert.equal(mb.classifyNormalDirection(a, true, 8), "Out");
+	assert.equal(mb.classifyNormalDirection(patch(0, 0, 0, 1, 2), false), "Z+");
+	assert.equal(mb.classifyNormalDirection([], false), "N/A");
+	const down = mb.flipAllNormals(patch(0, 0, 0, 1, 2));
+	assert.ok(mb.ensureZUpNormals(down).every((t) => mb.triNormal(t).z > 0));
+	assert.equal(mb.windingNumber({ x: 0.1, y: 0.2, z: 0.3 }, a).toFixed(12), "1.000000000000");
+	assert.equal(Math.abs(mb.windingNumber({ x: 5, y: 0, z: 0 }, a)) < 1e-12, true);
+	const t = mb.soupToTyped(a);
+	assert.ok(Math.abs(mb.windingNumberIndexed(0, 0, 0, t.positions, t.index) - 1) < 1e-12);
+	assert.equal(mb.classifyPointMultiAxis({ x: 0.3, y: 0.2, z: -0.5 }, a), 1);
+	assert.equal(mb.classifyPointMultiAxis({ x: 3, y: 0.2, z: -0.5 }, a), -1);
+	assert.equal(mb.dist3({ x: 0, y: 0, z: 0 }, { x: 3, y: 4, z: 0 }), 5);
+	assert.equal(mb.triangleArea3D(patch(0, 0, 0, 2, 1)[0]), 2);
+	assert.deepEqual(mb.computeBounds([{ x: 1, y: 2, z: 3 }]), { minX: 1, maxX: 1, minY: 2, maxY: 2, minZ: 3, maxZ: 3 });
+	assert.deepEqual(mb.lerpVert({ x: 0, y: 0, z: 0 }, { x: 2, y: 2, z: 2 }, 0.5), { x: 1, y: 1, z: 1 });
+	assert.equal(mb.vKey({ x: 1, y: 2, z: 3 }), "1.000000,2.000000,3.000000");
+	assert.equal(mb.edgeKey("b", "a"), "a|b");
+	assert.deepEqual(mb.countOpenEdges(a), { openEdges: 0, overShared: 0, total: 18 });
+	const two = a.concat(cube(10, 0, 0, 1), cube(20, 0, 0, 1).slice(0, 4));
+	assert.deepEqual(mb.findConnectedComponents(two).map((c) => c.length), [12, 12, 2, 2]);
+	assert.equal(mb.findConnectedComponentsPooled(two).length, 4);
+	const grid = mb.buildSpatialGrid(a, 1);
+	assert.ok(mb.queryGrid(grid, mb.triBBox(a[0]), 1).includes(0));
+	assert.ok(mb.bboxOverlap(mb.computeBBox(a), mb.triBBox(a[5])));
+	assert.equal(mb.estimateAvgEdge(patch(0, 0, 0, 1, 1)), (2 + Math.SQRT2) / 3);
+	assert.match(mb.version, /^\d+\.\d+\.\d+/);
+});
+
+test("bad input throws an Error that says what is wrong", () => {
+	const a = cube(0, 0, 0, 2);
+	const nan = [{ v0: { x: NaN, y: 0, z: 0 }, v1: { x: 1, y: 0, z: 0 }, v2: { x: 0, y: 1, z: 0 } }];
+	assert.throws(() => mb.boolean(nan, a, "union"), /non-finite/);
+	assert.throws(() => mb.boolean([{ v0: { x: Infinity, y: 0, z: 0 }, v1: { x: 1, y: 0, z: 0 }, v2: { x: 0, y: 1, z: 0 } }], a, "union"), /non-finite/);
+	assert.throws(() => mb.boolean([], a, "union"), /no triangles/);
+	assert.throws(() => mb.boolean(a, [], "union"), /no triangles/);
+	assert.throws(() => mb.boolean([{ v0: { x: 0, y: 0 } }], a, "union"), /soupA\[0\]\.v0 is not a vertex/);
+	assert.throws(() => mb.boolean(a, [[0, 0, 0]], "union"), /soupB\[0\]\.v0 is not a vertex/);
+	assert.throws(() => mb.boolean({ length: 3 }, a, "union"), /must be an array/);
+	assert.throws(() => mb.boolean(a, a, "xor"), /unknown operation/);
+	assert.throws(() => mb.booleanIndexed({ positions: new Float64Array(4), index: new Uint32Array(3) }, mb.soupToTyped(a), "union"), /three numbers per vertex/);
+	assert.throws(() => mb.booleanIndexed({ positions: new Float64Array(9), index: new Uint32Array([0, 1, 7]) }, mb.soupToTyped(a), "union"), /index|range|vertex/i);
+	assert.throws(() => mb.readMesh(new TextEncoder().encode("solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0")), Error);
+	assert.throws(() => mb.readMesh(new Uint8Array([1, 2, 3])), Error);
+	assert.throws(() => mb.boolean(a, a, "union", { force: "yes" }), /true or false/);
+	assert.throws(() => mb.orientIndexed(mb.soupToTyped(a), "sideways"), Error);
+	// a self-intersecting open operand is refused with the library's message unless forced
+	const tilt = (p) => ({ x: p.x, y: p.y, z: p.x + 0.1 });
+	const folded = patch(0, 0, 0, 2, 2).concat(patch(0.05, 0.05, 0, 2, 2).map((t) => ({ v0: tilt(t.v0), v1: tilt(t.v1), v2: tilt(t.v2) })));
+	assert.throws(() => mb.boolean(folded, a, "subtract"), /self-intersect/);
+	assert.ok(mb.boolean(folded, a, "subtract", { force: true }) !== undefined);
+	// null inputs: null, as in the reference
+	assert.equal(mb.boolean(null, a, "union"), null);
+});
+
+test("a panic in the WebAssembly reaches JavaScript as an Error with its message, and the module keeps working", () => {
+	assert.throws(() => call("__panicForTest"), (e) => e instanceof Error && /internal error in __panicForTest.*a test panic/s.test(e.message));
+	assert.equal(vol(mb.boolean(cube(0, 0, 0, 2), cube(1, 0, 0, 2), "union")), 12);
+});
+
+test("coincident faces: two cubes sharing faces resolved under each fill rule", () => {
+	const two = cube(0, 0, 0, 2).concat(cube(1, 0, 0, 2));
+	for (const [rule, volume] of [["positive", 12], ["nonzero", 12], ["evenodd", 8]]) {
+		const r = mb.bmsSelfResolveIndexed(mb.soupToTyped(two), { rule });
+		assert.equal(r.diagnostics.resolve.failed_triangles, 0, rule);
+		assert.equal(r.diagnostics.volume, volume, rule);
+		assert.equal(r.diagnostics.closed, true, rule);
+	}
+	// the same cube twice shares every vertex: its edges have four triangles, which the
+	// resolver refuses (it needs closed components) with a message that says so
+	const twice = cube(0, 0, 0, 2).concat(cube(0, 0, 0, 2));
+	assert.throws(() => mb.bmsSelfResolve(twice, { rule: "nonzero" }), /not closed/);
+});
+
+test("verification, finishing and the one-call boolean", () => {
+	const a = cube(0, 0, 0, 2), b = cube(1, 0.5, 0.25, 2);
+	const good = mb.verifyOutput(a, { expectClosed: true });
+	assert.equal(good.ok, true);
+	assert.equal(mb.violationCount(good), 0);
+	assert.deepEqual(good.stats, { triangles: 12, vertices: 8, openEdges: 0, nonManifoldEdges: 0, area: 24, components: 1, volume: 8 });
+	// a duplicate, a reversed triangle and a missing one
+	const bad = a.slice(1).concat([a[3]]);
+	bad[4] = mb.flipAllNormals([bad[4]])[0];
+	const v = mb.verifyOutput(bad, { expectClosed: true });
+	const count = Object.fromEntries(v.checks.map((c) => [c.check, c.count]));
+	assert.equal(v.ok, false);
+	assert.equal(count.noDuplicates, 1);
+	assert.ok(count.consistentWinding > 0);
+	assert.ok(count.closed > 0);
+	const t = mb.verifyOutput([
+		{ v0: { x: 0, y: 0, z: 0 }, v1: { x: 2, y: 0, z: 0 }, v2: { x: 1, y: 1, z: 0 } },
+		{ v0: { x: 0, y: 0, z: 0 }, v1: { x: 1, y: -1, z: 0 }, v2: { x: 1, y: 0, z: 0 } },
+	]);
+	assert.equal(t.checks.find((c) => c.check === "noTJunctions").count, 1);
+	// a zero-thickness membrane on a face (a triangle and its reverse): cancelled, the
+	// volume unchanged; the other stages change nothing and are skipped
+	const finished = mb.finishMesh(a.concat([a[0]], mb.flipAllNormals([a[0]])));
+	assert.deepEqual(finished.applied, ["dedupCoincident"]);
+	assert.equal(finished.soup.length, 12);
+	assert.equal(finished.ok, true);
+	assert.equal(mb.violationCount(finished.before) > 0, true);
+	// removing a plain duplicate changes the signed volume by its tetrahedron: refused
+	assert.deepEqual(mb.finishMesh(a.concat([a[0]])).applied, []);
+	assert.deepEqual(mb.finishMesh(a.concat([a[0]]), { force: true }).applied.length, 3);
+	const assess = mb.assessRepair(a, a.slice(1));
+	assert.equal(assess.recommend, "discard");
+	assert.ok(assess.harmful);
+	assert.match(mb.describeAssessment(assess), /^DISCARD/);
+	assert.equal(mb.DEFAULT_STAGES.length, 3);
+	const auto = mb.booleanAuto(a, b, "subtract");
+	assert.equal(auto.ok, true);
+	assert.equal(auto.operation, "subtract");
+	assert.equal(mb.computeSignedVolume(auto.soup), 8 - 1 * 1.5 * 1.75);
+	assert.ok(auto.boolean.groups.aOutside.length > 0);
+	assert.equal(mb.booleanAuto(a, b, "union", { quality: "raw" }).report, null);
+	// indexed groups: one pool, triples per group, the same triangles
+	const s = mb.splitMeshPair(a, b);
+	const ig = mb.indexGroups(s.groups);
+	for (const g of ["aInside", "aOutside", "bInside", "bOutside"]) {
+		assert.equal(ig.groups[g].length, s.groups[g].length);
+		const back = ig.groups[g].map(([i, j, k]) => ({ v0: ig.points[i], v1: ig.points[j], v2: ig.points[k] }));
+		assert.deepEqual(back, s.groups[g]);
+	}
+	const typed = mb.indexGroupsToTypedArrays(ig);
+	assert.equal(typed.positions.length, 3 * ig.points.length);
+	assert.equal(typed.index.aOutside.length, 3 * s.groups.aOutside.length);
+	assert.deepEqual(mb.bmsBooleanOp(a, b, null, { indexed: true }).indexed.points.length, ig.points.length);
+	const comps = mb.decomposeIndexedGroups(ig);
+	assert.equal(comps.reduce((n, c) => n + c.triCount, 0), s.groups.aInside.length + s.groups.aOutside.length + s.groups.bInside.length + s.groups.bOutside.length);
+	assert.deepEqual(mb.connectedComponentsIndexed([[0, 1, 2], [2, 3, 4], [7, 8, 9]]).map((c) => c.length), [2, 1]);
+	assert.deepEqual(mb.mergeSmallIndexedComponents([[[0, 1, 2]], [[3, 4, 5], [5, 6, 7]]], 2).map((c) => c.length), [3]);
+	const d = mb.dedupCoincidentTriangles(a.concat([a[0], a[0]], mb.flipAllNormals([a[1]])));
+	assert.equal(d.soup.length, 11);
+	assert.equal(d.duplicateGroups, 2);
+	assert.equal(d.duplicatesRemoved, 4);
+});
+
+test("every export is declared in index.d.ts and every declaration is exported", () => {
+	const dts = readFileSync(new URL("../src/index.d.ts", import.meta.url), "utf8");
+	const declared = new Set([...dts.matchAll(/^export (?:function|const) (\w+)/gm)].map((m) => m[1]));
+	const exported = new Set(Object.keys(mb));
+	assert.deepEqual([...exported].filter((n) => !declared.has(n)), []);
+	assert.deepEqual([...declared].filter((n) => !exported.has(n)), []);
+});

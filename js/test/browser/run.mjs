@@ -1,0 +1,158 @@
+// The demo in a real browser: serves js/ with demo/serve.mjs on a free port, opens the
+// page in headless Chromium (Debian's, through playwright-core), loads the Kirra terrain
+// as A and the cylinder as B, runs A − B, and checks the statistics shown against
+// booleanIndexed computed here in Node; then the STL download and the split-and-pick of
+// the same result. Any page error, console error or failed request fails the test. Saves
+// a screenshot of the A − B view.
+//
+//   node test/browser/run.mjs            (npm run test:browser)
+//   CHROMIUM=/path/to/chrome SCREENSHOT=out.png node test/browser/run.mjs
+import fs from "node:fs";
+import path from "node:path";
+import { fileURLToPath } from "node:url";
+import { chromium } from "playwright-core";
+import { booleanIndexed, readMesh } from "../../src/index.js";
+import { startServer, dataRoot, packageRoot } from "../../demo/serve.mjs";
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const screenshot = path.resolve(process.env.SCREENSHOT || path.join(here, "..", "..", "test-out", "demo.png"));
+const executablePath = process.env.CHROMIUM || "/usr/bin/chromium";
+const TIMEOUT = 60_000;
+
+function fail(message) {
+	throw new Error(message);
+}
+
+/** What the page must show for terrain − cylinder, computed in Node. */
+function expected() {
+	const read = (name) => readMesh(fs.readFileSync(path.join(dataRoot, name)), "obj");
+	const out = booleanIndexed(read("kirra_terrain.obj"), read("kirra_cylinder.obj"), "subtract");
+	return { triangles: out.report.triangles, volume: out.report.volume, area: out.report.area, closed: out.report.closed };
+}
+
+/** A number shown on the page (digits, sign, point), or NaN. */
+function shownNumber(text) {
+	return Number(String(text).trim());
+}
+
+async function main() {
+	if (!fs.existsSync(executablePath)) {
+		fail(`no Chromium at ${executablePath}: install it (apt-get install -y chromium) or set CHROMIUM`);
+	}
+	if (!fs.existsSync(path.join(packageRoot, "wasm", "meshbool_wasm_bg.wasm"))) {
+		fail("js/wasm is missing: build it first (node scripts/build.mjs)");
+	}
+	if (!fs.existsSync(path.join(packageRoot, "node_modules", "three", "build", "three.module.js"))) {
+		fail("three is not installed: run npm install in js/");
+	}
+	const want = expected();
+
+	const server = await startServer({ port: 0 });
+	const browser = await chromium.launch({
+		executablePath,
+		headless: true,
+		args: [
+			"--headless",
+			"--no-sandbox",
+			"--disable-gpu",
+			"--disable-quic",
+			"--no-first-run",
+			"--disable-background-networking",
+			"--disable-component-update",
+			"--disable-sync",
+			// WebGL without a GPU: ANGLE on SwiftShader (software).
+			"--use-angle=swiftshader",
+			"--enable-unsafe-swiftshader",
+		],
+	});
+	const problems = [];
+	try {
+		const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+		page.setDefaultTimeout(TIMEOUT);
+		page.on("pageerror", (e) => problems.push(`page error: ${e.message}`));
+		page.on("console", (m) => {
+			if (m.type() === "error") problems.push(`console error: ${m.text()}`);
+		});
+		page.on("requestfailed", (r) => problems.push(`request failed: ${r.url()} (${r.failure()?.errorText})`));
+		page.on("response", (r) => {
+			if (r.status() >= 400) problems.push(`HTTP ${r.status()}: ${r.url()}`);
+		});
+		const check = (step) => {
+			if (problems.length > 0) fail(`${step}:\n  ${problems.join("\n  ")}`);
+		};
+
+		await page.goto(server.url);
+		await page.waitForSelector("body[data-ready=true]").catch(() => check("the page did not start"));
+		check("opening the demo");
+		const webgl = await page.getAttribute("#viewport", "data-webgl");
+		if (webgl !== "ok") fail(`WebGL did not start in Chromium (viewport data-webgl=${webgl})`);
+
+		await page.click("#load-a-terrain");
+		await page.waitForSelector("#slot-a[data-loaded='kirra_terrain.obj']");
+		await page.click("#load-b-cylinder");
+		await page.waitForSelector("#slot-b[data-loaded='kirra_cylinder.obj']");
+		await page.selectOption("#op", "subtract");
+		await page.click("#run");
+		await page.waitForSelector("#stats[data-state=done], #stats[data-state=error]");
+		check("running terrain − cylinder");
+		const state = await page.getAttribute("#stats", "data-state");
+		if (state !== "done") fail(`the demo failed: ${await page.textContent("#message")}`);
+
+		const shown = {};
+		for (const key of ["triangles", "closed", "volume", "area", "time"]) {
+			shown[key] = (await page.textContent(`#stat-${key}`)).trim();
+		}
+		const triangles = shownNumber(shown.triangles);
+		if (!(Number.isInteger(triangles) && triangles > 0)) fail(`triangles shown: ${JSON.stringify(shown.triangles)}`);
+		if (triangles !== want.triangles) fail(`triangles shown ${triangles}, booleanIndexed in Node gives ${want.triangles}`);
+		const volume = shownNumber(shown.volume);
+		if (!(Math.abs(volume - want.volume) <= 0.0005 + 1e-9 * Math.abs(want.volume))) {
+			fail(`volume shown ${shown.volume}, booleanIndexed in Node gives ${want.volume}`);
+		}
+		const area = shownNumber(shown.area);
+		if (!(Math.abs(area - want.area) <= 0.0005 + 1e-9 * Math.abs(want.area))) fail(`area shown ${shown.area}, Node gives ${want.area}`);
+		if (shown.closed !== (want.closed ? "yes" : "no")) fail(`closed shown ${shown.closed}, Node gives ${want.closed}`);
+		if (!(shownNumber(shown.time) >= 0)) fail(`time shown: ${JSON.stringify(shown.time)}`);
+
+		const colours = await page.evaluate(() => window.meshboolDemo.colourCount());
+		if (colours < 8) fail(`the 3-D view looks blank (${colours} colours drawn)`);
+
+		fs.mkdirSync(path.dirname(screenshot), { recursive: true });
+		await page.screenshot({ path: screenshot });
+		check("after the run");
+
+		// Download: the result as binary STL (84 bytes of header and count, 50 per triangle).
+		const [download] = await Promise.all([page.waitForEvent("download"), page.click("#download")]);
+		const stl = fs.readFileSync(await download.path());
+		if (stl.length !== 84 + 50 * want.triangles || stl.readUInt32LE(80) !== want.triangles) {
+			fail(`the downloaded STL (${download.suggestedFilename()}, ${stl.length} bytes) does not hold the ${want.triangles} triangles`);
+		}
+
+		// Split and pick: A outside B with B inside A flipped (the page's default picks) is A − B.
+		await page.selectOption("#op", "split");
+		await page.click("#run");
+		await page.waitForSelector("#stats[data-state=done], #stats[data-state=error]");
+		check("split and pick");
+		if ((await page.getAttribute("#stats", "data-state")) !== "done") fail(`split and pick failed: ${await page.textContent("#message")}`);
+		const pickTriangles = shownNumber(await page.textContent("#stat-triangles"));
+		const pickVolume = shownNumber(await page.textContent("#stat-volume"));
+		if (pickTriangles !== want.triangles || !(Math.abs(pickVolume - want.volume) <= 0.0015)) {
+			fail(`split and pick of A outside B + flipped B inside A shows ${pickTriangles} triangles, volume ${pickVolume}; A − B has ${want.triangles}, ${want.volume}`);
+		}
+		check("after split and pick");
+		console.log(
+			`ok: terrain − cylinder shows ${shown.triangles} triangles, volume ${shown.volume}, area ${shown.area}, ` +
+				`closed ${shown.closed}, ${shown.time} ms (Chromium ${browser.version()}, ${colours} colours drawn)`,
+		);
+		console.log(`ok: the STL download holds them; split and pick (A outside B + flipped B inside A) shows the same`);
+		console.log(`screenshot: ${screenshot}`);
+	} finally {
+		await browser.close();
+		await server.close();
+	}
+}
+
+main().catch((e) => {
+	console.error(`browser test FAILED: ${e.message}`);
+	process.exitCode = 1;
+});
