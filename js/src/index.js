@@ -218,13 +218,7 @@ export function typedToSoup(m) {
 export function boolean(soupA, soupB, op, options) {
 	if (soupA == null || soupB == null) return null;
 	const o = options || {};
-	let A = soupToArrays(soupA, "soupA"), B = soupToArrays(soupB, "soupB");
-	emptyCheck(A, "soupA");
-	emptyCheck(B, "soupB");
-	if (o.preRepair) {
-		A = preRepair(A, o.tolerance);
-		B = preRepair(B, o.tolerance);
-	}
+	const [A, B] = operands(soupA, soupB, o);
 	const out = call("boolean", A.positions, A.index, B.positions, B.index, opName(op), checkOptions(o));
 	let { positions, index } = out;
 	if ((o.fillGaps || o.forceClose) && index.length > 0) {
@@ -234,6 +228,18 @@ export function boolean(soupA, soupB, op, options) {
 	}
 	if (index.length === 0) return null;
 	return toResult(positions, index, parseReport(out.report));
+}
+
+/** Both soups as flat arrays, checked non-empty, repaired first with `preRepair`. */
+function operands(soupA, soupB, o) {
+	let A = soupToArrays(soupA, "soupA"), B = soupToArrays(soupB, "soupB");
+	emptyCheck(A, "soupA");
+	emptyCheck(B, "soupB");
+	if (o.preRepair) {
+		A = preRepair(A, o.tolerance);
+		B = preRepair(B, o.tolerance);
+	}
+	return [A, B];
 }
 
 function preRepair(M, tolerance) {
@@ -1106,13 +1112,7 @@ export function findConnectedComponentsPooled(soup, options) {
  */
 export function bmsBooleanOp(soupA, soupB, op, options) {
 	const o = options || {};
-	let A = soupToArrays(soupA, "soupA"), B = soupToArrays(soupB, "soupB");
-	emptyCheck(A, "soupA");
-	emptyCheck(B, "soupB");
-	if (o.preRepair) {
-		A = preRepair(A, o.tolerance);
-		B = preRepair(B, o.tolerance);
-	}
+	const [A, B] = operands(soupA, soupB, o);
 	const s = splitArrays(A, B, o);
 	const groups = {};
 	for (const key of Object.keys(FOLD)) groups[key] = groupSoup(s.groups, FOLD[key]);

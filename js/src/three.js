@@ -6,7 +6,7 @@
 // three is a peer dependency: this module imports "three" and leaves resolving it to the
 // application (node_modules, a bundler or an import map).
 import * as THREE from "three";
-import { boolean, booleanIndexed, intersectMeshPairTagged, repairMesh } from "./index.js";
+import { boolean, booleanIndexed, intersectMeshPairTagged, repairMesh, typedToSoup } from "./index.js";
 
 export { boolean, repairMesh as repair, intersectMeshPairTagged as intersect };
 
@@ -137,17 +137,7 @@ export function geometryToIndexed(source) {
  * @returns {Array<{v0: {x: number, y: number, z: number}, v1: {x: number, y: number, z: number}, v2: {x: number, y: number, z: number}}>}
  */
 export function meshToSoup(object3d) {
-	const { positions: p, index } = geometryToIndexed(object3d);
-	const soup = new Array(index.length / 3);
-	for (let t = 0; t < soup.length; t++) {
-		const a = 3 * index[3 * t], b = 3 * index[3 * t + 1], c = 3 * index[3 * t + 2];
-		soup[t] = {
-			v0: { x: p[a], y: p[a + 1], z: p[a + 2] },
-			v1: { x: p[b], y: p[b + 1], z: p[b + 2] },
-			v2: { x: p[c], y: p[c + 1], z: p[c + 2] },
-		};
-	}
-	return soup;
+	return typedToSoup(geometryToIndexed(object3d));
 }
 
 // ── building THREE objects ───────────────────────────────────────────────────────────────

@@ -433,6 +433,64 @@ test("verification, finishing and the one-call boolean", () => {
 	assert.equal(d.duplicatesRemoved, 4);
 });
 
+test("the remaining exports, each against geometry", () => {
+	const a = cube(0, 0, 0, 2);
+	const t = mb.soupToTyped(a);
+	assert.equal(mb.isIndexed(t), true);
+	assert.equal(mb.isIndexed(a), false);
+	// typed-array repair, close, orient, resolve
+	const open = mb.soupToTyped(a.slice(2));
+	const capped = mb.closeIndexed(open, "cap");
+	assert.equal(capped.report.closed, true);
+	assert.equal(mb.meshInfo(capped).volume, 8);
+	const curtain = mb.closeIndexed(mb.soupToTyped(patch(0, 0, 5, 4, 2)), "curtain", { floorOffset: 1 });
+	assert.equal(mb.meshInfo(curtain).volume, 16 * 1); // the floor 1 below the lowest point
+	const inward = mb.soupToTyped(mb.flipAllNormals(a));
+	assert.equal(mb.meshInfo(mb.orientIndexed(inward, "outward")).volume, 8);
+	const rep = mb.repairIndexed(mb.soupToTyped(a.concat([a[0]])), { remove_duplicates: true });
+	assert.equal(rep.index.length, 36);
+	assert.equal(rep.report.duplicates.same_orientation_removed, 1);
+	const two = mb.soupToTyped(a.concat(cube(1, 0.5, 0.25, 2)));
+	const res = mb.resolveIndexed(two, { rule: "nonzero" });
+	assert.equal(mb.meshInfo(res).volume, 16 - 1 * 1.5 * 1.75);
+	assert.equal(res.parent.length, res.index.length / 3);
+	// aliases and welds
+	const w = mb.soupToIndexed(a, 1e-9);
+	assert.equal(w.points.length, 8);
+	assert.deepEqual(mb.indexedToSoup(w.triangles), a);
+	const gap = a.map((t) => ({ v0: t.v0, v1: t.v1, v2: t.v2.z > 0 ? { x: t.v2.x, y: t.v2.y, z: t.v2.z + 1e-6 } : t.v2 }));
+	assert.ok(closed(mb.weldBoundaryVertices(gap, 1e-4)));
+	// hole filling: weld then cap; stitch-or-cap
+	const holed = a.slice(2).map((t) => ({ ...t }));
+	assert.equal(mb.computeSignedVolume(mb.capBoundaryLoopsSequential(holed, 1e-9)), 8);
+	assert.equal(mb.computeSignedVolume(mb.generateClosingTriangles(holed, 0.1)), 8);
+	// exact T-junction repair (the hole-free name) and coincident faces
+	const tj = [
+		{ v0: { x: 0, y: 0, z: 0 }, v1: { x: 2, y: 0, z: 0 }, v2: { x: 1, y: 1, z: 0 } },
+		{ v0: { x: 0, y: 0, z: 0 }, v1: { x: 1, y: -1, z: 0 }, v2: { x: 1, y: 0, z: 0 } },
+		{ v0: { x: 1, y: 0, z: 0 }, v1: { x: 1, y: -1, z: 0 }, v2: { x: 2, y: 0, z: 0 } },
+	];
+	assert.equal(mb.countOpenEdges(mb.resolveTJunctionsHoleFree(tj)).openEdges, 4);
+	assert.equal(mb.cancelCoincidentFaces(a.concat(mb.flipAllNormals([a[2]]))).length, 11);
+	// vector helpers and solid angles: an octant of a sphere around a corner is 4π/8
+	assert.deepEqual(mb.cross({ x: 1, y: 0, z: 0 }, { x: 0, y: 1, z: 0 }), { x: 0, y: 0, z: 1 });
+	assert.equal(mb.distSq3({ x: 0, y: 0, z: 0 }, { x: 1, y: 2, z: 2 }), 9);
+	const tri = { v0: { x: 1, y: 0, z: 0 }, v1: { x: 0, y: 1, z: 0 }, v2: { x: 0, y: 0, z: 1 } };
+	const o = { x: 0, y: 0, z: 0 };
+	assert.ok(Math.abs(mb.solidAngle(o, tri) - Math.PI / 2) < 1e-12);
+	assert.equal(mb.solidAngleAt(0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1), mb.solidAngle(o, tri));
+	// the grid on other axes (YZ)
+	const grid = mb.buildSpatialGridOnAxes(a, 1, (v) => v.y, (v) => v.z);
+	const cell = mb.queryGridOnAxes(grid, 0.5, 0.5, 1);
+	assert.ok(cell.length > 0 && cell.every((i) => i >= 0 && i < a.length));
+});
+
+test("every export is exercised by this file", () => {
+	const src = readFileSync(new URL(import.meta.url), "utf8");
+	const missing = Object.keys(mb).filter((n) => !new RegExp(`mb\\.${n}\\b`).test(src));
+	assert.deepEqual(missing, []);
+});
+
 test("every export is declared in index.d.ts and every declaration is exported", () => {
 	const dts = readFileSync(new URL("../src/index.d.ts", import.meta.url), "utf8");
 	const declared = new Set([...dts.matchAll(/^export (?:function|const) (\w+)/gm)].map((m) => m[1]));
