@@ -167,6 +167,8 @@ export interface IndexedGroup extends IndexedMesh {
 export function booleanIndexed(a: IndexedMesh, b: IndexedMesh, operation: Operation, options?: CheckOptions): IndexedBooleanResult;
 export function splitIndexed(a: IndexedMesh, b: IndexedMesh, options?: CheckOptions): { groups: Record<string, IndexedGroup>; report: Report };
 export function curvesIndexed(a: IndexedMesh, b: IndexedMesh | null, options?: { withCoplanar?: boolean }): { polylines: Float64Array[]; closed: boolean[]; report: Report };
+export function classifyPointsIndexed(mesh: IndexedMesh | TriangleSoup, points: Float64Array | Vertex[], options?: CheckOptions): { classes: Uint8Array; winding: Float64Array; report: Report };
+export function classifyPoints(soup: TriangleSoup | IndexedMesh, points: Vertex[], options?: CheckOptions): Array<"inside" | "outside" | "on">;
 export function resolveIndexed(mesh: IndexedMesh, options?: { rule?: "positive" | "nonzero" | "evenodd"; keepNonmanifold?: boolean }): IndexedResult & { parent: Uint32Array };
 export function repairIndexed(mesh: IndexedMesh, config?: Record<string, any>): IndexedResult;
 export function closeIndexed(mesh: IndexedMesh, mode: "cap" | "stitch" | "curtain" | "stitch+curtain", options?: { floorOffset?: number; maxGap?: number }): IndexedResult;

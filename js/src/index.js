@@ -130,6 +130,34 @@ export function curvesIndexed(a, b, options) {
 	return { polylines: out.polylines, closed: Array.from(out.closed, (c) => c === 1), report: parseReport(out.report) };
 }
 
+const CLASS_NAMES = ["outside", "inside", "on"];
+
+/**
+ * Where points lie against a mesh (indexed or soup): `{classes, winding, report}` with
+ * `classes[i]` 0 outside, 1 inside, 2 exactly on the surface (decided exactly) and the
+ * winding number at each. Inside a closed mesh: winding number ≥ 1/2; for an open
+ * surface: behind it (winding number > 0). `points`: a Float64Array (three numbers per
+ * point) or an array of `{x, y, z}`. Options: the operand checks (see booleanIndexed).
+ */
+export function classifyPointsIndexed(mesh, points, options) {
+	const M = arraysOf(mesh, "mesh");
+	let flat = points;
+	if (!(points instanceof Float64Array)) {
+		if (!Array.isArray(points)) throw new Error("meshbool: points must be a Float64Array or an array of {x, y, z}");
+		flat = new Float64Array(3 * points.length);
+		points.forEach((p, i) => { flat[3 * i] = p.x; flat[3 * i + 1] = p.y; flat[3 * i + 2] = p.z; });
+	}
+	const out = call("classify", M.positions, M.index, flat, checkOptions(options));
+	out.report = parseReport(out.report);
+	return out;
+}
+
+/** Where each point `{x, y, z}` lies against a soup: `"inside"`, `"outside"` or `"on"` (see classifyPointsIndexed). */
+export function classifyPoints(soup, points, options) {
+	const out = classifyPointsIndexed(soup, points, options);
+	return Array.from(out.classes, (c) => CLASS_NAMES[c]);
+}
+
 /** The solid a self-overlapping indexed mesh encloses (fill rule "positive", "nonzero" or "evenodd"): `{positions, index, parent, report}`. */
 export function resolveIndexed(m, options) {
 	const M = indexedArrays(m);

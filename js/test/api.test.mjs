@@ -485,6 +485,18 @@ test("the remaining exports, each against geometry", () => {
 	assert.ok(cell.length > 0 && cell.every((i) => i >= 0 && i < a.length));
 });
 
+test("points classified exactly on the surface, else by the winding number", () => {
+	const a = cube(0, 0, 0, 2);
+	const pts = [{ x: 0, y: 0, z: 0 }, { x: 3, y: 0, z: 0 }, { x: 1, y: 0.5, z: -0.25 }, { x: 1, y: 1, z: 1 }];
+	assert.deepEqual(mb.classifyPoints(a, pts), ["inside", "outside", "on", "on"]);
+	const t = mb.classifyPointsIndexed(mb.soupToTyped(a), new Float64Array([0, 0, 0.999, 0, 0, 1.001]));
+	assert.deepEqual(Array.from(t.classes), [1, 0]);
+	assert.equal(t.report.points, 2);
+	// an open terrain-like patch facing up: below is behind it
+	assert.deepEqual(mb.classifyPoints(patch(0, 0, 0, 4, 4), [{ x: 0.3, y: 0.2, z: -1 }, { x: 0.3, y: 0.2, z: 1 }]), ["inside", "outside"]);
+	assert.throws(() => mb.classifyPoints(a, [{ x: NaN, y: 0, z: 0 }]), /non-finite/);
+});
+
 test("every export is exercised by this file", () => {
 	const src = readFileSync(new URL(import.meta.url), "utf8");
 	const missing = Object.keys(mb).filter((n) => !new RegExp(`mb\\.${n}\\b`).test(src));

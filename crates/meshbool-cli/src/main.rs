@@ -8,7 +8,10 @@ use clap::{Parser, Subcommand};
 
 mod commands;
 
-use commands::{boolean, close, convert, curves, info, orient, pick, repair, resolve, split};
+use commands::{
+    boolean, classify, close, convert, curves, info, make, orient, pick, repair, resolve, split,
+    transform,
+};
 
 /// mimalloc keeps freed memory for reuse: a boolean's stages allocate and free large
 /// buffers one after another, which with the system allocator cost a fresh mapping and
@@ -72,9 +75,21 @@ enum Command {
     /// Make triangle orientation consistent across every manifold edge, component by
     /// component, and face each component as asked (default: as most triangles already did).
     Orient(orient::Args),
+    /// Move, rotate (degrees), scale, mirror or map by a 4x4 matrix: `--translate X,Y,Z`,
+    /// `--rotate AXIS,DEGREES` (AXIS x, y, z or AX,AY,AZ), `--scale S|SX,SY,SZ`, `--matrix`
+    /// (16 numbers, row-major), applied in the order given. Mirroring reverses the
+    /// triangles.
+    Transform(transform::Args),
+    /// Make a primitive: `make cube|sphere|cylinder|cone|plane -o OUT [options]`
+    /// (closed ones outward-facing, exactly welded).
+    Make(make::Args),
     /// Compute the exact intersection curves of two meshes (of one mesh: where it crosses
     /// itself) and write them as polylines (.obj `l` elements, .dxf 3D POLYLINEs, or .json).
     Curves(curves::Args),
+    /// Where points lie against a mesh: inside, outside, or exactly on its surface (exact),
+    /// with the winding number at each; points from a file (`x y z` per line, CSV or JSON)
+    /// or standard input (`-`).
+    Classify(classify::Args),
 }
 
 fn main() -> ExitCode {
@@ -90,7 +105,10 @@ fn main() -> ExitCode {
         Command::Repair(args) => repair::run(&args),
         Command::Resolve(args) => resolve::run(&args),
         Command::Orient(args) => orient::run(&args),
+        Command::Transform(args) => transform::run(&args),
+        Command::Make(args) => make::run(&args),
         Command::Curves(args) => curves::run(&args),
+        Command::Classify(args) => classify::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -93,6 +93,36 @@ fn convert_round_trip_keeps_measures() {
 }
 
 #[test]
+fn convert_to_glb_keeps_triangles_and_volume() {
+    let glb = tmp("cylinder.glb");
+    let out = meshbool(&[
+        "convert",
+        data("kirra_cylinder.obj").to_str().unwrap(),
+        glb.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(std::fs::read(&glb).unwrap()[..4], *b"glTF");
+    let info = |p: &PathBuf| -> serde_json::Value {
+        let out = meshbool(&["info", p.to_str().unwrap(), "--json"]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        serde_json::from_slice(&out.stdout).unwrap()
+    };
+    let (a, b) = (info(&data("kirra_cylinder.obj")), info(&glb));
+    assert_eq!(a["triangles"], b["triangles"]);
+    assert_eq!(a["vertices"], b["vertices"]);
+    let (va, vb) = (a["volume"].as_f64().unwrap(), b["volume"].as_f64().unwrap());
+    assert!(va > 0.0 && (va - vb).abs() <= 1e-6 * va, "{va} {vb}");
+}
+
+#[test]
 fn bad_input_exits_1_naming_file_and_line() {
     let bad = tmp("bad.obj");
     std::fs::write(&bad, "v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n").unwrap();
@@ -933,4 +963,475 @@ fn pick_by_op_gives_the_boolean() {
         out.to_str().unwrap(),
     ]);
     assert_eq!(r.status.code(), Some(2));
+}
+
+#[test]
+fn classify_points_from_a_file_and_stdin() {
+    use std::io::Write;
+    let cube = write_cube("classify_cube.stl", [0.0; 3], [1.0; 3]);
+    let pts = tmp("classify_points.csv");
+    std::fs::write(&pts, "x,y,z\n0.5,0.5,0.5\n2,2,2\n1,0.5,0.25\n").unwrap();
+    let v = report(&[
+        "classify",
+        cube.to_str().unwrap(),
+        pts.to_str().unwrap(),
+        "--json",
+    ]);
+    assert_eq!(
+        (
+            &v["points"],
+            &v["inside"],
+            &v["outside"],
+            &v["on"],
+            &v["closed"]
+        ),
+        (&3.into(), &1.into(), &1.into(), &1.into(), &true.into())
+    );
+    let classes: Vec<&str> = v["results"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["class"].as_str().unwrap())
+        .collect();
+    assert_eq!(classes, ["inside", "outside", "on"]);
+    // Standard input, lines out.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_meshbool"))
+        .args(["classify", cube.to_str().unwrap(), "-"])
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(b"0.25 0.25 0.25\n5 5 5\n")
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 2);
+    assert!(lines[0].starts_with("0.25,0.25,0.25,inside,"), "{text}");
+    assert!(lines[1].starts_with("5,5,5,outside,"), "{text}");
+    // -o .json: the per-point results in the file, the counts on stdout.
+    let json = tmp("classify_out.json");
+    let v = report(&[
+        "classify",
+        cube.to_str().unwrap(),
+        pts.to_str().unwrap(),
+        "-o",
+        json.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(v.get("results").is_none());
+    let file: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    assert_eq!(file.as_array().unwrap().len(), 3);
+    // A malformed points file names the line; exit code 1.
+    std::fs::write(&pts, "0 0 0\n1 2\n").unwrap();
+    let out = meshbool(&["classify", cube.to_str().unwrap(), pts.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("line 2"));
+}
+
+#[test]
+fn curves_simplify_and_tagged_segments() {
+    let a = write_cube("curves_a.stl", [0.0; 3], [1.0; 3]);
+    let b = write_cube("curves_b.stl", [0.5; 3], [1.5; 3]);
+    let v = report(&[
+        "curves",
+        a.to_str().unwrap(),
+        b.to_str().unwrap(),
+        "--json",
+        "--tagged",
+    ]);
+    let tagged = v["tagged_segments"].as_array().unwrap();
+    assert!(tagged.len() >= v["segments"].as_u64().unwrap() as usize);
+    assert!(tagged
+        .iter()
+        .all(|s| s["tri_a"].as_u64().unwrap() < 12 && s["tri_b"].as_u64().unwrap() < 12));
+    let v = report(&[
+        "curves",
+        a.to_str().unwrap(),
+        b.to_str().unwrap(),
+        "--json",
+        "--simplify",
+        "0.6",
+    ]);
+    assert!(v["simplified_points_removed"].as_u64().unwrap() > 0);
+    // --tagged needs --json; a bad distance is refused.
+    let out = meshbool(&[
+        "curves",
+        a.to_str().unwrap(),
+        b.to_str().unwrap(),
+        "--tagged",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let out = meshbool(&[
+        "curves",
+        a.to_str().unwrap(),
+        b.to_str().unwrap(),
+        "--simplify",
+        "-1",
+    ]);
+    assert_ne!(out.status.code(), Some(0));
+}
+
+/// Runs `meshbool` expecting a usage error: exit 2, a message naming `needle`, no panic.
+fn usage_error(args: &[&str], needle: &str) {
+    let r = meshbool(args);
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert_eq!(r.status.code(), Some(2), "{args:?}: {err}");
+    assert!(err.contains(needle), "{args:?}: {err}");
+    assert!(!err.contains("panicked"), "{args:?}: {err}");
+}
+
+#[test]
+fn make_cube_then_transform_scales_and_mirrors_volume_exactly() {
+    let cube = tmp("tf_cube.ply");
+    let sc = cube.to_str().unwrap();
+    let v = report(&["make", "cube", "-o", sc, "--json"]);
+    assert_eq!(
+        (&v["shape"], &v["volume"], &v["closed"]),
+        (&"cube".into(), &1.0.into(), &true.into())
+    );
+    assert_eq!(v["bbox"]["min"], serde_json::json!([-0.5, -0.5, -0.5]));
+
+    let out = tmp("tf_out.ply");
+    let so = out.to_str().unwrap();
+    let v = report(&["transform", sc, "-o", so, "--scale", "2", "--json"]);
+    assert_eq!(
+        (v["volume"].as_f64(), v["determinant"].as_f64()),
+        (Some(8.0), Some(8.0))
+    );
+    assert_eq!(v["reversed"], false);
+    let info = report(&["info", so, "--json"]);
+    assert_eq!(
+        (info["volume"].as_f64(), info["closed"].as_bool()),
+        (Some(8.0), Some(true))
+    );
+
+    // A mirror: the same volume, positive, triangles reversed, still consistently oriented.
+    let v = report(&["transform", sc, "-o", so, "--scale", "-1,1,1", "--json"]);
+    assert_eq!(v["volume"].as_f64(), Some(1.0));
+    assert_eq!(
+        (&v["reversed"], &v["determinant"]),
+        (&true.into(), &(-1.0).into())
+    );
+    let info = report(&["info", so, "--json"]);
+    assert_eq!(info["inconsistent_edges"], 0);
+    assert_eq!(info["volume"].as_f64(), Some(1.0));
+
+    // The CLI prints exactly the library's report.
+    use meshbool::ops;
+    let mesh = ops::read(&cube, None).unwrap().0;
+    let t = meshbool::Transform::scaling_xyz([-1.0, 1.0, 1.0]);
+    assert_eq!(v, json(&ops::transform(&mesh, &t).unwrap().report()));
+}
+
+#[test]
+fn transform_applies_operations_in_command_line_order() {
+    let cube = write_cube("tf_order.ply", [0.0; 3], [1.0; 3]);
+    let sc = cube.to_str().unwrap();
+    let out = tmp("tf_order_out.ply");
+    let so = out.to_str().unwrap();
+    let bbox = |ops: &[&str]| {
+        let v = report(&[&["transform", sc, "-o", so, "--json"], ops].concat());
+        (v["bbox"]["min"].clone(), v["bbox"]["max"].clone())
+    };
+    use serde_json::json as j;
+    assert_eq!(
+        bbox(&["--scale", "2", "--translate", "1,0,0"]),
+        (j!([1.0, 0.0, 0.0]), j!([3.0, 2.0, 2.0]))
+    );
+    assert_eq!(
+        bbox(&["--translate", "1,0,0", "--scale", "2"]),
+        (j!([2.0, 0.0, 0.0]), j!([4.0, 2.0, 2.0]))
+    );
+    // A quarter turn about z, exact; negative numbers as values.
+    assert_eq!(
+        bbox(&["--rotate", "z,90", "--translate", "-0.5,0,0"]),
+        (j!([-1.5, 0.0, 0.0]), j!([-0.5, 1.0, 1.0]))
+    );
+    assert_eq!(
+        bbox(&["--rotate", "0,0,-1,-90"]),
+        (j!([-1.0, 0.0, 0.0]), j!([0.0, 1.0, 1.0]))
+    );
+    // --matrix (row-major, translation in the last column) is the same transform as the
+    // options, bit for bit.
+    let by_ops = report(&[
+        "transform",
+        sc,
+        "-o",
+        so,
+        "--scale",
+        "2",
+        "--translate",
+        "1,2,3",
+        "--json",
+    ]);
+    let by_ops_file = std::fs::read(&out).unwrap();
+    let by_matrix = report(&[
+        "transform",
+        sc,
+        "-o",
+        so,
+        "--matrix",
+        "2,0,0,1, 0,2,0,2, 0,0,2,3, 0,0,0,1",
+        "--json",
+    ]);
+    assert_eq!(by_ops, by_matrix);
+    assert_eq!(std::fs::read(&out).unwrap(), by_ops_file);
+    assert_eq!(
+        by_ops["matrix"],
+        j!([2.0, 0.0, 0.0, 1.0, 0.0, 2.0, 0.0, 2.0, 0.0, 0.0, 2.0, 3.0, 0.0, 0.0, 0.0, 1.0])
+    );
+    // UTM-sized moves stay exact: there and back again gives the input bit for bit.
+    let far = tmp("tf_far.ply");
+    let sf = far.to_str().unwrap();
+    let v = report(&[
+        "transform",
+        sc,
+        "-o",
+        sf,
+        "--translate",
+        "512345.25,7012345.5,120",
+        "--json",
+    ]);
+    assert_eq!(v["bbox"]["min"], j!([512345.25, 7012345.5, 120.0]));
+    assert_eq!(v["volume"].as_f64(), Some(1.0));
+    report(&[
+        "transform",
+        sf,
+        "-o",
+        so,
+        "--translate",
+        "-512345.25,-7012345.5,-120",
+        "--json",
+    ]);
+    assert_eq!(
+        meshbool::ops::read(&out, None).unwrap().0,
+        meshbool::ops::read(&cube, None).unwrap().0
+    );
+}
+
+#[test]
+fn cube_minus_made_cylinder_is_closed_with_the_expected_volume() {
+    let cube = tmp("mk_cube.obj");
+    let cyl = tmp("mk_cyl.ply");
+    let out = tmp("mk_drilled.ply");
+    let (sc, sy, so) = (
+        cube.to_str().unwrap(),
+        cyl.to_str().unwrap(),
+        out.to_str().unwrap(),
+    );
+    report(&["make", "cube", "--size", "2", "-o", sc, "--json"]);
+    let c = report(&[
+        "make",
+        "cylinder",
+        "--radius",
+        "0.5",
+        "--height",
+        "4",
+        "--base",
+        "0,0,-2",
+        "--segments",
+        "48",
+        "-o",
+        sy,
+        "--json",
+    ]);
+    assert_eq!(
+        (c["triangles"].as_u64(), c["closed"].as_bool()),
+        (Some(192), Some(true))
+    );
+    let (n, r) = (48.0, 0.5);
+    let prism_area = n / 2.0 * (2.0 * std::f64::consts::PI / n).sin() * r * r;
+    let cyl_volume = c["volume"].as_f64().unwrap();
+    assert!((cyl_volume - 4.0 * prism_area).abs() < 1e-13);
+    // The cylinder goes right through: the hole is its cross-section times the cube's height.
+    let d = report(&["difference", sc, sy, "-o", so, "--json"]);
+    assert_eq!(
+        (d["closed"].as_bool(), d["boundary_edges"].as_u64()),
+        (Some(true), Some(0))
+    );
+    let want = 8.0 - cyl_volume / 4.0 * 2.0;
+    assert!((d["volume"].as_f64().unwrap() - want).abs() < 1e-12, "{d}");
+    let info = report(&["info", so, "--json"]);
+    assert_eq!(
+        (
+            info["inconsistent_edges"].as_u64(),
+            info["components"].as_u64()
+        ),
+        (Some(0), Some(1))
+    );
+}
+
+#[test]
+fn make_every_shape_prints_the_library_report() {
+    use meshbool::ops::{self, Shape};
+    let out = tmp("mk_shape.ply");
+    let so = out.to_str().unwrap();
+    let cases: [(&[&str], Shape); 5] = [
+        (
+            &["cube", "--min", "-1,0,0", "--max", "1,2,0.5"],
+            Shape::Cube {
+                min: [-1.0, 0.0, 0.0],
+                max: [1.0, 2.0, 0.5],
+            },
+        ),
+        (
+            &[
+                "sphere",
+                "--center",
+                "1,2,3",
+                "--radius",
+                "2",
+                "--segments",
+                "24",
+                "--rings",
+                "12",
+            ],
+            Shape::Sphere {
+                center: [1.0, 2.0, 3.0],
+                radius: 2.0,
+                segments: 24,
+                rings: 12,
+            },
+        ),
+        (
+            &["cylinder"],
+            Shape::Cylinder {
+                base: [0.0; 3],
+                radius: 1.0,
+                height: 1.0,
+                segments: 32,
+            },
+        ),
+        (
+            &[
+                "cone",
+                "--radius",
+                "2",
+                "--top-radius",
+                "1",
+                "--height",
+                "3",
+                "--segments",
+                "4",
+            ],
+            Shape::Cone {
+                base: [0.0; 3],
+                radius: 2.0,
+                top_radius: 1.0,
+                height: 3.0,
+                segments: 4,
+            },
+        ),
+        (
+            &[
+                "plane", "--width", "4", "--depth", "2", "--nx", "4", "--ny", "2",
+            ],
+            Shape::Plane {
+                center: [0.0; 3],
+                width: 4.0,
+                depth: 2.0,
+                nx: 4,
+                ny: 2,
+            },
+        ),
+    ];
+    for (args, shape) in cases {
+        let cli = report(&[&["make"], args, &["-o", so, "--json"]].concat());
+        let lib = ops::make(&shape).unwrap();
+        assert_eq!(cli, json(&lib.report()), "{args:?}");
+        // The file holds the mesh, bit for bit.
+        assert_eq!(ops::read(&out, None).unwrap().0, lib.mesh, "{args:?}");
+        let info = report(&["info", so, "--json"]);
+        assert_eq!(
+            (
+                info["inconsistent_edges"].as_u64(),
+                info["degenerate_triangles"].as_u64(),
+                info["non_manifold_edges"].as_u64()
+            ),
+            (Some(0), Some(0), Some(0)),
+            "{args:?}"
+        );
+        assert_eq!(info["closed"], shape.name() != "plane");
+    }
+    // Frustum of squares with corners on the axes (areas 8 and 2): h/3 (8 + 4 + 2) = 14.
+    let v = report(&[
+        "make",
+        "cone",
+        "--radius",
+        "2",
+        "--top-radius",
+        "1",
+        "--height",
+        "3",
+        "--segments",
+        "4",
+        "-o",
+        so,
+        "--json",
+    ]);
+    assert_eq!(v["volume"].as_f64(), Some(14.0));
+}
+
+#[test]
+fn transform_and_make_refuse_bad_arguments_with_usage_errors() {
+    let cube = write_cube("tf_bad.ply", [0.0; 3], [1.0; 3]);
+    let (sc, so) = (cube.to_str().unwrap(), tmp("tf_bad_out.ply"));
+    let so = so.to_str().unwrap();
+    let t = |extra: &[&str], needle: &str| {
+        usage_error(&[&["transform", sc, "-o", so], extra].concat(), needle)
+    };
+    t(&["--rotate", "q,45"], "unknown axis `q`");
+    t(&["--rotate", "x"], "--rotate");
+    t(&["--rotate", "0,0,0,45"], "not zero");
+    t(
+        &["--matrix", "1,0,0,0,0,1,0,0,0,0,1,0,0,0,0"],
+        "expected 16 numbers",
+    );
+    t(&["--matrix", "1,0,0,0,0,1,0,0,0,0,1,0,0,0,1,1"], "last row");
+    t(&["--matrix", "1,0,0,0,0,0,0,0,0,0,1,0,0,0,0,1"], "singular");
+    t(&["--scale", "0"], "flatten");
+    t(&["--scale", "1,2"], "three");
+    t(&["--translate", "1,2,nan"], "finite");
+    t(&["--translate", "a,b,c"], "not a number");
+    t(&[], "required");
+    let m =
+        |args: &[&str], needle: &str| usage_error(&[&["make"], args, &["-o", so]].concat(), needle);
+    m(&["cylinder", "--radius", "-1"], "must be positive");
+    m(&["cylinder", "--segments", "0"], "--segments");
+    m(&["sphere", "--segments", "0"], "--segments");
+    m(&["sphere", "--rings", "1"], "--rings");
+    m(&["cone", "--top-radius", "-1"], "0 or positive");
+    m(&["cone", "--height", "0"], "must be positive");
+    m(&["plane", "--nx", "0"], "--nx");
+    m(&["cube", "--size", "1,0,1"], "positive");
+    m(
+        &["cube", "--min", "0,0,0", "--max", "1,0,1"],
+        "min must be below its max",
+    );
+    m(&["cube", "--min", "0,0,0"], "--max");
+    m(
+        &["cube", "--size", "1", "--min", "0,0,0", "--max", "1,1,1"],
+        "cannot be used",
+    );
+    m(
+        &[
+            "sphere",
+            "--radius",
+            "1e-12",
+            "--center",
+            "1e6,0,0",
+            "--segments",
+            "64",
+        ],
+        "too small",
+    );
+    m(&["torus"], "torus");
+    assert!(!tmp("tf_bad_out.ply").exists());
 }

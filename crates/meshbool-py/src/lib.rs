@@ -385,6 +385,7 @@ fn pick<'py>(
 
 /// The intersection curves: `(points (k, 3), closed)` per polyline, and the report.
 #[pyfunction]
+#[pyo3(signature = (av, af, b, with_coplanar, simplify=None, tagged=false))]
 #[allow(clippy::type_complexity)]
 fn curves<'py>(
     py: Python<'py>,
@@ -392,11 +393,15 @@ fn curves<'py>(
     af: PyReadonlyArray2<'py, u32>,
     b: Option<(PyReadonlyArray2<'py, f64>, PyReadonlyArray2<'py, u32>)>,
     with_coplanar: bool,
+    simplify: Option<f64>,
+    tagged: bool,
 ) -> PyResult<(Vec<(Bound<'py, PyArray2<f64>>, bool)>, String)> {
     let a = mesh(&av, &af)?;
     let b = b.map(|(bv, bf)| mesh(&bv, &bf)).transpose()?;
     let opts = CurvesOptions {
         with_coplanar,
+        simplify,
+        tagged,
         ..CurvesOptions::default()
     };
     let out = py
@@ -416,6 +421,44 @@ fn curves<'py>(
         })
         .collect::<PyResult<Vec<_>>>()?;
     Ok((lines, report))
+}
+
+/// Where points lie against a mesh: per point 0 outside, 1 inside, 2 on the surface, the
+/// winding numbers, and the report.
+#[pyfunction]
+#[allow(clippy::type_complexity)]
+fn classify<'py>(
+    py: Python<'py>,
+    v: PyReadonlyArray2<'py, f64>,
+    f: PyReadonlyArray2<'py, u32>,
+    points: PyReadonlyArray2<'py, f64>,
+    force: bool,
+    threads: Option<usize>,
+) -> PyResult<(Bound<'py, PyArray1<u8>>, Bound<'py, PyArray1<f64>>, String)> {
+    let m = mesh(&v, &f)?;
+    let pts = rows(&points, "points")?;
+    let opts = ops::ClassifyOptions {
+        checks: checks(force, true, true, true),
+        run: run(threads),
+    };
+    let out = py
+        .detach(move || ops::classify_points(&m, &pts, &opts))
+        .map_err(py_err)?;
+    let report = json(&out.report(false))?;
+    let classes: Vec<u8> = out
+        .classes
+        .iter()
+        .map(|c| match c {
+            ops::PointClass::Outside => 0,
+            ops::PointClass::Inside => 1,
+            ops::PointClass::On => 2,
+        })
+        .collect();
+    Ok((
+        PyArray1::from_vec(py, classes),
+        PyArray1::from_vec(py, out.winding),
+        report,
+    ))
 }
 
 /// Consistent orientation, each component facing as `facing` says.
@@ -560,6 +603,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
         wrap_pyfunction!(split, m)?,
         wrap_pyfunction!(pick, m)?,
         wrap_pyfunction!(curves, m)?,
+        wrap_pyfunction!(classify, m)?,
         wrap_pyfunction!(resolve, m)?,
         wrap_pyfunction!(orient, m)?,
         wrap_pyfunction!(close, m)?,

@@ -175,6 +175,26 @@ def test_curves_are_closed_loops():
     )
     assert abs(length - c.report["total_length"]) < 1e-12
     assert abs(length - 4.0) < 1e-12
+    # Tagged raw segments lie in the triangles they name; simplify thins the loop.
+    t = meshbool.curves(a, b, tagged=True).report["tagged_segments"]
+    assert len(t) >= c.report["segments"]
+    av = np.asarray(a.vertices)[np.asarray(a.faces)]
+    for s in t:
+        lo, hi = av[s["tri_a"]].min(axis=0), av[s["tri_a"]].max(axis=0)
+        assert np.all(np.asarray(s["p0"]) >= lo) and np.all(np.asarray(s["p0"]) <= hi)
+    thin = meshbool.curves(a, b, simplify=0.75)
+    assert thin.report["simplified_points_removed"] > 0
+    assert len(thin[0].points) < len(c[0].points)
+
+
+def test_classify_points_inside_outside_on():
+    cube = meshbool.box([0, 0, 0], [1, 1, 1])
+    pts = np.array([[0.5, 0.5, 0.5], [2, 0, 0], [1, 0.5, 0.25], [0, 0, 0]])
+    classes, winding = meshbool.classify(cube, pts)
+    assert [meshbool.POINT_CLASSES[c] for c in classes] == ["inside", "outside", "on", "on"]
+    assert abs(winding[0] - 1) < 1e-9 and abs(winding[1]) < 1e-9
+    with pytest.raises(ValueError, match="non-finite"):
+        meshbool.classify(cube, [[np.nan, 0, 0]])
 
 
 def test_orient_close_repair():

@@ -257,20 +257,17 @@ pub fn intersect(
     let o = options(opts)?;
     let with_coplanar = flag(&o, "withCoplanar", true)?;
     let out = ops::curves(&a, &b, &CurvesOptions::default()).map_err(js_err)?;
-    let seam = &out.seam;
     let (mut segments, mut tri_a, mut tri_b, mut coplanar) =
         (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    for s in &seam.sources {
-        let seg = &seam.segments[s.segment as usize];
-        if seg.coplanar && !with_coplanar {
+    for s in out.tagged_segments() {
+        if s.coplanar && !with_coplanar {
             continue;
         }
-        for e in seg.ends {
-            segments.extend_from_slice(&seam.positions[e as usize]);
-        }
+        segments.extend_from_slice(&s.p0);
+        segments.extend_from_slice(&s.p1);
         tri_a.push(s.tri_a);
         tri_b.push(s.tri_b);
-        coplanar.push(u8::from(seg.coplanar));
+        coplanar.push(u8::from(s.coplanar));
     }
     Ok(Out::new()
         .set("segments", Float64Array::from(&segments[..]))
@@ -315,6 +312,43 @@ pub fn curves(
         .set("polylines", lines)
         .set("closed", Uint8Array::from(&closed[..]))
         .report(&out.report())?
+        .done())
+}
+
+/// Where points (three numbers each) lie against a mesh: `{classes, winding, report}`,
+/// `classes[i]` 0 outside, 1 inside, 2 exactly on the surface; `winding[i]` the winding
+/// number. Options (JSON) as for [`boolean`]'s operand checks.
+#[wasm_bindgen]
+pub fn classify(
+    positions: &[f64],
+    index: &[u32],
+    points: &[f64],
+    opts: &str,
+) -> Result<JsValue, JsError> {
+    let m = mesh(positions, index)?;
+    if points.len() % 3 != 0 {
+        return Err(bad("points must hold three numbers per point"));
+    }
+    let pts: Vec<[f64; 3]> = points.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+    let o = options(opts)?;
+    let copts = ops::ClassifyOptions {
+        checks: checks(&o)?,
+        ..Default::default()
+    };
+    let out = ops::classify_points(&m, &pts, &copts).map_err(js_err)?;
+    let classes: Vec<u8> = out
+        .classes
+        .iter()
+        .map(|c| match c {
+            ops::PointClass::Outside => 0,
+            ops::PointClass::Inside => 1,
+            ops::PointClass::On => 2,
+        })
+        .collect();
+    Ok(Out::new()
+        .set("classes", Uint8Array::from(&classes[..]))
+        .set("winding", Float64Array::from(&out.winding[..]))
+        .report(&out.report(false))?
         .done())
 }
 

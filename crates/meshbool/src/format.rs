@@ -28,6 +28,9 @@ pub enum Format {
     JsonSoup,
     /// Kirra's JSON: `[{"vertices":[{"x":..,"y":..,"z":..}, x3]}, ..]`.
     JsonKirra,
+    /// glTF 2.0 binary (`.glb`): `f32` positions written relative to a local origin that
+    /// the node's translation holds in `f64`.
+    Glb,
 }
 
 impl fmt::Display for Format {
@@ -42,13 +45,14 @@ impl fmt::Display for Format {
             Format::Dxf => "DXF",
             Format::JsonSoup => "JSON soup",
             Format::JsonKirra => "Kirra JSON",
+            Format::Glb => "binary glTF",
         })
     }
 }
 
 impl Format {
     /// All formats, with the names they are read by ([`FromStr`]) and written as.
-    pub const NAMES: [(&'static str, Format); 9] = [
+    pub const NAMES: [(&'static str, Format); 10] = [
         ("stl", Format::StlBinary),
         ("stl-ascii", Format::StlAscii),
         ("obj", Format::Obj),
@@ -58,6 +62,7 @@ impl Format {
         ("dxf", Format::Dxf),
         ("json", Format::JsonSoup),
         ("kirra-json", Format::JsonKirra),
+        ("glb", Format::Glb),
     ];
 
     /// The format's name in [`Format::NAMES`] (`stl`, `stl-ascii`, `obj`, ...).
@@ -82,7 +87,7 @@ impl Format {
         )
     }
 
-    /// The file name extension of the format: `stl`, `obj`, `ply`, `dxf`, `json`.
+    /// The file name extension of the format: `stl`, `obj`, `ply`, `dxf`, `json`, `glb`.
     pub fn extension(self) -> &'static str {
         match self {
             Format::StlBinary | Format::StlAscii => "stl",
@@ -90,11 +95,13 @@ impl Format {
             Format::PlyAscii | Format::PlyBinaryLe | Format::PlyBinaryBe => "ply",
             Format::Dxf => "dxf",
             Format::JsonSoup | Format::JsonKirra => "json",
+            Format::Glb => "glb",
         }
     }
 
     /// The format written for a file name's extension: `.stl` binary STL, `.obj`, `.ply`
-    /// binary little-endian, `.dxf`, `.json` JSON soup. `None` for other extensions.
+    /// binary little-endian, `.dxf`, `.json` JSON soup, `.glb` binary glTF. `None` for other
+    /// extensions.
     pub fn for_path(path: impl AsRef<Path>) -> Option<Format> {
         let ext = path.as_ref().extension()?.to_str()?.to_ascii_lowercase();
         Some(match ext.as_str() {
@@ -103,6 +110,7 @@ impl Format {
             "ply" => Format::PlyBinaryLe,
             "dxf" => Format::Dxf,
             "json" => Format::JsonSoup,
+            "glb" => Format::Glb,
             _ => return None,
         })
     }

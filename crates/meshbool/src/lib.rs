@@ -29,12 +29,15 @@
 //!   [`ops::repair`], [`ops::close`], [`ops::orient`], [`ops::info`], [`ops::read`] and
 //!   [`ops::write`] — each with an options struct and an output whose `report()` is the
 //!   tool's `--json`. Inputs are checked at the door ([`ops::Operand`]).
-//! - [`io`]: readers and writers (STL, OBJ, PLY, DXF, JSON soups) in `f64`.
+//! - [`io`]: readers and writers (STL, OBJ, PLY, DXF, JSON soups, binary glTF) in `f64`.
 //! - [`measure`]: volume, areas, edge statistics ([`measure::mesh_stats`]).
 //! - [`repair`]: each repair step on its own (weld, T-junctions, degenerates, capping,
 //!   stitching, curtains, orientation, folds) and the [`repair::repair`] pipeline.
 //! - [`edges`]: edge adjacency and components; [`intersect`]: the exact intersection of
-//!   two meshes and its curves; [`shapes`]: spheres, tori and height fields for tests.
+//!   two meshes and its curves.
+//! - [`shapes`]: primitives (cube, sphere, cylinder, cone, plane) and generators for
+//!   tests; [`Transform`] ([`transform`]): affine transforms by degrees, composed in the
+//!   order applied, and [`Mesh::transformed`].
 //! - The vocabulary of booleans: [`Op`] and its [`Rule`], [`Class`], [`Group`],
 //!   [`Provenance`] and [`Source`], [`Stage`].
 //!
@@ -96,6 +99,7 @@ pub mod repair;
 pub mod shapes;
 #[cfg(test)]
 mod test_util;
+pub mod transform;
 
 /// The README's Rust examples, compiled and run as doctests.
 #[cfg(doctest)]
@@ -110,4 +114,5 @@ pub use edges::EdgeTopology;
 pub use error::{Error, Location, Result};
 pub use format::Format;
 pub use mesh::{weld_exact, Aabb, Mesh, Welded};
+pub use transform::Transform;
 pub(crate) use welder::Welder;

@@ -137,6 +137,16 @@ fn samples() -> BTreeMap<&'static str, Vec<Value>> {
 
     let curves = ops::curves(&cube, &other, &CurvesOptions::default()).unwrap();
     s.entry("curves").or_default().push(json(&curves.report()));
+    let full = CurvesOptions {
+        simplify: Some(0.1),
+        tagged: true,
+        ..CurvesOptions::default()
+    };
+    let curves = ops::curves(&cube, &other, &full).unwrap();
+    s.entry("curves").or_default().push(json(&curves.report()));
+    let points = [[0.5; 3], [2.0; 3], [1.0, 0.5, 0.5]];
+    let c = ops::classify_points(&cube, &points, &Default::default()).unwrap();
+    s.entry("classify").or_default().push(json(&c.report(true)));
     s.entry("info")
         .or_default()
         .push(json(&ops::InfoReport::new(
@@ -146,6 +156,20 @@ fn samples() -> BTreeMap<&'static str, Vec<Value>> {
     s.entry("orient")
         .or_default()
         .push(json(&ops::orient(&cube, Facing::Outward).unwrap().report()));
+    let mirror = meshbool::Transform::scaling_xyz([-1.0, 1.0, 1.0]).translate([5.0, 0.0, 0.0]);
+    s.entry("transform")
+        .or_default()
+        .push(json(&ops::transform(&cube, &mirror).unwrap().report()));
+    let plane = ops::Shape::Plane {
+        center: [0.0; 3],
+        width: 2.0,
+        depth: 1.0,
+        nx: 2,
+        ny: 1,
+    };
+    s.entry("make")
+        .or_default()
+        .push(json(&ops::make(&plane).unwrap().report()));
 
     let terrain = rough_terrain();
     let (positions, mut triangles) = Mesh::unit_cube().into_parts();
@@ -180,7 +204,7 @@ fn samples() -> BTreeMap<&'static str, Vec<Value>> {
 fn docs_list_every_key_of_every_report_and_no_other() {
     let tables = doc_tables();
     let samples = samples();
-    assert_eq!(samples.len(), 9);
+    assert_eq!(samples.len(), 12);
     for (report, runs) in &samples {
         let mut doc = BTreeSet::new();
         documented(&tables, report, "", &mut doc);

@@ -96,7 +96,8 @@ fn utm_terrain_round_trips_every_exact_format() {
     let dir = std::env::temp_dir().join(format!("meshbool-rt-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     for (name, f) in Format::NAMES {
-        if f == Format::StlBinary {
+        // f32 formats: binary STL below, glTF in `utm_terrain_round_trips_glb`.
+        if matches!(f, Format::StlBinary | Format::Glb) {
             continue;
         }
         let path = dir.join(format!("t.{name}"));
@@ -106,6 +107,36 @@ fn utm_terrain_round_trips_every_exact_format() {
         assert_eq!(mesh_stats(&back), want, "{name}");
     }
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// glTF stores `f32` offsets from the bounding box's centre (kept in `f64`): the UTM
+/// terrain comes back with the same triangles, every coordinate within `2^-24` of half the
+/// box's size (plus an `f64` rounding), and the same area to about that.
+#[test]
+fn utm_terrain_round_trips_glb() {
+    let m = io::read_path(data("kap_terrain.obj")).unwrap();
+    let mut bytes = Vec::new();
+    io::write(&mut bytes, &m, Format::Glb).unwrap();
+    let back = io::read_bytes(&bytes, Format::Glb).unwrap();
+    assert_eq!(back.triangles(), m.triangles());
+    let half = m.bounds().unwrap().size().map(|s| s / 2.0);
+    for (p, q) in m.positions().iter().zip(back.positions()) {
+        for k in 0..3 {
+            let bound = half[k] * 2f64.powi(-24) + p[k].abs() * 2f64.powi(-52);
+            assert!((p[k] - q[k]).abs() <= bound, "{p:?} came back as {q:?}");
+        }
+    }
+    let (a, b) = (mesh_stats(&m), mesh_stats(&back));
+    assert_eq!(
+        (a.vertices, a.edges, a.boundary_edges, a.inconsistent_edges),
+        (b.vertices, b.edges, b.boundary_edges, b.inconsistent_edges)
+    );
+    assert!(
+        (a.area - b.area).abs() <= a.area * 1e-6,
+        "{} {}",
+        a.area,
+        b.area
+    );
 }
 
 #[test]

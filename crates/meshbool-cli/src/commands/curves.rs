@@ -21,6 +21,14 @@ pub struct Args {
     /// Leave out segments that only bound coplanar overlaps (shared faces).
     #[arg(long)]
     no_coplanar: bool,
+    /// Thin the written polylines: leave out points closer than D to the last kept point
+    /// along a line (first and last points kept; the curves' topology does not change).
+    #[arg(long, value_name = "D")]
+    simplify: Option<f64>,
+    /// Add every raw seam segment, with the triangle of A and of B it lies in, to the
+    /// JSON summary (`tagged_segments`).
+    #[arg(long, requires = "json")]
+    tagged: bool,
     /// Print a JSON summary on stdout.
     #[arg(long)]
     json: bool,
@@ -30,6 +38,8 @@ pub struct Args {
 pub fn run(args: &Args) -> Result<()> {
     let opts = CurvesOptions {
         with_coplanar: !args.no_coplanar,
+        simplify: args.simplify,
+        tagged: args.tagged,
         ..CurvesOptions::default()
     };
     let out = match &args.b {

@@ -12,7 +12,7 @@ use super::{format_names, one_of, print_json};
 /// Arguments of `info`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Mesh files (.stl .obj .ply .dxf .json; the content decides where the name does not).
+    /// Mesh files (.stl .obj .ply .dxf .json .glb; the content decides where the name does not).
     #[arg(required = true)]
     files: Vec<PathBuf>,
     /// Print JSON: one object for one file, an array for several.

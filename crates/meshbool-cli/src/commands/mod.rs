@@ -6,15 +6,18 @@ use anyhow::Result;
 use meshbool::ops::{Checks, Progress, RunOptions};
 
 pub mod boolean;
+pub mod classify;
 pub mod close;
 pub mod convert;
 pub mod curves;
 pub mod info;
+pub mod make;
 pub mod orient;
 pub mod pick;
 pub mod repair;
 pub mod resolve;
 pub mod split;
+pub mod transform;
 
 /// Flags shared by the commands that take two operands (booleans, split).
 #[derive(clap::Args, Clone)]
@@ -131,7 +134,7 @@ where
 }
 
 /// The names of the formats (`--from`, `--to`, `--format`).
-pub fn format_names() -> [&'static str; 9] {
+pub fn format_names() -> [&'static str; meshbool::Format::NAMES.len()] {
     meshbool::Format::NAMES.map(|(n, _)| n)
 }
 

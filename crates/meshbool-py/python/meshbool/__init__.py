@@ -22,6 +22,7 @@ import json
 from typing import Any, Iterable, NamedTuple, Optional, Sequence, Tuple, Union
 
 import numpy as np
+import numpy.typing as npt
 
 from . import _native
 
@@ -35,6 +36,8 @@ __all__ = [
     "split",
     "pick",
     "curves",
+    "classify",
+    "POINT_CLASSES",
     "repair",
     "resolve",
     "orient",
@@ -393,19 +396,49 @@ class Curves(list):
 
 
 def curves(
-    a: MeshLike, b: Optional[MeshLike] = None, *, with_coplanar: bool = True
+    a: MeshLike,
+    b: Optional[MeshLike] = None,
+    *,
+    with_coplanar: bool = True,
+    simplify: Optional[float] = None,
+    tagged: bool = False,
 ) -> Curves:
     """The exact intersection curves of ``a`` and ``b``, chained into polylines: closed
     loops and open chains (ending on an open surface's boundary). Without ``b``: where
     ``a`` crosses itself. ``with_coplanar=False`` leaves out segments that only bound
-    shared faces."""
+    shared faces. ``simplify=D`` thins the polylines (points closer than ``D`` to the last
+    kept one along a line are left out). ``tagged=True`` puts every raw segment with its
+    triangles in ``report["tagged_segments"]`` (``p0``, ``p1``, ``tri_a``, ``tri_b``,
+    ``coplanar``)."""
     av, af = _parts(a)
     lines, report = _native.curves(
-        av, af, None if b is None else _parts(b), with_coplanar
+        av, af, None if b is None else _parts(b), with_coplanar, simplify, tagged
     )
     out = Curves(Polyline(p, c) for p, c in lines)
     out.report = json.loads(report)
     return out
+
+
+#: The classes of :func:`classify`, by their code.
+POINT_CLASSES = ("outside", "inside", "on")
+
+
+def classify(
+    mesh: MeshLike,
+    points: npt.ArrayLike,
+    *,
+    force: bool = False,
+    threads: Optional[int] = None,
+) -> Tuple[npt.NDArray[np.uint8], npt.NDArray[np.float64]]:
+    """Where each of ``points`` (an ``(n, 3)`` array) lies against ``mesh``: a code per
+    point — 0 outside, 1 inside, 2 exactly on the surface (decided exactly; names in
+    :data:`POINT_CLASSES`) — and the winding number at each. Inside a closed mesh means
+    winding number ≥ 1/2; for an open surface, behind it (winding number > 0). The mesh is
+    checked as a boolean operand (``force`` takes problems as given)."""
+    v, f = _parts(mesh)
+    pts = np.ascontiguousarray(np.asarray(points, dtype=np.float64).reshape(-1, 3))
+    classes, winding, _ = _native.classify(v, f, pts, force, threads)
+    return classes, winding
 
 
 def resolve(

@@ -66,8 +66,16 @@ def split(
 def pieces_for_op(op: str) -> List[str]: ...
 def pick(pieces: List[Tuple[F64, U32, bool]], keep_nonmanifold: bool) -> Tuple[F64, U32, str]: ...
 def curves(
-    av: F64, af: U32, b: Optional[Tuple[F64, U32]], with_coplanar: bool
+    av: F64,
+    af: U32,
+    b: Optional[Tuple[F64, U32]],
+    with_coplanar: bool,
+    simplify: Optional[float] = None,
+    tagged: bool = False,
 ) -> Tuple[List[Tuple[F64, bool]], str]: ...
+def classify(
+    v: F64, f: U32, points: F64, force: bool, threads: Optional[int]
+) -> Tuple[npt.NDArray[np.uint8], F64, str]: ...
 def resolve(
     v: F64, f: U32, rule: str, keep_nonmanifold: bool, threads: Optional[int]
 ) -> Tuple[F64, U32, U32, str]: ...

@@ -23,6 +23,39 @@ impl PolylineXyz {
             })
             .sum()
     }
+
+    /// The polyline thinned for drawing or export (the reference's `simplifyPolyline`):
+    /// walking along it, a point is kept when it is at least `spacing` from the last kept
+    /// point; the first point is always kept, and the last of an open line. A closed line
+    /// keeps at least three points (it stays a loop). Geometry only: the curve's topology
+    /// (loops, chains, where they end) does not change.
+    pub fn simplified(&self, spacing: f64) -> PolylineXyz {
+        let n = self.points.len();
+        if n <= 2 {
+            return self.clone();
+        }
+        let dist2 = |p: &[f64; 3], q: &[f64; 3]| {
+            (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)
+        };
+        let limit = spacing * spacing;
+        let mut kept = vec![self.points[0]];
+        let last = if self.closed { n } else { n - 1 };
+        for p in &self.points[1..last] {
+            if dist2(p, kept.last().unwrap_or(p)) >= limit {
+                kept.push(*p);
+            }
+        }
+        if !self.closed {
+            kept.push(self.points[n - 1]);
+        } else if kept.len() < 3 {
+            // Too coarse for the loop: keep three points spread along it.
+            kept = vec![self.points[0], self.points[n / 3], self.points[2 * n / 3]];
+        }
+        PolylineXyz {
+            points: kept,
+            closed: self.closed,
+        }
+    }
 }
 
 /// A chain of seam points.

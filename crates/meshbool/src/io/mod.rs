@@ -1,5 +1,6 @@
 //! Reading and writing meshes: STL (binary and ASCII), OBJ, PLY (ASCII, binary little and
-//! big endian), DXF (3DFACE and polyface meshes) and JSON triangle soups.
+//! big endian), DXF (3DFACE and polyface meshes), JSON triangle soups and binary glTF
+//! (`.glb`).
 //!
 //! Everything is read into `f64`. Formats that store corners per triangle (STL, DXF 3DFACE,
 //! JSON soups) are welded on read where positions are exactly equal ([`crate::weld_exact`]).
@@ -8,7 +9,7 @@
 //!
 //! Writers use the shortest decimal form that reads back to the same `f64` (text formats)
 //! or `f64` fields (PLY), so positions round-trip bit-exactly, except binary STL, which
-//! stores `f32` by definition.
+//! stores `f32` by definition, and glTF, which stores `f32` offsets from an `f64` origin.
 
 use std::fs;
 use std::io::{BufWriter, Write};
@@ -18,20 +19,27 @@ use crate::error::{Error, Location, Result};
 use crate::Mesh;
 
 mod dxf;
+mod glb;
 mod json;
 mod obj;
 mod ply;
+mod points;
 mod polyline;
 mod stl;
 
 #[doc(no_inline)]
 pub use crate::format::Format;
+pub use points::read_points;
 pub use polyline::write_polylines;
 
 /// The format of `bytes`, from the content, with `hint` (a format from the file name)
 /// deciding between families the content cannot tell apart. STL's binary/ASCII encoding
-/// and PLY's encoding always come from the content. `None` when nothing fits.
+/// and PLY's encoding always come from the content, and so does glTF's binary container
+/// (its magic `glTF`). `None` when nothing fits.
 pub fn detect_format(bytes: &[u8], hint: Option<Format>) -> Option<Format> {
+    if glb::looks_like(bytes) {
+        return Some(Format::Glb);
+    }
     if bytes.starts_with(b"ply") {
         return ply::encoding(bytes).or(Some(Format::PlyAscii));
     }
@@ -41,7 +49,7 @@ pub fn detect_format(bytes: &[u8], hint: Option<Format>) -> Option<Format> {
     }
 }
 
-/// The format of `bytes` within the family of `hint` (STL, OBJ, PLY, DXF or JSON): STL's
+/// The format of `bytes` within the family of `hint` (STL, OBJ, PLY, DXF, JSON or glTF): STL's
 /// encoding from the content, the family's first format otherwise.
 fn format_in_family(bytes: &[u8], hint: Format) -> Format {
     match hint {
@@ -50,6 +58,7 @@ fn format_in_family(bytes: &[u8], hint: Format) -> Format {
         Format::PlyAscii | Format::PlyBinaryLe | Format::PlyBinaryBe => Format::PlyAscii,
         Format::Dxf => Format::Dxf,
         Format::JsonSoup | Format::JsonKirra => Format::JsonSoup,
+        Format::Glb => Format::Glb,
     }
 }
 
@@ -88,6 +97,7 @@ pub fn read_bytes(bytes: &[u8], format: Format) -> Result<Mesh> {
         Format::PlyAscii | Format::PlyBinaryLe | Format::PlyBinaryBe => ply::read(bytes)?,
         Format::Dxf => dxf::read(bytes)?,
         Format::JsonSoup | Format::JsonKirra => json::read(bytes)?,
+        Format::Glb => glb::read(bytes)?,
     };
     mesh.validate()?;
     Ok(mesh)
@@ -109,7 +119,8 @@ pub fn read_file(path: impl AsRef<Path>, from: Option<Format>) -> Result<(Mesh, 
 }
 
 /// Writes `mesh` to `out` in `format`. Non-finite coordinates are an error
-/// ([`Mesh::validate`]).
+/// ([`Mesh::validate`]); so are, in [`Format::Glb`], a mesh without triangles and
+/// coordinates too far from the mesh's centre for `f32` offsets.
 pub fn write(out: &mut impl Write, mesh: &Mesh, format: Format) -> Result<()> {
     mesh.validate()?;
     match format {
@@ -121,6 +132,7 @@ pub fn write(out: &mut impl Write, mesh: &Mesh, format: Format) -> Result<()> {
         }
         Format::Dxf => dxf::write(out, mesh),
         Format::JsonSoup | Format::JsonKirra => json::write(out, mesh, format),
+        Format::Glb => glb::write(out, mesh),
     }?;
     Ok(())
 }

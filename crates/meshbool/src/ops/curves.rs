@@ -21,6 +21,13 @@ pub struct CurvesOptions {
     /// Checks of inputs given as meshes (default: none; curves do not depend on
     /// orientation).
     pub checks: Checks,
+    /// Thin the polylines for export: points closer than this to the last kept point along
+    /// a line are left out ([`PolylineXyz::simplified`]). A distance the user chooses; the
+    /// exact seam is unchanged. `None`: every seam point.
+    pub simplify: Option<f64>,
+    /// Put every raw seam segment, with the triangle of each input it lies in, in the
+    /// report (`tagged_segments`; the reference's `intersectMeshPairTagged`).
+    pub tagged: bool,
     /// Threads and progress.
     pub run: RunOptions,
 }
@@ -30,9 +37,56 @@ impl Default for CurvesOptions {
         CurvesOptions {
             with_coplanar: true,
             checks: Checks::NONE,
+            simplify: None,
+            tagged: false,
             run: RunOptions::default(),
         }
     }
+}
+
+impl CurvesOptions {
+    /// Checks the options: a simplification distance must be finite and positive.
+    fn validate(&self) -> Result<()> {
+        match self.simplify {
+            Some(d) if !(d.is_finite() && d > 0.0) => Err(Error::InvalidParameter(format!(
+                "the simplification distance must be a finite number > 0, got {d}"
+            ))),
+            _ => Ok(()),
+        }
+    }
+
+    /// The polylines of `seam` as these options ask: chained, with or without coplanar
+    /// segments, simplified; and how many points simplification left out.
+    fn polylines(&self, seam: &Seam) -> (Vec<PolylineXyz>, usize) {
+        let lines: Vec<PolylineXyz> = chain(seam, self.with_coplanar)
+            .iter()
+            .map(|c| c.to_xyz(seam))
+            .collect();
+        let Some(d) = self.simplify else {
+            return (lines, 0);
+        };
+        let before: usize = lines.iter().map(|l| l.points.len()).sum();
+        let thinned: Vec<PolylineXyz> = lines.iter().map(|l| l.simplified(d)).collect();
+        let after: usize = thinned.iter().map(|l| l.points.len()).sum();
+        (thinned, before - after)
+    }
+}
+
+/// A raw seam segment with the triangles it lies in: `tri_a` of A and `tri_b` of B (for a
+/// mesh's own curves, two of its triangles). A segment along an edge is listed once per
+/// pair of triangles it lies in.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct TaggedSegment {
+    /// One end (the exact point rounded to `f64`).
+    pub p0: [f64; 3],
+    /// The other end.
+    pub p1: [f64; 3],
+    /// Triangle of A (input order).
+    pub tri_a: u32,
+    /// Triangle of B.
+    pub tri_b: u32,
+    /// True when the segment only bounds a coplanar overlap.
+    pub coplanar: bool,
 }
 
 /// The result of [`curves`].
@@ -44,6 +98,10 @@ pub struct CurvesOutput {
     pub seam: Seam,
     /// The names of A and B.
     pub names: [String; 2],
+    /// Points left out by [`CurvesOptions::simplify`] (`None`: not simplified).
+    pub simplified_away: Option<usize>,
+    /// Whether the report lists the tagged segments ([`CurvesOptions::tagged`]).
+    pub tagged: bool,
     /// Time of the intersection and chaining, in seconds.
     pub seconds: f64,
 }
@@ -71,6 +129,12 @@ pub struct CurvesReport {
     pub candidate_pairs: usize,
     /// Zero-area triangles of A and of B where the meshes meet, left out.
     pub degenerate_triangles: [usize; 2],
+    /// Points left out of the polylines by `--simplify` (absent without it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub simplified_points_removed: Option<usize>,
+    /// Every raw seam segment with its triangles (with `--tagged` only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tagged_segments: Option<Vec<TaggedSegment>>,
     /// [`CurvesOutput::seconds`].
     pub seconds: f64,
 }
@@ -91,8 +155,30 @@ impl CurvesOutput {
             touching_points: seam.touching.len(),
             candidate_pairs: seam.candidate_pairs,
             degenerate_triangles: seam.degenerate,
+            simplified_points_removed: self.simplified_away,
+            tagged_segments: self.tagged.then(|| self.tagged_segments()),
             seconds: self.seconds,
         }
+    }
+
+    /// Every raw seam segment with the triangle of each input it lies in, in the order of
+    /// the seam's sources (see [`TaggedSegment`]).
+    pub fn tagged_segments(&self) -> Vec<TaggedSegment> {
+        let seam = &self.seam;
+        seam.sources
+            .iter()
+            .map(|s| {
+                let seg = &seam.segments[s.segment as usize];
+                let [p, q] = seg.ends.map(|e| seam.positions[e as usize]);
+                TaggedSegment {
+                    p0: p,
+                    p1: q,
+                    tri_a: s.tri_a,
+                    tri_b: s.tri_b,
+                    coplanar: seg.coplanar,
+                }
+            })
+            .collect()
     }
 
     /// Writes the polylines to a file in the format its name says: `.obj` (`l` elements),
@@ -128,25 +214,21 @@ pub fn curves<'a>(
     b: impl Into<Input<'a>>,
     opts: &CurvesOptions,
 ) -> Result<CurvesOutput> {
+    opts.validate()?;
     let run = |a: &Operand, b: &Operand| {
         opts.run.stage(Stage::Intersect);
         let seam = intersect(a.mesh(), b.mesh());
-        let polylines = chain(&seam, opts.with_coplanar)
-            .iter()
-            .map(|c| c.to_xyz(&seam))
-            .collect();
-        (
-            seam,
-            polylines,
-            [a.name().to_string(), b.name().to_string()],
-        )
+        let lines = opts.polylines(&seam);
+        (seam, lines, [a.name().to_string(), b.name().to_string()])
     };
-    let ((seam, polylines, names), seconds) =
+    let ((seam, (polylines, away), names), seconds) =
         Input::with_both(a.into(), b.into(), &opts.checks, &opts.run, run)?;
     Ok(CurvesOutput {
         polylines,
         seam,
         names,
+        simplified_away: opts.simplify.map(|_| away),
+        tagged: opts.tagged,
         seconds,
     })
 }
@@ -158,21 +240,21 @@ pub fn curves<'a>(
 /// self-intersecting triangle pairs.
 pub fn self_curves<'a>(mesh: impl Into<Input<'a>>, opts: &CurvesOptions) -> Result<CurvesOutput> {
     let input: Input<'a> = mesh.into();
+    opts.validate()?;
     with_threads(opts.run.threads, || {
         let operand = input.operand("mesh", &Checks::NONE)?;
         let start = Instant::now();
         opts.run.stage(Stage::Intersect);
         let m = operand.mesh();
         let seam = self_seam(m, &self_intersections(m));
-        let polylines = chain(&seam, opts.with_coplanar)
-            .iter()
-            .map(|c| c.to_xyz(&seam))
-            .collect();
+        let (polylines, away) = opts.polylines(&seam);
         let name = operand.name().to_string();
         Ok(CurvesOutput {
             polylines,
             seam,
             names: [name.clone(), name],
+            simplified_away: opts.simplify.map(|_| away),
+            tagged: opts.tagged,
             seconds: start.elapsed().as_secs_f64(),
         })
     })?

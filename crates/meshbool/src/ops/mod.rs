@@ -16,6 +16,9 @@
 //! | `orient` | [`orient`] | [`OrientOutput`] | [`OrientCommandReport`] |
 //! | `close` | [`close`] | [`CloseOutput`] | [`CloseCommandReport`] |
 //! | `repair` | [`repair`] | [`RepairOutput`] | [`RepairCommandReport`] |
+//! | `transform` | [`transform()`] | [`TransformOutput`] | [`TransformReport`] |
+//! | `make` | [`make()`] | [`MakeOutput`] | [`MakeReport`] |
+//! | `classify` | [`classify_points`] | [`ClassifyOutput`] | [`ClassifyReport`] |
 //! | `convert` | [`read`], [`write()`] | | |
 //!
 //! Inputs are plain [`Mesh`]es, checked at the door: non-finite
@@ -50,16 +53,23 @@ use crate::{Error, Format, Mesh, Result};
 
 mod boolean;
 mod curves;
+mod make;
 mod operand;
+mod points;
 mod single;
 mod split;
+mod transform;
 
 pub use crate::boolean::FailedTriangle;
 pub use boolean::{
     boolean, boolean_many, BooleanManyOutput, BooleanOptions, BooleanOutput, BooleanReport,
 };
-pub use curves::{curves, self_curves, CurvesOptions, CurvesOutput, CurvesReport};
+pub use curves::{curves, self_curves, CurvesOptions, CurvesOutput, CurvesReport, TaggedSegment};
+pub use make::{make, MakeOutput, MakeReport, Shape};
 pub use operand::{Checks, Input, Operand, OperandReport, SelfIntersections};
+pub use points::{
+    classify_points, ClassifyOptions, ClassifyOutput, ClassifyReport, PointClass, PointResult,
+};
 pub use single::{
     close, info, orient, repair, resolve, CloseCommandReport, CloseOutput, InfoReport,
     OrientCommandReport, OrientOutput, RepairCommandReport, RepairOutput, ResolveCommandReport,
@@ -69,6 +79,7 @@ pub use split::{
     pick, pick_dir, pick_dir_op, split, GroupInfo, GroupPieces, PickOptions, PickOutput,
     PickReport, PieceInfo, PieceSpec, SplitOptions, SplitOutput, SplitReport,
 };
+pub use transform::{transform, TransformOutput, TransformReport};
 
 /// The version of the JSON reports (the `schema` key of every report). Raised when a key
 /// is removed or changes meaning; new keys may appear within a version.

@@ -486,6 +486,75 @@ fn self_curves_are_the_curves_between_the_parts() {
 }
 
 #[test]
+fn tagged_segments_lie_in_their_triangles_and_simplify_thins_the_lines() {
+    let (a, b) = cubes();
+    let opts = CurvesOptions {
+        tagged: true,
+        ..CurvesOptions::default()
+    };
+    let out = curves(&a, &b, &opts).unwrap();
+    let tagged = out.report().tagged_segments.unwrap();
+    assert_eq!(tagged.len(), out.seam.sources.len());
+    // Every end lies exactly in the closure of both its triangles (the coordinates are
+    // halves and ones: exact), so on both planes and in both boxes.
+    let inside = |m: &Mesh, t: u32, p: &[f64; 3]| {
+        let [x, y, z] = m.corners(t as usize);
+        let on_plane = crate::kernel::orient3d_explicit(&x, &y, &z, p) == crate::kernel::Sign::Zero;
+        let in_box = (0..3).all(|k| {
+            let (lo, hi) = (x[k].min(y[k]).min(z[k]), x[k].max(y[k]).max(z[k]));
+            (lo..=hi).contains(&p[k])
+        });
+        on_plane && in_box
+    };
+    for s in &tagged {
+        for p in [&s.p0, &s.p1] {
+            assert!(inside(&a, s.tri_a, p) && inside(&b, s.tri_b, p), "{s:?}");
+        }
+    }
+    assert_eq!(out.report().simplified_points_removed, None);
+    // A dense loop: two spheres crossing in a circle of radius sqrt(3)/2.
+    let s1 = crate::shapes::uv_sphere([0.0; 3], 1.0, 96, 48);
+    let s2 = crate::shapes::uv_sphere([1.0, 0.0, 0.0], 1.0, 96, 48);
+    let full = curves(&s1, &s2, &CurvesOptions::default()).unwrap();
+    let thin = curves(
+        &s1,
+        &s2,
+        &CurvesOptions {
+            simplify: Some(0.2),
+            ..CurvesOptions::default()
+        },
+    )
+    .unwrap();
+    let (f, t) = (&full.polylines[0], &thin.polylines[0]);
+    assert!(t.closed && t.points.len() >= 3 && t.points.len() < f.points.len() / 4);
+    assert_eq!(t.points[0], f.points[0]);
+    for w in t.points.windows(2) {
+        let d = ((w[0][0] - w[1][0]).powi(2)
+            + (w[0][1] - w[1][1]).powi(2)
+            + (w[0][2] - w[1][2]).powi(2))
+        .sqrt();
+        assert!(d >= 0.2, "{d}");
+    }
+    assert_eq!(
+        thin.report().simplified_points_removed,
+        Some(f.points.len() - t.points.len())
+    );
+    // The thinned loop still goes around: its length is within 3 % of the full one's.
+    assert!((t.length() - f.length()).abs() < 0.03 * f.length());
+    for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        let opts = CurvesOptions {
+            simplify: Some(bad),
+            ..CurvesOptions::default()
+        };
+        assert!(matches!(
+            curves(&s1, &s2, &opts),
+            Err(Error::InvalidParameter(_))
+        ));
+        assert!(self_curves(&s1, &opts).is_err());
+    }
+}
+
+#[test]
 fn inside_out_operands_are_reversed_with_a_line_in_assumed() {
     // Before: an inside-out cube was taken as its complement (the union came out with a
     // negative volume).

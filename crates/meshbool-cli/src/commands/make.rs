@@ -1,0 +1,276 @@
+//! `meshbool make`: a primitive (cube, sphere, cylinder, cone, plane) written to a file.
+
+use std::path::PathBuf;
+
+use anyhow::Result;
+use clap::error::ErrorKind;
+use meshbool::ops::{self, Shape};
+
+use super::print_json;
+use super::transform::point;
+
+/// Arguments of `make`: the shape and its options.
+#[derive(clap::Args)]
+pub struct Args {
+    #[command(subcommand)]
+    shape: ShapeArgs,
+}
+
+/// The shapes.
+#[derive(clap::Subcommand)]
+enum ShapeArgs {
+    /// An axis-aligned cube or box: --size about --center (default: edge 1 about the
+    /// origin), or --min and --max. 12 triangles.
+    Cube(CubeArgs),
+    /// A UV sphere about --center, its axis along z: --segments meridians, --rings bands
+    /// from pole to pole (vertices on the sphere: the inscribed polyhedron).
+    Sphere(SphereArgs),
+    /// A cylinder standing on --base (the bottom centre) along +z, the circles as regular
+    /// polygons of --segments sides (first vertex on +x).
+    Cylinder(CylinderArgs),
+    /// A cone standing on --base along +z up to an apex, or a frustum with --top-radius.
+    Cone(ConeArgs),
+    /// A flat rectangle about --center, --width along x by --depth along y, in --nx by
+    /// --ny cells of two triangles, facing +z (an open surface).
+    Plane(PlaneArgs),
+}
+
+/// What every shape takes.
+#[derive(clap::Args)]
+struct Out {
+    /// Output mesh file.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Print a JSON report on stdout.
+    #[arg(long)]
+    json: bool,
+}
+
+/// A positive finite number.
+fn positive(s: &str) -> Result<f64, String> {
+    match super::transform::numbers(s)?[..] {
+        [v] if v > 0.0 => Ok(v),
+        [v] => Err(format!("must be positive, got {v}")),
+        _ => Err("expected one number".into()),
+    }
+}
+
+/// Zero or a positive finite number.
+fn non_negative(s: &str) -> Result<f64, String> {
+    match super::transform::numbers(s)?[..] {
+        [v] if v >= 0.0 => Ok(v),
+        [v] => Err(format!("must be 0 or positive, got {v}")),
+        _ => Err("expected one number".into()),
+    }
+}
+
+/// One edge length `S` or three `SX,SY,SZ`, each positive.
+fn sizes(s: &str) -> Result<[f64; 3], String> {
+    let v = match super::transform::numbers(s)?[..] {
+        [k] => [k; 3],
+        [x, y, z] => [x, y, z],
+        ref v => {
+            return Err(format!(
+                "expected one size S or three SX,SY,SZ, got {} numbers",
+                v.len()
+            ))
+        }
+    };
+    if v.iter().any(|&k| k <= 0.0) {
+        return Err(format!("sizes must be positive, got {s}"));
+    }
+    Ok(v)
+}
+
+/// `--min X,Y,Z --max X,Y,Z`, or `--size` about `--center`.
+#[derive(clap::Args)]
+struct CubeArgs {
+    #[command(flatten)]
+    out: Out,
+    /// Edge length S, or SX,SY,SZ for a box [default: 1].
+    #[arg(long, value_name = "S|SX,SY,SZ", value_parser = sizes, allow_hyphen_values = true, conflicts_with_all = ["min", "max"])]
+    size: Option<[f64; 3]>,
+    /// Centre [default: 0,0,0].
+    #[arg(long, value_name = "X,Y,Z", value_parser = point, allow_hyphen_values = true, conflicts_with_all = ["min", "max"])]
+    center: Option<[f64; 3]>,
+    /// Smallest corner (with --max).
+    #[arg(long, value_name = "X,Y,Z", value_parser = point, allow_hyphen_values = true, requires = "max")]
+    min: Option<[f64; 3]>,
+    /// Largest corner (with --min).
+    #[arg(long, value_name = "X,Y,Z", value_parser = point, allow_hyphen_values = true, requires = "min")]
+    max: Option<[f64; 3]>,
+}
+
+/// A sphere's options.
+#[derive(clap::Args)]
+struct SphereArgs {
+    #[command(flatten)]
+    out: Out,
+    /// Centre.
+    #[arg(long, value_name = "X,Y,Z", default_value = "0,0,0", value_parser = point, allow_hyphen_values = true)]
+    center: [f64; 3],
+    /// Radius.
+    #[arg(long, default_value = "1", value_parser = positive, allow_hyphen_values = true)]
+    radius: f64,
+    /// Meridians (at least 3).
+    #[arg(long, default_value_t = 32, value_parser = clap::value_parser!(u32).range(3..))]
+    segments: u32,
+    /// Bands from pole to pole (at least 2).
+    #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(2..))]
+    rings: u32,
+}
+
+/// A cylinder's options.
+#[derive(clap::Args)]
+struct CylinderArgs {
+    #[command(flatten)]
+    out: Out,
+    /// Centre of the bottom disc.
+    #[arg(long, value_name = "X,Y,Z", default_value = "0,0,0", value_parser = point, allow_hyphen_values = true)]
+    base: [f64; 3],
+    /// Radius.
+    #[arg(long, default_value = "1", value_parser = positive, allow_hyphen_values = true)]
+    radius: f64,
+    /// Height (along +z).
+    #[arg(long, default_value = "1", value_parser = positive, allow_hyphen_values = true)]
+    height: f64,
+    /// Sides of the polygons (at least 3).
+    #[arg(long, default_value_t = 32, value_parser = clap::value_parser!(u32).range(3..))]
+    segments: u32,
+}
+
+/// A cone's options.
+#[derive(clap::Args)]
+struct ConeArgs {
+    #[command(flatten)]
+    out: Out,
+    /// Centre of the bottom disc.
+    #[arg(long, value_name = "X,Y,Z", default_value = "0,0,0", value_parser = point, allow_hyphen_values = true)]
+    base: [f64; 3],
+    /// Bottom radius.
+    #[arg(long, default_value = "1", value_parser = positive, allow_hyphen_values = true)]
+    radius: f64,
+    /// Top radius: 0 for an apex, positive for a frustum.
+    #[arg(long, default_value = "0", value_parser = non_negative, allow_hyphen_values = true)]
+    top_radius: f64,
+    /// Height (along +z).
+    #[arg(long, default_value = "1", value_parser = positive, allow_hyphen_values = true)]
+    height: f64,
+    /// Sides of the polygons (at least 3).
+    #[arg(long, default_value_t = 32, value_parser = clap::value_parser!(u32).range(3..))]
+    segments: u32,
+}
+
+/// A plane's options.
+#[derive(clap::Args)]
+struct PlaneArgs {
+    #[command(flatten)]
+    out: Out,
+    /// Centre.
+    #[arg(long, value_name = "X,Y,Z", default_value = "0,0,0", value_parser = point, allow_hyphen_values = true)]
+    center: [f64; 3],
+    /// Extent along x.
+    #[arg(long, default_value = "1", value_parser = positive, allow_hyphen_values = true)]
+    width: f64,
+    /// Extent along y.
+    #[arg(long, default_value = "1", value_parser = positive, allow_hyphen_values = true)]
+    depth: f64,
+    /// Cells along x (at least 1).
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
+    nx: u32,
+    /// Cells along y (at least 1).
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
+    ny: u32,
+}
+
+impl ShapeArgs {
+    /// The shape asked for and where to write it.
+    fn shape(&self) -> (Shape, &Out) {
+        match self {
+            ShapeArgs::Cube(a) => {
+                let (min, max) = match (a.min, a.max) {
+                    (Some(min), Some(max)) => (min, max),
+                    _ => {
+                        let (c, s) = (a.center.unwrap_or([0.0; 3]), a.size.unwrap_or([1.0; 3]));
+                        (
+                            std::array::from_fn(|k| c[k] - s[k] / 2.0),
+                            std::array::from_fn(|k| c[k] + s[k] / 2.0),
+                        )
+                    }
+                };
+                (Shape::Cube { min, max }, &a.out)
+            }
+            ShapeArgs::Sphere(a) => (
+                Shape::Sphere {
+                    center: a.center,
+                    radius: a.radius,
+                    segments: a.segments,
+                    rings: a.rings,
+                },
+                &a.out,
+            ),
+            ShapeArgs::Cylinder(a) => (
+                Shape::Cylinder {
+                    base: a.base,
+                    radius: a.radius,
+                    height: a.height,
+                    segments: a.segments,
+                },
+                &a.out,
+            ),
+            ShapeArgs::Cone(a) => (
+                Shape::Cone {
+                    base: a.base,
+                    radius: a.radius,
+                    top_radius: a.top_radius,
+                    height: a.height,
+                    segments: a.segments,
+                },
+                &a.out,
+            ),
+            ShapeArgs::Plane(a) => (
+                Shape::Plane {
+                    center: a.center,
+                    width: a.width,
+                    depth: a.depth,
+                    nx: a.nx,
+                    ny: a.ny,
+                },
+                &a.out,
+            ),
+        }
+    }
+}
+
+/// Generates the shape, writes it, prints the report. Parameters the library refuses
+/// (a box's min not below its max, a shape too fine for `f64`) are usage errors (exit 2).
+pub fn run(args: &Args) -> Result<()> {
+    let (shape, out) = args.shape.shape();
+    let made = match ops::make(&shape) {
+        Ok(m) => m,
+        Err(meshbool::Error::InvalidParameter(m)) => {
+            clap::Error::raw(ErrorKind::ValueValidation, format!("{m}\n")).exit()
+        }
+        Err(e) => return Err(e.into()),
+    };
+    ops::write(&out.output, &made.mesh, None)?;
+    let report = made.report();
+    if out.json {
+        return print_json(&report);
+    }
+    let r = &report.result;
+    eprintln!(
+        "wrote {}: {}, {} triangles, {} vertices, {}{}",
+        out.output.display(),
+        report.shape,
+        r.triangles,
+        r.vertices,
+        if r.closed { "closed" } else { "open" },
+        if r.closed {
+            format!(", volume {}", r.volume)
+        } else {
+            String::new()
+        }
+    );
+    Ok(())
+}

@@ -1,0 +1,213 @@
+//! `make` at the front door: the primitives of [`crate::shapes`] by name, with a report.
+
+use serde::Serialize;
+
+use super::{Measures, SCHEMA};
+use crate::{shapes, Aabb, Mesh, Result};
+
+/// A primitive and its parameters (each as the [`crate::shapes`] function of its name
+/// takes them).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Shape {
+    /// An axis-aligned box ([`shapes::cuboid`]; a cube of edge `s` about `c` is
+    /// `c − s/2 .. c + s/2`, [`shapes::cube`]).
+    Cube {
+        /// Smallest corner.
+        min: [f64; 3],
+        /// Largest corner.
+        max: [f64; 3],
+    },
+    /// A UV sphere ([`shapes::sphere`]).
+    Sphere {
+        /// Centre.
+        center: [f64; 3],
+        /// Radius.
+        radius: f64,
+        /// Meridians (≥ 3).
+        segments: u32,
+        /// Bands from pole to pole (≥ 2).
+        rings: u32,
+    },
+    /// A cylinder along +z ([`shapes::cylinder`]).
+    Cylinder {
+        /// Centre of the bottom disc.
+        base: [f64; 3],
+        /// Radius.
+        radius: f64,
+        /// Height.
+        height: f64,
+        /// Sides of the polygons (≥ 3).
+        segments: u32,
+    },
+    /// A cone or frustum along +z ([`shapes::cone`]).
+    Cone {
+        /// Centre of the bottom disc.
+        base: [f64; 3],
+        /// Bottom radius.
+        radius: f64,
+        /// Top radius (0: an apex).
+        top_radius: f64,
+        /// Height.
+        height: f64,
+        /// Sides of the polygons (≥ 3).
+        segments: u32,
+    },
+    /// A flat rectangle facing +z ([`shapes::plane`]).
+    Plane {
+        /// Centre.
+        center: [f64; 3],
+        /// Extent along x.
+        width: f64,
+        /// Extent along y.
+        depth: f64,
+        /// Cells along x (≥ 1).
+        nx: u32,
+        /// Cells along y (≥ 1).
+        ny: u32,
+    },
+}
+
+impl Shape {
+    /// The shape's name: `cube`, `sphere`, `cylinder`, `cone` or `plane`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Shape::Cube { .. } => "cube",
+            Shape::Sphere { .. } => "sphere",
+            Shape::Cylinder { .. } => "cylinder",
+            Shape::Cone { .. } => "cone",
+            Shape::Plane { .. } => "plane",
+        }
+    }
+
+    /// The mesh, or the error for parameters out of range.
+    pub fn mesh(&self) -> Result<Mesh> {
+        match *self {
+            Shape::Cube { min, max } => shapes::cuboid(min, max),
+            Shape::Sphere {
+                center,
+                radius,
+                segments,
+                rings,
+            } => shapes::sphere(center, radius, segments, rings),
+            Shape::Cylinder {
+                base,
+                radius,
+                height,
+                segments,
+            } => shapes::cylinder(base, radius, height, segments),
+            Shape::Cone {
+                base,
+                radius,
+                top_radius,
+                height,
+                segments,
+            } => shapes::cone(base, radius, top_radius, height, segments),
+            Shape::Plane {
+                center,
+                width,
+                depth,
+                nx,
+                ny,
+            } => shapes::plane(center, width, depth, nx, ny),
+        }
+    }
+}
+
+/// The result of [`make()`].
+#[derive(Clone, Debug)]
+pub struct MakeOutput {
+    /// The generated mesh.
+    pub mesh: Mesh,
+    /// What was asked for.
+    pub shape: Shape,
+}
+
+/// The JSON of `meshbool make --json`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct MakeReport {
+    /// [`SCHEMA`].
+    pub schema: u32,
+    /// [`Shape::name`].
+    pub shape: &'static str,
+    /// Measures of the mesh.
+    #[serde(flatten)]
+    pub result: Measures,
+    /// The mesh's bounding box.
+    pub bbox: Option<Aabb>,
+}
+
+impl MakeOutput {
+    /// The report, with the mesh's measures.
+    pub fn report(&self) -> MakeReport {
+        MakeReport {
+            schema: SCHEMA,
+            shape: self.shape.name(),
+            result: Measures::of(&self.mesh),
+            bbox: self.mesh.bounds(),
+        }
+    }
+}
+
+/// Generates `shape`. Errors ([`crate::Error::InvalidParameter`]) for parameters out of
+/// range, as the [`crate::shapes`] functions do.
+pub fn make(shape: &Shape) -> Result<MakeOutput> {
+    Ok(MakeOutput {
+        mesh: shape.mesh()?,
+        shape: *shape,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_shape_by_name() {
+        let shapes = [
+            Shape::Cube {
+                min: [0.0; 3],
+                max: [1.0, 2.0, 3.0],
+            },
+            Shape::Sphere {
+                center: [0.0; 3],
+                radius: 1.0,
+                segments: 8,
+                rings: 4,
+            },
+            Shape::Cylinder {
+                base: [0.0; 3],
+                radius: 1.0,
+                height: 2.0,
+                segments: 4,
+            },
+            Shape::Cone {
+                base: [0.0; 3],
+                radius: 1.0,
+                top_radius: 0.0,
+                height: 3.0,
+                segments: 4,
+            },
+            Shape::Plane {
+                center: [0.0; 3],
+                width: 2.0,
+                depth: 1.0,
+                nx: 2,
+                ny: 1,
+            },
+        ];
+        let volumes = [6.0, f64::NAN, 4.0, 2.0, f64::NAN];
+        for (s, v) in shapes.iter().zip(volumes) {
+            let r = make(s).unwrap().report();
+            assert_eq!(r.shape, s.name());
+            assert_eq!(r.result.closed, s.name() != "plane");
+            if !v.is_nan() {
+                assert!((r.result.volume - v).abs() < 1e-14, "{}", s.name());
+            }
+        }
+        let bad = Shape::Cube {
+            min: [0.0; 3],
+            max: [1.0, 0.0, 1.0],
+        };
+        assert!(make(&bad).is_err());
+    }
+}
