@@ -9,8 +9,8 @@ use clap::{Parser, Subcommand};
 mod commands;
 
 use commands::{
-    boolean, classify, close, convert, curves, info, make, orient, pick, repair, resolve, split,
-    transform,
+    boolean, classify, close, convert, curves, cutfill, info, make, orient, pick, repair, resolve,
+    split, transform,
 };
 
 /// mimalloc keeps freed memory for reuse: a boolean's stages allocate and free large
@@ -90,6 +90,10 @@ enum Command {
     /// with the winding number at each; points from a file (`x y z` per line, CSV or JSON)
     /// or standard input (`-`).
     Classify(classify::Args),
+    /// Cut and fill between two surfaces: the volume where TOPO is above DESIGN (cut) and
+    /// below it (fill) over the plan area both cover, exactly from the booleans of the
+    /// solids under each; both are faced up first. `-o` writes the lines where they meet.
+    Cutfill(cutfill::Args),
 }
 
 fn main() -> ExitCode {
@@ -109,9 +113,12 @@ fn main() -> ExitCode {
         Command::Make(args) => make::run(&args),
         Command::Curves(args) => curves::run(&args),
         Command::Classify(args) => classify::run(&args),
+        Command::Cutfill(args) => cutfill::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
+        // A reader that stopped early (`meshbool info F | head -3`): nothing to report.
+        Err(e) if closed_pipe(&e) => ExitCode::SUCCESS,
         Err(e) => {
             // The library says how to proceed in its own terms; name the flag.
             let hint = match e.downcast_ref::<meshbool::Error>() {
@@ -122,4 +129,12 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+/// Whether the error is standard output's pipe closed by its reader.
+fn closed_pipe(e: &anyhow::Error) -> bool {
+    e.chain().any(|c| {
+        c.downcast_ref::<std::io::Error>()
+            .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
+    })
 }

@@ -1435,3 +1435,120 @@ fn transform_and_make_refuse_bad_arguments_with_usage_errors() {
     m(&["torus"], "torus");
     assert!(!tmp("tf_bad_out.ply").exists());
 }
+
+#[test]
+fn convert_to_mining_formats_and_back_keeps_triangles_and_volume() {
+    let info = |p: &PathBuf| -> serde_json::Value {
+        let out = meshbool(&["info", "--json", p.to_str().unwrap()]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        serde_json::from_slice(&out.stdout).unwrap()
+    };
+    let input = data("kirra_terrain.obj");
+    let want = info(&input);
+    for ext in ["ts", "xml", "dtm"] {
+        let written = tmp(&format!("mining.{ext}"));
+        let back = tmp(&format!("mining-{ext}.obj"));
+        for (from, to) in [(&input, &written), (&written, &back)] {
+            let out = meshbool(&["convert", from.to_str().unwrap(), to.to_str().unwrap()]);
+            assert!(
+                out.status.success(),
+                "{ext}: {}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+        }
+        if ext == "dtm" {
+            assert!(written.with_extension("str").exists());
+        }
+        for p in [&written, &back] {
+            let got = info(p);
+            for k in ["triangles", "vertices", "volume", "area", "bbox"] {
+                assert_eq!(got[k], want[k], "{ext} {k}");
+            }
+        }
+        // The same triangles, vertex for vertex.
+        assert_eq!(
+            std::fs::read_to_string(&back).unwrap(),
+            std::fs::read_to_string(tmp(&format!("mining-{}.obj", "ts"))).unwrap(),
+            "{ext}"
+        );
+    }
+    // A DTM without its string file: the error names the missing file.
+    let lonely = tmp("lonely.dtm");
+    std::fs::copy(tmp("mining.dtm"), &lonely).unwrap();
+    let out = meshbool(&["info", lonely.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("lonely.str"), "{err}");
+}
+
+#[test]
+fn cutfill_of_a_slope_against_flat_ground() {
+    // Ground z = 0 and a slope z = x − 2 over [0, 4]²: cut and fill 4 · 2 · 2 / 2 = 8 each,
+    // meeting along x = 2 (length 4).
+    let ground = tmp("cf_ground.ply");
+    let slope = tmp("cf_slope.ply");
+    let flat = meshbool::shapes::heightfield([0.0, 0.0], [4.0, 4.0], 2, 2, |_, _| 0.0);
+    let tilted = meshbool::shapes::heightfield([0.0, 0.0], [4.0, 4.0], 2, 2, |x, _| x - 2.0);
+    meshbool::io::write_path(&ground, &flat).unwrap();
+    meshbool::io::write_path(&slope, &tilted).unwrap();
+    let lines = tmp("cf_lines.json");
+    let v = report(&[
+        "cutfill",
+        ground.to_str().unwrap(),
+        slope.to_str().unwrap(),
+        "-o",
+        lines.to_str().unwrap(),
+        "--json",
+    ]);
+    for (k, want) in [
+        ("cut", 8.0),
+        ("fill", 8.0),
+        ("net", 0.0),
+        ("common_plan_area", 16.0),
+    ] {
+        let got = v[k].as_f64().unwrap();
+        assert!((got - want).abs() < 1e-12, "{k}: {got}");
+    }
+    assert_eq!(v["zero_lines"], 1);
+    let written: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&lines).unwrap()).unwrap();
+    assert_eq!(written.as_array().unwrap().len(), 1);
+    // A missing file is a clear error, exit 1.
+    let out = meshbool(&["cutfill", ground.to_str().unwrap(), "nope.obj"]);
+    assert_eq!(out.status.code(), Some(1));
+}
+
+#[test]
+fn a_failing_standard_output_is_an_error_or_a_quiet_end_never_a_panic() {
+    let terrain = data("kirra_terrain.obj");
+    // A full disk: exit 1 with a message naming standard output.
+    if let Ok(full) = std::fs::File::create("/dev/full") {
+        let out = Command::new(env!("CARGO_BIN_EXE_meshbool"))
+            .args(["info", "--json", terrain.to_str().unwrap()])
+            .stdout(full)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{err}");
+        assert!(
+            err.contains("writing standard output") && !err.contains("panicked"),
+            "{err}"
+        );
+    }
+    // A reader that closes the pipe at once: a quiet end, exit 0.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_meshbool"))
+        .args(["info", terrain.to_str().unwrap(), terrain.to_str().unwrap()])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+}

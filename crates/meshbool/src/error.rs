@@ -53,7 +53,7 @@ pub enum Error {
         message: String,
     },
     /// The format could not be told from the file name nor from the content.
-    #[error("cannot tell the mesh format of {0}: use a known extension (.stl .obj .ply .dxf .json .glb) or name the format")]
+    #[error("cannot tell the mesh format of {0}: use a known extension (.stl .obj .ply .dxf .json .glb .ts .dtm .xml) or name the format")]
     UnknownFormat(String),
     /// A mesh violates the data model: non-finite coordinates, indices out of range, too many vertices.
     #[error("invalid mesh at {location}: {message}")]

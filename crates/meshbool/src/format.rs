@@ -31,6 +31,19 @@ pub enum Format {
     /// glTF 2.0 binary (`.glb`): `f32` positions written relative to a local origin that
     /// the node's translation holds in `f64`.
     Glb,
+    /// GOCAD TSurf (`.ts`, ASCII): `VRTX`/`PVRTX`/`ATOM`/`PATOM` vertices and `TRGL`
+    /// triangles, several face sets and surfaces per file; `ZPOSITIVE Depth` surfaces have
+    /// `z` negated on read so that up is `+z`.
+    GocadTs,
+    /// Surpac DTM: triangles in the `.dtm` file referring to the points of the string file
+    /// (`.str`) of the same name beside it, points as `y, x, z` (northing first). Two
+    /// files: read and written by path ([`crate::io::read_file`],
+    /// [`crate::io::write_path_as`]) or with [`crate::io::read_surpac_dtm`] and
+    /// [`crate::io::write_surpac_dtm`].
+    SurpacDtm,
+    /// LandXML 1.2 TIN surfaces (`.xml`): `<P id="..">northing easting elevation</P>`
+    /// points and `<F>` faces; invisible faces (`i="1"`) are skipped.
+    LandXml,
 }
 
 impl fmt::Display for Format {
@@ -46,13 +59,16 @@ impl fmt::Display for Format {
             Format::JsonSoup => "JSON soup",
             Format::JsonKirra => "Kirra JSON",
             Format::Glb => "binary glTF",
+            Format::GocadTs => "GOCAD TSurf",
+            Format::SurpacDtm => "Surpac DTM",
+            Format::LandXml => "LandXML",
         })
     }
 }
 
 impl Format {
     /// All formats, with the names they are read by ([`FromStr`]) and written as.
-    pub const NAMES: [(&'static str, Format); 10] = [
+    pub const NAMES: [(&'static str, Format); 13] = [
         ("stl", Format::StlBinary),
         ("stl-ascii", Format::StlAscii),
         ("obj", Format::Obj),
@@ -63,6 +79,9 @@ impl Format {
         ("json", Format::JsonSoup),
         ("kirra-json", Format::JsonKirra),
         ("glb", Format::Glb),
+        ("gocad-ts", Format::GocadTs),
+        ("surpac-dtm", Format::SurpacDtm),
+        ("landxml", Format::LandXml),
     ];
 
     /// The format's name in [`Format::NAMES`] (`stl`, `stl-ascii`, `obj`, ...).
@@ -87,7 +106,9 @@ impl Format {
         )
     }
 
-    /// The file name extension of the format: `stl`, `obj`, `ply`, `dxf`, `json`, `glb`.
+    /// The file name extension of the format: `stl`, `obj`, `ply`, `dxf`, `json`, `glb`,
+    /// `ts` (GOCAD TSurf), `dtm` (Surpac DTM, whose points go in a `.str` beside it), `xml`
+    /// (LandXML).
     pub fn extension(self) -> &'static str {
         match self {
             Format::StlBinary | Format::StlAscii => "stl",
@@ -96,12 +117,15 @@ impl Format {
             Format::Dxf => "dxf",
             Format::JsonSoup | Format::JsonKirra => "json",
             Format::Glb => "glb",
+            Format::GocadTs => "ts",
+            Format::SurpacDtm => "dtm",
+            Format::LandXml => "xml",
         }
     }
 
     /// The format written for a file name's extension: `.stl` binary STL, `.obj`, `.ply`
-    /// binary little-endian, `.dxf`, `.json` JSON soup, `.glb` binary glTF. `None` for other
-    /// extensions.
+    /// binary little-endian, `.dxf`, `.json` JSON soup, `.glb` binary glTF, `.ts` GOCAD
+    /// TSurf, `.dtm` Surpac DTM, `.xml` LandXML. `None` for other extensions.
     pub fn for_path(path: impl AsRef<Path>) -> Option<Format> {
         let ext = path.as_ref().extension()?.to_str()?.to_ascii_lowercase();
         Some(match ext.as_str() {
@@ -111,6 +135,9 @@ impl Format {
             "dxf" => Format::Dxf,
             "json" => Format::JsonSoup,
             "glb" => Format::Glb,
+            "ts" => Format::GocadTs,
+            "dtm" => Format::SurpacDtm,
+            "xml" => Format::LandXml,
             _ => return None,
         })
     }

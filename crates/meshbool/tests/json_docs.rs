@@ -147,6 +147,10 @@ fn samples() -> BTreeMap<&'static str, Vec<Value>> {
     let points = [[0.5; 3], [2.0; 3], [1.0, 0.5, 0.5]];
     let c = ops::classify_points(&cube, &points, &Default::default()).unwrap();
     s.entry("classify").or_default().push(json(&c.report(true)));
+    let ground = heightfield([0.0, 0.0], [4.0, 4.0], 2, 2, |_, _| 0.0);
+    let slope = heightfield([0.0, 0.0], [4.0, 4.0], 2, 2, |x, _| x - 2.0);
+    let cf = ops::cutfill(&ground, &slope, &Default::default()).unwrap();
+    s.entry("cutfill").or_default().push(json(&cf.report()));
     s.entry("info")
         .or_default()
         .push(json(&ops::InfoReport::new(
@@ -204,7 +208,7 @@ fn samples() -> BTreeMap<&'static str, Vec<Value>> {
 fn docs_list_every_key_of_every_report_and_no_other() {
     let tables = doc_tables();
     let samples = samples();
-    assert_eq!(samples.len(), 12);
+    assert_eq!(samples.len(), 13);
     for (report, runs) in &samples {
         let mut doc = BTreeSet::new();
         documented(&tables, report, "", &mut doc);

@@ -1,7 +1,7 @@
 //! `meshbool classify`: where points lie against a mesh — inside, outside or exactly on its
 //! surface — with the winding number at each.
 
-use std::io::{Read, Write};
+use std::io::Read;
 use std::path::PathBuf;
 
 use anyhow::{Context, Result};
@@ -69,7 +69,7 @@ pub fn run(args: &Args) -> Result<()> {
         }
         Some(path) => std::fs::write(path, format!("x,y,z,class,winding\n{}", lines()))
             .with_context(|| format!("writing {}", path.display()))?,
-        None if !args.flags.json => std::io::stdout().write_all(lines().as_bytes())?,
+        None if !args.flags.json => super::out(&lines())?,
         None => {}
     }
     let report = out.report(args.flags.json && args.output.is_none());

@@ -30,7 +30,7 @@ pub fn run(args: &Args) -> Result<()> {
         let stats = ops::info(&ops::read(f, args.from)?.0)?;
         let name = f.display().to_string();
         if !args.json {
-            print_human(&name, &stats);
+            print_human(&name, &stats)?;
         }
         reports.push(InfoReport::new(name, stats));
     }
@@ -43,8 +43,8 @@ pub fn run(args: &Args) -> Result<()> {
     }
 }
 
-fn print_human(file: &str, s: &MeshStats) {
-    println!("{file}");
+fn print_human(file: &str, s: &MeshStats) -> Result<()> {
+    let mut text = format!("{file}\n");
     let rows: [(&str, String); 13] = [
         ("triangles", s.triangles.to_string()),
         (
@@ -81,6 +81,7 @@ fn print_human(file: &str, s: &MeshStats) {
         ),
     ];
     for (k, v) in rows {
-        println!("  {k:<21} {v}");
+        text.push_str(&format!("  {k:<21} {v}\n"));
     }
+    super::out(&text)
 }

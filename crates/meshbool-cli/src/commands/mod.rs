@@ -10,6 +10,7 @@ pub mod classify;
 pub mod close;
 pub mod convert;
 pub mod curves;
+pub mod cutfill;
 pub mod info;
 pub mod make;
 pub mod orient;
@@ -108,10 +109,21 @@ impl Drop for Spinner {
     }
 }
 
+/// Writes `text` to standard output: a failure (a closed pipe, a full disk) is an error
+/// naming standard output, never a panic (`main` ends quietly on a closed pipe).
+pub fn out(text: &str) -> Result<()> {
+    use anyhow::Context;
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    stdout
+        .write_all(text.as_bytes())
+        .and_then(|()| stdout.flush())
+        .context("writing standard output")
+}
+
 /// Prints a report as pretty JSON on standard output.
 pub fn print_json(report: &impl serde::Serialize) -> Result<()> {
-    println!("{}", serde_json::to_string_pretty(report)?);
-    Ok(())
+    out(&(serde_json::to_string_pretty(report)? + "\n"))
 }
 
 /// Prints each line as a warning on standard error.

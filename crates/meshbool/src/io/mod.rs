@@ -1,6 +1,7 @@
 //! Reading and writing meshes: STL (binary and ASCII), OBJ, PLY (ASCII, binary little and
-//! big endian), DXF (3DFACE and polyface meshes), JSON triangle soups and binary glTF
-//! (`.glb`).
+//! big endian), DXF (3DFACE and polyface meshes), JSON triangle soups, binary glTF
+//! (`.glb`), and the surface formats of mining and geology software: GOCAD TSurf (`.ts`),
+//! Surpac DTM (`.dtm` with its string file `.str`) and LandXML 1.2 TIN surfaces (`.xml`).
 //!
 //! Everything is read into `f64`. Formats that store corners per triangle (STL, DXF 3DFACE,
 //! JSON soups) are welded on read where positions are exactly equal ([`crate::weld_exact`]).
@@ -20,17 +21,21 @@ use crate::Mesh;
 
 mod dxf;
 mod glb;
+mod gocad;
 mod json;
+mod landxml;
 mod obj;
 mod ply;
 mod points;
 mod polyline;
 mod stl;
+mod surpac;
 
 #[doc(no_inline)]
 pub use crate::format::Format;
 pub use points::read_points;
 pub use polyline::write_polylines;
+pub use surpac::{read_surpac_dtm, write_surpac_dtm};
 
 /// The format of `bytes`, from the content, with `hint` (a format from the file name)
 /// deciding between families the content cannot tell apart. STL's binary/ASCII encoding
@@ -59,12 +64,16 @@ fn format_in_family(bytes: &[u8], hint: Format) -> Format {
         Format::Dxf => Format::Dxf,
         Format::JsonSoup | Format::JsonKirra => Format::JsonSoup,
         Format::Glb => Format::Glb,
+        Format::GocadTs => Format::GocadTs,
+        Format::SurpacDtm => Format::SurpacDtm,
+        Format::LandXml => Format::LandXml,
     }
 }
 
 /// The format of `bytes` from the content alone (no PLY header): binary STL by its
-/// size, then by the first text: `solid` (ASCII STL), a JSON bracket, DXF group codes,
-/// OBJ records. `None` when nothing fits.
+/// size, then by the first text: `solid` (ASCII STL), a JSON bracket, `GOCAD TSurf`, a
+/// `<LandXML` element, Surpac's `OBJECT`/`TRISOLATION` lines, DXF group codes, OBJ
+/// records. `None` when nothing fits.
 fn format_from_content(bytes: &[u8]) -> Option<Format> {
     if stl::is_binary(bytes) {
         return Some(Format::StlBinary);
@@ -76,6 +85,15 @@ fn format_from_content(bytes: &[u8]) -> Option<Format> {
     if text.starts_with(b"[") || text.starts_with(b"{") {
         return Some(Format::JsonSoup);
     }
+    if gocad::looks_like(text) {
+        return Some(Format::GocadTs);
+    }
+    if landxml::looks_like(text) {
+        return Some(Format::LandXml);
+    }
+    if surpac::looks_like(text) {
+        return Some(Format::SurpacDtm);
+    }
     if dxf::looks_like(text) {
         return Some(Format::Dxf);
     }
@@ -86,7 +104,9 @@ fn format_from_content(bytes: &[u8]) -> Option<Format> {
 }
 
 /// Reads a mesh from bytes in the given format (for STL and PLY the encoding is taken from
-/// the content; for JSON both soup layouts are accepted).
+/// the content; for JSON both soup layouts are accepted). A Surpac DTM cannot be read from
+/// its `.dtm` alone, which holds no points: that is an error saying so (read it by path,
+/// or with [`read_surpac_dtm`]).
 pub fn read_bytes(bytes: &[u8], format: Format) -> Result<Mesh> {
     if bytes.trim_ascii().is_empty() {
         return Err(Error::parse(format, Location::Whole, "the file is empty"));
@@ -98,6 +118,11 @@ pub fn read_bytes(bytes: &[u8], format: Format) -> Result<Mesh> {
         Format::Dxf => dxf::read(bytes)?,
         Format::JsonSoup | Format::JsonKirra => json::read(bytes)?,
         Format::Glb => glb::read(bytes)?,
+        Format::GocadTs => gocad::read(bytes)?,
+        Format::LandXml => landxml::read(bytes)?,
+        Format::SurpacDtm => {
+            return Err(Error::parse(format, Location::Whole, surpac::NEEDS_STRINGS))
+        }
     };
     mesh.validate()?;
     Ok(mesh)
@@ -109,18 +134,25 @@ pub fn read_path(path: impl AsRef<Path>) -> Result<Mesh> {
 }
 
 /// Reads a mesh file as `from`, or as the format its name and content say
-/// ([`detect_format`]); also gives the format it was read as.
+/// ([`detect_format`]); also gives the format it was read as. A Surpac DTM is read with
+/// the string file of the same name beside it (extension `str`): an error names that file
+/// when it cannot be read.
 pub fn read_file(path: impl AsRef<Path>, from: Option<Format>) -> Result<(Mesh, Format)> {
     let path = path.as_ref();
     let bytes = fs::read(path)?;
     let format = detect_format(&bytes, from.or_else(|| Format::for_path(path)))
         .ok_or_else(|| Error::UnknownFormat(path.display().to_string()))?;
+    if format == Format::SurpacDtm && !bytes.trim_ascii().is_empty() {
+        return Ok((surpac::read_path(path, &bytes)?, format));
+    }
     Ok((read_bytes(&bytes, format)?, format))
 }
 
 /// Writes `mesh` to `out` in `format`. Non-finite coordinates are an error
 /// ([`Mesh::validate`]); so are, in [`Format::Glb`], a mesh without triangles and
-/// coordinates too far from the mesh's centre for `f32` offsets.
+/// coordinates too far from the mesh's centre for `f32` offsets. [`Format::SurpacDtm`] is
+/// two files and cannot go to one writer: [`Error::InvalidParameter`] (write it by path,
+/// or with [`write_surpac_dtm`]).
 pub fn write(out: &mut impl Write, mesh: &Mesh, format: Format) -> Result<()> {
     mesh.validate()?;
     match format {
@@ -133,6 +165,13 @@ pub fn write(out: &mut impl Write, mesh: &Mesh, format: Format) -> Result<()> {
         Format::Dxf => dxf::write(out, mesh),
         Format::JsonSoup | Format::JsonKirra => json::write(out, mesh, format),
         Format::Glb => glb::write(out, mesh),
+        Format::GocadTs => gocad::write(out, mesh),
+        Format::LandXml => landxml::write(out, mesh),
+        Format::SurpacDtm => Err(Error::InvalidParameter(
+            "a Surpac DTM is two files, the .dtm and its string file .str: write it by path \
+             (io::write_path_as) or with io::write_surpac_dtm"
+                .into(),
+        )),
     }?;
     Ok(())
 }
@@ -145,8 +184,12 @@ pub fn write_path(path: impl AsRef<Path>, mesh: &Mesh) -> Result<()> {
     write_path_as(path, mesh, format)
 }
 
-/// Writes `mesh` to a file in `format`.
+/// Writes `mesh` to a file in `format`. A Surpac DTM's string file is written beside it:
+/// the same name with extension `str`.
 pub fn write_path_as(path: impl AsRef<Path>, mesh: &Mesh, format: Format) -> Result<()> {
+    if format == Format::SurpacDtm {
+        return surpac::write_path(path.as_ref(), mesh);
+    }
     write_file(path.as_ref(), |out| write(out, mesh, format))
 }
 
@@ -275,3 +318,6 @@ fn push_fan(poly: &[u32], out: &mut Vec<[u32; 3]>) {
 
 #[cfg(test)]
 mod tests;
+
+#[cfg(test)]
+mod mining_tests;

@@ -19,6 +19,7 @@
 //! | `transform` | [`transform()`] | [`TransformOutput`] | [`TransformReport`] |
 //! | `make` | [`make()`] | [`MakeOutput`] | [`MakeReport`] |
 //! | `classify` | [`classify_points`] | [`ClassifyOutput`] | [`ClassifyReport`] |
+//! | `cutfill` | [`cutfill()`] | [`CutFillOutput`] | [`CutFillReport`] |
 //! | `convert` | [`read`], [`write()`] | | |
 //!
 //! Inputs are plain [`Mesh`]es, checked at the door: non-finite
@@ -53,6 +54,7 @@ use crate::{Error, Format, Mesh, Result};
 
 mod boolean;
 mod curves;
+mod cutfill;
 mod make;
 mod operand;
 mod points;
@@ -65,6 +67,7 @@ pub use boolean::{
     boolean, boolean_many, BooleanManyOutput, BooleanOptions, BooleanOutput, BooleanReport,
 };
 pub use curves::{curves, self_curves, CurvesOptions, CurvesOutput, CurvesReport, TaggedSegment};
+pub use cutfill::{cutfill, CutFillOptions, CutFillOutput, CutFillReport};
 pub use make::{make, MakeOutput, MakeReport, Shape};
 pub use operand::{Checks, Input, Operand, OperandReport, SelfIntersections};
 pub use points::{

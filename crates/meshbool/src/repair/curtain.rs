@@ -35,9 +35,15 @@ pub struct CurtainReport {
 /// report's `faced_up` counts the triangles that reversed); loops are then walled in the
 /// direction the surface runs along them.
 pub fn curtain(mesh: &Mesh, floor_offset: f64) -> (Mesh, CurtainReport) {
+    let floor = mesh.bounds().map_or(0.0, |b| b.min[2]) - floor_offset;
+    curtain_to(mesh, floor)
+}
+
+/// [`curtain`] down to the plane `z = floor` given as such (at or below the lowest point),
+/// so that several surfaces can stand on the same floor exactly.
+pub(crate) fn curtain_to(mesh: &Mesh, floor: f64) -> (Mesh, CurtainReport) {
     let (up, oriented) = super::orient(mesh, super::Facing::ZUp);
     let mesh = &up;
-    let floor = mesh.bounds().map_or(0.0, |b| b.min[2]) - floor_offset;
     let (loops, open) = boundary_loops(mesh);
     let mut out = mesh.clone();
     let mut below: FxHashMap<u32, u32> = FxHashMap::default();

@@ -20,6 +20,7 @@ mod tjunction;
 mod weld;
 
 pub use cap::{boundary_loops, cap_holes, cap_small_holes, CapReport};
+pub(crate) use curtain::curtain_to;
 pub use curtain::{curtain, CurtainReport};
 pub use degenerate::{remove_degenerates, DegenerateOptions, DegenerateReport};
 pub use duplicates::{remove_duplicates, DuplicateReport};
