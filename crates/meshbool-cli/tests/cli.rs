@@ -203,8 +203,35 @@ fn curves_rejects_an_unknown_output_extension() {
         "-o",
         tmp("c.stl").to_str().unwrap(),
     ]);
-    assert_eq!(r.status.code(), Some(1));
-    assert!(String::from_utf8_lossy(&r.stderr).contains("polylines cannot be written"));
+    // A usage error, found before any work (issue 17: checked after the computation
+    // before, with exit 1).
+    assert_eq!(r.status.code(), Some(2));
+    assert!(
+        String::from_utf8_lossy(&r.stderr).contains("polylines are written as .obj, .dxf or .json")
+    );
+    // Mesh outputs likewise: an unknown extension, a directory that does not exist.
+    let (a, b) = (data("kirra_cup.obj"), data("kirra_cylinder.obj"));
+    for (out, says) in [
+        ("u.xyz".to_string(), "cannot tell the mesh format"),
+        ("/no/such/dir/u.ply".to_string(), "does not exist"),
+    ] {
+        for cmd in [
+            vec![
+                "union",
+                a.to_str().unwrap(),
+                b.to_str().unwrap(),
+                "-o",
+                &out,
+            ],
+            vec!["repair", a.to_str().unwrap(), "-o", &out],
+            vec!["orient", a.to_str().unwrap(), "-o", &out],
+        ] {
+            let r = meshbool(&cmd);
+            let err = String::from_utf8_lossy(&r.stderr);
+            assert_eq!(r.status.code(), Some(2), "{cmd:?}: {err}");
+            assert!(err.contains(says), "{cmd:?}: {err}");
+        }
+    }
 }
 
 fn write_cube(name: &str, min: [f64; 3], max: [f64; 3]) -> PathBuf {
@@ -1551,4 +1578,128 @@ fn a_failing_standard_output_is_an_error_or_a_quiet_end_never_a_panic() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(0), "{err}");
     assert!(!err.contains("panicked"), "{err}");
+}
+
+#[test]
+fn killing_a_large_write_leaves_the_earlier_file_or_the_whole_new_one() {
+    // A 2M-triangle sphere written as OBJ over an earlier file, the process killed at
+    // moments spread over the write: the path holds the earlier file or the whole new one.
+    let big = tmp("kill_big.ply");
+    let made = meshbool(&[
+        "make",
+        "sphere",
+        "--segments",
+        "1024",
+        "--rings",
+        "1024",
+        "-o",
+        big.to_str().unwrap(),
+    ]);
+    assert!(
+        made.status.success(),
+        "{}",
+        String::from_utf8_lossy(&made.stderr)
+    );
+    let want = meshbool::io::read_path(&big).unwrap().triangle_count();
+    assert!(want > 2_000_000);
+    let out = tmp("kill_out.obj");
+    let (mut earlier, mut whole) = (0, 0);
+    // The last run is not killed: its whole result is checked too.
+    for delay_ms in [0u64, 30, 80, 150, 250, 400, 600, 900, 1300, 2000, u64::MAX] {
+        meshbool::io::write_path(&out, &meshbool::Mesh::unit_cube()).unwrap();
+        let mut child = Command::new(env!("CARGO_BIN_EXE_meshbool"))
+            .args(["convert", big.to_str().unwrap(), out.to_str().unwrap()])
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        if delay_ms == u64::MAX {
+            assert!(child.wait().unwrap().success());
+        } else {
+            std::thread::sleep(std::time::Duration::from_millis(delay_ms));
+            let _ = child.kill();
+            let _ = child.wait();
+        }
+        let n = meshbool::io::read_path(&out).unwrap().triangle_count();
+        assert!(n == 12 || n == want, "after {delay_ms} ms: {n} triangles");
+        if n == 12 {
+            earlier += 1;
+        } else {
+            whole += 1;
+        }
+    }
+    // Both outcomes happened (the first kill falls long before the rename).
+    assert!(earlier > 0 && whole > 0, "{earlier} earlier, {whole} whole");
+    for f in std::fs::read_dir(out.parent().unwrap()).unwrap() {
+        let name = f.unwrap().path();
+        if name.to_string_lossy().ends_with(".meshbool-tmp") {
+            let _ = std::fs::remove_file(name); // left by the kills
+        }
+    }
+}
+
+#[test]
+fn thresholds_that_would_empty_or_overflow_a_mesh_are_refused() {
+    let cyl = data("kirra_cylinder.obj");
+    let terrain = data("kirra_terrain.obj");
+    let out = tmp("refused.ply");
+    let o = out.to_str().unwrap();
+    for (args, says) in [
+        (
+            vec![
+                "repair",
+                cyl.to_str().unwrap(),
+                "-o",
+                o,
+                "--remove-degenerate",
+                "--max-aspect=-5",
+            ],
+            "maximum aspect",
+        ),
+        (
+            vec![
+                "repair",
+                cyl.to_str().unwrap(),
+                "-o",
+                o,
+                "--remove-degenerate",
+                "--max-aspect=0",
+            ],
+            "maximum aspect",
+        ),
+        (
+            vec![
+                "repair",
+                cyl.to_str().unwrap(),
+                "-o",
+                o,
+                "--remove-degenerate",
+                "--min-area=inf",
+            ],
+            "minimum area",
+        ),
+        (
+            vec!["repair", cyl.to_str().unwrap(), "-o", o, "--weld", "-1"],
+            "weld must be",
+        ),
+        (
+            vec![
+                "close",
+                terrain.to_str().unwrap(),
+                "-o",
+                o,
+                "--mode",
+                "curtain",
+                "--floor-offset",
+                "1e308",
+            ],
+            "too large",
+        ),
+    ] {
+        let r = meshbool(&args);
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert_eq!(r.status.code(), Some(1), "{args:?}: {err}");
+        assert!(err.contains(says), "{args:?}: {err}");
+        assert!(!out.exists(), "{args:?} wrote a file");
+    }
 }

@@ -17,8 +17,8 @@ pub struct Args {
     a: PathBuf,
     /// Second mesh (B).
     b: PathBuf,
-    /// Output mesh file.
-    #[arg(short, long)]
+    /// Output mesh file (its extension names the format).
+    #[arg(short, long, value_parser = super::mesh_output)]
     output: PathBuf,
     /// Keep the result's non-manifold edges and vertices (solids touching along an edge or
     /// at a vertex) instead of splitting them.
@@ -34,8 +34,8 @@ pub struct ManyArgs {
     /// The meshes: A and B, or more (computed in one call, pairwise in a balanced tree).
     #[arg(num_args = 2.., required = true)]
     inputs: Vec<PathBuf>,
-    /// Output mesh file.
-    #[arg(short, long)]
+    /// Output mesh file (its extension names the format).
+    #[arg(short, long, value_parser = super::mesh_output)]
     output: PathBuf,
     /// Keep the result's non-manifold edges and vertices (solids touching along an edge or
     /// at a vertex) instead of splitting them.

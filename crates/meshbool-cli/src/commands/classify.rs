@@ -20,7 +20,7 @@ pub struct Args {
     /// Write one line per point (`x,y,z,class,winding`) to this file (`.csv`), or a JSON
     /// array of `{class, winding}` (`.json`). Without it the lines go to standard output
     /// (with --json: into the report).
-    #[arg(short, long)]
+    #[arg(short, long, value_parser = super::any_output)]
     output: Option<PathBuf>,
     /// The mesh's checks (as for a boolean operand), --json and --threads.
     #[command(flatten)]
@@ -64,11 +64,11 @@ pub fn run(args: &Args) -> Result<()> {
                 .is_some_and(|e| e.eq_ignore_ascii_case("json")) =>
         {
             let results = out.report(true).results;
-            std::fs::write(path, serde_json::to_string(&results)?)
-                .with_context(|| format!("writing {}", path.display()))?;
+            meshbool::io::write_bytes(path, serde_json::to_string(&results)?.as_bytes())?;
         }
-        Some(path) => std::fs::write(path, format!("x,y,z,class,winding\n{}", lines()))
-            .with_context(|| format!("writing {}", path.display()))?,
+        Some(path) => {
+            meshbool::io::write_bytes(path, format!("x,y,z,class,winding\n{}", lines()).as_bytes())?
+        }
         None if !args.flags.json => super::out(&lines())?,
         None => {}
     }

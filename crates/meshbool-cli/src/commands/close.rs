@@ -10,11 +10,12 @@ use super::{one_of, print_json};
 
 /// Arguments of `close`.
 #[derive(clap::Args)]
+#[command(allow_negative_numbers = true)]
 pub struct Args {
     /// Input mesh.
     input: PathBuf,
-    /// Output mesh file.
-    #[arg(short, long)]
+    /// Output mesh file (its extension names the format).
+    #[arg(short, long, value_parser = super::mesh_output)]
     output: PathBuf,
     /// How to close.
     #[arg(long, ignore_case = true, default_value = "cap", value_parser = one_of::<CloseMode>(CloseMode::ALL.map(CloseMode::name)))]

@@ -16,7 +16,7 @@ pub struct Args {
     /// Second mesh; without it, the curves where the first crosses itself.
     b: Option<PathBuf>,
     /// Output file for the polylines (.obj, .dxf or .json).
-    #[arg(short, long)]
+    #[arg(short, long, value_parser = super::polyline_output)]
     output: Option<PathBuf>,
     /// Leave out segments that only bound coplanar overlaps (shared faces).
     #[arg(long)]

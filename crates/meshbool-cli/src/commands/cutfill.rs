@@ -16,7 +16,7 @@ pub struct Args {
     topo: PathBuf,
     /// Write the lines where the surfaces meet (zero thickness) as polylines (.obj, .dxf
     /// or .json).
-    #[arg(short, long)]
+    #[arg(short, long, value_parser = super::polyline_output)]
     output: Option<PathBuf>,
     /// Print a JSON report on stdout.
     #[arg(long)]
@@ -46,7 +46,7 @@ pub fn run(args: &Args) -> Result<()> {
         })?;
         let mut bytes = Vec::new();
         meshbool::io::write_polylines(&mut bytes, &out.lines, format)?;
-        std::fs::write(path, bytes)?;
+        meshbool::io::write_bytes(path, &bytes)?;
     }
     let r = out.report();
     if args.json {

@@ -38,8 +38,8 @@ enum ShapeArgs {
 /// What every shape takes.
 #[derive(clap::Args)]
 struct Out {
-    /// Output mesh file.
-    #[arg(short, long)]
+    /// Output mesh file (its extension names the format).
+    #[arg(short, long, value_parser = super::mesh_output)]
     output: PathBuf,
     /// Print a JSON report on stdout.
     #[arg(long)]

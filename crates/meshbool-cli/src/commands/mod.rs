@@ -109,6 +109,59 @@ impl Drop for Spinner {
     }
 }
 
+/// The directory a path will be written into must exist: checked before any work.
+fn existing_parent(path: &std::path::Path) -> Result<(), String> {
+    match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() && !d.is_dir() => {
+            Err(format!("the directory {} does not exist", d.display()))
+        }
+        _ => Ok(()),
+    }
+}
+
+/// Parses an output mesh path, refusing (a usage error, before any work) one whose format
+/// the extension does not name or whose directory does not exist.
+pub fn mesh_output(s: &str) -> Result<std::path::PathBuf, String> {
+    let path = std::path::PathBuf::from(s);
+    if meshbool::Format::for_path(&path).is_none() {
+        return Err(format!(
+            "cannot tell the mesh format of {s} from its extension: use one of {}",
+            meshbool::Format::NAMES
+                .iter()
+                .map(|(_, f)| format!(".{}", f.extension()))
+                .collect::<std::collections::BTreeSet<_>>()
+                .into_iter()
+                .collect::<Vec<_>>()
+                .join(" ")
+        ));
+    }
+    existing_parent(&path)?;
+    Ok(path)
+}
+
+/// Parses an output polyline path (.obj, .dxf or .json), checked as [`mesh_output`] is.
+pub fn polyline_output(s: &str) -> Result<std::path::PathBuf, String> {
+    let path = std::path::PathBuf::from(s);
+    let ok = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| ["obj", "dxf", "json"].contains(&e.to_ascii_lowercase().as_str()));
+    if !ok {
+        return Err(format!(
+            "polylines are written as .obj, .dxf or .json, not {s}"
+        ));
+    }
+    existing_parent(&path)?;
+    Ok(path)
+}
+
+/// Parses any output file path: its directory must exist.
+pub fn any_output(s: &str) -> Result<std::path::PathBuf, String> {
+    let path = std::path::PathBuf::from(s);
+    existing_parent(&path)?;
+    Ok(path)
+}
+
 /// Writes `text` to standard output: a failure (a closed pipe, a full disk) is an error
 /// naming standard output, never a panic (`main` ends quietly on a closed pipe).
 pub fn out(text: &str) -> Result<()> {

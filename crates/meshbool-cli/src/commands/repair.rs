@@ -10,11 +10,12 @@ use super::{one_of, print_json};
 
 /// Arguments of `repair`: each flag overrides the configuration file's field.
 #[derive(clap::Args)]
+#[command(allow_negative_numbers = true)]
 pub struct Args {
     /// Input mesh.
     input: PathBuf,
-    /// Output mesh file.
-    #[arg(short, long)]
+    /// Output mesh file (its extension names the format).
+    #[arg(short, long, value_parser = super::mesh_output)]
     output: PathBuf,
     /// A JSON configuration (fields of `RepairConfig`; left-out fields default).
     #[arg(long)]

@@ -193,16 +193,53 @@ pub fn write_path_as(path: impl AsRef<Path>, mesh: &Mesh, format: Format) -> Res
     write_file(path.as_ref(), |out| write(out, mesh, format))
 }
 
-/// Creates the file at `path` and lets `fill` write it through a buffer: the one way
-/// files are written.
-pub(crate) fn write_file(
+/// Writes the file at `path` through `fill`, so that it is never seen half-written: the
+/// one way files are written. The content goes to a new temporary file beside `path`
+/// (same directory, hidden name), is synced to disk, and the temporary file is renamed
+/// over `path` (atomic on POSIX file systems). On any failure the temporary file is
+/// removed and whatever was at `path` before is untouched — an input named as the output
+/// included.
+pub fn write_file(
     path: &Path,
     fill: impl FnOnce(&mut BufWriter<fs::File>) -> Result<()>,
 ) -> Result<()> {
-    let mut out = BufWriter::new(fs::File::create(path)?);
-    fill(&mut out)?;
-    out.flush()?;
-    Ok(())
+    static COUNT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let name = path
+        .file_name()
+        .ok_or_else(|| Error::InvalidParameter(format!("{} is not a file name", path.display())))?;
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let n = COUNT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let tmp = dir.join(format!(
+        ".{}.{}-{n}.meshbool-tmp",
+        name.to_string_lossy(),
+        std::process::id()
+    ));
+    let result = (|| {
+        let file = fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&tmp)?;
+        let mut out = BufWriter::new(file);
+        fill(&mut out)?;
+        let file = out.into_inner().map_err(|e| Error::Io(e.into_error()))?;
+        file.sync_all()?;
+        fs::rename(&tmp, path)?;
+        Ok(())
+    })();
+    if result.is_err() {
+        let _ = fs::remove_file(&tmp);
+    }
+    result
+}
+
+/// Writes `bytes` to `path` as [`write_file`] does (never half-written, nothing lost on
+/// failure), the error naming the file.
+pub fn write_bytes(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
+    let path = path.as_ref();
+    write_file(path, |out| Ok(out.write_all(bytes)?)).map_err(|e| e.in_file("writing", path))
 }
 
 /// Output assembled in a buffer and handed to the writer in pieces of about 64 KiB, with

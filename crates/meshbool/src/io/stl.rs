@@ -201,6 +201,34 @@ pub(super) fn write_binary(out: &mut impl Write, mesh: &Mesh) -> Result<()> {
     let n = u32::try_from(mesh.triangles.len()).map_err(|_| {
         Error::invalid(Location::Whole, "binary STL holds at most 2^32-1 triangles")
     })?;
+    // Never write what cannot be read back: a coordinate beyond f32's range would become
+    // infinite, and a triangle whose corners differ only below f32's resolution would
+    // collapse (tiny coordinates rounded to zero are kept where nothing collapses).
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        let c64 = tri.map(|v| mesh.positions[v as usize]);
+        let c32 = c64.map(|p| p.map(|x| x as f32));
+        if let Some(k) = (0..3).find(|&k| c32[k].iter().any(|x| !x.is_finite())) {
+            return Err(Error::invalid(
+                Location::Vertex(tri[k] as usize),
+                format!(
+                    "coordinates {:?} cannot be stored in binary STL's 32-bit floats (beyond \
+                     their range); write another format (PLY, OBJ and glb keep them)",
+                    c64[k]
+                ),
+            ));
+        }
+        let collapses = (0..3).any(|k| {
+            let j = (k + 1) % 3;
+            c32[k] == c32[j] && c64[k] != c64[j]
+        });
+        if collapses {
+            return Err(Error::invalid(
+                Location::Triangle(t),
+                "its corners differ only below the resolution of binary STL's 32-bit floats \
+                 (it would collapse); write another format (PLY, OBJ and glb keep them)",
+            ));
+        }
+    }
     let mut head = [b' '; HEADER + 4];
     let label = b"meshbool binary STL";
     head[..label.len()].copy_from_slice(label);

@@ -312,14 +312,12 @@ pub(super) fn write_path(path: &std::path::Path, mesh: &Mesh) -> Result<()> {
     let name = path
         .file_stem()
         .map_or_else(|| "meshbool".into(), |s| s.to_string_lossy().into_owned());
-    let mut strings =
-        std::io::BufWriter::new(std::fs::File::create(&strings_path).map_err(|e| {
-            Error::from(e).in_file("creating the DTM's string file", &strings_path)
-        })?);
-    super::write_file(path, |dtm| {
-        write_surpac_dtm(dtm, &mut strings, mesh, &name)?;
-        strings
-            .flush()
-            .map_err(|e| Error::from(e).in_file("writing the DTM's string file", &strings_path))
-    })
+    // The string file first, then the DTM (each written whole or not at all): a DTM is
+    // never beside a string file it does not belong to for longer than the two renames.
+    let mut strings = Vec::new();
+    let mut dtm = Vec::new();
+    write_surpac_dtm(&mut dtm, &mut strings, mesh, &name)?;
+    super::write_file(&strings_path, |out| Ok(out.write_all(&strings)?))
+        .map_err(|e| e.in_file("writing the DTM's string file", &strings_path))?;
+    super::write_file(path, |out| Ok(out.write_all(&dtm)?))
 }

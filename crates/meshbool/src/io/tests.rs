@@ -474,6 +474,78 @@ fn writing_invalid_mesh_is_an_error() {
 }
 
 #[test]
+fn binary_stl_refuses_coordinates_beyond_or_below_f32() {
+    for x in [1e39, -3.5e38] {
+        let mut m = Mesh::unit_cube();
+        m.positions[3][1] = x;
+        let e = write(&mut Vec::new(), &m, Format::StlBinary).unwrap_err();
+        assert!(
+            matches!(
+                &e,
+                Error::InvalidMesh {
+                    location: Location::Vertex(3),
+                    ..
+                }
+            ),
+            "{x}: {e}"
+        );
+        assert!(e.to_string().contains("32-bit"), "{e}");
+        // Formats in f64 keep it.
+        let back = read_bytes(&write_to_vec(&m, Format::PlyBinaryLe), Format::PlyBinaryLe);
+        assert_eq!(back.unwrap().positions[3][1], x);
+    }
+    // A cube of side 1e-50 would collapse to a point: refused, naming a triangle.
+    let tiny = Mesh::cuboid([0.0; 3], [1e-50; 3]);
+    let e = write(&mut Vec::new(), &tiny, Format::StlBinary).unwrap_err();
+    assert!(
+        matches!(
+            &e,
+            Error::InvalidMesh {
+                location: Location::Triangle(_),
+                ..
+            }
+        ),
+        "{e}"
+    );
+    // A tiny coordinate that only rounds to zero, collapsing nothing, is written (and
+    // f32's extremes themselves are fine).
+    let mut m = Mesh::unit_cube();
+    m.positions[0][1] = 1e-50; // (0, 1e-50, 0): rounds to the origin, no other corner is there
+    m.positions[4][1] = f64::from(f32::MAX);
+    m.positions[5][1] = f64::from(f32::from_bits(1)); // the smallest subnormal
+    assert!(write(&mut Vec::new(), &m, Format::StlBinary).is_ok());
+}
+
+#[test]
+fn a_failed_write_leaves_the_earlier_file_and_no_temporary_file() {
+    let dir = std::env::temp_dir().join(format!("meshbool-atomic-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("result.stl");
+    std::fs::write(&path, b"earlier content").unwrap();
+    // A writer that fails halfway (after writing some bytes).
+    let r = write_file(&path, |out| {
+        out.write_all(&[7u8; 100_000])?;
+        Err(Error::InvalidParameter("stop".into()))
+    });
+    assert!(r.is_err());
+    assert_eq!(std::fs::read(&path).unwrap(), b"earlier content");
+    // A mesh that cannot be written in the format asked (binary STL range) likewise.
+    let mut m = Mesh::unit_cube();
+    m.positions[0][0] = 1e300;
+    assert!(write_path(&path, &m).is_err());
+    assert_eq!(std::fs::read(&path).unwrap(), b"earlier content");
+    let left: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(left, [std::ffi::OsString::from("result.stl")]);
+    // A successful write replaces it whole.
+    write_path(&path, &Mesh::unit_cube()).unwrap();
+    assert_eq!(read_path(&path).unwrap().triangle_count(), 12);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
 fn welds_on_read_says_exactly_which_readers_weld() {
     // The unit cube as an unwelded soup (36 vertices): readers that weld give 8.
     let soup = Mesh::from_soup_unwelded(&Mesh::unit_cube().to_soup());

@@ -202,10 +202,19 @@ impl SplitOutput {
     }
 
     /// Writes every group and component to `dir` (created if needed) in `format`, then
-    /// `manifest.json` (the returned report).
+    /// `manifest.json` (the returned report). Each file is written whole or not at all;
+    /// an earlier manifest is removed first and the new one written last, so a directory
+    /// with a manifest always holds the pieces it lists.
     pub fn write_dir(&self, dir: impl AsRef<Path>, format: Format) -> Result<SplitReport> {
         let dir = dir.as_ref();
         std::fs::create_dir_all(dir).map_err(|e| Error::from(e).in_file("creating", dir))?;
+        let manifest = dir.join("manifest.json");
+        match std::fs::remove_file(&manifest) {
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                return Err(Error::from(e).in_file("removing the earlier", &manifest))
+            }
+            _ => {}
+        }
         let report = self.report(format);
         for (g, info) in self.groups.iter().zip(&report.groups) {
             super::write(dir.join(&info.piece.file), &g.mesh, Some(format))?;
@@ -213,11 +222,9 @@ impl SplitOutput {
                 super::write(dir.join(&ci.file), c, Some(format))?;
             }
         }
-        let manifest = dir.join("manifest.json");
         let text = serde_json::to_string_pretty(&report)
             .map_err(|e| Error::InvalidParameter(e.to_string()))?;
-        std::fs::write(&manifest, text)
-            .map_err(|e| Error::from(e).in_file("writing", &manifest))?;
+        crate::io::write_bytes(&manifest, text.as_bytes())?;
         Ok(report)
     }
 

@@ -29,6 +29,33 @@ impl Default for DegenerateOptions {
     }
 }
 
+impl DegenerateOptions {
+    /// The smallest aspect a triangle can have (an equilateral triangle's, 2/√3): a
+    /// `max_aspect` below it would remove every triangle.
+    pub const MIN_ASPECT: f64 = 1.154_700_538_379_251_5;
+
+    /// Checks the thresholds: `min_area` a finite area ≥ 0, `max_aspect` a finite number
+    /// at least [`Self::MIN_ASPECT`]. Anything else is an error, not a mesh emptied.
+    pub fn validate(&self) -> crate::Result<()> {
+        if !(self.min_area.is_finite() && self.min_area >= 0.0) {
+            return Err(crate::Error::InvalidParameter(format!(
+                "the minimum area must be a finite number >= 0, got {}",
+                self.min_area
+            )));
+        }
+        if let Some(a) = self.max_aspect {
+            if !(a.is_finite() && a >= Self::MIN_ASPECT) {
+                return Err(crate::Error::InvalidParameter(format!(
+                    "the maximum aspect must be a finite number >= {:.4} (an equilateral \
+                     triangle's: anything smaller removes every triangle), got {a}",
+                    Self::MIN_ASPECT
+                )));
+            }
+        }
+        Ok(())
+    }
+}
+
 /// What [`remove_degenerates`] did.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct DegenerateReport {

@@ -108,6 +108,18 @@ pub fn close(
             )));
         }
     }
+    if matches!(mode, CloseMode::Curtain | CloseMode::StitchCurtain) {
+        // The solid's volume must stay a number: its height times its plan extent.
+        if let Some(b) = mesh.bounds() {
+            let height = b.max[2] - (b.min[2] - offset);
+            let extent = (b.max[0] - b.min[0]).max(b.max[1] - b.min[1]);
+            if !(height * extent * extent).is_finite() {
+                return Err(Error::InvalidParameter(format!(
+                    "floor offset {offset:e} is too large: the closed solid's volume would overflow"
+                )));
+            }
+        }
+    }
     let gap = opts.stitch_max_gap.unwrap_or(f64::INFINITY);
     let mut report = CloseReport::default();
     let out = match mode {
@@ -238,11 +250,7 @@ pub fn repair(mesh: &Mesh, config: &RepairConfig) -> Result<(Mesh, RepairReport)
         ));
     }
     if let Some(d) = &config.degenerate {
-        if d.min_area.is_nan() || d.min_area < 0.0 || d.max_aspect.is_some_and(|a| a.is_nan()) {
-            return Err(Error::InvalidParameter(format!(
-                "degenerate thresholds must be numbers >= 0, got {d:?}"
-            )));
-        }
+        d.validate()?;
     }
     let mut report = RepairReport {
         before: mesh_stats(mesh),
