@@ -62,9 +62,9 @@ enum Command {
     /// curtain the rest).
     Close(close::Args),
     /// Repair pipeline. Steps, in this order, each only when asked for: weld within a
-    /// distance, duplicate removal, T-junctions, degenerate/sliver removal, orientation
-    /// (on by default: consistent, majority facing), terrain folds, closing, capping
-    /// small gaps left.
+    /// distance, duplicate removal, boundary weld, T-junctions, degenerate/sliver removal,
+    /// orientation (on by default: consistent, majority facing), terrain folds, closing,
+    /// capping small gaps left.
     /// Every removed triangle is counted in the report. `--config FILE.json` gives the
     /// whole configuration (the library's `RepairConfig`); flags override it.
     Repair(repair::Args),

@@ -544,6 +544,266 @@ fn repair_tjunctions_closes_a_cube_crack() {
     );
 }
 
+/// Runs `repair` on `mesh` (written as OBJ under `name`) with `flags`: the JSON report.
+fn repair_json(mesh: &meshbool::Mesh, name: &str, flags: &[&str]) -> serde_json::Value {
+    let input = tmp(&format!("{name}.obj"));
+    meshbool::io::write_path(&input, mesh).unwrap();
+    let out = tmp(&format!("{name}_fixed.obj"));
+    let mut args = vec![
+        "repair",
+        input.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--json",
+    ];
+    args.extend(flags);
+    report(&args)
+}
+
+#[test]
+fn repair_tjunctions_with_a_distance_closes_a_near_t_junction() {
+    // Two unit squares side by side; the right one is fanned around a vertex 1e-4 to the
+    // right of the middle of the left one's right edge: a T-junction 1e-4 off the edge.
+    let m = meshbool::Mesh::new(
+        vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [2.0, 1.0, 0.0],
+            [1.0001, 0.5, 0.0],
+        ],
+        vec![[0, 1, 2], [0, 2, 3], [6, 1, 4], [6, 4, 5], [6, 5, 2]],
+    )
+    .unwrap();
+    // Exact (also with a distance of 0, or one below the gap): the seam stays open, four
+    // edges around each square and the right one's left edge in two.
+    for flags in [
+        &["--tjunctions"][..],
+        &["--tjunctions", "0"],
+        &["--tjunctions", "1e-5"],
+    ] {
+        let r = repair_json(&m, "near_t", flags);
+        assert_eq!(r["before"]["boundary_edges"], 9, "{flags:?}");
+        assert_eq!(r["tjunctions"]["edges_split"], 0, "{flags:?}");
+        assert_eq!(r["tjunctions"]["largest_distance"], 0.0, "{flags:?}");
+        assert_eq!(r["after"]["boundary_edges"], 9, "{flags:?}");
+    }
+    // Within 1e-3: the left square's edge is split through the vertex; only the outline
+    // of the two squares is left open.
+    let r = repair_json(&m, "near_t", &["--tjunctions", "1e-3"]);
+    assert_eq!(r["tjunctions"]["edges_split"], 1);
+    assert_eq!(r["tjunctions"]["vertices_inserted"], 1);
+    assert_eq!(r["tjunctions"]["largest_distance"], 1.0001 - 1.0);
+    let a = &r["after"];
+    assert_eq!(
+        (
+            &a["boundary_edges"],
+            &a["inconsistent_edges"],
+            &a["triangles"]
+        ),
+        (&6.into(), &0.into(), &6.into())
+    );
+    // The same from a configuration file.
+    let cfg = tmp("near_t.json");
+    std::fs::write(&cfg, r#"{"tjunction_tolerance": 0.001}"#).unwrap();
+    let r = repair_json(&m, "near_t", &["--config", cfg.to_str().unwrap()]);
+    assert_eq!(r["after"]["boundary_edges"], 6);
+}
+
+/// The unit cube as two closed boxes stacked at z = 0.5, the upper one's bottom face
+/// (its own vertices, facing down) lifted by 1e-4: a double wall 1e-4 thick.
+fn stacked_boxes() -> meshbool::Mesh {
+    let mut m = meshbool::Mesh::cuboid([0.0; 3], [1.0, 1.0, 0.5]);
+    let (mut positions, triangles) = meshbool::Mesh::unit_cube().into_parts();
+    for p in &mut positions {
+        if p[2] == 0.0 {
+            p[2] = 0.5001;
+        }
+    }
+    m.append(&meshbool::Mesh::new(positions, triangles).unwrap())
+        .unwrap();
+    m
+}
+
+#[test]
+fn repair_remove_overlapping_removes_near_copies_and_near_double_walls() {
+    // A closed unit cube and a copy of its top face lifted by 1e-4, facing up too: the
+    // copy goes (the first of each pair stays), the cube is closed.
+    let (mut positions, mut triangles) = meshbool::Mesh::unit_cube().into_parts();
+    let top: Vec<[u32; 3]> = triangles
+        .iter()
+        .filter(|t| t.iter().all(|&v| positions[v as usize][2] == 1.0))
+        .copied()
+        .collect();
+    assert_eq!(top.len(), 2);
+    for t in top {
+        for v in t {
+            let [x, y, _] = positions[v as usize];
+            positions.push([x, y, 1.0001]);
+        }
+        let n = positions.len() as u32;
+        triangles.push([n - 3, n - 2, n - 1]);
+    }
+    let m = meshbool::Mesh::new(positions, triangles).unwrap();
+    let r = repair_json(&m, "near_copy", &["--remove-overlapping", "1e-3"]);
+    let d = &r["duplicates"];
+    assert_eq!(
+        (&d["same_orientation_removed"], &d["anti_parallel_removed"]),
+        (&2.into(), &0.into())
+    );
+    assert_eq!(d["largest_distance"], 1.0001 - 1.0);
+    let a = &r["after"];
+    assert_eq!(
+        (
+            &a["triangles"],
+            &a["boundary_edges"],
+            &a["closed"],
+            &a["volume"]
+        ),
+        (&12.into(), &0.into(), &true.into(), &1.0.into())
+    );
+    // Exactly, nothing is a copy: the sheet stays, its four edges open.
+    let r = repair_json(&m, "near_copy", &["--remove-duplicates"]);
+    assert_eq!(r["duplicates"]["same_orientation_removed"], 0);
+    assert_eq!(r["after"]["boundary_edges"], 4);
+
+    // The near double wall between two stacked boxes: both walls go, and the boundary
+    // weld (after the duplicates step) closes the cut: the unit cube.
+    let m = stacked_boxes();
+    let flags = ["--remove-overlapping", "1e-3", "--weld-boundary", "1e-3"];
+    let r = repair_json(&m, "double_wall", &flags);
+    assert_eq!(r["duplicates"]["anti_parallel_removed"], 4);
+    assert_eq!(r["weld_boundary"]["merged_vertices"], 4);
+    let a = &r["after"];
+    assert_eq!(
+        (
+            &a["triangles"],
+            &a["boundary_edges"],
+            &a["closed"],
+            &a["volume"]
+        ),
+        (&20.into(), &0.into(), &true.into(), &1.0.into())
+    );
+    // Exactly: the walls are 1e-4 apart, not removed; two closed boxes.
+    let r = repair_json(&m, "double_wall", &["--remove-duplicates"]);
+    assert_eq!(r["duplicates"]["anti_parallel_removed"], 0);
+    let a = &r["after"];
+    assert_eq!((&a["triangles"], &a["closed"]), (&24.into(), &true.into()));
+    assert!((a["volume"].as_f64().unwrap() - 0.9999).abs() < 1e-12);
+}
+
+#[test]
+fn repair_weld_boundary_closes_two_open_halves_and_keeps_interior_vertices() {
+    // The unit cube cut at z = 0.5 into two open boxes, the upper one lifted by 1e-4.
+    // The lower one's bottom is fanned around two interior vertices 5e-4 apart.
+    let low = open_box(0.0, 0.5, true);
+    let (mut positions, triangles) = low.into_parts();
+    let corner = |p: [f64; 3]| positions.iter().position(|q| *q == p).unwrap() as u32;
+    let c = [
+        corner([0.0, 0.0, 0.0]),
+        corner([1.0, 0.0, 0.0]),
+        corner([1.0, 1.0, 0.0]),
+        corner([0.0, 1.0, 0.0]),
+    ];
+    let mut triangles: Vec<[u32; 3]> = triangles
+        .into_iter()
+        .filter(|t| t.iter().any(|&v| positions[v as usize][2] != 0.0))
+        .collect();
+    let (p, q) = (positions.len() as u32, positions.len() as u32 + 1);
+    positions.extend([[0.5, 0.5, 0.0], [0.5005, 0.5, 0.0]]);
+    // Facing down: the fan of the square c0 c1 c2 c3 around p (left) and q (right).
+    triangles.extend([
+        [c[0], q, c[1]],
+        [c[1], q, c[2]],
+        [c[2], p, c[3]],
+        [c[3], p, c[0]],
+        [c[0], p, q],
+        [q, p, c[2]],
+    ]);
+    let mut m = meshbool::Mesh::new(positions, triangles).unwrap();
+    m.append(&open_box(0.5001, 1.0, false)).unwrap();
+    let r = repair_json(&m, "halves", &["--weld-boundary", "1e-3"]);
+    assert_eq!(r["before"]["boundary_edges"], 8);
+    assert_eq!(r["weld_boundary"]["merged_vertices"], 4);
+    assert_eq!(r["weld_boundary"]["collapsed_triangles"], 0);
+    let a = &r["after"];
+    assert_eq!(
+        (
+            &a["boundary_edges"],
+            &a["inconsistent_edges"],
+            &a["closed"],
+            &a["volume"]
+        ),
+        (&0.into(), &0.into(), &true.into(), &1.0.into())
+    );
+    // The interior pair is as close as the rims but stays two vertices: the cube's 8
+    // corners, the 4 of the cut, the 2 interior ones.
+    assert_eq!(a["vertices"], 14);
+    let (fixed, _) = meshbool::ops::read(tmp("halves_fixed.obj"), None).unwrap();
+    assert!(fixed.positions().contains(&[0.5, 0.5, 0.0]));
+    assert!(fixed.positions().contains(&[0.5005, 0.5, 0.0]));
+    // A weld of every vertex takes the pair as well (its two triangles between them go).
+    let r = repair_json(&m, "halves", &["--weld", "1e-3"]);
+    assert_eq!(r["weld"]["merged_vertices"], 5);
+    assert_eq!(r["weld"]["collapsed_triangles"], 2);
+    // Below the gap: nothing merges, the cut stays open.
+    let r = repair_json(&m, "halves", &["--weld-boundary", "1e-5"]);
+    assert_eq!(r["after"]["boundary_edges"], 8);
+}
+
+#[test]
+fn repair_refuses_negative_and_non_finite_distances() {
+    let cube = write_cube("bad_d.obj", [0.0; 3], [1.0; 3]);
+    let out = tmp("bad_d_out.obj");
+    let cfg = tmp("bad_d.json");
+    std::fs::write(&cfg, r#"{"weld_boundary": -2}"#).unwrap();
+    for (flags, says) in [
+        (
+            &["--tjunctions=-1"][..],
+            "tjunction_tolerance must be a finite distance >= 0, got -1",
+        ),
+        (
+            &["--tjunctions", "-0.001"],
+            "tjunction_tolerance must be a finite distance >= 0",
+        ),
+        (
+            &["--tjunctions", "inf"],
+            "tjunction_tolerance must be a finite distance >= 0, got inf",
+        ),
+        (
+            &["--remove-overlapping", "nan"],
+            "remove_overlapping must be a finite distance >= 0, got NaN",
+        ),
+        (
+            &["--remove-overlapping=-0.5"],
+            "remove_overlapping must be a finite distance >= 0",
+        ),
+        (
+            &["--weld-boundary", "-1"],
+            "weld_boundary must be a finite distance >= 0, got -1",
+        ),
+        (
+            &["--config", cfg.to_str().unwrap()],
+            "weld_boundary must be a finite distance >= 0, got -2",
+        ),
+    ] {
+        let mut args = vec![
+            "repair",
+            cube.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ];
+        args.extend(flags);
+        let r = meshbool(&args);
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert_eq!(r.status.code(), Some(1), "{flags:?}: {err}");
+        assert!(err.contains(says), "{flags:?}: {err}");
+        assert!(!out.exists(), "{flags:?} wrote a file");
+    }
+}
+
 /// A box over `[0, 1]² × [z0, z1]` with its top (`top = false`) or bottom face missing.
 fn open_box(z0: f64, z1: f64, drop_top: bool) -> meshbool::Mesh {
     let m = meshbool::Mesh::cuboid([0.0, 0.0, z0], [1.0, 1.0, z1]);
@@ -1701,5 +1961,96 @@ fn thresholds_that_would_empty_or_overflow_a_mesh_are_refused() {
         assert_eq!(r.status.code(), Some(1), "{args:?}: {err}");
         assert!(err.contains(says), "{args:?}: {err}");
         assert!(!out.exists(), "{args:?} wrote a file");
+    }
+}
+
+#[test]
+fn the_convoluted_block_is_oriented_and_cut_by_the_terrain() {
+    // Closed, 6 inconsistent edges: the door orients it; the parts above and below the
+    // terrain add up to the oriented block.
+    let block = data("kirra_convoluted.obj");
+    let terrain = data("kirra_terrain.obj");
+    let info = report(&["info", "--json", block.to_str().unwrap()]);
+    assert_eq!(
+        (&info["inconsistent_edges"], &info["closed"]),
+        (&6.into(), &true.into())
+    );
+    let oriented = tmp("conv_oriented.ply");
+    let o = report(&[
+        "orient",
+        block.to_str().unwrap(),
+        "-o",
+        oriented.to_str().unwrap(),
+        "--outward",
+        "--json",
+    ]);
+    assert_eq!(o["conflicting_edges"], 0);
+    let whole = report(&["info", "--json", oriented.to_str().unwrap()])["volume"]
+        .as_f64()
+        .unwrap();
+    let part = |op: &str| {
+        let out = tmp(&format!("conv_{op}.ply"));
+        let v = report(&[
+            op,
+            block.to_str().unwrap(),
+            terrain.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--json",
+        ]);
+        assert_eq!(v["closed"], true, "{op}");
+        v["volume"].as_f64().unwrap()
+    };
+    let (above, below) = (part("difference"), part("intersection"));
+    assert!(above > 0.0 && below > 0.0);
+    assert!(
+        (above + below - whole).abs() < 1e-9 * whole,
+        "{above} + {below} vs {whole}"
+    );
+}
+
+#[test]
+fn readers_refuse_content_beyond_the_format_and_say_what_is_wrong() {
+    // Issue 17: a binary STL whose header starts with "solid" and whose count is wrong was
+    // "malformed ASCII STL"; extra PLY lines and junk after an OBJ vertex were read as if
+    // absent; a bad JSON triangle was "did not match any variant of untagged enum Tri".
+    let mut stl = Vec::from(&b"solid cube"[..]);
+    stl.resize(80, b' ');
+    stl.extend_from_slice(&13u32.to_le_bytes());
+    stl.resize(84 + 50 * 12, 0);
+    let p = "{\"x\":0,\"y\":0,\"z\":0}";
+    for (name, content, says) in [
+        (
+            "wrong_count.stl",
+            stl,
+            "malformed binary STL at byte 80: header announces 13 triangles (734 bytes) but the \
+             file has 684 bytes",
+        ),
+        (
+            "extra_face.ply",
+            b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n\
+              property float z\nelement face 1\nproperty list uchar int vertex_indices\n\
+              end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 2 1\n"
+                .to_vec(),
+            "malformed ASCII PLY at line 14: data beyond what the header declares",
+        ),
+        (
+            "junk.obj",
+            b"v 0 0 0 junk\nv 1 0 0\nv 0 1 0\nf 1 2 3\n".to_vec(),
+            "malformed OBJ at line 1: expected a number, found \"junk\"",
+        ),
+        (
+            "bad_triangle.json",
+            format!("[{{\"v0\":{p},\"v1\":{p}}}]").into_bytes(),
+            "malformed JSON soup at line 1: array element 0 (0-based): missing \"v2\"; each \
+             element must be a triangle:",
+        ),
+    ] {
+        let path = tmp(name);
+        std::fs::write(&path, content).unwrap();
+        let r = meshbool(&["info", path.to_str().unwrap()]);
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert_eq!(r.status.code(), Some(1), "{name}: {err}");
+        assert!(err.contains(says), "{name}: {err}");
     }
 }

@@ -445,15 +445,7 @@ fn classify<'py>(
         .detach(move || ops::classify_points(&m, &pts, &opts))
         .map_err(py_err)?;
     let report = json(&out.report(false))?;
-    let classes: Vec<u8> = out
-        .classes
-        .iter()
-        .map(|c| match c {
-            ops::PointClass::Outside => 0,
-            ops::PointClass::Inside => 1,
-            ops::PointClass::On => 2,
-        })
-        .collect();
+    let classes: Vec<u8> = out.classes.iter().map(|c| c.code()).collect();
     Ok((
         PyArray1::from_vec(py, classes),
         PyArray1::from_vec(py, out.winding),

@@ -336,15 +336,7 @@ pub fn classify(
         ..Default::default()
     };
     let out = ops::classify_points(&m, &pts, &copts).map_err(js_err)?;
-    let classes: Vec<u8> = out
-        .classes
-        .iter()
-        .map(|c| match c {
-            ops::PointClass::Outside => 0,
-            ops::PointClass::Inside => 1,
-            ops::PointClass::On => 2,
-        })
-        .collect();
+    let classes: Vec<u8> = out.classes.iter().map(|c| c.code()).collect();
     Ok(Out::new()
         .set("classes", Uint8Array::from(&classes[..]))
         .set("winding", Float64Array::from(&out.winding[..]))

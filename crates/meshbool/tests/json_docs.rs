@@ -186,11 +186,17 @@ fn samples() -> BTreeMap<&'static str, Vec<Value>> {
         let out = ops::close(mesh, mode, &CloseOptions::default()).unwrap();
         s.entry("close").or_default().push(json(&out.report()));
     }
-    for close in [CloseMode::StitchCurtain, CloseMode::Cap] {
+    for (close, tolerance) in [
+        (CloseMode::StitchCurtain, None),
+        (CloseMode::Cap, Some(1e-9)),
+    ] {
         let config = RepairConfig {
             weld: Some(1e-9),
             remove_duplicates: true,
+            remove_overlapping: tolerance,
+            weld_boundary: Some(1e-9),
             tjunctions: true,
+            tjunction_tolerance: tolerance,
             degenerate: Some(DegenerateOptions::default()),
             orient: Some(Facing::ZUp),
             remove_folds: true,
@@ -269,4 +275,37 @@ fn operand_report_keys_are_documented_when_a_check_finds_something() {
     let mut keys = BTreeSet::new();
     written(&v, "", &mut keys);
     assert!(keys.is_subset(&doc), "{:?}", keys.difference(&doc));
+}
+
+#[test]
+fn docs_list_every_key_of_the_repair_configuration() {
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/json.md"))
+        .unwrap();
+    let section = text
+        .split("\n## ")
+        .find(|s| s.starts_with("Repair configuration"))
+        .expect("a section on the repair configuration");
+    let documented: BTreeSet<String> = section
+        .lines()
+        .filter_map(|l| l.strip_prefix("| `"))
+        .map(|l| l[..l.find('`').unwrap()].to_string())
+        .collect();
+    let Value::Object(keys) = json(&RepairConfig::default()) else {
+        panic!("an object")
+    };
+    let keys: BTreeSet<String> = keys.keys().cloned().collect();
+    assert_eq!(documented, keys);
+    // The defaults the table gives.
+    let c: RepairConfig = serde_json::from_str("{}").unwrap();
+    assert_eq!(c, RepairConfig::default());
+    assert_eq!(json(&c)["orient"], "majority");
+    assert_eq!(json(&c)["close"], "none");
+    assert_eq!(
+        json(&c)["close_options"],
+        serde_json::json!({"stitch_max_gap": null, "floor_offset": 10.0})
+    );
+    assert_eq!(
+        json(&DegenerateOptions::default()),
+        serde_json::json!({"min_area": 0.0, "max_aspect": null})
+    );
 }

@@ -104,6 +104,13 @@ fn exercise(m: &Mesh, other: &Mesh) {
     };
     let _ = ops::repair(m, &all_steps);
     let _ = repair::repair(m, &all_steps);
+    let toleranced = RepairConfig {
+        remove_overlapping: Some(0.5),
+        weld_boundary: Some(0.5),
+        tjunction_tolerance: Some(0.5),
+        ..all_steps
+    };
+    let _ = repair::repair(m, &toleranced);
     let _ = ops::pick(&[(m, false), (other, true)], &Default::default());
     let _ = repair::split_nonmanifold(m);
 
@@ -130,6 +137,12 @@ fn exercise(m: &Mesh, other: &Mesh) {
     let _ = repair::stitch(m, 1.0);
     let _ = repair::resolve_t_junctions(m);
     let _ = repair::weld_within(m, 0.25);
+    for tol in [0.0, 1e-300, 0.25, 3.0, 1e300] {
+        let _ = repair::resolve_t_junctions_within(m, tol);
+        let _ = repair::remove_overlapping(m, tol);
+        let _ = repair::weld_boundary(m, tol);
+        let _ = repair::weld_within(m, tol);
+    }
 
     let _ = meshbool::weld_exact(m);
     let _ = (

@@ -3,10 +3,10 @@
 use std::path::PathBuf;
 
 use anyhow::{Context, Result};
-use meshbool::ops::{self, Checks, Operand};
+use meshbool::ops::{self, Checks, Operand, Progress, RunOptions};
 use meshbool::repair::{CloseMode, DegenerateOptions, Facing, RepairConfig};
 
-use super::{one_of, print_json};
+use super::{one_of, print_json, Spinner};
 
 /// Arguments of `repair`: each flag overrides the configuration file's field.
 #[derive(clap::Args)]
@@ -26,9 +26,19 @@ pub struct Args {
     /// Remove duplicate triangles; anti-parallel pairs (double walls) cancel.
     #[arg(long)]
     remove_duplicates: bool,
-    /// Split boundary edges at vertices lying exactly on them (closes T-junction cracks).
-    #[arg(long)]
-    tjunctions: bool,
+    /// Remove duplicates taking triangles whose corresponding corners are within this
+    /// distance as copies: near double walls cancel, near copies keep one.
+    #[arg(long, value_name = "D")]
+    remove_overlapping: Option<f64>,
+    /// Weld boundary vertices (ends of edges used by one triangle) within this distance;
+    /// other vertices stay as they are.
+    #[arg(long, value_name = "D")]
+    weld_boundary: Option<f64>,
+    /// Split boundary edges at vertices lying exactly on them (closes T-junction cracks);
+    /// with a distance D, also at vertices within D of them (the edge bends through the
+    /// vertex).
+    #[arg(long, value_name = "D", num_args = 0..=1)]
+    tjunctions: Option<Option<f64>>,
     /// Remove zero-area triangles (exact) by edge collapse or flip, without cracks.
     #[arg(long)]
     remove_degenerate: bool,
@@ -99,7 +109,18 @@ impl Args {
             c.weld = self.weld;
         }
         c.remove_duplicates |= self.remove_duplicates;
-        c.tjunctions |= self.tjunctions;
+        if self.remove_overlapping.is_some() {
+            c.remove_overlapping = self.remove_overlapping;
+        }
+        if self.weld_boundary.is_some() {
+            c.weld_boundary = self.weld_boundary;
+        }
+        if let Some(tolerance) = self.tjunctions {
+            c.tjunctions = true;
+            if tolerance.is_some() {
+                c.tjunction_tolerance = tolerance;
+            }
+        }
         if self.remove_degenerate {
             let d = c.degenerate.get_or_insert_with(DegenerateOptions::default);
             if let Some(a) = self.min_area {
@@ -134,8 +155,17 @@ impl Args {
 /// Repairs the input as configured, writes it, prints the report.
 pub fn run(args: &Args) -> Result<()> {
     let config = args.config()?;
-    let out = ops::repair(&Operand::read(&args.input, &Checks::NONE)?, &config)?;
+    let spinner = Spinner::new("reading the input");
+    let input = Operand::read(&args.input, &Checks::NONE)?;
+    let bar = spinner.0.clone();
+    let run = RunOptions {
+        threads: None,
+        progress: Some(Progress::new(move |s| bar.set_message(s.describe()))),
+    };
+    let out = ops::repair_with(&input, &config, &run)?;
+    spinner.set_message("writing the result");
     ops::write(&args.output, &out.mesh, None)?;
+    drop(spinner);
     if args.json {
         return print_json(&out.report());
     }

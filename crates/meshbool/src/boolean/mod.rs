@@ -245,8 +245,8 @@ impl Split {
     }
 }
 
-/// The stages of a boolean or split, as reported to a progress callback
-/// ([`crate::ops::RunOptions::progress`]) when each begins.
+/// The stages of a boolean or split, and the steps of a repair, as reported to a progress
+/// callback ([`crate::ops::RunOptions::progress`]) when each begins.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Stage {
     /// Checking the inputs (validity, orientation, self-intersections).
@@ -259,19 +259,48 @@ pub enum Stage {
     Classify,
     /// Selecting and merging the result.
     Merge,
+    /// Repair: welding vertices within a distance.
+    Weld,
+    /// Repair: removing duplicate (or, with a tolerance, overlapping) triangles.
+    Duplicates,
+    /// Repair: welding boundary vertices within a distance.
+    WeldBoundary,
+    /// Repair: splitting boundary edges at T-junctions.
+    TJunctions,
+    /// Repair: removing degenerate and sliver triangles.
+    Degenerate,
+    /// Repair: making orientation consistent.
+    Orient,
+    /// Repair: removing the folds of a terrain.
+    Folds,
+    /// Repair: closing into a solid.
+    Close,
+    /// Repair: capping the small holes left.
+    CloseGaps,
 }
 
 impl Stage {
-    /// Every stage, in the order they run.
-    pub const ALL: [Stage; 5] = [
+    /// Every stage, in the order they run: a boolean's, then a repair's steps.
+    pub const ALL: [Stage; 14] = [
         Stage::Check,
         Stage::Intersect,
         Stage::Arrange,
         Stage::Classify,
         Stage::Merge,
+        Stage::Weld,
+        Stage::Duplicates,
+        Stage::WeldBoundary,
+        Stage::TJunctions,
+        Stage::Degenerate,
+        Stage::Orient,
+        Stage::Folds,
+        Stage::Close,
+        Stage::CloseGaps,
     ];
 
-    /// The stage's name: `check`, `intersect`, `arrange`, `classify`, `merge`.
+    /// The stage's name: `check`, `intersect`, `arrange`, `classify`, `merge`; a repair
+    /// step's is its key in the repair report: `weld`, `duplicates`, `weld_boundary`,
+    /// `tjunctions`, `degenerate`, `orient`, `folds`, `close`, `close_gaps`.
     pub fn name(self) -> &'static str {
         match self {
             Stage::Check => "check",
@@ -279,6 +308,15 @@ impl Stage {
             Stage::Arrange => "arrange",
             Stage::Classify => "classify",
             Stage::Merge => "merge",
+            Stage::Weld => "weld",
+            Stage::Duplicates => "duplicates",
+            Stage::WeldBoundary => "weld_boundary",
+            Stage::TJunctions => "tjunctions",
+            Stage::Degenerate => "degenerate",
+            Stage::Orient => "orient",
+            Stage::Folds => "folds",
+            Stage::Close => "close",
+            Stage::CloseGaps => "close_gaps",
         }
     }
 
@@ -290,6 +328,15 @@ impl Stage {
             Stage::Arrange => "cutting along the seam",
             Stage::Classify => "classifying inside/outside",
             Stage::Merge => "merging the result",
+            Stage::Weld => "welding vertices",
+            Stage::Duplicates => "removing duplicate triangles",
+            Stage::WeldBoundary => "welding boundary vertices",
+            Stage::TJunctions => "splitting T-junctions",
+            Stage::Degenerate => "removing degenerate triangles",
+            Stage::Orient => "orienting",
+            Stage::Folds => "removing folds",
+            Stage::Close => "closing",
+            Stage::CloseGaps => "capping small holes",
         }
     }
 }

@@ -1,6 +1,7 @@
 //! ASCII DXF, the exchange format of mining packages: `3DFACE` entities (a triangle, or a
-//! quad as two triangles) and polyface meshes (`POLYLINE` with flag 64 and its `VERTEX`
-//! records) in the ENTITIES section are read; written as R12-style `3DFACE`s.
+//! quad as two triangles; a 3DFACE lacking a coordinate of its first three corners is an
+//! error) and polyface meshes (`POLYLINE` with flag 64 and its `VERTEX` records) in the
+//! ENTITIES section are read; written as R12-style `3DFACE`s.
 //!
 //! Written by hand rather than with a DXF crate: only group-code pairs and two entity kinds
 //! are needed, and coordinates must round-trip exactly, which the general crates do not
@@ -70,7 +71,8 @@ struct Entity {
     line: usize,
     /// Coordinates by group code 10..=13, 20..=23, 30..=33 as [corner][axis].
     xyz: [[f64; 3]; 4],
-    seen: [bool; 4],
+    /// Which of those group codes were present, as [corner][axis].
+    seen: [[bool; 3]; 4],
     flags: i64,
     /// Face record indices, groups 71..=74.
     refs: [i64; 4],
@@ -102,8 +104,26 @@ pub(super) fn read(bytes: &[u8]) -> Result<Mesh> {
         let err = |msg: String| Error::parse(Format::Dxf, Location::Line(ent.line), msg);
         match ent.kind.as_slice() {
             b"3DFACE" => {
+                // Corners 1 to 3 need x, y and z; the 4th is all there or absent.
+                let fourth = ent.seen[3].contains(&true);
+                let complete = |k: usize| (k == 3 && !fourth) || ent.seen[k] == [true; 3];
+                if !(0..4).all(complete) {
+                    let missing: Vec<String> = (0..4)
+                        .filter(|&k| !complete(k))
+                        .flat_map(|k| (0..3).map(move |a| (k, a)))
+                        .filter(|&(k, a)| !ent.seen[k][a])
+                        .map(|(k, a)| (10 * (a + 1) + k).to_string())
+                        .collect();
+                    return Err(err(format!(
+                        "3DFACE without group code{} {}: corners 1 to 3 need all of 10/20/30, \
+                         11/21/31 and 12/22/32, and the 4th corner (13/23/33) is all there or \
+                         absent",
+                        if missing.len() == 1 { "" } else { "s" },
+                        missing.join(", ")
+                    )));
+                }
                 let mut c = ent.xyz;
-                if !ent.seen[3] {
+                if !fourth {
                     c[3] = c[2];
                 }
                 let idx = c.map(|p| welder.index(p));
@@ -188,7 +208,7 @@ pub(super) fn read(bytes: &[u8]) -> Result<Mesh> {
             10..=13 | 20..=23 | 30..=33 => {
                 let (axis, corner) = ((g.code / 10 - 1) as usize, (g.code % 10) as usize);
                 ent.xyz[corner][axis] = parse_f64(g.value, Format::Dxf, g.line + 1)?;
-                ent.seen[corner] = true;
+                ent.seen[corner][axis] = true;
             }
             70..=74 => {
                 let v: i64 = std::str::from_utf8(g.value)

@@ -80,7 +80,7 @@ fn format_from_content(bytes: &[u8]) -> Option<Format> {
     }
     let text = bytes.trim_ascii_start();
     if text.starts_with(b"solid") {
-        return Some(Format::StlAscii);
+        return Some(stl::encoding(bytes)); // binary when a wrong count is all that is wrong
     }
     if text.starts_with(b"[") || text.starts_with(b"{") {
         return Some(Format::JsonSoup);

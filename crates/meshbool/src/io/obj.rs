@@ -1,6 +1,7 @@
-//! Wavefront OBJ: `v x y z [w | r g b]` and `f` with `i`, `i/t`, `i//n`, `i/t/n` references,
-//! 1-based or negative (relative) indices. Polygons become triangle fans. Texture
-//! coordinates, normals, groups, materials, lines and any other statements are skipped.
+//! Wavefront OBJ: `v x y z [w | r g b]` (numbers, then at most a `#` comment) and `f` with
+//! `i`, `i/t`, `i//n`, `i/t/n` references, 1-based or negative (relative) indices. Polygons
+//! become triangle fans. Texture coordinates, normals, groups, materials, lines and any
+//! other statements are skipped.
 
 use std::io::Write;
 
@@ -60,6 +61,23 @@ pub(super) fn read(bytes: &[u8]) -> Result<Mesh> {
                         Error::parse(fmt, Location::Line(ln), "vertex needs three coordinates")
                     })?;
                     *c = parse_f64(t, fmt, ln)?;
+                }
+                // A weight `w` or a colour `r g b` may follow (numbers too), then a comment.
+                let mut extra = 0;
+                for t in tok.by_ref().take_while(|t| !t.starts_with(b"#")) {
+                    parse_f64(t, fmt, ln)?;
+                    extra += 1;
+                }
+                if !matches!(extra, 0 | 1 | 3) {
+                    return Err(Error::parse(
+                        fmt,
+                        Location::Line(ln),
+                        format!(
+                            "vertex has {} numbers: expected x y z, x y z w (a weight) or \
+                             x y z r g b (a colour)",
+                            3 + extra
+                        ),
+                    ));
                 }
                 positions.push(p);
             }

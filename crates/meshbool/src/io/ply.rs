@@ -1,7 +1,9 @@
 //! PLY, ASCII and binary (little and big endian): `vertex` elements with scalar `x y z`
 //! properties of any type, `face` elements with a `vertex_indices` (or `vertex_index`) list
-//! of any integer type; every other element and property is skipped. Written as binary
-//! little-endian (or the encoding asked for) with `double` positions.
+//! of any integer type; every other element and property is skipped. A list's length type
+//! must be an integer type, and the body must end where the header's counts say (only
+//! whitespace may follow in ASCII). Written as binary little-endian (or the encoding asked
+//! for) with `double` positions.
 
 use std::io::Write;
 
@@ -109,10 +111,21 @@ fn header(bytes: &[u8]) -> Result<(Format, Vec<Element>, usize, usize)> {
                     props: Vec::new(),
                 });
             }
-            [b"property", b"list", ct, it, name] => {
-                let (Some(ct), Some(it)) = (Scalar::parse(ct), Scalar::parse(it)) else {
+            [b"property", b"list", ct_name, it, name] => {
+                let (Some(ct), Some(it)) = (Scalar::parse(ct_name), Scalar::parse(it)) else {
                     return Err(err(ln, "unknown property type"));
                 };
+                if matches!(ct, Scalar::F32 | Scalar::F64) {
+                    return Err(err(
+                        ln,
+                        &format!(
+                            "list length type {} of property {} is not an integer type: a list's \
+                             length must be char, uchar, short, ushort, int or uint",
+                            String::from_utf8_lossy(ct_name),
+                            String::from_utf8_lossy(name)
+                        ),
+                    ));
+                }
                 let e = elements
                     .last_mut()
                     .ok_or_else(|| err(ln, "property before any element"))?;
@@ -148,6 +161,35 @@ impl Body<'_> {
             _ => Location::Byte(self.pos as u64),
         };
         Error::parse(self.format, loc, msg)
+    }
+
+    /// After the last declared element: the end of the input, or (ASCII) only whitespace
+    /// before it. Anything else means the header's counts are smaller than the body: an
+    /// error at the line or byte where the rest starts.
+    fn finish(&mut self, elements: &[Element]) -> Result<()> {
+        if self.format == Format::PlyAscii {
+            while self.pos < self.bytes.len() && self.bytes[self.pos].is_ascii_whitespace() {
+                if self.bytes[self.pos] == b'\n' {
+                    self.line += 1;
+                }
+                self.pos += 1;
+            }
+        }
+        if self.pos == self.bytes.len() {
+            return Ok(());
+        }
+        let declared: Vec<String> = elements
+            .iter()
+            .map(|e| format!("{} {}", e.count, String::from_utf8_lossy(&e.name)))
+            .collect();
+        let what = match self.format {
+            Format::PlyAscii => "data".to_string(),
+            _ => format!("{} bytes", self.bytes.len() - self.pos),
+        };
+        Err(self.err(format!(
+            "{what} beyond what the header declares ({}): are its element counts too small?",
+            declared.join(", ")
+        )))
     }
 
     fn next(&mut self, ty: Scalar) -> Result<f64> {
@@ -289,6 +331,7 @@ pub(super) fn read(bytes: &[u8]) -> Result<Mesh> {
             }
         }
     }
+    body.finish(&elements)?;
     Ok(Mesh::new_unchecked(positions, triangles))
 }
 

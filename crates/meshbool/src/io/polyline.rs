@@ -8,7 +8,8 @@ use crate::intersect::PolylineXyz;
 
 /// Writes `lines` in `format`: OBJ (`v` and `l`; a closed line repeats its first index),
 /// DXF (3D `POLYLINE`, flag 1 when closed) or JSON (`[{"closed":..,"points":[[x,y,z],..]}]`).
-/// Coordinates use the shortest text that reads back to the same `f64`.
+/// Coordinates use the shortest text that reads back to the same `f64`. Any other format
+/// (a mesh format) is [`Error::InvalidParameter`].
 pub fn write_polylines(out: &mut impl Write, lines: &[PolylineXyz], format: Format) -> Result<()> {
     check_finite(lines)?;
     let mut o = Out::new(out);
@@ -17,8 +18,9 @@ pub fn write_polylines(out: &mut impl Write, lines: &[PolylineXyz], format: Form
         Format::Dxf => write_dxf(&mut o, lines)?,
         Format::JsonSoup | Format::JsonKirra => write_json(&mut o, lines)?,
         other => {
-            return Err(Error::UnknownFormat(format!(
-                "polylines cannot be written as {other}: use .obj, .dxf or .json"
+            return Err(Error::InvalidParameter(format!(
+                "polylines cannot be written as {other}, only as OBJ (.obj), DXF (.dxf) or \
+                 JSON (.json)"
             )))
         }
     }

@@ -1,6 +1,8 @@
 //! STL, binary and ASCII. Binary vs ASCII is decided by the file size first: a file of
 //! exactly `84 + 50 n` bytes whose header announces `n` triangles is binary even when its
-//! header starts with "solid" (many exporters write that).
+//! header starts with "solid" (many exporters write that). So is one that starts with
+//! "solid" but whose first 84 bytes are not text, or whose size is within a record of its
+//! count's: a binary file with a wrong count, reported as one (`encoding`).
 
 use std::io::Write;
 
@@ -22,10 +24,23 @@ pub(super) fn is_binary(bytes: &[u8]) -> bool {
     announced(bytes).is_some_and(|n| (HEADER + 4) as u64 + RECORD as u64 * n == bytes.len() as u64)
 }
 
-/// Which STL encoding `bytes` are in. Anything that is neither consistent binary nor starts
-/// with "solid" is taken as binary, so that the binary reader reports what is wrong.
+/// True when a file of `len` bytes is within one record of the size of a binary STL of `n`
+/// triangles: a binary file with a wrong count or a few bytes too many or too few.
+pub(super) fn size_is_near(n: u64, len: u64) -> bool {
+    ((HEADER + 4) as u64 + RECORD as u64 * n).abs_diff(len) < RECORD as u64
+}
+
+/// Which STL encoding `bytes` are in: ASCII when they start with "solid" and nothing says
+/// binary was meant; binary otherwise, so that the binary reader reports what is wrong
+/// (with the count and the size that disagree). Binary was meant when the size matches the
+/// count or is within one record of it, or when the header and count hold a byte that no
+/// text has (a control character other than whitespace: a count below 2^24 has a zero byte).
 pub(super) fn encoding(bytes: &[u8]) -> Format {
-    if !is_binary(bytes) && bytes.trim_ascii_start().starts_with(b"solid") {
+    let text_head = bytes[..bytes.len().min(HEADER + 4)]
+        .iter()
+        .all(|&b| (b >= 0x20 && b != 0x7f) || b.is_ascii_whitespace() || b == 0x0b);
+    let near = announced(bytes).is_some_and(|n| size_is_near(n, bytes.len() as u64));
+    if text_head && !near && bytes.trim_ascii_start().starts_with(b"solid") {
         Format::StlAscii
     } else {
         Format::StlBinary

@@ -557,3 +557,289 @@ fn welds_on_read_says_exactly_which_readers_weld() {
         assert_eq!(welded, back.vertex_count() == 8, "{f}");
     }
 }
+
+// Issue 17, items 7 and 8: readers that took too much, and messages that said it badly.
+
+const PLY_TRIANGLE: &str =
+    "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n\
+    property double z\nelement face 1\nproperty list uchar int vertex_index\nend_header\n\
+    0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+
+#[test]
+fn ply_ascii_lines_beyond_the_declared_counts_are_an_error() {
+    // Whitespace after the last element is fine.
+    for tail in ["", "\n", "\n\n  \t\r\n", "   "] {
+        let text = format!("{PLY_TRIANGLE}{tail}");
+        assert_eq!(
+            read_bytes(text.as_bytes(), Format::PlyAscii)
+                .unwrap()
+                .triangle_count(),
+            1,
+            "{tail:?}"
+        );
+    }
+    // A face, or a vertex, more than the header declares: the line where it starts.
+    for (tail, line) in [("3 0 2 1\n", 14), ("\n\n0 0 1\n", 16), ("x", 14)] {
+        let text = format!("{PLY_TRIANGLE}{tail}");
+        let (loc, msg) = parse_err(text.as_bytes(), Format::PlyAscii);
+        assert_eq!(loc, Location::Line(line), "{tail:?}: {msg}");
+        assert!(msg.contains("header declares"), "{msg}");
+    }
+    // Extra text on the last line itself.
+    let text = PLY_TRIANGLE.replace("3 0 1 2\n", "3 0 1 2 7\n");
+    assert_eq!(
+        parse_err(text.as_bytes(), Format::PlyAscii).0,
+        Location::Line(13)
+    );
+}
+
+#[test]
+fn ply_binary_bytes_beyond_the_declared_data_are_an_error() {
+    for f in [Format::PlyBinaryLe, Format::PlyBinaryBe] {
+        let bytes = write_to_vec(&Mesh::unit_cube(), f);
+        let mut longer = bytes.clone();
+        longer.extend_from_slice(&[3, 0, 0, 0, 0]);
+        let (loc, msg) = parse_err(&longer, f);
+        assert_eq!(loc, Location::Byte(bytes.len() as u64), "{f}: {msg}");
+        assert!(
+            msg.contains("5 bytes") && msg.contains("header declares"),
+            "{msg}"
+        );
+        // A single trailing newline is trailing content too in a binary body.
+        longer.truncate(bytes.len() + 1);
+        assert_eq!(parse_err(&longer, f).0, Location::Byte(bytes.len() as u64));
+    }
+}
+
+#[test]
+fn ply_list_count_must_be_an_integer_type() {
+    for ty in ["float", "double", "float32"] {
+        let text = PLY_TRIANGLE.replace("list uchar int", &format!("list {ty} int"));
+        let (loc, msg) = parse_err(text.as_bytes(), Format::PlyAscii);
+        assert_eq!(loc, Location::Line(8), "{ty}");
+        assert!(
+            msg.contains(&format!("list length type {ty}")) && msg.contains("integer"),
+            "{msg}"
+        );
+    }
+    // Every integer type is fine.
+    for ty in [
+        "char", "uchar", "int8", "uint8", "short", "ushort", "int", "uint32",
+    ] {
+        let text = PLY_TRIANGLE.replace("list uchar int", &format!("list {ty} int"));
+        assert!(
+            read_bytes(text.as_bytes(), Format::PlyAscii).is_ok(),
+            "{ty}"
+        );
+    }
+}
+
+#[test]
+fn dxf_3dface_with_missing_coordinates_is_an_error() {
+    // A 3DFACE at line 5 with the given group codes (value: the code squared).
+    let dxf = |codes: &[u32]| {
+        let mut s = String::from("0\nSECTION\n2\nENTITIES\n0\n3DFACE\n8\n0\n");
+        for c in codes {
+            s += &format!("{c}\n{}\n", c * c);
+        }
+        s + "0\nENDSEC\n0\nEOF\n"
+    };
+    let three = [10, 20, 30, 11, 21, 31, 12, 22, 32];
+    let four = [10, 20, 30, 11, 21, 31, 12, 22, 32, 13, 23, 33];
+    // Absent 4th corner, or a 4th corner equal to the 3rd: a triangle.
+    assert_eq!(
+        read_bytes(dxf(&three).as_bytes(), Format::Dxf)
+            .unwrap()
+            .triangle_count(),
+        1
+    );
+    let same = dxf(&four).replace(
+        "13\n169\n23\n529\n33\n1089\n",
+        "13\n144\n23\n484\n33\n1024\n",
+    );
+    assert_eq!(
+        read_bytes(same.as_bytes(), Format::Dxf)
+            .unwrap()
+            .triangle_count(),
+        1
+    );
+    // A coordinate of corners 1-3 missing, or a partial 4th corner: the entity's line.
+    for (missing, all) in [(32, &three[..]), (21, &three), (10, &three), (33, &four)] {
+        let codes: Vec<u32> = all.iter().copied().filter(|&c| c != missing).collect();
+        let (loc, msg) = parse_err(dxf(&codes).as_bytes(), Format::Dxf);
+        assert_eq!(loc, Location::Line(5), "{missing}: {msg}");
+        assert!(
+            msg.contains("3DFACE") && msg.contains(&format!("group code {missing}")),
+            "{msg}"
+        );
+    }
+    // Several missing: all named.
+    let (_, msg) = parse_err(dxf(&[10, 20, 30, 11, 21, 31]).as_bytes(), Format::Dxf);
+    assert!(msg.contains("group codes 12, 22, 32"), "{msg}");
+}
+
+#[test]
+fn obj_vertex_takes_3_4_or_6_numbers() {
+    let face = "v 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    for first in [
+        "v 0 0 0",
+        "v 0 0 0 1.0",
+        "v 0 0 0 0.5 0.25 1",
+        "  v\t0 0 0  ",
+        "v 0 0 0 # a comment",
+        "v 0 0 0 0.5 0.25 1 #comment",
+    ] {
+        let text = format!("{first}\n{face}");
+        let m = read_bytes(text.as_bytes(), Format::Obj);
+        assert_eq!(m.unwrap().positions[0], [0.0; 3], "{first}");
+    }
+    for first in [
+        "v 0 0 0 junk",
+        "v 0 0 0 1 2",
+        "v 0 0 0 1 2 3 4",
+        "v 0 0 0 0.5 0.25 x",
+        "v 0 0 0 1 2 #3",
+    ] {
+        let text = format!("{face}{first}\n");
+        let (loc, msg) = parse_err(text.as_bytes(), Format::Obj);
+        assert_eq!(loc, Location::Line(4), "{first}: {msg}");
+    }
+    let (_, msg) = parse_err(b"v 0 0 0 junk\n", Format::Obj);
+    assert!(msg.contains("\"junk\""), "{msg}");
+    let (_, msg) = parse_err(b"v 0 0 0 1 2\n", Format::Obj);
+    assert!(
+        msg.contains("5 numbers") && msg.contains("x y z w"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn polylines_in_a_mesh_format_is_one_clear_sentence() {
+    let lines = [crate::intersect::PolylineXyz {
+        points: vec![[0.0; 3], [1.0; 3]],
+        closed: false,
+    }];
+    let e = write_polylines(&mut Vec::new(), &lines, Format::StlBinary).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "invalid parameter: polylines cannot be written as binary STL, only as OBJ (.obj), \
+         DXF (.dxf) or JSON (.json)"
+    );
+    // Through the curves' writer, with the file named first.
+    let a = Mesh::unit_cube();
+    let b = Mesh::cuboid([0.5; 3], [1.5; 3]);
+    let curves = crate::ops::curves(&a, &b, &Default::default()).unwrap();
+    let dir = std::env::temp_dir().join(format!("meshbool-polystl-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("c.stl");
+    let e = curves.write(&path).unwrap_err().to_string();
+    assert_eq!(
+        e,
+        format!(
+            "writing {}: invalid parameter: polylines cannot be written as binary STL, only as \
+             OBJ (.obj), DXF (.dxf) or JSON (.json)",
+            path.display()
+        )
+    );
+    assert!(!path.exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn json_bad_triangle_says_which_and_what_shape() {
+    let p = r#"{"x":0,"y":0,"z":0}"#;
+    let ok = format!(r#"{{"v0":{p},"v1":{p},"v2":{p}}}"#);
+    let shape = r#"{"v0": {"x":..,"y":..,"z":..}, "v1": .., "v2": ..} or Kirra's {"vertices": [..3 or more points..]}"#;
+    for (text, line, says) in [
+        (
+            format!("[{ok},\n{ok},\n{{\"v0\":{p},\"v1\":{p}}}]"),
+            3,
+            "array element 2 (0-based): missing \"v2\"",
+        ),
+        (
+            format!("[{ok},{{\"v0\":{p},\"v1\":{p},\"v2\":{{\"x\":0,\"y\":0}}}}]"),
+            1,
+            "array element 1 (0-based), \"v2\": missing field `z`",
+        ),
+        (
+            format!("[{{\"vertices\":[{p},{p},{{\"x\":0,\"y\":\"a\",\"z\":0}}]}}]"),
+            1,
+            "array element 0 (0-based), \"vertices\" point 2: invalid type: string \"a\", expected f64",
+        ),
+        (
+            format!("[{ok},{{\"a\":1}}]"),
+            1,
+            "array element 1 (0-based): neither \"v0\", \"v1\", \"v2\" nor \"vertices\"",
+        ),
+        (
+            format!("[{ok},\n7]"),
+            2,
+            "array element 1 (0-based): invalid type: integer `7`, expected a triangle object",
+        ),
+        (
+            ok.clone(),
+            1,
+            "invalid type: map, expected an array of triangle objects",
+        ),
+    ] {
+        let (loc, msg) = parse_err(text.as_bytes(), Format::JsonSoup);
+        assert_eq!(loc, Location::Line(line), "{text}: {msg}");
+        assert!(msg.starts_with(says), "{text}: {msg}");
+        assert!(msg.ends_with(shape), "{msg}");
+        assert!(!msg.contains("untagged") && !msg.contains("column"), "{msg}");
+    }
+    // Both layouts in one array, other keys ignored.
+    let mixed = format!(r#"[{ok},{{"id":[1,{{"v0":2}}],"vertices":[{p},{p},{p}]}}]"#);
+    assert_eq!(
+        read_bytes(mixed.as_bytes(), Format::JsonSoup)
+            .unwrap()
+            .triangle_count(),
+        2
+    );
+}
+
+#[test]
+fn binary_stl_with_solid_header_and_wrong_count_is_reported_as_binary() {
+    let good = binary_stl_of(&Mesh::unit_cube());
+    let mut solid = good.clone();
+    solid[..12].copy_from_slice(b"solid cube  ");
+    for (bytes, n) in [
+        (solid.clone(), 13u32),
+        (solid[..solid.len() - 3].to_vec(), 12),
+        ([&solid[..], &[0u8; 4][..]].concat(), 12),
+    ] {
+        let mut bytes = bytes;
+        bytes[80..84].copy_from_slice(&n.to_le_bytes());
+        for f in [Some(Format::StlBinary), None] {
+            let f = detect_format(&bytes, f).unwrap();
+            let e = read_bytes(&bytes, f).unwrap_err();
+            let msg = e.to_string();
+            assert!(
+                msg.starts_with("malformed binary STL at byte 80: header announces")
+                    && msg.contains(&format!("announces {n} triangles"))
+                    && msg.contains(&format!("the file has {} bytes", bytes.len())),
+                "{msg}"
+            );
+        }
+    }
+    // A count that is text too, but a size within a record of what it announces.
+    let n = u64::from(u32::from_le_bytes(*b"abcd"));
+    assert!(super::stl::size_is_near(n, 84 + 50 * n - 3));
+    assert!(super::stl::size_is_near(n, 84 + 50 * n + 49));
+    assert!(!super::stl::size_is_near(n, 84 + 50 * n - 50));
+    assert!(!super::stl::size_is_near(n, 684));
+    // ASCII STL stays ASCII: a solid name in UTF-8, and a truncated one.
+    let ascii = "solid café\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nendloop\nendfacet\nendsolid\n";
+    assert_eq!(
+        detect_format(ascii.as_bytes(), None),
+        Some(Format::StlAscii)
+    );
+    assert_eq!(
+        read_bytes(ascii.as_bytes(), Format::StlBinary)
+            .unwrap()
+            .triangle_count(),
+        1
+    );
+    let (loc, _) = parse_err(&ascii.as_bytes()[..70], Format::StlBinary);
+    assert_eq!(loc, Location::Line(6));
+}

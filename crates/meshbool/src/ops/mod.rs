@@ -15,7 +15,7 @@
 //! | `info` | [`info`] | [`MeshStats`](crate::measure::MeshStats) | [`InfoReport`] |
 //! | `orient` | [`orient`] | [`OrientOutput`] | [`OrientCommandReport`] |
 //! | `close` | [`close`] | [`CloseOutput`] | [`CloseCommandReport`] |
-//! | `repair` | [`repair`] | [`RepairOutput`] | [`RepairCommandReport`] |
+//! | `repair` | [`repair`], [`repair_with`] | [`RepairOutput`] | [`RepairCommandReport`] |
 //! | `transform` | [`transform()`] | [`TransformOutput`] | [`TransformReport`] |
 //! | `make` | [`make()`] | [`MakeOutput`] | [`MakeReport`] |
 //! | `classify` | [`classify_points`] | [`ClassifyOutput`] | [`ClassifyReport`] |
@@ -74,7 +74,7 @@ pub use points::{
     classify_points, ClassifyOptions, ClassifyOutput, ClassifyReport, PointClass, PointResult,
 };
 pub use single::{
-    close, info, orient, repair, resolve, CloseCommandReport, CloseOutput, InfoReport,
+    close, info, orient, repair, repair_with, resolve, CloseCommandReport, CloseOutput, InfoReport,
     OrientCommandReport, OrientOutput, RepairCommandReport, RepairOutput, ResolveCommandReport,
     ResolveOptions, ResolveOutput,
 };

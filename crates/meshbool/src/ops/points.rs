@@ -44,6 +44,16 @@ impl PointClass {
             PointClass::On => "on",
         }
     }
+
+    /// The class as a small code, for arrays (the Python and JavaScript packages): 0
+    /// outside, 1 inside, 2 on.
+    pub fn code(self) -> u8 {
+        match self {
+            PointClass::Outside => 0,
+            PointClass::Inside => 1,
+            PointClass::On => 2,
+        }
+    }
 }
 
 /// The result of [`classify_points`].

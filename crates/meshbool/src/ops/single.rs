@@ -167,10 +167,25 @@ impl RepairOutput {
 }
 
 /// Runs the repair pipeline `config` asks for ([`repair::repair`]) on the exactly welded
-/// mesh.
+/// mesh. [`repair_with`] takes threads and a progress callback as well.
 pub fn repair<'a>(mesh: impl Into<Input<'a>>, config: &RepairConfig) -> Result<RepairOutput> {
-    let (mesh, repair) = repair::repair(welded(mesh)?.mesh(), config)?;
-    Ok(RepairOutput { mesh, repair })
+    repair_with(mesh, config, &RunOptions::default())
+}
+
+/// [`repair()`] run as `run` says: in its threads, `run.progress` called with the
+/// [`Stage`] of each step that runs as it begins (from [`Stage::Weld`] to
+/// [`Stage::CloseGaps`], in the pipeline's order).
+pub fn repair_with<'a>(
+    mesh: impl Into<Input<'a>>,
+    config: &RepairConfig,
+    run: &RunOptions,
+) -> Result<RepairOutput> {
+    let input: Input<'a> = mesh.into();
+    with_threads(run.threads, || {
+        let input = welded(input)?;
+        let (mesh, repair) = repair::repair_with_progress(input.mesh(), config, &|s| run.stage(s))?;
+        Ok(RepairOutput { mesh, repair })
+    })?
 }
 
 /// Options of [`resolve()`].

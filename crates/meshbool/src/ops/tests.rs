@@ -250,6 +250,67 @@ fn progress_reports_every_stage_in_order() {
 }
 
 #[test]
+fn repair_progress_reports_the_steps_that_run_in_order() {
+    let (positions, mut triangles) = Mesh::cuboid([0.0; 3], [2.0, 2.0, 1.0]).into_parts();
+    triangles.truncate(10); // open: the x = max face gone
+    let open_box = Mesh::new(positions, triangles).unwrap();
+    let stages = |config: &crate::repair::RepairConfig| {
+        let seen = Arc::new(Mutex::new(Vec::new()));
+        let log = seen.clone();
+        let run = RunOptions {
+            threads: Some(1),
+            progress: Some(Progress::new(move |s| log.lock().unwrap().push(s))),
+        };
+        let out = repair_with(&open_box, config, &run).unwrap();
+        let plain = repair(&open_box, config).unwrap();
+        assert_eq!(out.mesh, plain.mesh);
+        assert_eq!(out.report(), plain.report());
+        let stages = seen.lock().unwrap().clone();
+        stages
+    };
+    let every_step = crate::repair::RepairConfig {
+        weld: Some(1e-9),
+        remove_overlapping: Some(1e-9),
+        weld_boundary: Some(1e-9),
+        tjunction_tolerance: Some(1e-9),
+        degenerate: Some(Default::default()),
+        orient: Some(Facing::ZUp),
+        remove_folds: true,
+        close: CloseMode::Cap,
+        close_gaps: Some(1.0),
+        ..Default::default()
+    };
+    assert_eq!(
+        stages(&every_step),
+        [
+            Stage::Weld,
+            Stage::Duplicates,
+            Stage::WeldBoundary,
+            Stage::TJunctions,
+            Stage::Degenerate,
+            Stage::Orient,
+            Stage::Folds,
+            Stage::Close,
+            Stage::CloseGaps,
+        ]
+    );
+    assert_eq!(&Stage::ALL[5..], &stages(&every_step)[..]);
+    // Only the steps asked for; the default orients.
+    let some = crate::repair::RepairConfig {
+        tjunctions: true,
+        close: CloseMode::Cap,
+        ..Default::default()
+    };
+    assert_eq!(
+        stages(&some),
+        [Stage::TJunctions, Stage::Orient, Stage::Close]
+    );
+    for s in Stage::ALL {
+        assert!(!s.describe().is_empty());
+    }
+}
+
+#[test]
 fn piece_specs_read_and_write_the_same_text() {
     for text in [
         "a_out_b",

@@ -1,9 +1,10 @@
 //! Mesh repair: consistent orientation ([`orient`]), boundary loops and hole capping
 //! ([`cap_holes`]), stitching loop pairs ([`stitch`]), curtain walls to a floor
-//! ([`curtain`]), welding within a distance ([`weld_within`]), T-junctions
-//! ([`resolve_t_junctions`]), duplicate and anti-parallel triangles
-//! ([`remove_duplicates`]), degenerate and sliver triangles ([`remove_degenerates`]),
-//! non-manifold edges and vertices split into manifold sheets ([`split_nonmanifold`]).
+//! ([`curtain`]), welding within a distance ([`weld_within`], or boundary vertices only:
+//! [`weld_boundary`]), T-junctions ([`resolve_t_junctions`], with a tolerance:
+//! [`resolve_t_junctions_within`]), duplicate and anti-parallel triangles
+//! ([`remove_duplicates`], with a tolerance: [`remove_overlapping`]), degenerate and
+//! sliver triangles ([`remove_degenerates`]), non-manifold edges and vertices split into manifold sheets ([`split_nonmanifold`]).
 //! Every step is a function on its own that returns a report of what it did.
 
 mod cap;
@@ -23,14 +24,15 @@ pub use cap::{boundary_loops, cap_holes, cap_small_holes, CapReport};
 pub(crate) use curtain::curtain_to;
 pub use curtain::{curtain, CurtainReport};
 pub use degenerate::{remove_degenerates, DegenerateOptions, DegenerateReport};
-pub use duplicates::{remove_duplicates, DuplicateReport};
+pub use duplicates::{remove_duplicates, remove_overlapping, DuplicateReport};
 pub use folds::{remove_folds, FoldReport};
 pub use inside_out::inside_out;
 pub use nonmanifold::{split_nonmanifold, NonManifoldReport};
 pub use orient::{orient, Facing, OrientReport};
 pub use pipeline::{
-    close, repair, CloseMode, CloseOptions, CloseReport, RepairConfig, RepairReport,
+    close, repair, repair_with_progress, CloseMode, CloseOptions, CloseReport, RepairConfig,
+    RepairReport,
 };
 pub use stitch::{stitch, zipper, StitchReport};
-pub use tjunction::{resolve_t_junctions, TJunctionReport};
-pub use weld::{weld_within, WeldReport};
+pub use tjunction::{resolve_t_junctions, resolve_t_junctions_within, TJunctionReport};
+pub use weld::{weld_boundary, weld_within, WeldReport};

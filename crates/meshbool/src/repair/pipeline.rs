@@ -5,10 +5,11 @@ use serde::{Deserialize, Serialize};
 
 use super::{
     cap_holes, cap_small_holes, curtain, orient, remove_degenerates, remove_duplicates,
-    remove_folds, resolve_t_junctions, stitch, weld_within, CapReport, CurtainReport,
-    DegenerateOptions, DegenerateReport, DuplicateReport, Facing, FoldReport, OrientReport,
-    StitchReport, TJunctionReport, WeldReport,
+    remove_folds, remove_overlapping, resolve_t_junctions, resolve_t_junctions_within, stitch,
+    weld_boundary, weld_within, CapReport, CurtainReport, DegenerateOptions, DegenerateReport,
+    DuplicateReport, Facing, FoldReport, OrientReport, StitchReport, TJunctionReport, WeldReport,
 };
+use crate::boolean::Stage;
 use crate::measure::{mesh_stats, MeshStats};
 use crate::{Error, Mesh};
 
@@ -150,10 +151,11 @@ pub fn close(
     Ok((out, report))
 }
 
-/// Which repair steps to run, and how. Steps run in this order: weld, duplicates,
-/// T-junctions, degenerates, orientation, folds, close, close small gaps. The default only makes
-/// orientation consistent (keeping the majority's facing). Reads from and writes to JSON
-/// (the CLI's `--config`): fields left out take their defaults.
+/// Which repair steps to run, and how. Steps run in this order: weld, duplicates, boundary
+/// weld, T-junctions, degenerates, orientation, folds, close, close small gaps. The default
+/// only makes orientation consistent (keeping the majority's facing). Every step is exact
+/// unless given a distance. Reads from and writes to JSON (the CLI's `--config`): fields
+/// left out take their defaults.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct RepairConfig {
@@ -161,8 +163,19 @@ pub struct RepairConfig {
     pub weld: Option<f64>,
     /// Remove duplicate triangles; anti-parallel pairs cancel ([`remove_duplicates`]).
     pub remove_duplicates: bool,
+    /// Remove duplicates as `remove_duplicates` does, taking triangles whose corresponding
+    /// corners are within this distance as copies ([`remove_overlapping`]); setting it runs
+    /// the duplicates step.
+    pub remove_overlapping: Option<f64>,
+    /// Weld boundary vertices (ends of edges used by one triangle) within this distance,
+    /// the others left as they are ([`weld_boundary`]).
+    pub weld_boundary: Option<f64>,
     /// Split boundary edges at vertices exactly on them ([`resolve_t_junctions`]).
     pub tjunctions: bool,
+    /// Split boundary edges also at vertices within this distance of them
+    /// ([`resolve_t_junctions_within`]; 0: exactly on them); setting it runs the T-junction
+    /// step.
+    pub tjunction_tolerance: Option<f64>,
     /// Remove degenerate (and, with thresholds, sliver) triangles ([`remove_degenerates`]).
     pub degenerate: Option<DegenerateOptions>,
     /// Make orientation consistent, facing as given ([`orient`]); `None` skips it.
@@ -184,7 +197,10 @@ impl Default for RepairConfig {
         RepairConfig {
             weld: None,
             remove_duplicates: false,
+            remove_overlapping: None,
+            weld_boundary: None,
             tjunctions: false,
+            tjunction_tolerance: None,
             degenerate: None,
             orient: Some(Facing::Majority),
             remove_folds: false,
@@ -204,9 +220,12 @@ pub struct RepairReport {
     /// Tolerance weld.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub weld: Option<WeldReport>,
-    /// Duplicate removal.
+    /// Duplicate (or overlapping) triangle removal.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub duplicates: Option<DuplicateReport>,
+    /// Boundary weld.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub weld_boundary: Option<WeldReport>,
     /// T-junction resolution.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub tjunctions: Option<TJunctionReport>,
@@ -236,6 +255,16 @@ pub struct RepairReport {
 /// [`RepairConfig`]. Errors only on invalid parameters (negative or non-finite
 /// distances), before any work.
 pub fn repair(mesh: &Mesh, config: &RepairConfig) -> Result<(Mesh, RepairReport), Error> {
+    repair_with_progress(mesh, config, &|_| {})
+}
+
+/// [`repair`], calling `progress` with each step's [`Stage`] as it begins (only the steps
+/// that run, in their order).
+pub fn repair_with_progress(
+    mesh: &Mesh,
+    config: &RepairConfig,
+    progress: &dyn Fn(Stage),
+) -> Result<(Mesh, RepairReport), Error> {
     let distance = |name: &str, x: Option<f64>| match x {
         Some(d) if !(d.is_finite() && d >= 0.0) => Err(Error::InvalidParameter(format!(
             "{name} must be a finite distance >= 0, got {d}"
@@ -243,6 +272,9 @@ pub fn repair(mesh: &Mesh, config: &RepairConfig) -> Result<(Mesh, RepairReport)
         _ => Ok(()),
     };
     distance("weld", config.weld)?;
+    distance("remove_overlapping", config.remove_overlapping)?;
+    distance("weld_boundary", config.weld_boundary)?;
+    distance("tjunction_tolerance", config.tjunction_tolerance)?;
     distance("close_gaps", config.close_gaps)?;
     if config.remove_folds && config.orient != Some(Facing::ZUp) {
         return Err(Error::InvalidParameter(
@@ -256,6 +288,7 @@ pub fn repair(mesh: &Mesh, config: &RepairConfig) -> Result<(Mesh, RepairReport)
         before: mesh_stats(mesh),
         weld: None,
         duplicates: None,
+        weld_boundary: None,
         tjunctions: None,
         degenerate: None,
         orient: None,
@@ -267,34 +300,55 @@ pub fn repair(mesh: &Mesh, config: &RepairConfig) -> Result<(Mesh, RepairReport)
     };
     let mut m = mesh.clone();
     if let Some(tol) = config.weld {
+        progress(Stage::Weld);
         let (x, r) = weld_within(&m, tol);
         (m, report.weld) = (x, Some(r));
     }
-    if config.remove_duplicates {
+    if let Some(tol) = config.remove_overlapping {
+        progress(Stage::Duplicates);
+        let (x, r) = remove_overlapping(&m, tol);
+        (m, report.duplicates) = (x, Some(r));
+    } else if config.remove_duplicates {
+        progress(Stage::Duplicates);
         let (x, r) = remove_duplicates(&m);
         (m, report.duplicates) = (x, Some(r));
     }
-    if config.tjunctions {
+    if let Some(tol) = config.weld_boundary {
+        progress(Stage::WeldBoundary);
+        let (x, r) = weld_boundary(&m, tol);
+        (m, report.weld_boundary) = (x, Some(r));
+    }
+    if let Some(tol) = config.tjunction_tolerance {
+        progress(Stage::TJunctions);
+        let (x, r) = resolve_t_junctions_within(&m, tol);
+        (m, report.tjunctions) = (x, Some(r));
+    } else if config.tjunctions {
+        progress(Stage::TJunctions);
         let (x, r) = resolve_t_junctions(&m);
         (m, report.tjunctions) = (x, Some(r));
     }
     if let Some(opts) = &config.degenerate {
+        progress(Stage::Degenerate);
         let (x, r) = remove_degenerates(&m, opts);
         (m, report.degenerate) = (x, Some(r));
     }
     if let Some(facing) = config.orient {
+        progress(Stage::Orient);
         let (x, r) = orient(&m, facing);
         (m, report.orient) = (x, Some(r));
     }
     if config.remove_folds {
+        progress(Stage::Folds);
         let (x, r) = remove_folds(&m);
         (m, report.folds) = (x, Some(r));
     }
     if config.close != CloseMode::None {
+        progress(Stage::Close);
         let (x, r) = close(&m, config.close, &config.close_options)?;
         (m, report.close) = (x, Some(r));
     }
     if let Some(size) = config.close_gaps {
+        progress(Stage::CloseGaps);
         let (x, r) = cap_small_holes(&m, size);
         (m, report.close_gaps) = (x, Some(r));
     }
@@ -440,6 +494,18 @@ mod tests {
                 ..RepairConfig::default()
             },
             RepairConfig {
+                tjunction_tolerance: Some(-1e-3),
+                ..RepairConfig::default()
+            },
+            RepairConfig {
+                remove_overlapping: Some(f64::NAN),
+                ..RepairConfig::default()
+            },
+            RepairConfig {
+                weld_boundary: Some(f64::INFINITY),
+                ..RepairConfig::default()
+            },
+            RepairConfig {
                 remove_folds: true,
                 ..RepairConfig::default()
             },
@@ -473,5 +539,114 @@ mod tests {
             serde_json::from_str(&serde_json::to_string(&c).expect("writes")).expect("reads");
         assert_eq!(back, c);
         assert!(serde_json::from_str::<RepairConfig>(r#"{"wled": 1}"#).is_err());
+        // The distances of the toleranced steps: keys of their own, `tjunctions: true`
+        // still the exact step.
+        let c: RepairConfig = serde_json::from_str(
+            r#"{"tjunctions": true, "tjunction_tolerance": 0.001, "remove_overlapping": 0.01,
+                "weld_boundary": 0.1}"#,
+        )
+        .expect("parses");
+        assert!(c.tjunctions);
+        assert_eq!(
+            (c.tjunction_tolerance, c.remove_overlapping, c.weld_boundary),
+            (Some(0.001), Some(0.01), Some(0.1))
+        );
+        let c: RepairConfig = serde_json::from_str(r#"{"tjunctions": true}"#).expect("parses");
+        assert_eq!((c.tjunctions, c.tjunction_tolerance), (true, None));
+    }
+
+    #[test]
+    fn invalid_distances_name_their_key() {
+        let m = Mesh::unit_cube();
+        for (config, key) in [
+            (
+                RepairConfig {
+                    tjunction_tolerance: Some(-1.0),
+                    ..RepairConfig::default()
+                },
+                "tjunction_tolerance must be a finite distance >= 0, got -1",
+            ),
+            (
+                RepairConfig {
+                    remove_overlapping: Some(f64::NEG_INFINITY),
+                    ..RepairConfig::default()
+                },
+                "remove_overlapping must be a finite distance >= 0, got -inf",
+            ),
+            (
+                RepairConfig {
+                    weld_boundary: Some(f64::NAN),
+                    ..RepairConfig::default()
+                },
+                "weld_boundary must be a finite distance >= 0, got NaN",
+            ),
+        ] {
+            match repair(&m, &config) {
+                Err(Error::InvalidParameter(msg)) => assert_eq!(msg, key),
+                other => panic!("{other:?}"),
+            }
+        }
+    }
+
+    /// The unit cube as two closed boxes stacked at z = 0.5, the upper one's bottom face
+    /// (its own vertices, facing down) lifted by `gap`: a double wall `gap` thick.
+    fn stacked(gap: f64) -> Mesh {
+        let mut m = Mesh::cuboid([0.0; 3], [1.0, 1.0, 0.5]);
+        let mut high = Mesh::cuboid([0.0; 3], [1.0; 3]);
+        for p in &mut high.positions {
+            if p[2] == 0.0 {
+                p[2] = 0.5 + gap;
+            }
+        }
+        let off = m.positions.len() as u32;
+        m.positions.extend(&high.positions);
+        m.triangles
+            .extend(high.triangles.iter().map(|t| t.map(|v| v + off)));
+        m
+    }
+
+    #[test]
+    fn a_near_double_wall_goes_and_the_boundary_weld_closes_the_cut() {
+        let m = stacked(1e-4);
+        let config = RepairConfig {
+            remove_overlapping: Some(1e-3),
+            weld_boundary: Some(1e-3),
+            ..RepairConfig::default()
+        };
+        let (r, rep) = repair(&m, &config).expect("valid");
+        let d = rep.duplicates.expect("ran");
+        assert_eq!(
+            (d.same_orientation_removed, d.anti_parallel_removed),
+            (0, 4)
+        );
+        assert_eq!(d.largest_distance, (0.5f64 + 1e-4) - 0.5);
+        let w = rep.weld_boundary.expect("ran");
+        assert_eq!((w.merged_vertices, w.collapsed_triangles), (4, 0));
+        let a = &rep.after;
+        assert_eq!(
+            (
+                a.boundary_edges,
+                a.non_manifold_edges,
+                a.inconsistent_edges,
+                a.closed
+            ),
+            (0, 0, 0, true)
+        );
+        assert_eq!(
+            (r.triangles.len(), r.positions.len(), a.volume),
+            (20, 12, 1.0)
+        );
+        // Exactly: the walls are not coincident, nothing goes; two closed boxes, so no
+        // boundary to weld either.
+        let exact = RepairConfig {
+            remove_duplicates: true,
+            weld_boundary: Some(1e-3),
+            ..RepairConfig::default()
+        };
+        let (r, rep) = repair(&m, &exact).expect("valid");
+        let d = rep.duplicates.expect("ran");
+        assert_eq!((d.anti_parallel_removed, d.largest_distance), (0, 0.0));
+        assert_eq!(rep.weld_boundary.map(|w| w.merged_vertices), Some(0));
+        assert_eq!((r.triangles.len(), rep.after.closed), (24, true));
     }
 }
