@@ -292,6 +292,35 @@ impl Bvh {
         bbox
     }
 
+    /// Every triangle of `mesh` (the mesh this tree was built from) whose exact box meets
+    /// the closed box `b` (touching counts), in no particular order. Nodes are pruned on
+    /// their outward-rounded `f32` boxes, leaves confirmed on the exact boxes.
+    pub(crate) fn in_box(&self, mesh: &Mesh, b: &Box3) -> Vec<u32> {
+        let mut out = Vec::new();
+        if self.nodes.is_empty() {
+            return out;
+        }
+        let q = round_out(b);
+        let mut stack = vec![0usize];
+        while let Some(i) = stack.pop() {
+            let n = &self.nodes[i];
+            if !overlaps_f(&n.bbox, &q) {
+                continue;
+            }
+            if n.count > 0 {
+                for &t in &self.order[n.start as usize..(n.start + n.count) as usize] {
+                    if overlaps(&tri_box(mesh, t), b) {
+                        out.push(t);
+                    }
+                }
+            } else {
+                stack.push(n.start as usize);
+                stack.push(i + 1);
+            }
+        }
+        out
+    }
+
     /// Number of triangles indexed.
     pub fn len(&self) -> usize {
         self.order.len()

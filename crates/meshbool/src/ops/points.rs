@@ -6,10 +6,9 @@ use serde::Serialize;
 use web_time::Instant;
 
 use super::{with_threads, Checks, Input, RunOptions, SCHEMA};
-use crate::bvh::Bvh;
 use crate::classify::FastWinding;
 use crate::edges::EdgeCounts;
-use crate::kernel::{orient2d, orient3d_explicit, Point, Sign, Triangle};
+use crate::query::TriangleIndex;
 use crate::{Error, Mesh, Result};
 
 /// Options of [`classify_points`].
@@ -170,47 +169,16 @@ pub fn classify_points<'a>(
 }
 
 /// Per point: whether it lies exactly on a triangle of `m` (closed triangles: edges and
-/// corners count). Candidates from the boxes (each point a zero-size box) through the
-/// triangle hierarchy, then exact predicates.
+/// corners count), through the triangle index.
 fn on_surface(m: &Mesh, points: &[[f64; 3]]) -> Vec<bool> {
-    let mut on = vec![false; points.len()];
     if points.is_empty() || m.triangles.is_empty() {
-        return on;
+        return vec![false; points.len()];
     }
-    let dots = Mesh {
-        positions: points.to_vec(),
-        triangles: (0..points.len() as u32).map(|i| [i, i, i]).collect(),
-    };
-    let pairs = Bvh::new(&dots).overlapping_pairs(&dots, &Bvh::new(m), m);
-    let hits: Vec<u32> = pairs
+    let index = TriangleIndex::new(m);
+    points
         .par_iter()
-        .filter(|&&(p, t)| in_closed_triangle(m, t, &points[p as usize]))
-        .map(|&(p, _)| p)
-        .collect();
-    for p in hits {
-        on[p as usize] = true;
-    }
-    on
-}
-
-/// Exactly whether `p` lies in triangle `t` of `m`, boundary included (degenerate
-/// triangles contain nothing).
-fn in_closed_triangle(m: &Mesh, t: u32, p: &[f64; 3]) -> bool {
-    let [a, b, c] = m.corners(t as usize);
-    if orient3d_explicit(&a, &b, &c, p) != Sign::Zero {
-        return false;
-    }
-    let Some(shape) = Triangle::new([a, b, c]) else {
-        return false;
-    };
-    let axis = shape.axis();
-    let [a, b, c, q] = [a, b, c, *p].map(Point::Explicit);
-    let s = [
-        orient2d(&a, &b, &q, axis),
-        orient2d(&b, &c, &q, axis),
-        orient2d(&c, &a, &q, axis),
-    ];
-    !(s.contains(&Sign::Positive) && s.contains(&Sign::Negative))
+        .map(|p| !index.containing(p).is_empty())
+        .collect()
 }
 
 #[cfg(test)]
