@@ -1,6 +1,6 @@
 // Node benchmarks of the package (single-threaded WebAssembly) against the reference
 // library and manifold-3d (npm, WebAssembly) on the same machine, in one run:
-//   node bench/bench.mjs [--reps N] [--slow]
+//   node bench/bench.mjs [--reps N (default 11)] [--slow]
 // Peers are optional, named by environment variables (they are not dependencies):
 //   REF=/path/to/trimesh-boolean/src/index.js   MANIFOLD=/path/to/manifold-3d/manifold.js
 // Cases: Kirra terrain − cylinder (open surface, soup API and typed arrays), and unions of
@@ -13,7 +13,7 @@ import { performance } from "node:perf_hooks";
 import * as mb from "../src/index.js";
 
 const args = process.argv.slice(2);
-const reps = Number(args[args.indexOf("--reps") + 1]) || 5;
+const reps = Number(args[args.indexOf("--reps") + 1]) || 11;
 const slow = args.includes("--slow");
 const data = (name) => new URL(`../../data/${name}`, import.meta.url);
 

@@ -167,6 +167,7 @@ export interface IndexedGroup extends IndexedMesh {
 export function booleanIndexed(a: IndexedMesh, b: IndexedMesh, operation: Operation, options?: CheckOptions): IndexedBooleanResult;
 export function splitIndexed(a: IndexedMesh, b: IndexedMesh, options?: CheckOptions): { groups: Record<string, IndexedGroup>; report: Report };
 export function curvesIndexed(a: IndexedMesh, b: IndexedMesh | null, options?: { withCoplanar?: boolean }): { polylines: Float64Array[]; closed: boolean[]; report: Report };
+export function cutFill(design: IndexedMesh | TriangleSoup, topo: IndexedMesh | TriangleSoup): Report & { cut: number; fill: number; net: number; common_plan_area: number; lines: Float64Array[]; closed: boolean[] };
 export function classifyPointsIndexed(mesh: IndexedMesh | TriangleSoup, points: Float64Array | Vertex[], options?: CheckOptions): { classes: Uint8Array; winding: Float64Array; report: Report };
 export function classifyPoints(soup: TriangleSoup | IndexedMesh, points: Vertex[], options?: CheckOptions): Array<"inside" | "outside" | "on">;
 export function resolveIndexed(mesh: IndexedMesh, options?: { rule?: "positive" | "nonzero" | "evenodd"; keepNonmanifold?: boolean }): IndexedResult & { parent: Uint32Array };

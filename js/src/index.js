@@ -130,6 +130,22 @@ export function curvesIndexed(a, b, options) {
 	return { polylines: out.polylines, closed: Array.from(out.closed, (c) => c === 1), report: parseReport(out.report) };
 }
 
+/**
+ * Cut and fill between a design surface and the topography (indexed meshes or soups;
+ * both faced up first): the report `{cut, fill, net, design_plan_area, topo_plan_area,
+ * common_plan_area, zero_lines, zero_line_length, faced_up, ...}` with `lines` (the
+ * zero-thickness polylines as Float64Arrays) and `closed` added. Volumes over the plan
+ * area both cover, from exact booleans of the solids under each surface.
+ */
+export function cutFill(design, topo) {
+	const D = arraysOf(design, "design"), T = arraysOf(topo, "topo");
+	const out = call("cutfill", D.positions, D.index, T.positions, T.index);
+	const report = parseReport(out.report);
+	report.lines = out.lines;
+	report.closed = Array.from(out.closed, (c) => c === 1);
+	return report;
+}
+
 const CLASS_NAMES = ["outside", "inside", "on"];
 
 /**

@@ -497,6 +497,17 @@ test("points classified exactly on the surface, else by the winding number", () 
 	assert.throws(() => mb.classifyPoints(a, [{ x: NaN, y: 0, z: 0 }]), /non-finite/);
 });
 
+test("cut and fill of a slope against flat ground", () => {
+	// z = 0 and z = x over [-2, 2]²: two wedges of 4 · 2 · 2 / 2 = 8, meeting along x = 0.
+	const ground = patch(0, 0, 0, 4, 2);
+	const slope = ground.map((t) => ({ v0: { ...t.v0, z: t.v0.x }, v1: { ...t.v1, z: t.v1.x }, v2: { ...t.v2, z: t.v2.x } }));
+	const r = mb.cutFill(ground, slope);
+	assert.ok(Math.abs(r.cut - 8) < 1e-12 && Math.abs(r.fill - 8) < 1e-12, `${r.cut} ${r.fill}`);
+	assert.ok(Math.abs(r.common_plan_area - 16) < 1e-12);
+	assert.equal(r.lines.length, 1);
+	assert.equal(r.zero_lines, 1);
+});
+
 test("every export is exercised by this file", () => {
 	const src = readFileSync(new URL(import.meta.url), "utf8");
 	const missing = Object.keys(mb).filter((n) => !new RegExp(`mb\\.${n}\\b`).test(src));

@@ -423,6 +423,36 @@ fn curves<'py>(
     Ok((lines, report))
 }
 
+/// Cut and fill between a design surface and a topography: the report (JSON) and the
+/// zero-thickness lines as `(points (k, 3), closed)`.
+#[pyfunction]
+#[allow(clippy::type_complexity)]
+fn cutfill<'py>(
+    py: Python<'py>,
+    dv: PyReadonlyArray2<'py, f64>,
+    df: PyReadonlyArray2<'py, u32>,
+    tv: PyReadonlyArray2<'py, f64>,
+    tf: PyReadonlyArray2<'py, u32>,
+    threads: Option<usize>,
+) -> PyResult<(String, Vec<(Bound<'py, PyArray2<f64>>, bool)>)> {
+    let (d, t) = (mesh(&dv, &df)?, mesh(&tv, &tf)?);
+    let opts = ops::CutFillOptions { run: run(threads) };
+    let out = py
+        .detach(move || ops::cutfill(&d, &t, &opts))
+        .map_err(py_err)?;
+    let report = json(&out.report())?;
+    let lines = out
+        .lines
+        .into_iter()
+        .map(|l| {
+            let k = l.points.len();
+            let points = PyArray1::from_vec(py, l.points.into_flattened()).reshape([k, 3])?;
+            Ok((points, l.closed))
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    Ok((report, lines))
+}
+
 /// Where points lie against a mesh: per point 0 outside, 1 inside, 2 on the surface, the
 /// winding numbers, and the report.
 #[pyfunction]
@@ -596,6 +626,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
         wrap_pyfunction!(pick, m)?,
         wrap_pyfunction!(curves, m)?,
         wrap_pyfunction!(classify, m)?,
+        wrap_pyfunction!(cutfill, m)?,
         wrap_pyfunction!(resolve, m)?,
         wrap_pyfunction!(orient, m)?,
         wrap_pyfunction!(close, m)?,

@@ -374,3 +374,17 @@ def test_readme_python_example_runs(monkeypatch, capsys):
     assert out[0] == "(5704, 3) uint32 560"
     assert out[2].startswith("['a_in_b', 'a_out_b', 'b_in_a', 'b_out_a'] 897 [10645]")
     assert out[3].endswith("True True")
+
+
+def test_cutfill_of_a_slope_against_flat_ground():
+    # Ground z = 0 and a slope z = x - 2 over [0, 4] x [0, 1]: the wedges above and below
+    # are 1 * 2 * 2 / 2 = 2 each, meeting along x = 2.
+    xs, ys = np.meshgrid([0.0, 2.0, 4.0], [0.0, 1.0], indexing="ij")
+    pts = np.c_[xs.ravel(), ys.ravel()]
+    faces = np.array([[0, 2, 3], [0, 3, 1], [2, 4, 5], [2, 5, 3]], dtype=np.uint32)
+    ground = (np.c_[pts, np.zeros(len(pts))], faces)
+    slope = (np.c_[pts, pts[:, 0] - 2.0], faces)
+    report, lines = meshbool.cutfill(ground, slope)
+    assert abs(report["cut"] - 2.0) < 1e-12 and abs(report["fill"] - 2.0) < 1e-12
+    assert abs(report["common_plan_area"] - 4.0) < 1e-12
+    assert len(lines) == 1 and report["zero_lines"] == 1

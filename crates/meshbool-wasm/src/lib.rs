@@ -315,6 +315,31 @@ pub fn curves(
         .done())
 }
 
+/// Cut and fill between a design surface and a topography: `{lines, closed, report}`
+/// (`lines`: the zero-thickness polylines, three numbers per point; the report as
+/// `meshbool cutfill --json`).
+#[wasm_bindgen]
+pub fn cutfill(
+    d_positions: &[f64],
+    d_index: &[u32],
+    t_positions: &[f64],
+    t_index: &[u32],
+) -> Result<JsValue, JsError> {
+    let (d, t) = (mesh(d_positions, d_index)?, mesh(t_positions, t_index)?);
+    let out = ops::cutfill(&d, &t, &ops::CutFillOptions::default()).map_err(js_err)?;
+    let lines = Array::new();
+    let mut closed = Vec::new();
+    for l in &out.lines {
+        lines.push(&Float64Array::from(l.points.as_flattened()));
+        closed.push(u8::from(l.closed));
+    }
+    Ok(Out::new()
+        .set("lines", lines)
+        .set("closed", Uint8Array::from(&closed[..]))
+        .report(&out.report())?
+        .done())
+}
+
 /// Where points (three numbers each) lie against a mesh: `{classes, winding, report}`,
 /// `classes[i]` 0 outside, 1 inside, 2 exactly on the surface; `winding[i]` the winding
 /// number. Options (JSON) as for [`boolean`]'s operand checks.

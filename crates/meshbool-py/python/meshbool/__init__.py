@@ -38,6 +38,7 @@ __all__ = [
     "curves",
     "classify",
     "POINT_CLASSES",
+    "cutfill",
     "repair",
     "resolve",
     "orient",
@@ -439,6 +440,19 @@ def classify(
     pts = np.ascontiguousarray(np.asarray(points, dtype=np.float64).reshape(-1, 3))
     classes, winding, _ = _native.classify(v, f, pts, force, threads)
     return classes, winding
+
+
+def cutfill(
+    design: MeshLike, topo: MeshLike, *, threads: Optional[int] = None
+) -> Tuple[dict, Curves]:
+    """Cut and fill between a design surface and the topography (both faced up first):
+    the ``meshbool cutfill --json`` dict (``cut``, ``fill``, ``net``, plan areas, ...) and
+    the lines where the surfaces meet. Volumes over the plan area both cover, from exact
+    booleans of the solids under each surface."""
+    dv, df = _parts(design)
+    tv, tf = _parts(topo)
+    report, lines = _native.cutfill(dv, df, tv, tf, threads)
+    return json.loads(report), Curves(Polyline(p, c) for p, c in lines)
 
 
 def resolve(

@@ -73,6 +73,9 @@ def curves(
     simplify: Optional[float] = None,
     tagged: bool = False,
 ) -> Tuple[List[Tuple[F64, bool]], str]: ...
+def cutfill(
+    dv: F64, df: U32, tv: F64, tf: U32, threads: Optional[int]
+) -> Tuple[str, List[Tuple[F64, bool]]]: ...
 def classify(
     v: F64, f: U32, points: F64, force: bool, threads: Optional[int]
 ) -> Tuple[npt.NDArray[np.uint8], F64, str]: ...
