@@ -383,6 +383,21 @@ fn pick<'py>(
     Ok((v, f, report))
 }
 
+/// Polylines as `(points (k, 3), closed)`, the points handed to numpy without a copy.
+fn polylines(
+    py: Python<'_>,
+    lines: Vec<meshbool::intersect::PolylineXyz>,
+) -> PyResult<Vec<(Bound<'_, PyArray2<f64>>, bool)>> {
+    lines
+        .into_iter()
+        .map(|l| {
+            let k = l.points.len();
+            let points = PyArray1::from_vec(py, l.points.into_flattened()).reshape([k, 3])?;
+            Ok((points, l.closed))
+        })
+        .collect()
+}
+
 /// The intersection curves: `(points (k, 3), closed)` per polyline, and the report.
 #[pyfunction]
 #[pyo3(signature = (av, af, b, with_coplanar, simplify=None, tagged=false))]
@@ -411,16 +426,7 @@ fn curves<'py>(
         })
         .map_err(py_err)?;
     let report = json(&out.report())?;
-    let lines = out
-        .polylines
-        .into_iter()
-        .map(|l| {
-            let k = l.points.len();
-            let points = PyArray1::from_vec(py, l.points.into_flattened()).reshape([k, 3])?;
-            Ok((points, l.closed))
-        })
-        .collect::<PyResult<Vec<_>>>()?;
-    Ok((lines, report))
+    Ok((polylines(py, out.polylines)?, report))
 }
 
 /// Cut and fill between a design surface and a topography: the report (JSON) and the
@@ -441,16 +447,7 @@ fn cutfill<'py>(
         .detach(move || ops::cutfill(&d, &t, &opts))
         .map_err(py_err)?;
     let report = json(&out.report())?;
-    let lines = out
-        .lines
-        .into_iter()
-        .map(|l| {
-            let k = l.points.len();
-            let points = PyArray1::from_vec(py, l.points.into_flattened()).reshape([k, 3])?;
-            Ok((points, l.closed))
-        })
-        .collect::<PyResult<Vec<_>>>()?;
-    Ok((report, lines))
+    Ok((report, polylines(py, out.lines)?))
 }
 
 /// Where points lie against a mesh: per point 0 outside, 1 inside, 2 on the surface, the

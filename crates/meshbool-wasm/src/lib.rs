@@ -103,6 +103,18 @@ impl Out {
             .set("index", Uint32Array::from(t))
     }
 
+    /// Polylines under `key` (a `Float64Array` each, three numbers per point) and their
+    /// `closed` flags (1 for loops).
+    fn polylines(self, key: &str, lines: &[meshbool::intersect::PolylineXyz]) -> Self {
+        let arr = Array::new();
+        for l in lines {
+            arr.push(&Float64Array::from(l.points.as_flattened()));
+        }
+        let closed: Vec<u8> = lines.iter().map(|l| u8::from(l.closed)).collect();
+        self.set(key, arr)
+            .set("closed", Uint8Array::from(&closed[..]))
+    }
+
     fn report(self, report: &impl serde::Serialize) -> Result<Self, JsError> {
         let text = serde_json::to_string(report).map_err(|e| bad(e.to_string()))?;
         Ok(self.set("report", text))
@@ -302,15 +314,8 @@ pub fn curves(
         ops::curves(&a, &mesh(b_positions, b_index)?, &copts)
     }
     .map_err(js_err)?;
-    let lines = Array::new();
-    let mut closed = Vec::new();
-    for l in &out.polylines {
-        lines.push(&Float64Array::from(l.points.as_flattened()));
-        closed.push(u8::from(l.closed));
-    }
     Ok(Out::new()
-        .set("polylines", lines)
-        .set("closed", Uint8Array::from(&closed[..]))
+        .polylines("polylines", &out.polylines)
         .report(&out.report())?
         .done())
 }
@@ -327,15 +332,8 @@ pub fn cutfill(
 ) -> Result<JsValue, JsError> {
     let (d, t) = (mesh(d_positions, d_index)?, mesh(t_positions, t_index)?);
     let out = ops::cutfill(&d, &t, &ops::CutFillOptions::default()).map_err(js_err)?;
-    let lines = Array::new();
-    let mut closed = Vec::new();
-    for l in &out.lines {
-        lines.push(&Float64Array::from(l.points.as_flattened()));
-        closed.push(u8::from(l.closed));
-    }
     Ok(Out::new()
-        .set("lines", lines)
-        .set("closed", Uint8Array::from(&closed[..]))
+        .polylines("lines", &out.lines)
         .report(&out.report())?
         .done())
 }
