@@ -135,6 +135,18 @@ pub fn boolean<'a>(
     op: Op,
     opts: &BooleanOptions,
 ) -> Result<BooleanOutput> {
+    let (a, b): (Input<'a>, Input<'a>) = (a.into(), b.into());
+    if let (Input::Mesh(ma), Input::Mesh(mb)) = (a, b) {
+        if let Some(e) = super::extreme_scale(&[ma, mb]) {
+            let (sa, sb) = (super::scaled_mesh(ma, e), super::scaled_mesh(mb, e));
+            let mut out = boolean(&sa, &sb, op, opts)?;
+            super::scale_points(&mut out.mesh.positions, -e);
+            for o in &mut out.operands {
+                o.scale_back(-e);
+            }
+            return Ok(out);
+        }
+    }
     let run = |a: &Operand, b: &Operand| {
         let pipeline = PipelineOptions {
             keep_nonmanifold: opts.keep_nonmanifold,
@@ -150,8 +162,7 @@ pub fn boolean<'a>(
         }
         (r, [a.report().clone(), b.report().clone()])
     };
-    let ((r, operands), seconds) =
-        Input::with_both(a.into(), b.into(), &opts.checks, &opts.run, run)?;
+    let ((r, operands), seconds) = Input::with_both(a, b, &opts.checks, &opts.run, run)?;
     Ok(BooleanOutput {
         op,
         mesh: r.mesh,

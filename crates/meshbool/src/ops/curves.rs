@@ -161,6 +161,15 @@ impl CurvesOutput {
         }
     }
 
+    /// Multiplies the output's coordinates by `2^e` (the polylines and the seam's rounded
+    /// positions; the exact constructions stay those of the unit-size computation).
+    fn scale_back(&mut self, e: i32) {
+        for l in &mut self.polylines {
+            super::scale_points(&mut l.points, e);
+        }
+        super::scale_points(&mut self.seam.positions, e);
+    }
+
     /// Every raw seam segment with the triangle of each input it lies in, in the order of
     /// the seam's sources (see [`TaggedSegment`]).
     pub fn tagged_segments(&self) -> Vec<TaggedSegment> {
@@ -215,6 +224,15 @@ pub fn curves<'a>(
     opts: &CurvesOptions,
 ) -> Result<CurvesOutput> {
     opts.validate()?;
+    let (a, b): (Input<'a>, Input<'a>) = (a.into(), b.into());
+    if let (Input::Mesh(ma), Input::Mesh(mb)) = (a, b) {
+        if let Some(e) = super::extreme_scale(&[ma, mb]) {
+            let (sa, sb) = (super::scaled_mesh(ma, e), super::scaled_mesh(mb, e));
+            let mut out = curves(&sa, &sb, opts)?;
+            out.scale_back(-e);
+            return Ok(out);
+        }
+    }
     let run = |a: &Operand, b: &Operand| {
         opts.run.stage(Stage::Intersect);
         let seam = intersect(a.mesh(), b.mesh());
@@ -222,7 +240,7 @@ pub fn curves<'a>(
         (seam, lines, [a.name().to_string(), b.name().to_string()])
     };
     let ((seam, (polylines, away), names), seconds) =
-        Input::with_both(a.into(), b.into(), &opts.checks, &opts.run, run)?;
+        Input::with_both(a, b, &opts.checks, &opts.run, run)?;
     Ok(CurvesOutput {
         polylines,
         seam,

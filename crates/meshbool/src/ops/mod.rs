@@ -160,6 +160,45 @@ pub fn with_threads<R: Send>(threads: Option<usize>, f: impl FnOnce() -> R + Sen
     Ok(pool.install(f))
 }
 
+/// Inputs whose coordinates are all tiny or all huge (the largest below 2^-200 or above
+/// 2^200) are computed at unit size: the exact kernel's filters and implicit points work
+/// in products of several coordinates, which would underflow or overflow `f64` there.
+/// Multiplying by a power of two is exact (for normal numbers), and every step commutes
+/// with it, so the result is the unit-size result scaled back bit for bit.
+///
+/// The exponent `e` that brings the meshes' largest magnitude into `[1, 2)`, when outside
+/// the safe range; `None` when they are computed as given.
+fn extreme_scale(meshes: &[&Mesh]) -> Option<i32> {
+    let largest = meshes
+        .iter()
+        .flat_map(|m| m.positions.iter().flatten())
+        .fold(0.0f64, |a, &x| a.max(x.abs()));
+    if !(largest.is_finite() && largest > 0.0) {
+        return None;
+    }
+    let e = largest.log2().floor() as i32;
+    (!(-200..=200).contains(&e)).then_some(-e)
+}
+
+/// `m` with every coordinate multiplied by `2^e` (exact for normal numbers).
+fn scaled_mesh(m: &Mesh, e: i32) -> Mesh {
+    let mut out = m.clone();
+    scale_points(&mut out.positions, e);
+    out
+}
+
+/// Multiplies every coordinate by `2^e`, in two steps where `2^e` alone is not a normal
+/// `f64`.
+fn scale_points(points: &mut [[f64; 3]], e: i32) {
+    let (half, rest) = (e / 2, e - e / 2);
+    let (f, g) = (2f64.powi(half), 2f64.powi(rest));
+    for p in points {
+        for x in p.iter_mut() {
+            *x = *x * f * g;
+        }
+    }
+}
+
 /// The measures of a result mesh that every report carries: counts, closedness, volume
 /// and area. Cheaper than [`MeshStats`](crate::measure::MeshStats) (edge kinds are counted without building the
 /// adjacency).

@@ -110,6 +110,18 @@ pub struct SelfIntersections {
 }
 
 impl OperandReport {
+    /// Multiplies the report's coordinates (the `near` point of a self-intersection) by
+    /// `2^e`, for a computation done at unit size.
+    pub(crate) fn scale_back(&mut self, e: i32) {
+        if let Some(near) = self
+            .self_intersections
+            .as_mut()
+            .and_then(|s| s.near.as_mut())
+        {
+            super::scale_points(std::slice::from_mut(near), e);
+        }
+    }
+
     /// What makes inside/outside ambiguous, one phrase each; empty for a clean operand.
     pub fn problems(&self) -> Vec<String> {
         let mut problems = Vec::new();

@@ -114,6 +114,23 @@ pub fn split<'a>(
     b: impl Into<Input<'a>>,
     opts: &SplitOptions,
 ) -> Result<SplitOutput> {
+    let (a, b): (Input<'a>, Input<'a>) = (a.into(), b.into());
+    if let (Input::Mesh(ma), Input::Mesh(mb)) = (a, b) {
+        if let Some(e) = super::extreme_scale(&[ma, mb]) {
+            let (sa, sb) = (super::scaled_mesh(ma, e), super::scaled_mesh(mb, e));
+            let mut out = split(&sa, &sb, opts)?;
+            for g in &mut out.groups {
+                super::scale_points(&mut g.mesh.positions, -e);
+                for c in &mut g.components {
+                    super::scale_points(&mut c.positions, -e);
+                }
+            }
+            for o in &mut out.operands {
+                o.scale_back(-e);
+            }
+            return Ok(out);
+        }
+    }
     let run = |a: &Operand, b: &Operand| {
         let s = crate::boolean::split(a.mesh(), b.mesh(), &opts.run.pipeline());
         opts.run.stage(Stage::Merge);
@@ -132,7 +149,7 @@ pub fn split<'a>(
         )
     };
     let ((seam_points, groups, operands), seconds) =
-        Input::with_both(a.into(), b.into(), &opts.checks, &opts.run, run)?;
+        Input::with_both(a, b, &opts.checks, &opts.run, run)?;
     Ok(SplitOutput {
         operands,
         seam_points,

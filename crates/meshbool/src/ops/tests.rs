@@ -667,3 +667,42 @@ fn picking_the_pieces_of_an_op_gives_the_boolean() {
         .collect();
     assert_eq!(names, ["a_out_b", "b_in_a:flip", "a_on_b_opposite"]);
 }
+
+#[test]
+fn tiny_and_huge_inputs_give_the_unit_result_scaled_bit_for_bit() {
+    // Before: at 2^-256 the union's vertices drifted, at 2^-270 the curves vanished.
+    let a = crate::shapes::sphere([0.0; 3], 1.0, 16, 8).unwrap();
+    let b = crate::shapes::sphere([0.3, 0.2, 0.1], 1.0, 16, 8).unwrap();
+    let scaled = |m: &Mesh, k: i32| {
+        let mut m = m.clone();
+        super::scale_points(&mut m.positions, k);
+        m
+    };
+    let sorted = |m: &Mesh| {
+        let mut s = m.to_soup();
+        s.sort_by(|x, y| x.partial_cmp(y).unwrap());
+        s
+    };
+    let opts = BooleanOptions::default();
+    let unit = boolean(&a, &b, Op::Union, &opts).unwrap();
+    let unit_split = split(&a, &b, &SplitOptions::default()).unwrap();
+    let unit_curves = curves(&a, &b, &CurvesOptions::default()).unwrap();
+    for k in [-960, -700, -300, -256, 256, 270, 300, 700, 1000] {
+        let (sa, sb) = (scaled(&a, k), scaled(&b, k));
+        let out = boolean(&sa, &sb, Op::Union, &opts).unwrap();
+        assert_eq!(sorted(&out.mesh), sorted(&scaled(&unit.mesh, k)), "2^{k}");
+        assert!(out.report().result.closed);
+        let s = split(&sa, &sb, &SplitOptions::default()).unwrap();
+        for (g, u) in s.groups.iter().zip(&unit_split.groups) {
+            assert_eq!(g.group, u.group);
+            assert_eq!(g.mesh, scaled(&u.mesh, k), "2^{k} {:?}", g.group);
+        }
+        let c = curves(&sa, &sb, &CurvesOptions::default()).unwrap();
+        assert_eq!(c.polylines.len(), unit_curves.polylines.len());
+        for (l, u) in c.polylines.iter().zip(&unit_curves.polylines) {
+            let mut want = u.points.clone();
+            super::scale_points(&mut want, k);
+            assert_eq!(l.points, want, "2^{k}");
+        }
+    }
+}
