@@ -21,20 +21,24 @@ use crate::Mesh;
 
 mod dxf;
 mod glb;
+#[cfg(feature = "mining-formats")]
 mod gocad;
 mod json;
+#[cfg(feature = "mining-formats")]
 mod landxml;
 mod obj;
 mod ply;
 mod points;
 mod polyline;
 mod stl;
+#[cfg(feature = "mining-formats")]
 mod surpac;
 
 #[doc(no_inline)]
 pub use crate::format::Format;
 pub use points::read_points;
 pub use polyline::write_polylines;
+#[cfg(feature = "mining-formats")]
 pub use surpac::{read_surpac_dtm, write_surpac_dtm};
 
 /// The format of `bytes`, from the content, with `hint` (a format from the file name)
@@ -85,14 +89,17 @@ fn format_from_content(bytes: &[u8]) -> Option<Format> {
     if text.starts_with(b"[") || text.starts_with(b"{") {
         return Some(Format::JsonSoup);
     }
-    if gocad::looks_like(text) {
-        return Some(Format::GocadTs);
-    }
-    if landxml::looks_like(text) {
-        return Some(Format::LandXml);
-    }
-    if surpac::looks_like(text) {
-        return Some(Format::SurpacDtm);
+    #[cfg(feature = "mining-formats")]
+    {
+        if gocad::looks_like(text) {
+            return Some(Format::GocadTs);
+        }
+        if landxml::looks_like(text) {
+            return Some(Format::LandXml);
+        }
+        if surpac::looks_like(text) {
+            return Some(Format::SurpacDtm);
+        }
     }
     if dxf::looks_like(text) {
         return Some(Format::Dxf);
@@ -101,6 +108,16 @@ fn format_from_content(bytes: &[u8]) -> Option<Format> {
         return Some(Format::Obj);
     }
     None
+}
+
+/// The error for a format left out of this build (the `mining-formats` feature, off in
+/// the WebAssembly package to keep it small).
+#[cfg(not(feature = "mining-formats"))]
+fn not_built(format: Format) -> Error {
+    Error::InvalidParameter(format!(
+        "{} is not built into this build of meshbool (the mining-formats feature)",
+        format.name()
+    ))
 }
 
 /// Reads a mesh from bytes in the given format (for STL and PLY the encoding is taken from
@@ -118,11 +135,16 @@ pub fn read_bytes(bytes: &[u8], format: Format) -> Result<Mesh> {
         Format::Dxf => dxf::read(bytes)?,
         Format::JsonSoup | Format::JsonKirra => json::read(bytes)?,
         Format::Glb => glb::read(bytes)?,
+        #[cfg(feature = "mining-formats")]
         Format::GocadTs => gocad::read(bytes)?,
+        #[cfg(feature = "mining-formats")]
         Format::LandXml => landxml::read(bytes)?,
+        #[cfg(feature = "mining-formats")]
         Format::SurpacDtm => {
             return Err(Error::parse(format, Location::Whole, surpac::NEEDS_STRINGS))
         }
+        #[cfg(not(feature = "mining-formats"))]
+        Format::GocadTs | Format::LandXml | Format::SurpacDtm => return Err(not_built(format)),
     };
     mesh.validate()?;
     Ok(mesh)
@@ -142,6 +164,7 @@ pub fn read_file(path: impl AsRef<Path>, from: Option<Format>) -> Result<(Mesh, 
     let bytes = fs::read(path)?;
     let format = detect_format(&bytes, from.or_else(|| Format::for_path(path)))
         .ok_or_else(|| Error::UnknownFormat(path.display().to_string()))?;
+    #[cfg(feature = "mining-formats")]
     if format == Format::SurpacDtm && !bytes.trim_ascii().is_empty() {
         return Ok((surpac::read_path(path, &bytes)?, format));
     }
@@ -165,8 +188,12 @@ pub fn write(out: &mut impl Write, mesh: &Mesh, format: Format) -> Result<()> {
         Format::Dxf => dxf::write(out, mesh),
         Format::JsonSoup | Format::JsonKirra => json::write(out, mesh, format),
         Format::Glb => glb::write(out, mesh),
+        #[cfg(feature = "mining-formats")]
         Format::GocadTs => gocad::write(out, mesh),
+        #[cfg(feature = "mining-formats")]
         Format::LandXml => landxml::write(out, mesh),
+        #[cfg(not(feature = "mining-formats"))]
+        Format::GocadTs | Format::LandXml => Err(not_built(format)),
         Format::SurpacDtm => Err(Error::InvalidParameter(
             "a Surpac DTM is two files, the .dtm and its string file .str: write it by path \
              (io::write_path_as) or with io::write_surpac_dtm"
@@ -187,6 +214,7 @@ pub fn write_path(path: impl AsRef<Path>, mesh: &Mesh) -> Result<()> {
 /// Writes `mesh` to a file in `format`. A Surpac DTM's string file is written beside it:
 /// the same name with extension `str`.
 pub fn write_path_as(path: impl AsRef<Path>, mesh: &Mesh, format: Format) -> Result<()> {
+    #[cfg(feature = "mining-formats")]
     if format == Format::SurpacDtm {
         return surpac::write_path(path.as_ref(), mesh);
     }
@@ -356,5 +384,5 @@ fn push_fan(poly: &[u32], out: &mut Vec<[u32; 3]>) {
 #[cfg(test)]
 mod tests;
 
-#[cfg(test)]
+#[cfg(all(test, feature = "mining-formats"))]
 mod mining_tests;
