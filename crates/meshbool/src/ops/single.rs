@@ -255,6 +255,13 @@ impl ResolveOutput {
 /// itself is an [`Error::Unresolvable`](crate::Error::Unresolvable).
 pub fn resolve<'a>(mesh: impl Into<Input<'a>>, opts: &ResolveOptions) -> Result<ResolveOutput> {
     let input: Input<'a> = mesh.into();
+    if let Input::Mesh(m) = input {
+        if let Some(e) = super::extreme_scale(&[m]) {
+            let mut out = resolve(&super::scaled_mesh(m, e), opts)?;
+            super::scale_points(&mut out.mesh.positions, -e);
+            return Ok(out);
+        }
+    }
     with_threads(opts.run.threads, || {
         let start = web_time::Instant::now();
         let input = welded(input)?;

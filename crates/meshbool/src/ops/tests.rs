@@ -687,6 +687,17 @@ fn tiny_and_huge_inputs_give_the_unit_result_scaled_bit_for_bit() {
     let unit = boolean(&a, &b, Op::Union, &opts).unwrap();
     let unit_split = split(&a, &b, &SplitOptions::default()).unwrap();
     let unit_curves = curves(&a, &b, &CurvesOptions::default()).unwrap();
+    let mut unit_joined = a.clone();
+    unit_joined.append(&b).unwrap();
+    let unit_resolved = resolve(&unit_joined, &ResolveOptions::default()).unwrap();
+    let unit_probe = [[0.1, 0.1, 0.1], [0.0, 0.0, 1.0], [3.0, 0.0, 0.0]];
+    let unit_classes = classify_points(&a, &unit_probe, &Default::default())
+        .unwrap()
+        .classes;
+    assert_eq!(
+        unit_classes,
+        [PointClass::Inside, PointClass::On, PointClass::Outside]
+    );
     for k in [-960, -700, -300, -256, 256, 270, 300, 700, 1000] {
         let (sa, sb) = (scaled(&a, k), scaled(&b, k));
         let out = boolean(&sa, &sb, Op::Union, &opts).unwrap();
@@ -697,6 +708,21 @@ fn tiny_and_huge_inputs_give_the_unit_result_scaled_bit_for_bit() {
             assert_eq!(g.group, u.group);
             assert_eq!(g.mesh, scaled(&u.mesh, k), "2^{k} {:?}", g.group);
         }
+        // Resolve (the two spheres as one self-overlapping mesh) and point classification.
+        let mut joined = sa.clone();
+        joined.append(&sb).unwrap();
+        let r = resolve(&joined, &ResolveOptions::default()).unwrap();
+        assert_eq!(
+            sorted(&r.mesh),
+            sorted(&scaled(&unit_resolved.mesh, k)),
+            "2^{k}"
+        );
+        let mut probe = [[0.1, 0.1, 0.1], [0.0, 0.0, 1.0], [3.0, 0.0, 0.0]];
+        super::scale_points(&mut probe, k);
+        let classes = classify_points(&sa, &probe, &Default::default())
+            .unwrap()
+            .classes;
+        assert_eq!(classes, unit_classes, "2^{k}");
         let c = curves(&sa, &sb, &CurvesOptions::default()).unwrap();
         assert_eq!(c.polylines.len(), unit_curves.polylines.len());
         for (l, u) in c.polylines.iter().zip(&unit_curves.polylines) {
