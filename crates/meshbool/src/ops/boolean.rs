@@ -86,6 +86,14 @@ pub struct BooleanReport {
 }
 
 impl BooleanOutput {
+    /// Multiplies the output's coordinates by `2^e` (for a computation done at unit size).
+    fn scale_back(&mut self, e: i32) {
+        super::scale_points(&mut self.mesh.positions, e);
+        for o in &mut self.operands {
+            o.scale_back(e);
+        }
+    }
+
     /// What the result assumes, one line each (see [`BooleanReport::assumed`]).
     pub fn assumed(&self) -> Vec<String> {
         let mut lines: Vec<String> = self.operands.iter().flat_map(|o| o.assumed()).collect();
@@ -136,16 +144,9 @@ pub fn boolean<'a>(
     opts: &BooleanOptions,
 ) -> Result<BooleanOutput> {
     let (a, b): (Input<'a>, Input<'a>) = (a.into(), b.into());
-    if let (Input::Mesh(ma), Input::Mesh(mb)) = (a, b) {
-        if let Some(e) = super::extreme_scale(&[ma, mb]) {
-            let (sa, sb) = (super::scaled_mesh(ma, e), super::scaled_mesh(mb, e));
-            let mut out = boolean(&sa, &sb, op, opts)?;
-            super::scale_points(&mut out.mesh.positions, -e);
-            for o in &mut out.operands {
-                o.scale_back(-e);
-            }
-            return Ok(out);
-        }
+    let unit = |a: &Mesh, b: &Mesh| boolean(a, b, op, opts);
+    if let Some(out) = super::at_unit_scale(a, b, unit, BooleanOutput::scale_back) {
+        return out;
     }
     let run = |a: &Operand, b: &Operand| {
         let pipeline = PipelineOptions {

@@ -11,7 +11,7 @@ use super::{with_threads, Checks, Input, Operand, RunOptions, SCHEMA};
 use crate::boolean::Stage;
 use crate::intersect::{chain, intersect, self_intersections, self_seam, PolylineXyz, Seam};
 use crate::io::write_polylines;
-use crate::{Error, Format, Result};
+use crate::{Error, Format, Mesh, Result};
 
 /// Options of [`curves`].
 #[derive(Clone, Debug)]
@@ -225,13 +225,9 @@ pub fn curves<'a>(
 ) -> Result<CurvesOutput> {
     opts.validate()?;
     let (a, b): (Input<'a>, Input<'a>) = (a.into(), b.into());
-    if let (Input::Mesh(ma), Input::Mesh(mb)) = (a, b) {
-        if let Some(e) = super::extreme_scale(&[ma, mb]) {
-            let (sa, sb) = (super::scaled_mesh(ma, e), super::scaled_mesh(mb, e));
-            let mut out = curves(&sa, &sb, opts)?;
-            out.scale_back(-e);
-            return Ok(out);
-        }
+    let unit = |a: &Mesh, b: &Mesh| curves(a, b, opts);
+    if let Some(out) = super::at_unit_scale(a, b, unit, CurvesOutput::scale_back) {
+        return out;
     }
     let run = |a: &Operand, b: &Operand| {
         opts.run.stage(Stage::Intersect);

@@ -180,6 +180,25 @@ fn extreme_scale(meshes: &[&Mesh]) -> Option<i32> {
     (!(-200..=200).contains(&e)).then_some(-e)
 }
 
+/// Runs `f` on `a` and `b` at unit size when both are meshes of extreme magnitude
+/// ([`extreme_scale`]), and `back` on its output to scale it back by the inverse power of
+/// two; `None` when the inputs are computed as given.
+fn at_unit_scale<T>(
+    a: Input<'_>,
+    b: Input<'_>,
+    f: impl FnOnce(&Mesh, &Mesh) -> Result<T>,
+    back: impl FnOnce(&mut T, i32),
+) -> Option<Result<T>> {
+    let (Input::Mesh(a), Input::Mesh(b)) = (a, b) else {
+        return None;
+    };
+    let e = extreme_scale(&[a, b])?;
+    Some(f(&scaled_mesh(a, e), &scaled_mesh(b, e)).map(|mut out| {
+        back(&mut out, -e);
+        out
+    }))
+}
+
 /// `m` with every coordinate multiplied by `2^e` (exact for normal numbers).
 fn scaled_mesh(m: &Mesh, e: i32) -> Mesh {
     let mut out = m.clone();

@@ -115,21 +115,9 @@ pub fn split<'a>(
     opts: &SplitOptions,
 ) -> Result<SplitOutput> {
     let (a, b): (Input<'a>, Input<'a>) = (a.into(), b.into());
-    if let (Input::Mesh(ma), Input::Mesh(mb)) = (a, b) {
-        if let Some(e) = super::extreme_scale(&[ma, mb]) {
-            let (sa, sb) = (super::scaled_mesh(ma, e), super::scaled_mesh(mb, e));
-            let mut out = split(&sa, &sb, opts)?;
-            for g in &mut out.groups {
-                super::scale_points(&mut g.mesh.positions, -e);
-                for c in &mut g.components {
-                    super::scale_points(&mut c.positions, -e);
-                }
-            }
-            for o in &mut out.operands {
-                o.scale_back(-e);
-            }
-            return Ok(out);
-        }
+    let unit = |a: &Mesh, b: &Mesh| split(a, b, opts);
+    if let Some(out) = super::at_unit_scale(a, b, unit, SplitOutput::scale_back) {
+        return out;
     }
     let run = |a: &Operand, b: &Operand| {
         let s = crate::boolean::split(a.mesh(), b.mesh(), &opts.run.pipeline());
@@ -190,6 +178,19 @@ fn piece_info(file: String, m: &Mesh) -> PieceInfo {
 }
 
 impl SplitOutput {
+    /// Multiplies the output's coordinates by `2^e` (for a computation done at unit size).
+    fn scale_back(&mut self, e: i32) {
+        for g in &mut self.groups {
+            super::scale_points(&mut g.mesh.positions, e);
+            for c in &mut g.components {
+                super::scale_points(&mut c.positions, e);
+            }
+        }
+        for o in &mut self.operands {
+            o.scale_back(e);
+        }
+    }
+
     /// What the split holds, with the file names [`SplitOutput::write_dir`] gives the
     /// pieces in `format`.
     pub fn report(&self, format: Format) -> SplitReport {

@@ -55,17 +55,7 @@ pub fn remove_duplicates(mesh: &Mesh) -> (Mesh, DuplicateReport) {
             report.same_orientation_removed += rest - 1;
         }
     }
-    let triangles = mesh
-        .triangles
-        .iter()
-        .zip(&keep)
-        .filter(|(_, &k)| k)
-        .map(|(t, _)| *t)
-        .collect();
-    (
-        Mesh::new_unchecked(mesh.positions.clone(), triangles),
-        report,
-    )
+    (kept(mesh, &keep), report)
 }
 
 /// Which way round a triangle runs: rotated to start at its smallest vertex, it runs the
@@ -246,17 +236,19 @@ pub fn remove_overlapping(mesh: &Mesh, tolerance: f64) -> (Mesh, DuplicateReport
     for j in (0..nt).filter(|&j| !keep[j]) {
         report.largest_distance = report.largest_distance.max(dist[j]);
     }
+    (kept(mesh, &keep), report)
+}
+
+/// The triangles of `mesh` whose `keep` flag is set, on the same vertices.
+fn kept(mesh: &Mesh, keep: &[bool]) -> Mesh {
     let triangles = mesh
         .triangles
         .iter()
-        .zip(&keep)
+        .zip(keep)
         .filter(|(_, &k)| k)
         .map(|(t, _)| *t)
         .collect();
-    (
-        Mesh::new_unchecked(mesh.positions.clone(), triangles),
-        report,
-    )
+    Mesh::new_unchecked(mesh.positions.clone(), triangles)
 }
 
 #[cfg(test)]
