@@ -39,6 +39,165 @@ const MAX_CELLS: f64 = 128.0;
 /// Grid cells are about this many typical triangle sizes wide.
 const CELL_TRIANGLES: f64 = 2.0;
 
+/// The typical size of a triangle of `a` and `b`: the median longest box side of a sample
+/// of both.
+pub(crate) fn typical_size(a: &Mesh, b: &Mesh) -> f64 {
+    let mut sizes: Vec<f64> = [a, b]
+        .iter()
+        .flat_map(|m| {
+            let n = m.triangles.len();
+            let step = (n / 512).max(1);
+            (0..n)
+                .step_by(step)
+                .map(move |t| longest_side(&tri_box(m, t as u32)))
+        })
+        .collect();
+    sizes.sort_by(f64::total_cmp);
+    sizes.get(sizes.len() / 2).copied().unwrap_or(0.0)
+}
+
+fn longest_side(b: &Box3) -> f64 {
+    (0..3).map(|k| b[1][k] - b[0][k]).fold(0.0, f64::max)
+}
+
+/// A triangle is covered by pieces when its box is over this many piece widths long.
+const LARGE: f64 = 4.0;
+
+/// Pieces of a large triangle are at most this many typical sizes wide.
+const PIECE: f64 = 2.0;
+
+/// Pieces of a sliver are about this many times its width (its least altitude) wide.
+const SLIVER: f64 = 16.0;
+
+/// Large triangles are covered by pieces only when their boxes sweep at least this share
+/// of what all boxes sweep.
+const WORTH: f64 = 0.05;
+
+/// At most this many pieces along a large triangle's side (this squared in all).
+const MAX_PIECES: usize = 32;
+
+/// The width of the pieces that cover triangle `t` of `m` in the broad phase, or `None`
+/// when it is used whole: pieces are at most [`PIECE`] typical sizes wide, and for a
+/// sliver about [`SLIVER`] times its own width; a triangle is cut when its box is over
+/// [`LARGE`] piece widths long.
+fn piece_width(m: &Mesh, t: u32, typical: f64) -> Option<f64> {
+    let long = longest_side(&tri_box(m, t));
+    if !long.is_finite() {
+        return None;
+    }
+    let [a, b, c] = m.corners(t as usize);
+    let (u, v, w) = (
+        crate::vec3::sub(&b, &a),
+        crate::vec3::sub(&c, &a),
+        crate::vec3::sub(&c, &b),
+    );
+    let twice_area = crate::vec3::norm(&crate::vec3::cross(&u, &v));
+    let edge = crate::vec3::norm(&u)
+        .max(crate::vec3::norm(&v))
+        .max(crate::vec3::norm(&w));
+    let altitude = if edge > 0.0 { twice_area / edge } else { 0.0 };
+    let width = (PIECE * typical).min((SLIVER * altitude).max(long / MAX_PIECES as f64));
+    (width > 0.0 && long > LARGE * width).then_some(width)
+}
+
+/// A stand-in for `m` in the broad phase when some of its triangles are large next to the
+/// typical size `typical` (long slivers of CAD tessellations, one triangle under a fine
+/// mesh): each large triangle is cut into strips across its longest extent (parallel to
+/// its shortest side), each strip into pieces along it where it is wide, and every piece
+/// becomes a box carrier, a degenerate triangle whose corners are its box `[lo, hi, hi]`;
+/// the other triangles stay as they are. The boxes of a large triangle together hold it:
+/// each is its piece's computed box widened by more than the rounding error of the
+/// pieces' corners. Returns the stand-in and, per triangle of it, the triangle of `m` it
+/// stands for; `None` when no triangle is large.
+///
+/// A box around a long diagonal sliver holds a large region the sliver is nowhere near,
+/// and every triangle of the other mesh there became a candidate pair; with the pieces,
+/// the pairs are those near the sliver.
+pub(crate) fn cover_large(m: &Mesh, typical: f64) -> Option<(Mesh, Vec<u32>)> {
+    if !(typical.is_finite() && typical > 0.0) {
+        return None;
+    }
+    let large: Vec<(u32, f64)> = (0..m.triangles.len() as u32)
+        .into_par_iter()
+        .filter_map(|t| Some((t, piece_width(m, t, typical)?)))
+        .collect();
+    // Worth it where the large triangles' boxes are a good part of all boxes (by the
+    // square of their longest side, what a box sweeps of a surface): not for the few
+    // slivers at the poles of a UV sphere.
+    let swept = |t: u32| longest_side(&tri_box(m, t)).powi(2);
+    let of_large: f64 = large.par_iter().map(|&(t, _)| swept(t)).sum();
+    if large.is_empty()
+        || of_large
+            < WORTH
+                * (0..m.triangles.len() as u32)
+                    .into_par_iter()
+                    .map(swept)
+                    .sum::<f64>()
+    {
+        return None;
+    }
+    let mut positions = m.positions.clone();
+    let mut triangles = Vec::with_capacity(m.triangles.len() + 8 * large.len());
+    let mut parent = Vec::with_capacity(m.triangles.len() + 8 * large.len());
+    let mut next = 0usize;
+    for &(t, width) in &large {
+        let t = t as usize;
+        triangles.extend_from_slice(&m.triangles[next..t]);
+        parent.extend(next as u32..t as u32);
+        next = t + 1;
+        let corners = m.corners(t);
+        // `a` opposite the shortest side `b c`.
+        let len = |k: usize| {
+            let (p, q) = (corners[(k + 1) % 3], corners[(k + 2) % 3]);
+            (0..3).map(|x| (p[x] - q[x]).abs()).fold(0.0, f64::max)
+        };
+        let k = (0..3)
+            .min_by(|&x, &y| len(x).total_cmp(&len(y)))
+            .unwrap_or(0);
+        let (a, b, c) = (corners[k], corners[(k + 1) % 3], corners[(k + 2) % 3]);
+        let big = a
+            .iter()
+            .chain(&b)
+            .chain(&c)
+            .fold(0.0f64, |s, x| s.max(x.abs()));
+        // Each corner below is within about 10 ulps of `big` of the exact one.
+        let pad = 32.0 * f64::EPSILON * big + 1e-320;
+        let ab: [f64; 3] = std::array::from_fn(|x| b[x] - a[x]);
+        let bc: [f64; 3] = std::array::from_fn(|x| c[x] - b[x]);
+        // The point at `t` of the way from `a` to side `b c`, `u` of the way along it.
+        let at = |t: f64, u: f64| -> [f64; 3] {
+            std::array::from_fn(|x| a[x] + t * ab[x] + (t * u) * bc[x])
+        };
+        let extent = |v: [f64; 3]| v.iter().fold(0.0f64, |s, x| s.max(x.abs()));
+        let strips = ((extent(ab).max(extent(std::array::from_fn(|x| c[x] - a[x]))) / width).ceil()
+            as usize)
+            .clamp(1, MAX_PIECES);
+        let across = extent(bc);
+        for i in 0..strips {
+            let (t0, t1) = (i as f64 / strips as f64, (i + 1) as f64 / strips as f64);
+            let pieces = ((across * t1 / width).ceil() as usize).clamp(1, MAX_PIECES);
+            for j in 0..pieces {
+                let (u0, u1) = (j as f64 / pieces as f64, (j + 1) as f64 / pieces as f64);
+                let q = [at(t0, u0), at(t0, u1), at(t1, u0), at(t1, u1)];
+                let lo: [f64; 3] = std::array::from_fn(|x| {
+                    q.iter().map(|p| p[x]).fold(f64::INFINITY, f64::min) - pad
+                });
+                let hi: [f64; 3] = std::array::from_fn(|x| {
+                    q.iter().map(|p| p[x]).fold(f64::NEG_INFINITY, f64::max) + pad
+                });
+                let v = positions.len() as u32;
+                positions.push(lo);
+                positions.push(hi);
+                triangles.push([v, v + 1, v + 1]);
+                parent.push(t as u32);
+            }
+        }
+    }
+    triangles.extend_from_slice(&m.triangles[next..]);
+    parent.extend(next as u32..m.triangles.len() as u32);
+    Some((Mesh::new_unchecked(positions, triangles), parent))
+}
+
 /// A grid over the common box. Cell `c` along axis `k` holds the coordinates `x` with
 /// `index(x, k) == c`, a monotone function of `x`, so the cells partition space (points
 /// outside the box belong to the outermost cells) and a box `[lo, hi]` meets exactly the
@@ -56,19 +215,7 @@ impl Grid {
     fn new(common: &Box3, a: &Mesh, b: &Mesh) -> Grid {
         let ext: [f64; 3] = std::array::from_fn(|k| common[1][k] - common[0][k]);
         let longest = ext.iter().copied().fold(0.0, f64::max);
-        let mut sizes: Vec<f64> = [a, b]
-            .iter()
-            .flat_map(|m| {
-                let n = m.triangles.len();
-                let step = (n / 512).max(1);
-                (0..n).step_by(step).map(move |t| {
-                    let [lo, hi] = tri_box(m, t as u32);
-                    (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max)
-                })
-            })
-            .collect();
-        sizes.sort_by(f64::total_cmp);
-        let typical = sizes.get(sizes.len() / 2).copied().unwrap_or(0.0);
+        let typical = typical_size(a, b);
         let width = (CELL_TRIANGLES * typical).max(longest / MAX_CELLS);
         // Extents that overflow to infinity get one cell (and scale 0: every coordinate
         // then has index 0, as `NaN.max(0.0)` is 0).

@@ -6,7 +6,7 @@
 //! orientation test allows it).
 
 use super::FailReason;
-use crate::kernel::{boxes_apart, orient2d_prepared, Point, Prepared, Sign};
+use crate::kernel::{orient2d_prepared, Point, Prepared, Sign};
 
 const NONE: u32 = u32::MAX;
 
@@ -24,6 +24,12 @@ pub(crate) struct Local {
     nbr: Vec<[u32; 3]>,
     /// Edge k is constrained (a seam segment or the outer boundary).
     fixed: Vec<[bool; 3]>,
+    /// Per vertex, a triangle holding it (for walks around the vertex).
+    vt: Vec<u32>,
+    /// Per vertex, its side of the line of the constraint being inserted, valid when the
+    /// stamp is `stamp`.
+    sides: Vec<(std::cell::Cell<u32>, std::cell::Cell<Sign>)>,
+    stamp: u32,
     axis: usize,
     sign: Sign,
     last: u32,
@@ -51,6 +57,9 @@ impl Local {
             tris: vec![[0, 1, 2]],
             nbr: vec![[NONE; 3]],
             fixed: vec![[true; 3]],
+            vt: vec![0; 3],
+            sides: Vec::new(),
+            stamp: 0,
             axis,
             sign,
             last: 0,
@@ -110,6 +119,13 @@ impl Local {
         (self.tris.len() - 1) as u32
     }
 
+    /// Notes triangle `t` as the one of each of its vertices.
+    fn claim(&mut self, t: u32) {
+        for v in self.tris[t as usize] {
+            self.vt[v as usize] = t;
+        }
+    }
+
     /// Inserts `x` (which must lie in the closed outer triangle) and returns its index; a
     /// point equal to an existing vertex returns that vertex. `on_edge`: `Some(k)` when `x`
     /// is known to lie on the outer triangle's edge `k` (from corner `k` to `k + 1`).
@@ -153,12 +169,14 @@ impl Local {
                     self.pts.push(x);
                     self.approx.push(approx);
                     self.on.push(x_on);
+                    self.vt.push(t);
                     self.split_face(t, id);
                 }
                 [k] => {
                     self.pts.push(x);
                     self.approx.push(approx);
                     self.on.push(x_on);
+                    self.vt.push(t);
                     self.split_edge(t, *k, id);
                 }
                 // On two edges: it is their shared corner.
@@ -184,6 +202,9 @@ impl Local {
         self.fixed[t as usize] = [fab, false, false];
         self.relink(nbc, t, t1);
         self.relink(nca, t, t2);
+        for t in [t, t1, t2] {
+            self.claim(t);
+        }
     }
 
     fn split_edge(&mut self, t: u32, k: usize, x: u32) {
@@ -212,7 +233,11 @@ impl Local {
             self.relink(nsq, u, ua);
             self.nbr[t as usize][0] = u;
             self.nbr[tb as usize][0] = ua;
+            self.claim(u);
+            self.claim(ua);
         }
+        self.claim(t);
+        self.claim(tb);
     }
 
     /// Flips the edge in slot `k` of `t`; the caller has checked that the quad is strictly
@@ -237,6 +262,8 @@ impl Local {
         self.fixed[u as usize] = [fdb, fbc, false];
         self.relink(nad, u, t);
         self.relink(nbc, t, u);
+        self.claim(t);
+        self.claim(u);
         (t, u)
     }
 
@@ -253,114 +280,223 @@ impl Local {
         self.orient(c, a, d) == Sign::Positive && self.orient(d, b, c) == Sign::Positive
     }
 
+    /// The triangles around vertex `v`, in turn; stops early when `f` returns `Some`.
+    fn around<R>(&self, v: u32, mut f: impl FnMut(u32, usize) -> Option<R>) -> Option<R> {
+        let t0 = self.vt[v as usize];
+        let slot = |t: u32| (0..3).find(|&k| self.tris[t as usize][k] == v);
+        let mut t = t0;
+        // Clockwise: across the edge leaving `v`.
+        loop {
+            let k = slot(t).expect("a vertex's triangle holds it");
+            if let Some(r) = f(t, k) {
+                return Some(r);
+            }
+            t = self.nbr[t as usize][k];
+            if t == t0 {
+                return None;
+            }
+            if t == NONE {
+                break;
+            }
+        }
+        // Then counter-clockwise from the start, across the edge entering `v`.
+        let mut t = self.nbr[t0 as usize][(slot(t0).expect("held") + 2) % 3];
+        while t != NONE {
+            let k = slot(t).expect("a vertex's triangle holds it");
+            if let Some(r) = f(t, k) {
+                return Some(r);
+            }
+            t = self.nbr[t as usize][(k + 2) % 3];
+        }
+        None
+    }
+
+    /// The triangle and slot of the edge between `a` and `b` (either direction), if any.
     fn find_edge(&self, a: u32, b: u32) -> Option<(u32, usize)> {
-        (0..self.tris.len()).find_map(|t| {
-            let v = self.tris[t];
-            (0..3)
-                .find(|&k| v[k] == a && v[(k + 1) % 3] == b)
-                .map(|k| (t as u32, k))
+        self.around(a, |t, k| {
+            let v = self.tris[t as usize];
+            if v[(k + 1) % 3] == b {
+                Some((t, k))
+            } else if v[(k + 2) % 3] == b {
+                Some((t, (k + 2) % 3))
+            } else {
+                None
+            }
         })
     }
 
     fn mark_fixed(&mut self, a: u32, b: u32) -> bool {
-        let mut found = false;
-        for (x, y) in [(a, b), (b, a)] {
-            if let Some((t, k)) = self.find_edge(x, y) {
-                self.fixed[t as usize][k] = true;
-                found = true;
-            }
+        let Some((t, k)) = self.find_edge(a, b) else {
+            return false;
+        };
+        self.fixed[t as usize][k] = true;
+        let u = self.nbr[t as usize][k];
+        if u != NONE {
+            let m = self.slot_of(u, t);
+            self.fixed[u as usize][m] = true;
         }
-        found
+        true
     }
 
-    /// Makes segment `p q` (two vertices) an edge of the triangulation.
+    /// The side of vertex `v` of the line of the constraint being inserted, cached.
+    fn side(&self, line: (u32, u32), v: u32) -> Sign {
+        let c = &self.sides[v as usize];
+        if c.0.get() == self.stamp {
+            return c.1.get();
+        }
+        let s = self.orient(line.0, line.1, v);
+        c.0.set(self.stamp);
+        c.1.set(s);
+        s
+    }
+
+    /// Whether `b` lies strictly between `a` and `c` on their line (all three collinear).
+    fn between(&self, a: u32, b: u32, c: u32) -> bool {
+        let k = crate::kernel::longest_axis(&self.approx[a as usize], &self.approx[c as usize]);
+        let cmp = |x: u32, y: u32| {
+            crate::kernel::cmp_coord_prepared(&self.pts[x as usize], &self.pts[y as usize], k)
+        };
+        let (x, y) = (cmp(a, b), cmp(b, c));
+        x != std::cmp::Ordering::Equal && x == y
+    }
+
+    /// Makes segment `p q` (two vertices) an edge of the triangulation: walks from `p`
+    /// along the segment through the triangles it crosses (splitting it at vertices that
+    /// lie on it), then flips the crossed edges away (Sloan's algorithm). Only the
+    /// triangles along the segment are looked at.
     pub(crate) fn constrain(&mut self, p: u32, q: u32) -> Result<(), Failed> {
-        if p == q || self.mark_fixed(p, q) {
+        if p == q {
             return Ok(());
         }
-        // Sides of vertices against the line p q, computed only where needed: a vertex
-        // or an edge whose box is certainly apart from the segment's can neither lie on it
-        // nor cross it (with thousands of seam points in one triangle, most are far, and
-        // the collinear ones near it would each need the exact evaluation).
-        let side_cache: Vec<std::cell::Cell<Option<Sign>>> =
-            vec![std::cell::Cell::new(None); self.pts.len()];
-        let side = |l: &Local, v: u32| -> Sign {
-            let c = &side_cache[v as usize];
-            c.get().unwrap_or_else(|| {
-                let s = l.orient(p, q, v);
-                c.set(Some(s));
-                s
-            })
-        };
-        let apart = |l: &Local, a: u32, b: u32| {
-            let pts = &l.pts;
-            boxes_apart(
-                &pts[a as usize],
-                &pts[b as usize],
-                &pts[p as usize],
-                &pts[q as usize],
-                l.axis,
-            )
-        };
-        // Order along p q by a coordinate in which they differ.
-        let k = crate::kernel::longest_axis(&self.approx[p as usize], &self.approx[q as usize]);
-        let axis_cmp = |a: u32, b: u32| {
-            crate::kernel::cmp_coord(
-                self.pts[a as usize].point(),
-                self.pts[b as usize].point(),
-                k,
-            )
-        };
-        // A vertex exactly on the open segment splits it.
-        for v in 0..self.pts.len() as u32 {
-            if v != p && v != q && !apart(self, v, v) && side(self, v) == Sign::Zero {
-                let (x, y) = (axis_cmp(p, v), axis_cmp(v, q));
-                if x != std::cmp::Ordering::Equal && x == y {
-                    self.constrain(p, v)?;
-                    return self.constrain(v, q);
-                }
-            }
+        // One side cache for the whole line p q: its pieces lie on the same line.
+        if self.sides.len() < self.pts.len() {
+            self.sides.resize_with(self.pts.len(), || {
+                (std::cell::Cell::new(0), std::cell::Cell::new(Sign::Zero))
+            });
         }
-        let crosses = |l: &Local, a: u32, b: u32| {
-            !apart(l, a, b)
-                && side(l, a).times(side(l, b)) == Sign::Negative
-                && l.orient(a, b, p).times(l.orient(a, b, q)) == Sign::Negative
-        };
-        let mut queue: Vec<(u32, u32)> = Vec::new();
-        for t in 0..self.tris.len() {
-            let v = self.tris[t];
-            for k in 0..3 {
-                let (a, b) = (v[k], v[(k + 1) % 3]);
-                if a < b && crosses(self, a, b) {
-                    if self.fixed[t][k] {
-                        return Err(Failed(FailReason::ConstraintsCross));
-                    }
-                    queue.push((a, b));
-                }
-            }
+        self.stamp = self.stamp.wrapping_add(1);
+        if self.stamp == 0 {
+            self.sides.iter().for_each(|c| c.0.set(0));
+            self.stamp = 1;
         }
+        let line = (p, q);
+        let mut from = p;
         let mut guard = 0usize;
-        while let Some((a, b)) = queue.pop() {
+        while from != q {
             guard += 1;
-            if guard > 64 * (self.tris.len() + 16) {
+            if guard > self.pts.len() + 16 {
+                return Err(Failed(FailReason::ConstraintInsertionDidNotConverge));
+            }
+            if self.mark_fixed(from, q) {
+                return Ok(());
+            }
+            let (to, crossed) = self.walk(line, from, q)?;
+            self.flip_away(line, from, to, crossed)?;
+            from = to;
+        }
+        Ok(())
+    }
+
+    /// From `from` (a vertex on segment `line`) towards `q`: the first vertex `to` on the
+    /// segment after `from` (a vertex lying on it, or `q`) and the edges crossed on the way.
+    fn walk(&self, line: (u32, u32), from: u32, q: u32) -> Result<(u32, Vec<(u32, u32)>), Failed> {
+        // The triangle of `from`'s fan whose wedge holds the direction to `q`.
+        enum Start {
+            Vertex(u32),
+            Edge(u32, u32, u32),
+        }
+        let start = self.around(from, |t, k| {
+            let v = self.tris[t as usize];
+            let (b, c) = (v[(k + 1) % 3], v[(k + 2) % 3]);
+            let (sb, sc) = (self.side(line, b), self.side(line, c));
+            // Counter-clockwise (from, b, c): the direction is in the wedge when b is right
+            // of (or on) the line and c left of (or on) it; a vertex on the line there lies
+            // on the segment (the wedge is narrower than a half-turn).
+            match (sb, sc) {
+                (Sign::Zero, Sign::Positive) => Some(Start::Vertex(b)),
+                (Sign::Negative, Sign::Zero) => Some(Start::Vertex(c)),
+                (Sign::Negative, Sign::Positive) => Some(Start::Edge(t, b, c)),
+                _ => None,
+            }
+        });
+        let (mut t, mut r, mut l) = match start {
+            None => return Err(Failed(FailReason::ConstraintMissing)),
+            Some(Start::Vertex(v)) => {
+                if v != q && !self.between(from, v, q) {
+                    return Err(Failed(FailReason::ConstraintMissing));
+                }
+                return Ok((v, Vec::new()));
+            }
+            Some(Start::Edge(t, b, c)) => (t, b, c),
+        };
+        let mut crossed = Vec::new();
+        loop {
+            let k = (0..3)
+                .find(|&k| {
+                    let v = self.tris[t as usize];
+                    v[k] == r && v[(k + 1) % 3] == l
+                })
+                .ok_or(Failed(FailReason::ConstraintMissing))?;
+            if self.fixed[t as usize][k] {
+                return Err(Failed(FailReason::ConstraintsCross));
+            }
+            crossed.push((r, l));
+            let u = self.nbr[t as usize][k];
+            if u == NONE {
+                return Err(Failed(FailReason::ConstraintMissing));
+            }
+            let m = self.slot_of(u, t);
+            let d = rot(self.tris[u as usize], m)[2];
+            if d == q {
+                return Ok((q, crossed));
+            }
+            match self.side(line, d) {
+                Sign::Zero => return Ok((d, crossed)),
+                Sign::Negative => r = d,
+                Sign::Positive => l = d,
+            }
+            t = u;
+        }
+    }
+
+    /// Flips the edges `crossed` (each crossing the open segment `from to` of `line`)
+    /// until none crosses it, then marks the segment fixed.
+    fn flip_away(
+        &mut self,
+        line: (u32, u32),
+        from: u32,
+        to: u32,
+        crossed: Vec<(u32, u32)>,
+    ) -> Result<(), Failed> {
+        let limit = 64 * (crossed.len() + 16) * (crossed.len() + 16);
+        let mut queue: std::collections::VecDeque<(u32, u32)> = crossed.into();
+        let mut guard = 0usize;
+        while let Some((a, b)) = queue.pop_front() {
+            guard += 1;
+            if guard > limit {
                 return Err(Failed(FailReason::ConstraintInsertionDidNotConverge));
             }
             let Some((t, k)) = self.find_edge(a, b) else {
                 continue;
             };
             if !self.flippable(t, k) {
-                queue.insert(0, (a, b));
+                queue.push_back((a, b));
                 continue;
             }
             let (t, _) = self.flip(t, k);
             // The new diagonal is (c, d): slot 2 of t' = (c, a, d) runs d → c.
             let v = self.tris[t as usize];
             let (c, d) = (v[0], v[2]);
-            if crosses(self, c, d) {
-                queue.insert(0, (c.min(d), c.max(d)));
+            if c != from
+                && c != to
+                && d != from
+                && d != to
+                && self.side(line, c).times(self.side(line, d)) == Sign::Negative
+            {
+                queue.push_back((c, d));
             }
         }
-        if self.mark_fixed(p, q) {
+        if self.mark_fixed(from, to) {
             Ok(())
         } else {
             Err(Failed(FailReason::ConstraintMissing))

@@ -285,6 +285,8 @@ fn cut_triangle(
             mine.extend(p.iter().map(|&g| (g, Some(k))));
         }
     }
+    let cons_t = cons.get(&t).map(Vec::as_slice).unwrap_or(&[]);
+    chain_order(&mut mine, cons_t);
     for (g, on_edge) in mine {
         // An input vertex here is one of the mesh's own lying on this triangle (the
         // self-arrangement); the rest are constructed seam points.
@@ -298,7 +300,7 @@ fn cut_triangle(
         }
         to_local.insert(g, l);
     }
-    for c in cons.get(&t).map(Vec::as_slice).unwrap_or(&[]) {
+    for c in cons_t {
         let (Some(&p), Some(&q)) = (to_local.get(&c[0]), to_local.get(&c[1])) else {
             return Err(local::Failed(FailReason::ConstraintEndOutside));
         };
@@ -308,6 +310,36 @@ fn cut_triangle(
     let pieces: Vec<[u32; 3]> = lt.tris.iter().map(|v| v.map(|l| ids[l as usize])).collect();
     let flipped = turned_by_rounding(&pieces, points, &shape);
     Ok((pieces, flipped))
+}
+
+/// Orders a triangle's seam points along the chains its constraints form, so that each
+/// point is inserted next to the one before (the point location walk then takes a step or
+/// two instead of crossing the triangulation); points on no constraint go last.
+fn chain_order(mine: &mut [(u32, Option<usize>)], cons: &[[u32; 2]]) {
+    if mine.len() < 3 || cons.is_empty() {
+        return;
+    }
+    let mut next: FxHashMap<u32, Vec<u32>> = FxHashMap::default();
+    for &[a, b] in cons {
+        next.entry(a).or_default().push(b);
+        next.entry(b).or_default().push(a);
+    }
+    let mut rank: FxHashMap<u32, u32> = FxHashMap::default();
+    let mut stack = Vec::new();
+    for &[a, _] in cons {
+        if rank.contains_key(&a) {
+            continue;
+        }
+        stack.push(a);
+        while let Some(v) = stack.pop() {
+            if rank.contains_key(&v) {
+                continue;
+            }
+            rank.insert(v, rank.len() as u32);
+            stack.extend(next[&v].iter().filter(|w| !rank.contains_key(w)));
+        }
+    }
+    mine.sort_by_key(|&(g, _)| rank.get(&g).copied().unwrap_or(u32::MAX));
 }
 
 /// Per piece of `parent`, whether it holds a seam point and, with the seam points rounded

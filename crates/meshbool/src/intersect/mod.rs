@@ -153,16 +153,7 @@ pub fn intersect(a: &Mesh, b: &Mesh) -> Seam {
 /// meshes together ([`GRID_FROM`] by default; tests set it to force either path).
 pub(crate) fn intersect_with(a: &Mesh, b: &Mesh, grid_from: usize) -> Seam {
     let from_grid = a.triangles.len() + b.triangles.len() >= grid_from;
-    let pairs = if from_grid {
-        crate::broad::overlapping_pairs(a, b)
-    } else {
-        // Each tree holds only the triangles that can meet the other mesh at all.
-        let (Some(box_a), Some(box_b)) = (a.bounds(), b.bounds()) else {
-            return Seam::default();
-        };
-        let (ba, bb) = rayon::join(|| Bvh::new_within(a, &box_b), || Bvh::new_within(b, &box_a));
-        ba.overlapping_pairs(a, &bb, b)
-    };
+    let pairs = candidate_pairs(a, b, from_grid);
     // Set up every candidate triangle once (sorted ids, looked up by binary search); the
     // degenerate ones are left out of the test and counted. Degenerate triangles elsewhere
     // cannot touch the other mesh and change nothing.
@@ -205,6 +196,46 @@ pub(crate) fn intersect_with(a: &Mesh, b: &Mesh, grid_from: usize) -> Seam {
         .collect();
     seam.positions = seam.exact.par_iter().map(Point::approx).collect();
     seam
+}
+
+/// The triangle pairs of `a` and `b` whose boxes overlap, sorted; large triangles are
+/// looked at through the smaller boxes of their pieces ([`crate::broad::cover_large`]).
+fn candidate_pairs(a: &Mesh, b: &Mesh, from_grid: bool) -> Vec<(u32, u32)> {
+    let pairs_of = |a: &Mesh, b: &Mesh| {
+        if from_grid {
+            crate::broad::overlapping_pairs(a, b)
+        } else {
+            // Each tree holds only the triangles that can meet the other mesh at all.
+            let (Some(box_a), Some(box_b)) = (a.bounds(), b.bounds()) else {
+                return Vec::new();
+            };
+            let (ba, bb) =
+                rayon::join(|| Bvh::new_within(a, &box_b), || Bvh::new_within(b, &box_a));
+            ba.overlapping_pairs(a, &bb, b)
+        }
+    };
+    let typical = crate::broad::typical_size(a, b);
+    let (ca, cb) = rayon::join(
+        || crate::broad::cover_large(a, typical),
+        || crate::broad::cover_large(b, typical),
+    );
+    if ca.is_none() && cb.is_none() {
+        return pairs_of(a, b);
+    }
+    let (ma, pa) = ca.as_ref().map_or((a, None), |(m, p)| (m, Some(p)));
+    let (mb, pb) = cb.as_ref().map_or((b, None), |(m, p)| (m, Some(p)));
+    let mut pairs = pairs_of(ma, mb);
+    pairs.par_iter_mut().for_each(|(i, j)| {
+        if let Some(p) = pa {
+            *i = p[*i as usize];
+        }
+        if let Some(p) = pb {
+            *j = p[*j as usize];
+        }
+    });
+    pairs.par_sort_unstable();
+    pairs.dedup();
+    pairs
 }
 
 /// A seam from the triangle pairs' intersections: points named by `name(label)` (one
@@ -365,7 +396,12 @@ fn vertices_on_features(results: &[(u32, u32, TriTri)]) -> Vec<(u32, Feature)> {
 /// free of overlaps (`fans`, almost every vertex of a smooth mesh) are settled by their
 /// vertex ids; the rest by the exact pair test.
 pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
-    let (fan_ok, bvh) = rayon::join(|| fans::certified(m), || Bvh::new(m));
+    // Large triangles are looked at through their pieces ([`crate::broad::cover_large`]).
+    let cover = crate::broad::cover_large(m, crate::broad::typical_size(m, m));
+    let (fan_ok, bvh) = rayon::join(
+        || fans::certified(m),
+        || Bvh::new(cover.as_ref().map_or(m, |c| &c.0)),
+    );
     let meets = |i: u32, j: u32| -> bool {
         let (vi, vj) = (m.triangles[i as usize], m.triangles[j as usize]);
         let shared = (0..3).filter(|&k| vj.contains(&vi[k])).count();
@@ -377,11 +413,29 @@ pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
         }
         meets_beyond_shared(m, i, j, shared)
     };
-    let mut found: Vec<(u32, u32)> = bvh
-        .self_candidates_where(m, &meets)
-        .into_iter()
-        .map(|(i, j)| (i.min(j), i.max(j)))
-        .collect();
+    let mut found: Vec<(u32, u32)> = match &cover {
+        None => bvh
+            .self_candidates_where(m, &meets)
+            .into_iter()
+            .map(|(i, j)| (i.min(j), i.max(j)))
+            .collect(),
+        // Large triangles through their pieces: the candidates (pieces of one triangle
+        // aside) named by the triangles they stand for, each pair tested once.
+        Some((stand_in, parent)) => {
+            let mut pairs: Vec<(u32, u32)> = bvh
+                .self_candidates_where(stand_in, &|i, j| parent[i as usize] != parent[j as usize])
+                .into_iter()
+                .map(|(i, j)| {
+                    let (i, j) = (parent[i as usize], parent[j as usize]);
+                    (i.min(j), i.max(j))
+                })
+                .collect();
+            pairs.par_sort_unstable();
+            pairs.dedup();
+            pairs.retain(|&(i, j)| meets(i, j));
+            pairs
+        }
+    };
     found.par_sort_unstable();
     found
 }
@@ -390,6 +444,19 @@ pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
 /// anywhere else than in those vertices and the edge between them. Exact.
 #[inline(never)]
 fn meets_beyond_shared(m: &Mesh, i: u32, j: u32, shared: usize) -> bool {
+    let (vi, vj) = (m.triangles[i as usize], m.triangles[j as usize]);
+    let (pi, pj) = (m.corners(i as usize), m.corners(j as usize));
+    corners_meet_beyond_shared([(i, vi, pi), (j, vj, pj)], shared)
+}
+
+/// Whether two triangles, given by their ids (distinct), vertex ids and corners, meet
+/// anywhere else than in the `shared` (< 3) vertex ids they have in common and the edge
+/// between them ([`meets_beyond_shared`] for triangles of no mesh: the snap's candidates).
+/// Exact.
+pub(crate) fn corners_meet_beyond_shared(
+    [(i, vi, pi), (j, vj, pj)]: [(u32, [u32; 3], [[f64; 3]; 3]); 2],
+    shared: usize,
+) -> bool {
     use crate::kernel::{certainly_separated, certainly_unfolded, orient2d, FloatPlane};
     // The corners of `q` that `p` does not share, all strictly on one side of `p`'s plane
     // (and at least one of them): then the two meet at most in what they share.
@@ -423,20 +490,41 @@ fn meets_beyond_shared(m: &Mesh, i: u32, j: u32, shared: usize) -> bool {
         };
         certainly_unfolded(&p[(fp + 1) % 3], &p[(fp + 2) % 3], &p[fp], &q[fq])
     };
-    let (vi, vj) = (m.triangles[i as usize], m.triangles[j as usize]);
-    let (pi, pj) = (m.corners(i as usize), m.corners(j as usize));
     if shared == 2 && unfolded(&pi, &vi, &pj, &vj) {
         return false;
     }
-    // Cheap exact rejection first, before any set-up. Sharing an edge, the far vertex
-    // off the other's plane is enough; otherwise one plane must separate.
-    if apart(&pi, &vi, &pj, &vj) || (shared < 2 && apart(&pj, &vj, &pi, &vi)) {
+    // Floating-point filters that only answer "certainly apart" first: a plane that
+    // separates, then (for pairs sharing nothing) the other separating axes. Coplanar
+    // pairs (the flat faces of CAD models, cut into many slivers whose boxes overlap) get
+    // no answer from the planes, and their exact plane test is the slow path of the
+    // adaptive predicate.
+    let apart_float = |p: &[[f64; 3]; 3], vp: &[u32; 3], q: &[[f64; 3]; 3], vq: &[u32; 3]| {
+        let plane = FloatPlane::new(p);
+        let mut side = None;
+        for k in 0..3 {
+            if vp.contains(&vq[k]) {
+                continue;
+            }
+            match (plane.side(&q[k]), side) {
+                (None, _) => return false,
+                (Some(s), Some(t)) if s != t => return false,
+                (s, _) => side = s,
+            }
+        }
+        side.is_some()
+    };
+    if apart_float(&pi, &vi, &pj, &vj) || (shared < 2 && apart_float(&pj, &vj, &pi, &vi)) {
         return false;
     }
     if shared == 0 && certainly_separated(&pi, &pj) {
         return false;
     }
-    let (Some(x), Some(y)) = (tri(m, i as usize), tri(m, j as usize)) else {
+    // Cheap exact rejection, before any set-up. Sharing an edge, the far vertex off the
+    // other's plane is enough; otherwise one plane must separate.
+    if apart(&pi, &vi, &pj, &vj) || (shared < 2 && apart(&pj, &vj, &pi, &vi)) {
+        return false;
+    }
+    let (Some(x), Some(y)) = (tritri::Tri::new(i, vi, pi), tritri::Tri::new(j, vj, pj)) else {
         return false;
     };
     if shared == 2 {

@@ -593,3 +593,135 @@ fn self_seam_points_lie_on_both_triangles_and_match_the_two_mesh_seam() {
     let seam = self_seam(&cube, &self_intersections(&cube));
     assert!(seam.points.is_empty() && seam.segments.is_empty());
 }
+
+/// Long slivers (CAD-like) against many small triangles, some touching a sliver exactly at
+/// a point of its edge or crossing it: the candidate pairs, found through the slivers'
+/// pieces, hold every pair that meets (exact test, brute force), in both broad phases;
+/// and far fewer pairs than the slivers' boxes overlap.
+#[test]
+fn large_triangles_are_covered_by_their_pieces() {
+    let mut rng = Rng(0x51_1ee7_0f_ca0d);
+    let mut a = Mesh::default();
+    // Integer corners: the points a + i/64 (b − a) of each edge are exact.
+    let slivers = [
+        [
+            [0.0, 0.0, 0.0],
+            [1024.0, 512.0, 256.0],
+            [1024.0, 520.0, 256.0],
+        ],
+        [
+            [0.0, 1024.0, 0.0],
+            [1024.0, 0.0, 512.0],
+            [1016.0, 0.0, 512.0],
+        ],
+        [[512.0, 0.0, 1024.0], [0.0, 1024.0, 0.0], [8.0, 1024.0, 8.0]],
+    ];
+    for s in slivers {
+        let v = a.positions.len() as u32;
+        a.positions.extend(s);
+        a.triangles.push([v, v + 1, v + 2]);
+    }
+    // Fill A with small triangles too, so that the slivers are large next to the typical.
+    let mut small = |m: &mut Mesh, c: [f64; 3], r: f64, rng: &mut Rng| {
+        let v = m.positions.len() as u32;
+        for _ in 0..3 {
+            let p = std::array::from_fn(|k| c[k] + r * (rng.unit() - 0.5));
+            m.positions.push(p);
+        }
+        m.triangles.push([v, v + 1, v + 2]);
+    };
+    for _ in 0..300 {
+        let c = std::array::from_fn(|_| 1024.0 * rng.unit());
+        small(&mut a, c, 8.0, &mut rng);
+    }
+    let mut b = Mesh::default();
+    for _ in 0..3000 {
+        let c = std::array::from_fn(|_| 1024.0 * rng.unit());
+        small(&mut b, c, 8.0, &mut rng);
+    }
+    // Triangles with a corner exactly on a sliver's edge, and ones crossing near it.
+    for s in slivers {
+        for i in 0..=64 {
+            let f = i as f64 / 64.0;
+            for (p, q) in [(0, 1), (1, 2), (2, 0)] {
+                let on: [f64; 3] = std::array::from_fn(|k| s[p][k] + f * (s[q][k] - s[p][k]));
+                let v = b.positions.len() as u32;
+                b.positions.push(on);
+                b.positions.push([on[0] + 3.0, on[1] - 2.0, on[2] + 5.0]);
+                b.positions.push([on[0] - 1.0, on[1] + 4.0, on[2] + 2.0]);
+                b.triangles.push([v, v + 1, v + 2]);
+                small(&mut b, on, 4.0, &mut rng);
+            }
+        }
+    }
+    let typical = crate::broad::typical_size(&a, &b);
+    assert!(crate::broad::cover_large(&a, typical).is_some());
+    let meets: Vec<(u32, u32)> = (0..a.triangles.len())
+        .flat_map(|i| (0..b.triangles.len()).map(move |j| (i, j)))
+        .filter(|&(i, j)| {
+            let (Some(x), Some(y)) = (tri(&a, i), tri(&b, j)) else {
+                return false;
+            };
+            tt(&x, &y) != TriTri::None
+        })
+        .map(|(i, j)| (i as u32, j as u32))
+        .collect();
+    assert!(meets.len() > 500, "{}", meets.len());
+    let boxes = crate::broad::overlapping_pairs(&a, &b).len();
+    for grid in [false, true] {
+        let pairs = candidate_pairs(&a, &b, grid);
+        for p in &meets {
+            assert!(
+                pairs.binary_search(p).is_ok(),
+                "{p:?} missing (grid {grid})"
+            );
+        }
+        assert!(pairs.windows(2).all(|w| w[0] < w[1]));
+        assert!(4 * pairs.len() < boxes, "{} of {boxes}", pairs.len());
+    }
+}
+
+/// The slivers at the poles of a UV sphere are a small part of what its boxes sweep: the
+/// sphere is looked at whole (no stand-in, no copy of its positions); a mesh of long
+/// slivers (two fans of 800) is covered, and its self-intersection check finds the
+/// same (no) pairs.
+#[test]
+fn only_meshes_whose_large_triangles_matter_are_covered() {
+    let sphere = uv_sphere([0.0; 3], 1.0, 1000, 500);
+    let typical = crate::broad::typical_size(&sphere, &sphere);
+    assert!(crate::broad::cover_large(&sphere, typical).is_none());
+    // A flat fan of long slivers around the origin, and a copy of it lifted by 1e-3.
+    let mut fan = Mesh::default();
+    let n = 800;
+    for z in [0.0, 1e-3] {
+        let c = fan.positions.len() as u32;
+        fan.positions.push([0.0, 0.0, z]);
+        for k in 0..n {
+            let a = std::f64::consts::TAU * k as f64 / n as f64;
+            fan.positions.push([a.cos(), a.sin(), z]);
+        }
+        for k in 0..n {
+            fan.triangles.push([c, c + 1 + k, c + 1 + (k + 1) % n]);
+        }
+    }
+    let typical = crate::broad::typical_size(&fan, &fan);
+    let (stand_in, parent) = crate::broad::cover_large(&fan, typical).expect("slivers");
+    assert!(stand_in.triangles.len() > 4 * fan.triangles.len());
+    assert_eq!(stand_in.triangles.len(), parent.len());
+    assert!(self_intersections(&fan).is_empty());
+    // Tilt one sliver of the upper fan through the lower one: exactly the pairs it crosses.
+    let mut tilted = fan.clone();
+    let v = tilted.triangles[n as usize + 7][1] as usize;
+    tilted.positions[v][2] = -1e-3;
+    let found = self_intersections(&tilted);
+    assert!(!found.is_empty());
+    let brute: Vec<(u32, u32)> = (0..tilted.triangles.len() as u32)
+        .flat_map(|i| (i + 1..tilted.triangles.len() as u32).map(move |j| (i, j)))
+        .filter(|&(i, j)| {
+            let (vi, vj) = (tilted.triangles[i as usize], tilted.triangles[j as usize]);
+            let shared = (0..3).filter(|&k| vj.contains(&vi[k])).count();
+            meets_beyond_shared(&tilted, i, j, shared)
+        })
+        .collect();
+    assert_eq!(found, brute);
+}

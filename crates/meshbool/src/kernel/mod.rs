@@ -599,11 +599,6 @@ impl Prepared {
             .get_or_init(|| self.point.homogeneous::<Dyadic>())
     }
 
-    /// The point itself.
-    pub(crate) fn point(&self) -> &Point {
-        &self.point
-    }
-
     /// The sign of `W` (positive for explicit points).
     fn sign_of_w(&self) -> Sign {
         match (&self.point, self.enclosure[3].sign()) {
@@ -612,29 +607,6 @@ impl Prepared {
             (p, None) => decide!(w_of(p)),
         }
     }
-}
-
-/// True when the boxes around `a`–`b` and around `c`–`d` (hulls of the enclosures of the
-/// points' coordinates) are certainly apart in one of the two coordinates of the
-/// projection dropping `axis`: then no point of segment `a b` is on segment `c d`, and the
-/// segments do not cross. False when it cannot tell (an enclosure is missing, or the
-/// boxes overlap). A filter, never a decision on its own.
-pub(crate) fn boxes_apart(
-    a: &Prepared,
-    b: &Prepared,
-    c: &Prepared,
-    d: &Prepared,
-    axis: usize,
-) -> bool {
-    let (Some(ca), Some(cb), Some(cc), Some(cd)) = (&a.coords, &b.coords, &c.coords, &d.coords)
-    else {
-        return false;
-    };
-    [(axis + 1) % 3, (axis + 2) % 3].into_iter().any(|k| {
-        let (lo1, hi1) = (ca[k].lo().min(cb[k].lo()), ca[k].hi().max(cb[k].hi()));
-        let (lo2, hi2) = (cc[k].lo().min(cd[k].lo()), cc[k].hi().max(cd[k].hi()));
-        hi1 < lo2 || hi2 < lo1
-    })
 }
 
 /// [`orient2d`] of prepared points: the same exact answer, the interval filter from the
@@ -780,4 +752,20 @@ fn normals_cross_component<T: Num>(t: &[[f64; 3]; 3], u: &[[f64; 3]; 3], axis: u
 /// planes of triangles `t` and `u` meet.
 pub fn normals_cross_sign(t: &[[f64; 3]; 3], u: &[[f64; 3]; 3], axis: usize) -> Sign {
     decide!(normals_cross_component(t, u, axis))
+}
+
+fn normals_dot_value<T: Num>(t: &[[f64; 3]; 3], u: &[[f64; 3]; 3]) -> T {
+    let normal = |t: &[[f64; 3]; 3]| {
+        let [a, b, c] = t.map(|p| lift::<T>(&p));
+        cross(&vsub(&b, &a), &vsub(&c, &a))
+    };
+    dot(&normal(t), &normal(u))
+}
+
+/// Exact sign of `n_t · n_u`, the dot product of the normals `(b − a) × (c − a)` of
+/// triangles `t` and `u`: positive when they face the same side (less than a right angle
+/// apart), zero when either is degenerate or they are perpendicular. Decides whether
+/// moving a vertex turns a triangle over.
+pub fn normals_dot_sign(t: &[[f64; 3]; 3], u: &[[f64; 3]; 3]) -> Sign {
+    decide!(normals_dot_value(t, u))
 }
