@@ -13,6 +13,8 @@ Every result's volume is checked against the inclusion-exclusion identity of the
         manifold3d trueform meshlib
     venv/bin/python ../shared/bench/gen_meshes.py --out /tmp/meshes
     venv/bin/python bench/inprocess.py /tmp/meshes --reps 5 > results.md
+    venv/bin/python bench/inprocess.py /tmp/meshes --real ../shared/data/real \\
+        --cases thingi_79741_65004,thingi_908460_73416,sphere_5k --reps 5
 
 meshbool runs with ``self_check=False`` as the peers check nothing (the default check
 is reported in its own column).
@@ -20,6 +22,7 @@ is reported in its own column).
 
 import argparse
 import json
+import os
 import statistics
 import sys
 import time
@@ -160,14 +163,20 @@ def main():
     ap.add_argument("--libs", default="manifold3d,trueform,meshlib")
     ap.add_argument("--reps", type=int, default=5)
     ap.add_argument("--json", help="also write every measurement to this file")
+    ap.add_argument("--real", help="directory of the real model pairs (../shared/data/real): adds "
+                    "the cases thingi_79741_65004 and thingi_908460_73416 (name them in --cases)")
     args = ap.parse_args()
     cases = json.load(open(f"{args.meshes}/cases.json"))
+    if args.real:
+        for a, b in (("79741", "65004"), ("908460", "73416")):
+            cases[f"thingi_{a}_{b}"] = {"A": os.path.join(args.real, f"thingi_{a}.obj"),
+                                        "B": os.path.join(args.real, f"thingi_{b}.obj")}
     libs = libraries(args.libs.split(","))
     rows, records = [], []
     for case in args.cases.split(","):
         c = cases[case]
-        a = meshbool.read(f"{args.meshes}/{c['A']}")
-        b = meshbool.read(f"{args.meshes}/{c['B']}")
+        a = meshbool.read(os.path.join(args.meshes, c["A"]))
+        b = meshbool.read(os.path.join(args.meshes, c["B"]))
         reps = max(1, args.reps if len(a.faces) < 1_000_000 else (args.reps + 1) // 2)
         vols = {}
         for op in OPS:
