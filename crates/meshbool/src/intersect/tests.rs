@@ -600,7 +600,7 @@ fn self_seam_points_lie_on_both_triangles_and_match_the_two_mesh_seam() {
 /// and far fewer pairs than the slivers' boxes overlap.
 #[test]
 fn large_triangles_are_covered_by_their_pieces() {
-    let mut rng = Rng(0x51_1ee7_0f_ca0d);
+    let mut rng = Rng(0x511e_e70f_ca0d);
     let mut a = Mesh::default();
     // Integer corners: the points a + i/64 (b − a) of each edge are exact.
     let slivers = [
@@ -622,7 +622,7 @@ fn large_triangles_are_covered_by_their_pieces() {
         a.triangles.push([v, v + 1, v + 2]);
     }
     // Fill A with small triangles too, so that the slivers are large next to the typical.
-    let mut small = |m: &mut Mesh, c: [f64; 3], r: f64, rng: &mut Rng| {
+    let small = |m: &mut Mesh, c: [f64; 3], r: f64, rng: &mut Rng| {
         let v = m.positions.len() as u32;
         for _ in 0..3 {
             let p = std::array::from_fn(|k| c[k] + r * (rng.unit() - 0.5));
