@@ -459,15 +459,21 @@ pub(crate) fn corners_meet_beyond_shared(
 ) -> bool {
     use crate::kernel::{certainly_separated, certainly_unfolded, orient2d, FloatPlane};
     // The corners of `q` that `p` does not share, all strictly on one side of `p`'s plane
-    // (and at least one of them): then the two meet at most in what they share.
-    let apart = |p: &[[f64; 3]; 3], vp: &[u32; 3], q: &[[f64; 3]; 3], vq: &[u32; 3]| {
+    // (and at least one of them): then the two meet at most in what they share. Decided
+    // exactly, or (`exact` false) by the floating-point filter alone, which answers only
+    // where it is certain.
+    let apart = |p: &[[f64; 3]; 3], vp: &[u32; 3], q: &[[f64; 3]; 3], vq: &[u32; 3], exact| {
         let plane = FloatPlane::new(p);
         let mut side = Sign::Zero;
         for k in 0..3 {
             if vp.contains(&vq[k]) {
                 continue;
             }
-            let s = plane.side_exact(p, &q[k]);
+            let s = if exact {
+                plane.side_exact(p, &q[k])
+            } else {
+                plane.side(&q[k]).unwrap_or(Sign::Zero)
+            };
             if s == Sign::Zero || (side != Sign::Zero && s != side) {
                 return false;
             }
@@ -497,31 +503,12 @@ pub(crate) fn corners_meet_beyond_shared(
     // separates, then (for pairs sharing nothing) the other separating axes. Coplanar
     // pairs (the flat faces of CAD models, cut into many slivers whose boxes overlap) get
     // no answer from the planes, and their exact plane test is the slow path of the
-    // adaptive predicate.
-    let apart_float = |p: &[[f64; 3]; 3], vp: &[u32; 3], q: &[[f64; 3]; 3], vq: &[u32; 3]| {
-        let plane = FloatPlane::new(p);
-        let mut side = None;
-        for k in 0..3 {
-            if vp.contains(&vq[k]) {
-                continue;
-            }
-            match (plane.side(&q[k]), side) {
-                (None, _) => return false,
-                (Some(s), Some(t)) if s != t => return false,
-                (s, _) => side = s,
-            }
-        }
-        side.is_some()
+    // adaptive predicate. Then the exact planes, before any set-up: sharing an edge, the
+    // far vertex off the other's plane is enough; otherwise one plane must separate.
+    let separated = |exact| {
+        apart(&pi, &vi, &pj, &vj, exact) || (shared < 2 && apart(&pj, &vj, &pi, &vi, exact))
     };
-    if apart_float(&pi, &vi, &pj, &vj) || (shared < 2 && apart_float(&pj, &vj, &pi, &vi)) {
-        return false;
-    }
-    if shared == 0 && certainly_separated(&pi, &pj) {
-        return false;
-    }
-    // Cheap exact rejection, before any set-up. Sharing an edge, the far vertex off the
-    // other's plane is enough; otherwise one plane must separate.
-    if apart(&pi, &vi, &pj, &vj) || (shared < 2 && apart(&pj, &vj, &pi, &vi)) {
+    if separated(false) || (shared == 0 && certainly_separated(&pi, &pj)) || separated(true) {
         return false;
     }
     let (Some(x), Some(y)) = (tritri::Tri::new(i, vi, pi), tritri::Tri::new(j, vj, pj)) else {
