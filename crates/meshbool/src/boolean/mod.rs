@@ -429,6 +429,9 @@ pub struct Merged {
     /// Its vertices at seam points (sorted): where the two inputs' parts are glued, the
     /// only places a merge can make a mesh non-manifold.
     pub seam_vertices: Vec<u32>,
+    /// The vertex of A's arrangement of each of `seam_vertices` (same order), whose exact
+    /// point it is ([`Arranged::point`]).
+    pub seam_origin: Vec<u32>,
 }
 
 /// Merges chosen triangles of both arrangements into one mesh. `keep_a(t)` / `keep_b(t)`
@@ -553,18 +556,20 @@ pub fn merge(
         .par_iter_mut()
         .for_each(|t| *t = t.map(|v| new_id[v as usize]));
     // Seam vertices are numbered by A's arrangement in the merged numbering.
-    let mut seam_vertices: Vec<u32> =
+    let mut seam: Vec<(u32, u32)> =
         s.a.seam_vertex
             .iter()
-            .map(|&v| new_id[v as usize])
-            .filter(|&v| v != u32::MAX)
+            .map(|&v| (new_id[v as usize], v))
+            .filter(|&(m, _)| m != u32::MAX)
             .collect();
-    seam_vertices.par_sort_unstable();
-    seam_vertices.dedup();
+    seam.par_sort_unstable();
+    seam.dedup();
+    let (seam_vertices, seam_origin) = seam.into_iter().unzip();
     Merged {
         mesh: Mesh::new_unchecked(positions, triangles),
         provenance,
         seam_vertices,
+        seam_origin,
     }
 }
 
@@ -595,7 +600,10 @@ pub fn boolean(a: &Mesh, b: &Mesh, op: Op, opts: &PipelineOptions) -> BooleanRes
     let (mesh, nonmanifold) = if opts.keep_nonmanifold {
         (merged.mesh, NonManifoldReport::default())
     } else {
-        split_at(merged.mesh, &merged.seam_vertices)
+        // Pairing at the seam's exact points: rounded, thin triangles there can tie or
+        // swap angles around an edge.
+        let exact = |i: usize| s.a.point(merged.seam_origin[i]);
+        split_at(merged.mesh, &merged.seam_vertices, Some(&exact))
     };
     let kept = |arr: &Arranged, cls: &Classified, keep: &Selection| {
         arr.rounding_flips

@@ -5,6 +5,7 @@
 //! Written here rather than taken from a big-float crate because only exact `+ − ×` and
 //! the sign are needed: no precision contexts, no rounding modes, nothing to misconfigure.
 
+use dashu_int::ops::BitTest;
 use dashu_int::IBig;
 
 use super::{Num, Sign};
@@ -21,6 +22,36 @@ impl Dyadic {
     fn mantissa_at(&self, e: i64) -> IBig {
         &self.m << (self.e - e) as usize
     }
+
+    /// The quotient `self / d` in `f64`, within an ulp or two; `None` when `d` is zero.
+    pub(crate) fn div_f64(&self, d: &Dyadic) -> Option<f64> {
+        if d.m == IBig::ZERO {
+            return None;
+        }
+        // The numerator shifted so that the integer quotient has 64 or 65 bits: truncating
+        // it (and the numerator, when shifted right) costs less than 2^-63 relative.
+        let k = 64 + d.m.bit_len() as i64 - self.m.bit_len() as i64;
+        let n = if k >= 0 {
+            &self.m << k as usize
+        } else {
+            &self.m >> (-k) as usize
+        };
+        let q = (n / &d.m).to_f64().value();
+        Some(times_power_of_two(q, self.e - d.e - k))
+    }
+}
+
+/// `x · 2^e`, in steps that keep every factor a normal `f64`.
+fn times_power_of_two(mut x: f64, mut e: i64) -> f64 {
+    while e > 1000 && x.is_finite() && x != 0.0 {
+        x *= 2f64.powi(1000);
+        e -= 1000;
+    }
+    while e < -1000 && x != 0.0 {
+        x *= 2f64.powi(-1000);
+        e += 1000;
+    }
+    x * 2f64.powi(e.clamp(-1100, 1100) as i32)
 }
 
 impl Num for Dyadic {

@@ -45,6 +45,11 @@ impl Interval {
         self.lo
     }
 
+    /// The upper end.
+    pub(crate) fn hi(&self) -> f64 {
+        self.hi
+    }
+
     /// Whether the two intervals share no point.
     pub(crate) fn disjoint(&self, o: &Interval) -> bool {
         self.hi < o.lo || o.hi < self.lo

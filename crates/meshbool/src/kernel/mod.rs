@@ -198,13 +198,38 @@ impl Point {
     }
 
     /// The nearest-ish `f64` coordinates (a few ulps off for implicit points): for output,
-    /// hashing and bounding boxes, never for decisions.
+    /// hashing and bounding boxes, never for decisions. Evaluated in `f64` where interval
+    /// arithmetic shows that close (to 2^-40 of the point's size); otherwise — a segment
+    /// almost parallel to the plane it crosses, where `f64` can lose every digit and even
+    /// divide zero by zero — from the exact homogeneous coordinates.
     pub fn approx(&self) -> [f64; 3] {
+        /// 2^-40: how close, relative to the point's size, the `f64` evaluation must be shown
+        /// to be.
+        const CLOSE: f64 = 1.0 / (1u64 << 40) as f64;
         match self {
             Point::Explicit(p) => *p,
             _ => {
                 let [x, y, z, w] = self.homogeneous::<F64>();
-                [x.0 / w.0, y.0 / w.0, z.0 / w.0]
+                let fast = [x.0 / w.0, y.0 / w.0, z.0 / w.0];
+                let [x, y, z, w] = self.homogeneous::<Interval>();
+                let close = match [x, y, z].map(|c| c.div(&w)) {
+                    [Some(x), Some(y), Some(z)] => {
+                        let size = [x, y, z]
+                            .iter()
+                            .fold(0.0f64, |m, c| m.max(c.lo().abs()).max(c.hi().abs()));
+                        [x, y, z].iter().all(|c| c.hi() - c.lo() <= size * CLOSE)
+                    }
+                    _ => false,
+                };
+                if close {
+                    return fast;
+                }
+                let [x, y, z, w] = self.homogeneous::<Dyadic>();
+                let exact = [x, y, z].map(|c| c.div_f64(&w));
+                match exact {
+                    [Some(x), Some(y), Some(z)] => [x, y, z],
+                    _ => fast,
+                }
             }
         }
     }
@@ -767,5 +792,25 @@ fn normals_dot_value<T: Num>(t: &[[f64; 3]; 3], u: &[[f64; 3]; 3]) -> T {
 /// apart), zero when either is degenerate or they are perpendicular. Decides whether
 /// moving a vertex turns a triangle over.
 pub fn normals_dot_sign(t: &[[f64; 3]; 3], u: &[[f64; 3]; 3]) -> Sign {
+    // A floating-point filter first: each rounded difference is within ε of the exact
+    // one per coordinate, each cross-product component within about 4ε·|e₁|₁·|e₂|₁ of
+    // its exact value, and the dot product then within about 30ε·S_t·S_u, where S is
+    // that product of a triangle's edge norms (ε = 2⁻⁵³; 30ε ≈ 3.4e-15). The answer
+    // needs the value beyond 1e-12·S_t·S_u, some 300 times that; anything closer (and any
+    // bound that overflows or underflows) goes to the exact evaluation.
+    let edges = |p: &[[f64; 3]; 3]| {
+        let (e1, e2) = (
+            [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]],
+            [p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]],
+        );
+        let l1 = |e: &[f64; 3]| e[0].abs() + e[1].abs() + e[2].abs();
+        (crate::vec3::cross(&e1, &e2), l1(&e1) * l1(&e2))
+    };
+    let ((n, sn), (m, sm)) = (edges(t), edges(u));
+    let d = crate::vec3::dot(&n, &m);
+    let bound = 1e-12 * sn * sm;
+    if bound.is_finite() && bound > 1e-250 && d.abs() > bound {
+        return Sign::of_f64(d);
+    }
     decide!(normals_dot_value(t, u))
 }

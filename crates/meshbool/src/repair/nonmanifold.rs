@@ -4,15 +4,17 @@
 //! come out as two closed, manifold surfaces that share positions but no vertex.
 //!
 //! Pairing is exact: the triangles around an edge are ordered by angle with `orient3d`
-//! on their coordinates, and each is paired with its neighbour on its inside (the side
-//! its normal points away from), so that every sheet bounds one solid wedge. Where the
+//! on their points — a boolean's seam points as the exact points they are, not as their
+//! rounded coordinates, which can tie or swap the angles of thin triangles —, and each is
+//! paired with its neighbour on its inside (the side its normal points away from), so
+//! that every sheet bounds one solid wedge. Where the
 //! orientation around an edge does not alternate (an inconsistently oriented or open
 //! input), triangles without a partner are counted and left on a boundary there.
 
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::kernel::{orient3d_explicit, Sign};
+use crate::kernel::{orient3d, Point, Sign};
 use crate::Mesh;
 
 /// What [`split_nonmanifold`] did.
@@ -33,13 +35,21 @@ pub struct NonManifoldReport {
 /// orientation.
 pub fn split_nonmanifold(mesh: &Mesh) -> (Mesh, NonManifoldReport) {
     let all: Vec<u32> = (0..mesh.positions.len() as u32).collect();
-    split_at(mesh.clone(), &all)
+    split_at(mesh.clone(), &all, None)
 }
+
+/// The exact point of the `i`th candidate of [`split_at`].
+pub(crate) type ExactPoint<'a> = &'a (dyn Fn(usize) -> Point + Sync);
 
 /// [`split_nonmanifold`] looking only at the vertices `candidates` (sorted, distinct):
 /// where a boolean glues its two inputs, the only places it can make the result
-/// non-manifold.
-pub(crate) fn split_at(mut mesh: Mesh, candidates: &[u32]) -> (Mesh, NonManifoldReport) {
+/// non-manifold. `exact(i)` is the exact point of `candidates[i]` where its position is
+/// rounded (a seam point); `None`: positions are exact.
+pub(crate) fn split_at(
+    mut mesh: Mesh,
+    candidates: &[u32],
+    exact: Option<ExactPoint>,
+) -> (Mesh, NonManifoldReport) {
     let n = mesh.positions.len();
     // The corners (triangle, position in it) of each candidate vertex, in triangle order.
     let mut slot = vec![u32::MAX; n];
@@ -73,7 +83,11 @@ pub(crate) fn split_at(mut mesh: Mesh, candidates: &[u32]) -> (Mesh, NonManifold
             let cs = &corners[start[i] as usize..start[i + 1] as usize];
             let counts_here =
                 |other: u32| candidates[i] < other || slot[other as usize] == u32::MAX;
-            fans_of(&mesh, candidates[i], cs, counts_here)
+            let point = |v: u32| match (exact, slot[v as usize]) {
+                (Some(exact), s) if s != u32::MAX => exact(s as usize),
+                _ => Point::Explicit(mesh.positions[v as usize]),
+            };
+            fans_of(&mesh, candidates[i], cs, counts_here, point)
         })
         .collect();
     // Every fan but the first gets a new vertex at the same position.
@@ -108,8 +122,15 @@ struct Fans {
 
 /// The fans around vertex `v` whose corners are `cs`: corners are joined across each edge
 /// at `v` that two triangles share, and across the pairs of an edge with more. Split
-/// edges are counted where `counts_here(other end)` says (once per edge).
-fn fans_of(mesh: &Mesh, v: u32, cs: &[(u32, u8)], counts_here: impl Fn(u32) -> bool) -> Fans {
+/// edges are counted where `counts_here(other end)` says (once per edge); `point(u)` is
+/// vertex `u`'s exact point.
+fn fans_of(
+    mesh: &Mesh,
+    v: u32,
+    cs: &[(u32, u8)],
+    counts_here: impl Fn(u32) -> bool,
+    point: impl Fn(u32) -> Point,
+) -> Fans {
     // The uses of each edge at v: (other end, corner, direction: true when v -> other).
     let mut uses: Vec<(u32, u32, bool)> = Vec::with_capacity(2 * cs.len());
     for (c, &(t, k)) in cs.iter().enumerate() {
@@ -134,7 +155,7 @@ fn fans_of(mesh: &Mesh, v: u32, cs: &[(u32, u8)], counts_here: impl Fn(u32) -> b
             [_] => {}
             [a, b] => join(a.1, b.1),
             _ => {
-                let sheets = pair_around(mesh, v, edge, cs);
+                let sheets = pair_around(mesh, v, edge, cs, &point);
                 if counts_here(edge[0].0) {
                     split_edges += 1;
                     unpaired += edge.len() - 2 * sheets.len();
@@ -175,27 +196,28 @@ fn root(parent: &mut [u32], mut x: u32) -> u32 {
 /// Pairs the triangles around the edge from `v` to the other end of `uses` (more than two
 /// uses: other end, corner of `v`, direction) into sheets, as pairs of corners. Both ends
 /// of an edge pair it alike: the order depends only on the edge, taken from its lower to
-/// its higher vertex id, and on its triangles.
+/// its higher vertex id, and on its triangles. `point(u)` is vertex `u`'s exact point.
 fn pair_around(
     mesh: &Mesh,
     v: u32,
     uses: &[(u32, u32, bool)],
     cs: &[(u32, u8)],
+    point: &impl Fn(u32) -> Point,
 ) -> Vec<(u32, u32)> {
     let other = uses[0].0;
     let (lo, hi) = (v.min(other), v.max(other));
-    let (p, q) = (mesh.positions[lo as usize], mesh.positions[hi as usize]);
+    let (p, q) = (point(lo), point(hi));
     // Per use: its corner, whether it runs lo -> hi, its far vertex.
-    let items: Vec<(u32, bool, [f64; 3], u32)> = uses
+    let items: Vec<(u32, bool, Point, u32)> = uses
         .iter()
         .map(|&(_, c, out)| {
             let (t, k) = cs[c as usize];
             let tri = mesh.triangles[t as usize];
             let far = tri[(k as usize + if out { 2 } else { 1 }) % 3];
-            (c, out == (v == lo), mesh.positions[far as usize], t)
+            (c, out == (v == lo), point(far), t)
         })
         .collect();
-    let order = angular_order(&p, &q, &items);
+    let order = angular_order(&p, &q, mesh.positions[lo as usize], &items);
     // Around the axis lo -> hi, angles increasing counter-clockwise (seen with the axis
     // pointing at the viewer): a triangle running hi -> lo faces backwards, so its inside
     // is towards the next triangle, which (oriented consistently) runs lo -> hi.
@@ -217,29 +239,46 @@ fn pair_around(
 /// The uses' indices ordered by the angle of their far vertices around the axis `p -> q`,
 /// counter-clockwise, starting at the first use's far vertex; at equal angles those
 /// running `p -> q` (whose inside is before them) first, then by triangle.
-/// Exact (`orient3d` on the coordinates). Far vertices on the axis itself (zero-area
-/// triangles) come first.
-fn angular_order(p: &[f64; 3], q: &[f64; 3], items: &[(u32, bool, [f64; 3], u32)]) -> Vec<usize> {
+/// Exact (`orient3d` on the points). Far vertices on the axis itself (zero-area
+/// triangles) come first. `near` is `p`'s position (its coordinates when explicit).
+fn angular_order(
+    p: &Point,
+    q: &Point,
+    near: [f64; 3],
+    items: &[(u32, bool, Point, u32)],
+) -> Vec<usize> {
+    // Four explicit points no plane holds all of: `near` and three moved along one axis
+    // each (to a different, finite value).
+    let probes: [Point; 4] = std::array::from_fn(|k| {
+        let mut x = near;
+        if k < 3 {
+            x[k] = if x[k] > 0.0 {
+                x[k] / 2.0 - 1.0
+            } else {
+                x[k] / 2.0 + 1.0
+            };
+        }
+        Point::Explicit(x)
+    });
     // A reference direction: a far vertex off the axis, and a point off the plane through
     // the axis and it (to tell its ray from the opposite one).
-    let off_axis = |w: &[f64; 3]| {
-        let d = crate::vec3::sub(q, p);
-        let n = crate::vec3::cross(&d, &crate::vec3::sub(w, p));
-        let aux = std::array::from_fn(|k| p[k] + n[k]);
-        (orient3d_explicit(p, q, w, &aux) != Sign::Zero).then_some(aux)
+    let off_axis = |w: &Point| {
+        probes
+            .iter()
+            .find(|aux| orient3d(p, q, w, aux) != Sign::Zero)
     };
-    let Some((w0, aux)) = items.iter().find_map(|it| Some((it.2, off_axis(&it.2)?))) else {
+    let Some((w0, aux)) = items.iter().find_map(|it| Some((&it.2, off_axis(&it.2)?))) else {
         let mut all: Vec<usize> = (0..items.len()).collect();
         all.sort_by_key(|&i| items[i].3);
         return all;
     };
-    let side0 = orient3d_explicit(p, q, &aux, &w0);
+    let side0 = orient3d(p, q, aux, w0);
     // Half-turn 0: angles in [0, π); 1: [π, 2π); rank 0 within a half for its first ray.
-    let key = |w: &[f64; 3]| -> (u8, u8) {
-        match orient3d_explicit(p, q, &w0, w) {
+    let key = |w: &Point| -> (u8, u8) {
+        match orient3d(p, q, w0, w) {
             Sign::Positive => (0, 1),
             Sign::Negative => (1, 1),
-            Sign::Zero => match orient3d_explicit(p, q, &aux, w) {
+            Sign::Zero => match orient3d(p, q, aux, w) {
                 s if s == side0 => (0, 0),
                 Sign::Zero => (0, 0),
                 _ => (1, 0),
@@ -252,7 +291,7 @@ fn angular_order(p: &[f64; 3], q: &[f64; 3], items: &[(u32, bool, [f64; 3], u32)
         keys[i].cmp(&keys[j]).then_with(|| {
             let by_angle = if keys[i].1 == 1 {
                 // Same open half-turn: j comes later when it lies counter-clockwise of i.
-                match orient3d_explicit(p, q, &items[i].2, &items[j].2) {
+                match orient3d(p, q, &items[i].2, &items[j].2) {
                     Sign::Positive => std::cmp::Ordering::Less,
                     Sign::Negative => std::cmp::Ordering::Greater,
                     Sign::Zero => std::cmp::Ordering::Equal,
@@ -296,7 +335,7 @@ mod tests {
         assert_eq!(signed_volume(m), volume);
         // Vertex-manifold: every vertex's triangles form one fan.
         let all: Vec<u32> = (0..m.positions.len() as u32).collect();
-        let (again, r) = split_at(m.clone(), &all);
+        let (again, r) = split_at(m.clone(), &all, None);
         assert_eq!(r, NonManifoldReport::default());
         assert_eq!(&again, m);
     }
