@@ -82,6 +82,13 @@ export interface CheckOptions {
 	orient?: boolean;
 	/** Keep edges used by more than two triangles (default: split apart). */
 	keepNonmanifold?: boolean;
+	/**
+	 * Snap tolerance D (booleans; default 0, the exact result): edges shorter than D
+	 * collapsed and needles (altitude below D) removed where that keeps the result
+	 * manifold, turns no triangle over, makes no self-intersection and moves no vertex more
+	 * than D. The report's `snap` says what was done.
+	 */
+	snap?: number;
 }
 
 export interface BooleanOptions extends CheckOptions {

@@ -76,6 +76,12 @@ function checkOptions(opts) {
 			out[key] = o[key];
 		}
 	}
+	if (o.snap !== undefined) {
+		if (typeof o.snap !== "number" || !Number.isFinite(o.snap) || o.snap < 0) {
+			throw new Error(`meshbool: option snap must be a distance >= 0, got ${o.snap}`);
+		}
+		out.snap = o.snap;
+	}
 	return JSON.stringify(out);
 }
 
@@ -92,7 +98,9 @@ function emptyCheck(arrays, what) {
  * `{positions, index, source, triangle, flipped, report}` without building an object per
  * triangle. `op`: "union", "intersect"/"intersection", "subtract"/"difference",
  * "reverse-difference". Options: `force`, `selfCheck`, `resolve`, `orient` (the operand
- * checks, all on but `force` by default), `keepNonmanifold`.
+ * checks, all on but `force` by default), `keepNonmanifold`, `snap` (a tolerance D:
+ * edges shorter than D collapsed and needles removed where that makes no defect; the
+ * report's `snap` says what was done).
  */
 export function booleanIndexed(a, b, op, options) {
 	const A = indexedArrays(a, "a"), B = indexedArrays(b, "b");

@@ -57,6 +57,50 @@ test("booleans of overlapping cubes: exact volumes, closed, and the volume ident
 	assert.ok(u.points.length < 3 * u.soup.length);
 });
 
+/** An axis-aligned box from `lo` to `hi`, facing outward. */
+function box(lo, hi) {
+	const c = [(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2];
+	const h = [(hi[0] - lo[0]) / 2, (hi[1] - lo[1]) / 2, (hi[2] - lo[2]) / 2];
+	const at = (p) => ({ x: c[0] + h[0] * p.x, y: c[1] + h[1] * p.y, z: c[2] + h[2] * p.z });
+	return cube(0, 0, 0, 2).map((t) => ({ v0: at(t.v0), v1: at(t.v1), v2: at(t.v2) }));
+}
+
+test("snap: a cutter drawn a little larger leaves no needles, closed, volume within D × area", () => {
+	// The unit cube minus a box over its corner x > 0.5, z > 0.5 whose other walls lie 1e-3
+	// outside the cube: the exact difference has edges and altitudes of about 1e-3.
+	const a = box([0, 0, 0], [1, 1, 1]), b = box([0.5, -0.001, 0.5], [1.001, 1.001, 1.001]);
+	const worst = (soup) => {
+		let edge = Infinity, height = Infinity;
+		for (const t of soup) {
+			const p = [t.v0, t.v1, t.v2].map((q) => [q.x, q.y, q.z]);
+			const sub = (u, v) => [u[0] - v[0], u[1] - v[1], u[2] - v[2]];
+			const len = (v) => Math.hypot(v[0], v[1], v[2]);
+			const l = [0, 1, 2].map((k) => len(sub(p[(k + 1) % 3], p[k])));
+			const [u, v] = [sub(p[1], p[0]), sub(p[2], p[0])];
+			const n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+			edge = Math.min(edge, ...l);
+			height = Math.min(height, len(n) / Math.max(...l));
+		}
+		return Math.min(edge, height);
+	};
+	const exact = mb.boolean(a, b, "subtract");
+	assert.equal(exact.report.snap, undefined);
+	assert.ok(worst(exact.soup) < 1e-3);
+	const D = 0.01;
+	const snapped = mb.boolean(a, b, "subtract", { snap: D });
+	assert.ok(closed(snapped.soup));
+	assert.ok(worst(snapped.soup) >= D);
+	assert.ok(Math.abs(vol(snapped) - vol(exact)) <= D * mb.compute3DSurfaceArea(exact.soup));
+	const s = snapped.report.snap;
+	assert.equal(s.tolerance, D);
+	assert.equal(s.left, 0);
+	assert.ok(s.collapsed > 0 && s.max_move <= D);
+	const t = mb.booleanIndexed(mb.soupToTyped(a), mb.soupToTyped(b), "subtract", { snap: D });
+	assert.equal(t.index.length, 3 * snapped.soup.length);
+	assert.equal(t.source.length, snapped.soup.length);
+	assert.throws(() => mb.boolean(a, b, "union", { snap: -1 }), /snap must be a distance/);
+});
+
 test("identical and touching meshes", () => {
 	const a = cube(0, 0, 0, 2);
 	assert.equal(vol(mb.boolean(a, a, "union")), 8);

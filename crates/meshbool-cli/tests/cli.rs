@@ -2054,3 +2054,97 @@ fn readers_refuse_content_beyond_the_format_and_say_what_is_wrong() {
         assert!(err.contains(says), "{name}: {err}");
     }
 }
+
+#[test]
+fn snap_cleans_needles_and_refuses_bad_tolerances() {
+    // The unit cube less a box a millimetre larger than its corner part: the exact
+    // difference has needles a millimetre wide along the cut.
+    let a = write_cube("snap_a.obj", [0.0; 3], [1.0; 3]);
+    let b = write_cube("snap_b.obj", [0.5, -0.001, 0.5], [1.001, 1.001, 1.001]);
+    let (a, b) = (a.to_str().unwrap(), b.to_str().unwrap());
+    let (exact, zero, snapped) = (
+        tmp("snap_exact.obj"),
+        tmp("snap_zero.obj"),
+        tmp("snap_d.obj"),
+    );
+    let r = report(&["difference", a, b, "-o", exact.to_str().unwrap(), "--json"]);
+    assert!(r.get("snap").is_none());
+    let r0 = report(&[
+        "difference",
+        a,
+        b,
+        "-o",
+        zero.to_str().unwrap(),
+        "--snap",
+        "0",
+        "--json",
+    ]);
+    assert!(r0.get("snap").is_none());
+    assert_eq!(
+        std::fs::read(&exact).unwrap(),
+        std::fs::read(&zero).unwrap()
+    );
+    let r = report(&[
+        "difference",
+        a,
+        b,
+        "-o",
+        snapped.to_str().unwrap(),
+        "--snap",
+        "0.01",
+        "--json",
+    ]);
+    assert_eq!(r["closed"], true);
+    assert_eq!(r["triangles"], 24);
+    assert_eq!(r["volume"], 0.75);
+    assert_eq!(r["snap"]["tolerance"], 0.01);
+    assert_eq!(r["snap"]["left"], 0);
+    assert!(r["snap"]["collapsed"].as_u64().unwrap() > 0);
+    // The written mesh: no edge shorter than the tolerance.
+    let m = meshbool::io::read_path(&snapped).unwrap();
+    let p = m.positions();
+    for t in m.triangles() {
+        for k in 0..3 {
+            let (u, v) = (p[t[k] as usize], p[t[(k + 1) % 3] as usize]);
+            let d = ((u[0] - v[0]).powi(2) + (u[1] - v[1]).powi(2) + (u[2] - v[2]).powi(2)).sqrt();
+            assert!(d >= 0.01, "edge of {d}");
+        }
+    }
+    // The exact result snapped by `repair --snap`, and `resolve --snap`.
+    let rep = report(&[
+        "repair",
+        exact.to_str().unwrap(),
+        "-o",
+        tmp("snap_rep.obj").to_str().unwrap(),
+        "--snap",
+        "0.01",
+        "--json",
+    ]);
+    assert_eq!(rep["snap"]["left"], 0);
+    assert_eq!(rep["after"]["closed"], true);
+    let res = report(&[
+        "resolve",
+        exact.to_str().unwrap(),
+        "-o",
+        tmp("snap_res.obj").to_str().unwrap(),
+        "--snap",
+        "0.01",
+        "--json",
+    ]);
+    assert_eq!(res["snap"]["left"], 0);
+    // Not a distance: a usage error, before any work.
+    for bad in ["-1", "nan", "inf", "x", "1,2"] {
+        for cmd in [
+            vec!["difference", a, b, "-o", "never.obj", "--snap", bad],
+            vec!["union", a, b, a, "-o", "never.obj", "--snap", bad],
+            vec!["resolve", a, "-o", "never.obj", "--snap", bad],
+            vec!["repair", a, "-o", "never.obj", "--snap", bad],
+        ] {
+            let out = meshbool(&cmd);
+            let err = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(2), "{cmd:?}: {err}");
+            assert!(err.contains("--snap"), "{cmd:?}: {err}");
+        }
+    }
+    assert!(!std::path::Path::new("never.obj").exists());
+}

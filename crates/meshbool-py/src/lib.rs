@@ -159,7 +159,7 @@ impl Boolean {
 /// A boolean: the result's arrays, its provenance (source 0 = A / 1 = B, triangle,
 /// flipped) and what else it found ([`Boolean`]).
 #[pyfunction]
-#[pyo3(signature = (av, af, bv, bf, op, force, self_check, resolve, orient, threads, keep_nonmanifold))]
+#[pyo3(signature = (av, af, bv, bf, op, force, self_check, resolve, orient, threads, keep_nonmanifold, snap=0.0))]
 #[allow(clippy::too_many_arguments, clippy::type_complexity)]
 fn boolean<'py>(
     py: Python<'py>,
@@ -174,6 +174,7 @@ fn boolean<'py>(
     orient: bool,
     threads: Option<usize>,
     keep_nonmanifold: bool,
+    snap: f64,
 ) -> PyResult<(
     Bound<'py, PyArray2<f64>>,
     Bound<'py, PyArray2<u32>>,
@@ -186,6 +187,7 @@ fn boolean<'py>(
     let opts = BooleanOptions {
         checks: checks(force, self_check, resolve, orient),
         keep_nonmanifold,
+        snap,
         run: run(threads),
     };
     let mut out = py
@@ -308,7 +310,7 @@ fn split(
 /// The union or intersection of several meshes in one call: the result's arrays, the
 /// input and triangle of each result triangle, the report.
 #[pyfunction]
-#[pyo3(signature = (meshes, op, force, self_check, resolve, orient, threads, keep_nonmanifold))]
+#[pyo3(signature = (meshes, op, force, self_check, resolve, orient, threads, keep_nonmanifold, snap=0.0))]
 #[allow(clippy::type_complexity, clippy::too_many_arguments)]
 fn boolean_many<'py>(
     py: Python<'py>,
@@ -320,6 +322,7 @@ fn boolean_many<'py>(
     orient: bool,
     threads: Option<usize>,
     keep_nonmanifold: bool,
+    snap: f64,
 ) -> PyResult<(
     Bound<'py, PyArray2<f64>>,
     Bound<'py, PyArray2<u32>>,
@@ -335,6 +338,7 @@ fn boolean_many<'py>(
     let opts = BooleanOptions {
         checks: checks(force, self_check, resolve, orient),
         keep_nonmanifold,
+        snap,
         run: run(threads),
     };
     let (out, report) = py
@@ -498,6 +502,7 @@ fn orient<'py>(
 /// The solid a self-overlapping mesh encloses: its arrays, the input triangle of each
 /// result triangle, the report.
 #[pyfunction]
+#[pyo3(signature = (v, f, rule, keep_nonmanifold, threads, snap=0.0))]
 #[allow(clippy::type_complexity)]
 fn resolve<'py>(
     py: Python<'py>,
@@ -506,6 +511,7 @@ fn resolve<'py>(
     rule: &str,
     keep_nonmanifold: bool,
     threads: Option<usize>,
+    snap: f64,
 ) -> PyResult<(
     Bound<'py, PyArray2<f64>>,
     Bound<'py, PyArray2<u32>>,
@@ -516,6 +522,7 @@ fn resolve<'py>(
     let opts = ops::ResolveOptions {
         rule: parse::<meshbool::FillRule>(rule)?,
         keep_nonmanifold,
+        snap,
         run: run(threads),
     };
     let mut out = py.detach(move || ops::resolve(&m, &opts)).map_err(py_err)?;

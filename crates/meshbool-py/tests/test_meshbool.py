@@ -388,3 +388,36 @@ def test_cutfill_of_a_slope_against_flat_ground():
     assert abs(report["cut"] - 2.0) < 1e-12 and abs(report["fill"] - 2.0) < 1e-12
     assert abs(report["common_plan_area"] - 4.0) < 1e-12
     assert len(lines) == 1 and report["zero_lines"] == 1
+
+
+def shortest_edge_and_altitude(m):
+    """The shortest edge and the smallest altitude of a mesh's triangles."""
+    p = m.vertices[m.faces]
+    edges = np.linalg.norm(np.roll(p, -1, axis=1) - p, axis=2)
+    twice_area = np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1)
+    return edges.min(), (twice_area / edges.max(axis=1)).min()
+
+
+def test_snap_removes_needles_of_a_cutter_drawn_a_little_larger():
+    # The unit cube minus a box over its corner x > 0.5, z > 0.5 whose other walls lie 1e-3
+    # outside the cube: the exact result has edges and altitudes of about 1e-3.
+    cube = meshbool.box([0, 0, 0], [1, 1, 1])
+    cutter = meshbool.box([0.5, -0.001, 0.5], [1.001, 1.001, 1.001])
+    exact = meshbool.boolean(cube, cutter, "difference")
+    assert "snap" not in exact.report
+    assert min(shortest_edge_and_altitude(exact)) < 1e-3
+    d = 0.01
+    snapped = meshbool.boolean(cube, cutter, "difference", snap=d)
+    assert snapped.is_closed and snapped.stats()["non_manifold_edges"] == 0
+    assert min(shortest_edge_and_altitude(snapped)) >= d
+    assert abs(snapped.volume - exact.volume) <= d * exact.area
+    s = snapped.report["snap"]
+    assert s["tolerance"] == d and s["left"] == 0 and s["collapsed"] > 0
+    assert s["max_move"] <= d
+    assert len(snapped.provenance["source"]) == len(snapped.faces)
+    # The same through resolve and repair; a negative tolerance is refused.
+    for m in (meshbool.resolve(exact, snap=d), meshbool.repair(exact, snap=d)):
+        assert m.is_closed and min(shortest_edge_and_altitude(m)) >= d
+        assert m.report["snap"]["collapsed"] > 0
+    with pytest.raises(ValueError, match="snap"):
+        meshbool.boolean(cube, cutter, "union", snap=-1.0)

@@ -181,7 +181,8 @@ fn provenance_arrays(out: Out, prov: &[meshbool::Provenance]) -> Out {
 /// (`source[t]`: 0 when result triangle `t` comes from A, 1 from B; `triangle[t]`: the
 /// input triangle it is part of; `flipped[t]`: 1 when reversed). `op`: `union`,
 /// `intersection` (`intersect`), `difference` (`subtract`), `reverse-difference`.
-/// Options (JSON): `force`, `selfCheck`, `resolve`, `orient`, `keepNonmanifold`.
+/// Options (JSON): `force`, `selfCheck`, `resolve`, `orient`, `keepNonmanifold`, `snap`
+/// (a tolerance, [`BooleanOptions::snap`]).
 #[wasm_bindgen]
 pub fn boolean(
     a_positions: &[f64],
@@ -197,6 +198,7 @@ pub fn boolean(
     let opts = BooleanOptions {
         checks: checks(&o)?,
         keep_nonmanifold: flag(&o, "keepNonmanifold", false)?,
+        snap: number(&o, "snap")?.unwrap_or(0.0),
         ..BooleanOptions::default()
     };
     let out = ops::boolean(&a, &b, op, &opts).map_err(js_err)?;

@@ -19,12 +19,32 @@ fn union_200k_spheres() -> usize {
         .triangle_count()
 }
 
+/// The same union snapped at 1e-4 (about a hundredth of the spheres' triangle size), as
+/// the front door does with `snap: 1e-4`: the cost of snapping over the boolean.
+#[divan::bench(sample_count = 10)]
+fn union_200k_spheres_snap() -> usize {
+    let (a, b) = &*P200K;
+    let mut r = boolean(a, b, Op::Union, &Default::default());
+    meshbool::boolean::snap_result(&mut r, 1e-4).expect("a valid tolerance");
+    r.mesh.triangle_count()
+}
+
 #[divan::bench(sample_count = 5)]
 fn union_2m_spheres() -> usize {
     let (a, b) = &*P2M;
     boolean(a, b, Op::Union, &Default::default())
         .mesh
         .triangle_count()
+}
+
+/// The same union snapped at 1e-4 (a thirtieth of the spheres' triangle size): the cost
+/// of snapping on a large result (issue 21's target: under 15 % over the union).
+#[divan::bench(sample_count = 5)]
+fn union_2m_spheres_snap() -> usize {
+    let (a, b) = &*P2M;
+    let mut r = boolean(a, b, Op::Union, &Default::default());
+    meshbool::boolean::snap_result(&mut r, 1e-4).expect("a valid tolerance");
+    r.mesh.triangle_count()
 }
 
 /// Two crossing open terrains (80k and 34k triangles): the seam stops inside both, so
@@ -133,4 +153,23 @@ fn difference_thingi_908460_73416() -> usize {
             .mesh
             .triangle_count()
     })
+}
+
+/// The fallback storm without the shared files: a fine sphere (about 200k triangles)
+/// minus a box turned a little, whose faces (two triangles each) cut the sphere: each of
+/// the box's large triangles carries a seam loop of thousands of points, and the sphere's
+/// triangles along it are slivers crossing the box's faces at a grazing angle.
+#[divan::bench(sample_count = 5)]
+fn difference_sphere_minus_large_triangles() -> usize {
+    static PAIR: std::sync::LazyLock<(meshbool::Mesh, meshbool::Mesh)> =
+        std::sync::LazyLock::new(|| {
+            use meshbool::shapes::{cuboid, rigid_motion, uv_sphere};
+            let sphere = uv_sphere([0.0; 3], 1.0, 500, 200);
+            let b = cuboid([-0.6, -0.7, -0.8], [2.0, 2.0, 2.0]).expect("a box");
+            (sphere, rigid_motion(&b, [1.0, 0.3, 0.1], 0.02, [0.0; 3]))
+        });
+    let (a, b) = &*PAIR;
+    boolean(a, b, Op::Difference, &Default::default())
+        .mesh
+        .triangle_count()
 }

@@ -124,6 +124,22 @@ fn samples() -> BTreeMap<&'static str, Vec<Value>> {
         .push(json(&resolved.report()));
     let r = ops::resolve(&two, &ops::ResolveOptions::default()).unwrap();
     s.entry("resolve").or_default().push(json(&r.report()));
+    // Snapping at a tolerance: the `snap` keys.
+    let snap = ops::ResolveOptions {
+        snap: 1e-3,
+        ..Default::default()
+    };
+    let r = ops::resolve(&two, &snap).unwrap();
+    assert!(r.snap.is_some());
+    s.entry("resolve").or_default().push(json(&r.report()));
+    let cutter = Mesh::cuboid([0.5, -0.001, 0.5], [1.001, 1.001, 1.001]);
+    let snapped = BooleanOptions {
+        snap: 0.01,
+        ..BooleanOptions::default()
+    };
+    let d = ops::boolean(&cube, &cutter, Op::Difference, &snapped).unwrap();
+    assert!(d.snap.as_ref().is_some_and(|s| s.collapsed > 0));
+    s.entry("boolean").or_default().push(json(&d.report()));
 
     let (slab, posts) = slab_and_posts();
     let split = ops::split(&slab, &posts, &SplitOptions::default()).unwrap();
@@ -198,6 +214,7 @@ fn samples() -> BTreeMap<&'static str, Vec<Value>> {
             tjunctions: true,
             tjunction_tolerance: tolerance,
             degenerate: Some(DegenerateOptions::default()),
+            snap: Some(1e-3),
             orient: Some(Facing::ZUp),
             remove_folds: true,
             close,

@@ -64,6 +64,10 @@ fn exercise(m: &Mesh, other: &Mesh) {
         if let Ok(out) = ops::boolean(m, other, op, &opts) {
             let _ = out.report();
         }
+        let snapped = BooleanOptions { snap: 0.5, ..opts };
+        if let Ok(out) = ops::boolean(m, other, op, &snapped) {
+            let _ = out.report();
+        }
     }
     let opts = SplitOptions {
         checks: forced,
@@ -100,6 +104,7 @@ fn exercise(m: &Mesh, other: &Mesh) {
         remove_folds: true,
         close: CloseMode::StitchCurtain,
         close_gaps: Some(2.0),
+        snap: Some(0.5),
         ..RepairConfig::default()
     };
     let _ = ops::repair(m, &all_steps);
@@ -113,6 +118,7 @@ fn exercise(m: &Mesh, other: &Mesh) {
     let _ = repair::repair(m, &toleranced);
     let _ = ops::pick(&[(m, false), (other, true)], &Default::default());
     let _ = repair::split_nonmanifold(m);
+    let _ = repair::snap(m, 0.5);
 
     let _ = measure::mesh_stats(m);
     let _ = measure::signed_volume(m);

@@ -25,6 +25,8 @@ pub struct Args {
     #[arg(long)]
     keep_nonmanifold: bool,
     #[command(flatten)]
+    snap: super::Snap,
+    #[command(flatten)]
     flags: OperandFlags,
 }
 
@@ -42,6 +44,8 @@ pub struct ManyArgs {
     #[arg(long)]
     keep_nonmanifold: bool,
     #[command(flatten)]
+    snap: super::Snap,
+    #[command(flatten)]
     flags: OperandFlags,
 }
 
@@ -54,6 +58,7 @@ impl ManyArgs {
                 b: b.clone(),
                 output: self.output.clone(),
                 keep_nonmanifold: self.keep_nonmanifold,
+                snap: self.snap,
                 flags: self.flags.clone(),
             };
             return run(&args, op);
@@ -69,6 +74,7 @@ impl ManyArgs {
             let inputs: Vec<Input> = operands.iter().map(Input::from).collect();
             let opts = BooleanOptions {
                 keep_nonmanifold: self.keep_nonmanifold,
+                snap: self.snap.tolerance,
                 run: flags.run(&spinner),
                 ..BooleanOptions::default()
             };
@@ -115,6 +121,7 @@ pub fn run(args: &Args, op: Op) -> Result<()> {
         // The operands were checked as they were read.
         let opts = BooleanOptions {
             keep_nonmanifold: args.keep_nonmanifold,
+            snap: args.snap.tolerance,
             run: flags.run(&spinner),
             ..BooleanOptions::default()
         };

@@ -155,6 +155,29 @@ pub fn polyline_output(s: &str) -> Result<std::path::PathBuf, String> {
     Ok(path)
 }
 
+/// `--snap D` of the commands that make a mesh from a boolean or resolve.
+#[derive(clap::Args, Clone, Copy, Debug)]
+pub struct Snap {
+    /// Snap tolerance D: collapse edges shorter than D and remove needles (altitude
+    /// below D) where that keeps the result manifold, turns no triangle over, makes no
+    /// self-intersection and moves no vertex more than D (0: the exact result).
+    #[arg(long = "snap", value_name = "D", default_value_t = 0.0, allow_hyphen_values = true,
+          value_parser = snap_tolerance)]
+    pub tolerance: f64,
+}
+
+/// Parses a snap tolerance (`--snap D`): a finite distance ≥ 0 (a usage error, before any
+/// work, otherwise).
+pub fn snap_tolerance(s: &str) -> Result<f64, String> {
+    match transform::numbers(s)?[..] {
+        [v] if v >= 0.0 => Ok(v),
+        [v] => Err(format!(
+            "the snap tolerance must be a distance >= 0, got {v}"
+        )),
+        _ => Err("expected one number".into()),
+    }
+}
+
 /// Parses any output file path: its directory must exist.
 pub fn any_output(s: &str) -> Result<std::path::PathBuf, String> {
     let path = std::path::PathBuf::from(s);

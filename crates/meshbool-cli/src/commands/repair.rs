@@ -49,6 +49,11 @@ pub struct Args {
     /// height exceeds this (1.15 for equilateral).
     #[arg(long, requires = "remove_degenerate")]
     max_aspect: Option<f64>,
+    /// Collapse edges shorter than D and remove needles (altitude below D) where that
+    /// keeps the mesh manifold, turns no triangle over, makes no self-intersection and
+    /// moves no vertex more than D (after degenerate removal, before orientation).
+    #[arg(long, value_name = "D", allow_hyphen_values = true, value_parser = super::snap_tolerance)]
+    snap: Option<f64>,
     /// Orientation: consistent, then facing as named (default: majority); `none` skips
     /// the step.
     #[arg(long, ignore_case = true, value_parser = one_of::<Orientation>(["none"].into_iter().chain(Facing::ALL.map(Facing::name))))]
@@ -129,6 +134,9 @@ impl Args {
             if self.max_aspect.is_some() {
                 d.max_aspect = self.max_aspect;
             }
+        }
+        if self.snap.is_some() {
+            c.snap = self.snap;
         }
         if self.z_up {
             c.orient = Some(Facing::ZUp);

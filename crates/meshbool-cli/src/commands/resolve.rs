@@ -25,6 +25,8 @@ pub struct Args {
     /// instead of splitting them.
     #[arg(long)]
     keep_nonmanifold: bool,
+    #[command(flatten)]
+    snap: super::Snap,
     /// Worker threads (default: all cores).
     #[arg(long)]
     threads: Option<usize>,
@@ -41,6 +43,7 @@ pub fn run(args: &Args) -> Result<()> {
     let opts = ResolveOptions {
         rule: args.rule,
         keep_nonmanifold: args.keep_nonmanifold,
+        snap: args.snap.tolerance,
         run: RunOptions {
             threads: args.threads,
             progress: None,

@@ -224,6 +224,7 @@ def boolean(
     orient: bool = True,
     threads: Optional[int] = None,
     keep_nonmanifold: bool = False,
+    snap: float = 0.0,
 ) -> Mesh:
     """The boolean ``op`` of ``a`` and ``b``.
 
@@ -241,7 +242,11 @@ def boolean(
     what was taken as given). ``self_check=False``
     skips the self-intersection check (for inputs known to be clean). ``threads``: worker
     threads (default all cores). ``keep_nonmanifold``: keep edges and vertices where the
-    result's solids touch instead of splitting them.
+    result's solids touch instead of splitting them. ``snap``: a tolerance D > 0 cleans
+    the result (edges shorter than D collapsed, needles with an altitude below D removed)
+    where that keeps it manifold, turns no triangle over, makes no self-intersection and
+    moves no vertex more than D; ``report["snap"]`` says what it did (0, the default: the
+    exact result).
 
     Returns a :class:`Mesh` with ``report`` (the ``--json`` dict) and ``provenance``
     (a dict of arrays: ``source`` 0 for a / 1 for b, ``triangle`` in that input,
@@ -250,7 +255,8 @@ def boolean(
     av, af = _parts(a)
     bv, bf = _parts(b)
     v, f, source, triangle, flipped, pending = _native.boolean(
-        av, af, bv, bf, op, force, self_check, resolve, orient, threads, keep_nonmanifold
+        av, af, bv, bf, op, force, self_check, resolve, orient, threads, keep_nonmanifold,
+        float(snap),
     )
     out = Mesh._from(v, f)
     out._pending = pending
@@ -268,6 +274,7 @@ def boolean_many(
     orient: bool = True,
     threads: Optional[int] = None,
     keep_nonmanifold: bool = False,
+    snap: float = 0.0,
 ) -> Mesh:
     """The union (``op="union"``) or intersection (``"intersection"``) of any number of
     meshes in one call: pairwise booleans in a balanced tree, in parallel, rather than a
@@ -275,7 +282,8 @@ def boolean_many(
     ``input`` (position in ``meshes``) and ``triangle`` (in that input)."""
     parts = [_parts(m) for m in meshes]
     v, f, input, triangle, report = _native.boolean_many(
-        parts, op, force, self_check, resolve, orient, threads, keep_nonmanifold
+        parts, op, force, self_check, resolve, orient, threads, keep_nonmanifold,
+        float(snap),
     )
     out = Mesh._from(v, f, report)
     out.provenance = {"input": input, "triangle": triangle}
@@ -461,6 +469,7 @@ def resolve(
     *,
     keep_nonmanifold: bool = False,
     threads: Optional[int] = None,
+    snap: float = 0.0,
 ) -> Mesh:
     """The solid a self-overlapping mesh encloses, as a clean closed mesh: closed parts
     that cross are united, parts nested in others dropped (or kept reversed), as the fill
@@ -468,9 +477,12 @@ def resolve(
     ``"evenodd"``; a part that crosses itself is cut along its own seam. A mesh that
     cannot be given a meaning (open and crossing itself) raises ``ValueError``.
     The result's ``provenance["triangle"]`` is the input triangle of each of its
-    triangles; ``report`` is the ``meshbool resolve --json`` dict."""
+    triangles; ``report`` is the ``meshbool resolve --json`` dict. ``snap``: a
+    tolerance, as for :func:`boolean`."""
     v, f = _parts(mesh)
-    v, f, parent, report = _native.resolve(v, f, rule, keep_nonmanifold, threads)
+    v, f, parent, report = _native.resolve(
+        v, f, rule, keep_nonmanifold, threads, float(snap)
+    )
     out = Mesh._from(v, f, report)
     out.provenance = {"triangle": parent}
     return out
@@ -504,7 +516,8 @@ def repair(mesh: MeshLike, **config: Any) -> Mesh:
     distance), ``remove_duplicates``, ``tjunctions``, ``degenerate`` (``{"min_area": ..,
     "max_aspect": ..}``), ``orient`` (``"majority"``, ``"z-up"``, ``"outward"`` or
     ``None``), ``remove_folds``, ``close`` (a :func:`close` mode), ``close_options``
-    (``{"floor_offset": .., "stitch_max_gap": ..}``), ``close_gaps`` (a size). Unknown
+    (``{"floor_offset": .., "stitch_max_gap": ..}``), ``close_gaps`` (a size), ``snap``
+    (a tolerance, as for :func:`boolean`, after degenerate removal). Unknown
     keywords raise ``ValueError``. The report says what every step did."""
     v, f = _parts(mesh)
     return Mesh._from(*_native.repair(v, f, json.dumps(config)))

@@ -30,6 +30,7 @@ def boolean(
     orient: bool,
     threads: Optional[int],
     keep_nonmanifold: bool,
+    snap: float = 0.0,
 ) -> Tuple[F64, U32, npt.NDArray[np.uint8], U32, npt.NDArray[np.bool_], Boolean]: ...
 
 def boolean_many(
@@ -41,6 +42,7 @@ def boolean_many(
     orient: bool,
     threads: Optional[int],
     keep_nonmanifold: bool,
+    snap: float = 0.0,
 ) -> Tuple[F64, U32, U32, U32, str]: ...
 
 class Split:
@@ -80,7 +82,12 @@ def classify(
     v: F64, f: U32, points: F64, force: bool, threads: Optional[int]
 ) -> Tuple[npt.NDArray[np.uint8], F64, str]: ...
 def resolve(
-    v: F64, f: U32, rule: str, keep_nonmanifold: bool, threads: Optional[int]
+    v: F64,
+    f: U32,
+    rule: str,
+    keep_nonmanifold: bool,
+    threads: Optional[int],
+    snap: float = 0.0,
 ) -> Tuple[F64, U32, U32, str]: ...
 def orient(v: F64, f: U32, facing: str) -> Tuple[F64, U32, str]: ...
 def close(

@@ -37,7 +37,9 @@ use crate::Mesh;
 
 pub mod nary;
 pub mod resolve;
+mod snap;
 pub use resolve::{resolve, FillRule, ResolveReport, Resolved};
+pub use snap::snap_result;
 
 /// A boolean operation. Written (and parsed, [`FromStr`]) as `union`, `intersection`,
 /// `difference`, `reverse-difference`; parsing also takes the reference library's
@@ -126,6 +128,9 @@ pub struct BooleanResult {
     /// Result triangles that turned over or collapsed when their seam points were rounded
     /// to `f64` coordinates ([`Arranged::rounding_flips`]); 0 in almost every case.
     pub rounding_flips: usize,
+    /// The vertices of `mesh` at seam points (sorted; copies made by the non-manifold
+    /// split included): the vertices the boolean made rather than took from an input.
+    pub seam_vertices: Vec<u32>,
 }
 
 /// An input triangle that could not be cut along the seam (inconsistent input, such as a
@@ -269,6 +274,9 @@ pub enum Stage {
     TJunctions,
     /// Repair: removing degenerate and sliver triangles.
     Degenerate,
+    /// Snapping at a tolerance: short edges and needles removed (a boolean's or resolve's
+    /// last step with a snap tolerance, and a repair step).
+    Snap,
     /// Repair: making orientation consistent.
     Orient,
     /// Repair: removing the folds of a terrain.
@@ -281,7 +289,7 @@ pub enum Stage {
 
 impl Stage {
     /// Every stage, in the order they run: a boolean's, then a repair's steps.
-    pub const ALL: [Stage; 14] = [
+    pub const ALL: [Stage; 15] = [
         Stage::Check,
         Stage::Intersect,
         Stage::Arrange,
@@ -292,6 +300,7 @@ impl Stage {
         Stage::WeldBoundary,
         Stage::TJunctions,
         Stage::Degenerate,
+        Stage::Snap,
         Stage::Orient,
         Stage::Folds,
         Stage::Close,
@@ -300,7 +309,7 @@ impl Stage {
 
     /// The stage's name: `check`, `intersect`, `arrange`, `classify`, `merge`; a repair
     /// step's is its key in the repair report: `weld`, `duplicates`, `weld_boundary`,
-    /// `tjunctions`, `degenerate`, `orient`, `folds`, `close`, `close_gaps`.
+    /// `tjunctions`, `degenerate`, `snap`, `orient`, `folds`, `close`, `close_gaps`.
     pub fn name(self) -> &'static str {
         match self {
             Stage::Check => "check",
@@ -313,6 +322,7 @@ impl Stage {
             Stage::WeldBoundary => "weld_boundary",
             Stage::TJunctions => "tjunctions",
             Stage::Degenerate => "degenerate",
+            Stage::Snap => "snap",
             Stage::Orient => "orient",
             Stage::Folds => "folds",
             Stage::Close => "close",
@@ -333,6 +343,7 @@ impl Stage {
             Stage::WeldBoundary => "welding boundary vertices",
             Stage::TJunctions => "splitting T-junctions",
             Stage::Degenerate => "removing degenerate triangles",
+            Stage::Snap => "snapping short edges and needles",
             Stage::Orient => "orienting",
             Stage::Folds => "removing folds",
             Stage::Close => "closing",
@@ -597,6 +608,7 @@ pub fn boolean(a: &Mesh, b: &Mesh, op: Op, opts: &PipelineOptions) -> BooleanRes
         |t| rule.a.of(s.class_a.class[t]),
         |t| rule.b.of(s.class_b.class[t]),
     );
+    let merged_vertices = merged.mesh.positions.len() as u32;
     let (mesh, nonmanifold) = if opts.keep_nonmanifold {
         (merged.mesh, NonManifoldReport::default())
     } else {
@@ -605,6 +617,9 @@ pub fn boolean(a: &Mesh, b: &Mesh, op: Op, opts: &PipelineOptions) -> BooleanRes
         let exact = |i: usize| s.a.point(merged.seam_origin[i]);
         split_at(merged.mesh, &merged.seam_vertices, Some(&exact))
     };
+    // The split's copies (of seam vertices) come after the merged vertices.
+    let mut seam_vertices = merged.seam_vertices;
+    seam_vertices.extend(merged_vertices..mesh.positions.len() as u32);
     let kept = |arr: &Arranged, cls: &Classified, keep: &Selection| {
         arr.rounding_flips
             .iter()
@@ -632,6 +647,7 @@ pub fn boolean(a: &Mesh, b: &Mesh, op: Op, opts: &PipelineOptions) -> BooleanRes
         degenerate: s.seam.degenerate,
         failed,
         rounding_flips,
+        seam_vertices,
     }
 }
 

@@ -11,7 +11,7 @@ use super::{with_threads, Checks, Input, Measures, Operand, OperandReport, RunOp
 use crate::arrange::FailReason;
 use crate::boolean::nary::{reduce, Part};
 use crate::boolean::{FailedTriangle, Op, PipelineOptions, Provenance, Stage};
-use crate::repair::NonManifoldReport;
+use crate::repair::{NonManifoldReport, SnapOptions, SnapReport};
 use crate::{Error, Mesh, Result};
 
 /// Options of [`boolean`].
@@ -23,6 +23,17 @@ pub struct BooleanOptions {
     /// or at a vertex then share it). By default such edges and vertices are split so that
     /// the result is manifold ([`crate::repair::split_nonmanifold`]; positions unchanged).
     pub keep_nonmanifold: bool,
+    /// Snap tolerance `D` (a length; 0, the default: the exact result as it is). With
+    /// `D > 0` the assembled result is cleaned by [`crate::repair::snap_with`]: edges
+    /// shorter than `D` collapsed and needles (altitude below `D`) removed, only where that
+    /// keeps the result manifold, turns no triangle over, makes no self-intersection,
+    /// moves no vertex more than `D` (seam points move before input vertices) and keeps the
+    /// volume within `D × area`; no edge of the seam is flipped. Provenance follows.
+    /// Only the bad triangles at the seam are fixed (and those the fixes make bad): the
+    /// inputs' own short edges and needles elsewhere stay as they were. [`boolean_many`]
+    /// keeps flips off the edges between two inputs' parts but does not tell seam points
+    /// from input vertices: it fixes every bad triangle.
+    pub snap: f64,
     /// Threads and progress.
     pub run: RunOptions,
 }
@@ -53,7 +64,10 @@ pub struct BooleanOutput {
     /// Result triangles that turn over when their seam points are rounded to `f64`
     /// (exact before rounding); 0 in almost every case.
     pub rounding_flips: usize,
-    /// Time of the boolean itself (not of checking the inputs), in seconds.
+    /// What snapping did ([`BooleanOptions::snap`]); `None` without it.
+    pub snap: Option<SnapReport>,
+    /// Time of the boolean itself and of snapping (not of checking the inputs), in
+    /// seconds.
     pub seconds: f64,
 }
 
@@ -81,6 +95,9 @@ pub struct BooleanReport {
     pub assumed: Vec<String>,
     /// What the checks found in A and B (in every input, for [`boolean_many`]).
     pub operands: Vec<OperandReport>,
+    /// What snapping did (only with a snap tolerance).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub snap: Option<SnapReport>,
     /// [`BooleanOutput::seconds`].
     pub seconds: f64,
 }
@@ -91,6 +108,9 @@ impl BooleanOutput {
         super::scale_points(&mut self.mesh.positions, e);
         for o in &mut self.operands {
             o.scale_back(e);
+        }
+        if let Some(s) = &mut self.snap {
+            s.scale_back(e);
         }
     }
 
@@ -127,6 +147,7 @@ impl BooleanOutput {
             split_nonmanifold: self.nonmanifold.clone(),
             assumed: self.assumed(),
             operands: self.operands.to_vec(),
+            snap: self.snap.clone(),
             seconds: self.seconds,
         }
     }
@@ -144,7 +165,17 @@ pub fn boolean<'a>(
     opts: &BooleanOptions,
 ) -> Result<BooleanOutput> {
     let (a, b): (Input<'a>, Input<'a>) = (a.into(), b.into());
-    let unit = |a: &Mesh, b: &Mesh| boolean(a, b, op, opts);
+    crate::repair::check_tolerance(opts.snap)?;
+    // At unit size the tolerance is scaled as the meshes are.
+    let to_unit = match (a, b) {
+        (Input::Mesh(x), Input::Mesh(y)) if opts.snap > 0.0 => super::extreme_scale(&[x, y]),
+        _ => None,
+    };
+    let unit_opts = BooleanOptions {
+        snap: super::scaled(opts.snap, to_unit.unwrap_or(0)).min(f64::MAX),
+        ..opts.clone()
+    };
+    let unit = |a: &Mesh, b: &Mesh| boolean(a, b, op, &unit_opts);
     if let Some(out) = super::at_unit_scale(a, b, unit, BooleanOutput::scale_back) {
         return out;
     }
@@ -154,6 +185,13 @@ pub fn boolean<'a>(
             ..opts.run.pipeline()
         };
         let mut r = crate::boolean::boolean(a.mesh(), b.mesh(), op, &pipeline);
+        let snap = if opts.snap > 0.0 {
+            opts.run.stage(Stage::Snap);
+            // The tolerance was checked above: never an error here.
+            crate::boolean::snap_result(&mut r, opts.snap).ok()
+        } else {
+            None
+        };
         Operand::to_input_triangles(&mut r.provenance, a, b);
         for f in &mut r.failed {
             f.triangle = match f.source {
@@ -161,9 +199,9 @@ pub fn boolean<'a>(
                 crate::Source::B => b.input_triangle(f.triangle),
             };
         }
-        (r, [a.report().clone(), b.report().clone()])
+        (r, snap, [a.report().clone(), b.report().clone()])
     };
-    let ((r, operands), seconds) = Input::with_both(a, b, &opts.checks, &opts.run, run)?;
+    let ((r, snap, operands), seconds) = Input::with_both(a, b, &opts.checks, &opts.run, run)?;
     Ok(BooleanOutput {
         op,
         mesh: r.mesh,
@@ -174,6 +212,7 @@ pub fn boolean<'a>(
         degenerate: r.degenerate,
         failed: r.failed,
         rounding_flips: r.rounding_flips,
+        snap,
         seconds,
     })
 }
@@ -200,6 +239,8 @@ pub struct BooleanManyOutput {
     pub failed: Vec<([u32; 2], FailReason)>,
     /// Result triangles that turn over when their seam points are rounded to `f64`.
     pub rounding_flips: usize,
+    /// What snapping did ([`BooleanOptions::snap`]); `None` without it.
+    pub snap: Option<SnapReport>,
     /// Time of the booleans (not of checking the inputs), in seconds.
     pub seconds: f64,
 }
@@ -225,6 +266,7 @@ impl BooleanManyOutput {
             split_nonmanifold: self.nonmanifold.clone(),
             assumed,
             operands: self.operands.clone(),
+            snap: self.snap.clone(),
             seconds: self.seconds,
         }
     }
@@ -250,6 +292,7 @@ pub fn boolean_many<'a>(
     if inputs.is_empty() {
         return Err(Error::InvalidParameter(format!("{op} of no inputs")));
     }
+    crate::repair::check_tolerance(opts.snap)?;
     with_threads(opts.run.threads, || {
         if inputs.iter().any(|i| matches!(i, Input::Mesh(_))) {
             opts.run.stage(Stage::Check);
@@ -288,10 +331,24 @@ pub fn boolean_many<'a>(
             let k = offsets.partition_point(|&o| o <= g) - 1;
             [k as u32, g - offsets[k]]
         };
+        let mut provenance: Vec<[u32; 2]> = r.part.parent.iter().map(|&g| input_of(g)).collect();
+        let mut mesh = r.part.mesh;
+        let mut snap = None;
+        if opts.snap > 0.0 {
+            // Labels by input: no edge between two inputs' parts is flipped.
+            opts.run.stage(Stage::Snap);
+            let labels: Vec<u32> = provenance.iter().map(|p| p[0]).collect();
+            let opts = SnapOptions {
+                tolerance: opts.snap,
+                labels: Some(&labels),
+                ..SnapOptions::default()
+            };
+            snap = Some(crate::repair::snap_carrying(&mut mesh, &opts, &mut provenance).0);
+        }
         Ok(BooleanManyOutput {
             op,
-            provenance: r.part.parent.iter().map(|&g| input_of(g)).collect(),
-            mesh: r.part.mesh,
+            provenance,
+            mesh,
             nonmanifold: r.nonmanifold,
             operands: operands.iter().map(|o| o.report().clone()).collect(),
             seam_points: r.seam_points,
@@ -301,6 +358,7 @@ pub fn boolean_many<'a>(
                 .map(|&(g, why)| (input_of(g), why))
                 .collect(),
             rounding_flips: r.rounding_flips,
+            snap,
             seconds: start.elapsed().as_secs_f64(),
         })
     })?

@@ -206,6 +206,13 @@ fn scaled_mesh(m: &Mesh, e: i32) -> Mesh {
     out
 }
 
+/// `x · 2^e`, in two steps where `2^e` alone is not a normal `f64` (a length given with
+/// meshes computed at unit size).
+pub(crate) fn scaled(x: f64, e: i32) -> f64 {
+    let (half, rest) = (e / 2, e - e / 2);
+    x * 2f64.powi(half) * 2f64.powi(rest)
+}
+
 /// Multiplies every coordinate by `2^e`, in two steps where `2^e` alone is not a normal
 /// `f64`.
 fn scale_points(points: &mut [[f64; 3]], e: i32) {

@@ -13,6 +13,7 @@ use crate::intersect::self_intersections;
 use crate::measure::{mesh_stats, MeshStats};
 use crate::repair::{
     self, CloseMode, CloseOptions, CloseReport, Facing, OrientReport, RepairConfig, RepairReport,
+    SnapOptions, SnapReport,
 };
 use crate::{Error, Mesh, Result};
 
@@ -196,6 +197,10 @@ pub struct ResolveOptions {
     /// Keep the result's topology where it is not manifold (parts touching along an edge
     /// or at a vertex then share it).
     pub keep_nonmanifold: bool,
+    /// Snap tolerance (0, the default: the exact result), as
+    /// [`BooleanOptions::snap`](super::BooleanOptions::snap) but with no seam told apart:
+    /// any vertex may move, any edge may be flipped.
+    pub snap: f64,
     /// Threads and progress.
     pub run: RunOptions,
 }
@@ -213,6 +218,8 @@ pub struct ResolveOutput {
     pub self_intersections: usize,
     /// What resolving did.
     pub resolve: ResolveReport,
+    /// What snapping did ([`ResolveOptions::snap`]); `None` without it.
+    pub snap: Option<SnapReport>,
     /// Time of the whole call, in seconds.
     pub seconds: f64,
 }
@@ -231,6 +238,9 @@ pub struct ResolveCommandReport {
     pub result: Measures,
     /// What resolving did.
     pub resolve: ResolveReport,
+    /// What snapping did (only with a snap tolerance).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub snap: Option<SnapReport>,
     /// [`ResolveOutput::seconds`].
     pub seconds: f64,
 }
@@ -244,6 +254,7 @@ impl ResolveOutput {
             self_intersections: self.self_intersections,
             result: Measures::of(&self.mesh),
             resolve: self.resolve.clone(),
+            snap: self.snap.clone(),
             seconds: self.seconds,
         }
     }
@@ -255,10 +266,18 @@ impl ResolveOutput {
 /// itself is an [`Error::Unresolvable`](crate::Error::Unresolvable).
 pub fn resolve<'a>(mesh: impl Into<Input<'a>>, opts: &ResolveOptions) -> Result<ResolveOutput> {
     let input: Input<'a> = mesh.into();
+    repair::check_tolerance(opts.snap)?;
     if let Input::Mesh(m) = input {
         if let Some(e) = super::extreme_scale(&[m]) {
-            let mut out = resolve(&super::scaled_mesh(m, e), opts)?;
+            let unit = ResolveOptions {
+                snap: super::scaled(opts.snap, e).min(f64::MAX),
+                ..opts.clone()
+            };
+            let mut out = resolve(&super::scaled_mesh(m, e), &unit)?;
             super::scale_points(&mut out.mesh.positions, -e);
+            if let Some(s) = &mut out.snap {
+                s.scale_back(-e);
+            }
             return Ok(out);
         }
     }
@@ -272,15 +291,24 @@ pub fn resolve<'a>(mesh: impl Into<Input<'a>>, opts: &ResolveOptions) -> Result<
             keep_nonmanifold: opts.keep_nonmanifold,
             ..opts.run.pipeline()
         };
-        let r = crate::boolean::resolve(input.mesh(), &pairs, opts.rule, &pipeline).map_err(
+        let mut r = crate::boolean::resolve(input.mesh(), &pairs, opts.rule, &pipeline).map_err(
             |reason| Error::Unresolvable {
                 name: input.name().to_string(),
                 reason,
             },
         )?;
+        let snap = (opts.snap > 0.0).then(|| {
+            opts.run.stage(Stage::Snap);
+            let snap = SnapOptions {
+                tolerance: opts.snap,
+                ..SnapOptions::default()
+            };
+            repair::snap_carrying(&mut r.mesh, &snap, &mut r.parent).0
+        });
         Ok(ResolveOutput {
             mesh: r.mesh,
             parent: r.parent.iter().map(|&t| input.input_triangle(t)).collect(),
+            snap,
             rule: opts.rule,
             self_intersections: pairs.len(),
             resolve: r.report,

@@ -4,7 +4,8 @@
 //! [`weld_boundary`]), T-junctions ([`resolve_t_junctions`], with a tolerance:
 //! [`resolve_t_junctions_within`]), duplicate and anti-parallel triangles
 //! ([`remove_duplicates`], with a tolerance: [`remove_overlapping`]), degenerate and
-//! sliver triangles ([`remove_degenerates`]), non-manifold edges and vertices split into manifold sheets ([`split_nonmanifold`]).
+//! sliver triangles ([`remove_degenerates`]), non-manifold edges and vertices split into manifold sheets ([`split_nonmanifold`]),
+//! short edges and needles removed at a tolerance without defects ([`snap`]).
 //! Every step is a function on its own that returns a report of what it did.
 
 mod cap;
@@ -16,6 +17,7 @@ mod inside_out;
 pub(crate) mod nonmanifold;
 mod orient;
 mod pipeline;
+mod snap;
 mod stitch;
 mod tjunction;
 mod weld;
@@ -33,6 +35,8 @@ pub use pipeline::{
     close, repair, repair_with_progress, CloseMode, CloseOptions, CloseReport, RepairConfig,
     RepairReport,
 };
+pub(crate) use snap::{check_tolerance, snap_carrying, snap_unchecked};
+pub use snap::{snap, snap_in_place, snap_with, SnapOptions, SnapReport, Snapped};
 pub use stitch::{stitch, zipper, StitchReport};
 pub use tjunction::{resolve_t_junctions, resolve_t_junctions_within, TJunctionReport};
 pub use weld::{weld_boundary, weld_within, WeldReport};

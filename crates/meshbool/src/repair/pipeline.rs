@@ -7,7 +7,8 @@ use super::{
     cap_holes, cap_small_holes, curtain, orient, remove_degenerates, remove_duplicates,
     remove_folds, remove_overlapping, resolve_t_junctions, resolve_t_junctions_within, stitch,
     weld_boundary, weld_within, CapReport, CurtainReport, DegenerateOptions, DegenerateReport,
-    DuplicateReport, Facing, FoldReport, OrientReport, StitchReport, TJunctionReport, WeldReport,
+    DuplicateReport, Facing, FoldReport, OrientReport, SnapReport, StitchReport, TJunctionReport,
+    WeldReport,
 };
 use crate::boolean::Stage;
 use crate::measure::{mesh_stats, MeshStats};
@@ -152,7 +153,7 @@ pub fn close(
 }
 
 /// Which repair steps to run, and how. Steps run in this order: weld, duplicates, boundary
-/// weld, T-junctions, degenerates, orientation, folds, close, close small gaps. The default
+/// weld, T-junctions, degenerates, snap, orientation, folds, close, close small gaps. The default
 /// only makes orientation consistent (keeping the majority's facing). Every step is exact
 /// unless given a distance. Reads from and writes to JSON (the CLI's `--config`): fields
 /// left out take their defaults.
@@ -178,6 +179,9 @@ pub struct RepairConfig {
     pub tjunction_tolerance: Option<f64>,
     /// Remove degenerate (and, with thresholds, sliver) triangles ([`remove_degenerates`]).
     pub degenerate: Option<DegenerateOptions>,
+    /// Collapse edges shorter than this distance and remove needles (altitude below it)
+    /// where that makes no defect ([`super::snap`]).
+    pub snap: Option<f64>,
     /// Make orientation consistent, facing as given ([`orient`]); `None` skips it.
     pub orient: Option<Facing>,
     /// Remove the folds of a terrain-like surface ([`remove_folds`]); needs `orient` to be
@@ -202,6 +206,7 @@ impl Default for RepairConfig {
             tjunctions: false,
             tjunction_tolerance: None,
             degenerate: None,
+            snap: None,
             orient: Some(Facing::Majority),
             remove_folds: false,
             close: CloseMode::None,
@@ -232,6 +237,9 @@ pub struct RepairReport {
     /// Degenerate removal.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub degenerate: Option<DegenerateReport>,
+    /// Snapping.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub snap: Option<SnapReport>,
     /// Orientation.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub orient: Option<OrientReport>,
@@ -253,7 +261,7 @@ pub struct RepairReport {
 
 /// Runs the repair steps `config` asks for on `mesh`, in the order of
 /// [`RepairConfig`]. Errors only on invalid parameters (negative or non-finite
-/// distances), before any work.
+/// distances) and, with `snap`, on a mesh with a non-finite coordinate, before any work.
 pub fn repair(mesh: &Mesh, config: &RepairConfig) -> Result<(Mesh, RepairReport), Error> {
     repair_with_progress(mesh, config, &|_| {})
 }
@@ -276,6 +284,10 @@ pub fn repair_with_progress(
     distance("weld_boundary", config.weld_boundary)?;
     distance("tjunction_tolerance", config.tjunction_tolerance)?;
     distance("close_gaps", config.close_gaps)?;
+    distance("snap", config.snap)?;
+    if config.snap.is_some() {
+        mesh.validate()?; // the snap's exact tests need finite coordinates
+    }
     if config.remove_folds && config.orient != Some(Facing::ZUp) {
         return Err(Error::InvalidParameter(
             "fold removal works on a surface oriented up: set orient to z-up".into(),
@@ -291,6 +303,7 @@ pub fn repair_with_progress(
         weld_boundary: None,
         tjunctions: None,
         degenerate: None,
+        snap: None,
         orient: None,
         folds: None,
         close: None,
@@ -331,6 +344,14 @@ pub fn repair_with_progress(
         progress(Stage::Degenerate);
         let (x, r) = remove_degenerates(&m, opts);
         (m, report.degenerate) = (x, Some(r));
+    }
+    if let Some(tol) = config.snap {
+        progress(Stage::Snap);
+        let opts = super::SnapOptions {
+            tolerance: tol,
+            ..Default::default()
+        };
+        report.snap = Some(super::snap_unchecked(&mut m, &opts).0);
     }
     if let Some(facing) = config.orient {
         progress(Stage::Orient);

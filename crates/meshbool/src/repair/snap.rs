@@ -1,0 +1,1860 @@
+//! Snapping at a tolerance: the short edges and needles that an exact arrangement keeps
+//! faithfully (a cutter whose wall passes a millimetre from a solid's edge leaves triangles
+//! a millimetre wide) removed by edge collapses and edge flips, where that costs nothing
+//! the mesh had: after the boolean's assembly (`--snap D`), or on its own ([`snap`],
+//! `meshbool repair --snap D`).
+//!
+//! A triangle is *bad* when one of its edges is shorter than the tolerance `D` or its
+//! smallest altitude is below `D` (decided in floating point: `D` is the one tolerance).
+//! Bad triangles are taken smallest altitude first. Each is fixed by collapsing one of its
+//! short edges onto one end — the end that keeps the shape (the other end's move stays in
+//! the planes of its triangles: along a crease or a flat face), else the end on more
+//! creases, else an input vertex rather than a seam point; then the other way round — or
+//! else by flipping its longest edge when that leaves both triangles there better shaped.
+//! A change is made only where every gate passes, each decided exactly where it is a
+//! question of topology:
+//!
+//! - *manifold*: the link condition (the end points' common neighbours are exactly the
+//!   far corners of the edge's triangles), no boundary vertex moved off the boundary or
+//!   pinched, and no edge at the collapsed vertex more often open, non-manifold or
+//!   inconsistently oriented than before, no triangle repeated, the vertex's triangles one
+//!   fan; a flip only of an edge with two consistently oriented triangles, to a diagonal
+//!   that is not an edge yet;
+//! - *inversion*: every changed triangle keeps a normal at less than a right angle to the
+//!   normal of each triangle it replaces (the exact sign of their dot product), so none
+//!   turns over or becomes degenerate;
+//! - *self-intersection*: no changed triangle meets another triangle anywhere but in the
+//!   vertices and edge they share (the exact triangle–triangle test, against every
+//!   triangle near it) — or, where the mesh already crossed itself there (rounded seam
+//!   points of an exact result can), no more often than the triangles it replaces did;
+//! - *distance*: no vertex ends up farther than `D` from where it was in the input (a
+//!   vertex collapsed into another twice is measured from its input position), and a flip
+//!   only of a triangle lower than `D` over the flipped edge;
+//! - *volume*: the volume changes swept by all changes together stay within
+//!   `D × area` of the input (each change's swept volume, added up as absolute values,
+//!   must fit in that budget), so `|volume_change| ≤ D × area`.
+//!
+//! Topology decisions never look at `D`; positions never change (a collapse moves a vertex
+//! onto an existing one, a flip moves none), so every decision is on input coordinates.
+//!
+//! Cost: one parallel pass finds the bad triangles; vertex neighbourhoods and a spatial
+//! index are built only around them (a few further passes over the triangles, testing
+//! bits), never for the whole mesh, and changes are local.
+
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+use rayon::prelude::*;
+use rustc_hash::{FxHashMap, FxHashSet};
+use serde::Serialize;
+
+use crate::bvh::{Box3, Bvh};
+use crate::intersect::corners_meet_beyond_shared;
+use crate::kernel::{normals_dot_sign, orient3d_explicit, FloatPlane, Sign};
+use crate::vec3::{cross, dot, norm, sub};
+use crate::{Error, Mesh, Result};
+
+/// What [`snap`] did. Serialised under the key `snap` of the boolean, resolve and repair
+/// reports.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct SnapReport {
+    /// The tolerance `D`.
+    pub tolerance: f64,
+    /// Bad triangles at the start: an edge shorter than `D` or an altitude below `D`.
+    pub found: usize,
+    /// Edges collapsed (each removes one vertex and the one or two triangles on the edge).
+    pub collapsed: usize,
+    /// Edges flipped.
+    pub flipped: usize,
+    /// Triangles removed (by collapses; a flip replaces two by two).
+    pub triangles_removed: usize,
+    /// Vertices removed (one per collapse).
+    pub vertices_removed: usize,
+    /// Bad triangles left.
+    pub left: usize,
+    /// Of the bad triangles left, those no fix was tried on, or none finished: the work
+    /// stopped first (after 8 rounds of gathering neighbourhoods, or at the cap on
+    /// changes).
+    pub not_reached: usize,
+    /// Of the bad triangles left, those whose fix was refused (the reason of its last
+    /// refused attempt; within an attempt, of the first alternative refused) because
+    /// it would break manifoldness: the link condition, a boundary vertex moved off its
+    /// boundary or pinched, more open, non-manifold or inconsistent edges, a repeated
+    /// triangle, a vertex of several fans.
+    pub refused_manifold: usize,
+    /// ... because a triangle would turn over or become degenerate.
+    pub refused_inversion: usize,
+    /// ... because a changed triangle would cross or touch another one.
+    pub refused_self_intersection: usize,
+    /// ... because a vertex would end up more than `D` from its input position (or, for a
+    /// flip, the triangle is not lower than `D` over the flipped edge).
+    pub refused_distance: usize,
+    /// ... because the volume budget (`D × area`) was spent.
+    pub refused_volume: usize,
+    /// ... because the only fix was a flip across a seam (between triangles of different
+    /// labels: of A and of B in a boolean).
+    pub refused_seam: usize,
+    /// ... because no collapse was possible and a flip would make no triangle better.
+    pub refused_no_gain: usize,
+    /// The largest distance of a vertex from its input position.
+    pub max_move: f64,
+    /// Signed volume after minus before (meaningful for closed meshes);
+    /// `|volume_change| ≤ tolerance × area`.
+    pub volume_change: f64,
+    /// Surface area after minus before.
+    pub area_change: f64,
+}
+
+impl SnapReport {
+    /// The report of a mesh snapped at unit size, for the mesh scaled by `2^e`: lengths
+    /// times `2^e`, areas `2^2e`, volumes `2^3e`.
+    pub(crate) fn scale_back(&mut self, e: i32) {
+        use crate::ops::scaled;
+        self.tolerance = scaled(self.tolerance, e);
+        self.max_move = scaled(self.max_move, e);
+        self.area_change = scaled(scaled(self.area_change, e), e);
+        self.volume_change = scaled(scaled(scaled(self.volume_change, e), e), e);
+    }
+}
+
+/// Options of [`snap_with`].
+#[derive(Clone, Copy, Debug, Default)]
+pub struct SnapOptions<'a> {
+    /// The tolerance `D`: a finite length ≥ 0; 0 changes nothing.
+    pub tolerance: f64,
+    /// Vertices that an operation made rather than found (a boolean's seam points),
+    /// sorted: where an edge could collapse either way and the ends are otherwise alike,
+    /// these are the ones moved, so that input vertices stay where they were.
+    pub seam: &'a [u32],
+    /// A label for every triangle (a boolean: which input it comes from). Edges between
+    /// labels count as creases, and no edge between two labels is flipped, so that the
+    /// seam only ever moves along itself or by a collapse. `None`: all alike.
+    pub labels: Option<&'a [u32]>,
+    /// Fix only the bad triangles with a corner in `seam` (and those the fixes make bad):
+    /// an operation's result cleaned where the operation cut, its inputs' own short
+    /// edges and needles left as they were. `false`: every bad triangle.
+    pub seam_only: bool,
+}
+
+/// The result of [`snap_with`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Snapped {
+    /// The snapped mesh: the input's vertices that are still used, in their order
+    /// (collapsed-away vertices dropped), and its triangles in their order, each changed
+    /// one in the place of the triangle it replaces. The input itself, unchanged, when
+    /// nothing was changed.
+    pub mesh: Mesh,
+    /// For every triangle of `mesh`, the triangle of the input it replaces (itself where
+    /// unchanged).
+    pub parent: Vec<u32>,
+    /// What was done.
+    pub report: SnapReport,
+}
+
+/// Checks a snap tolerance: a finite number ≥ 0.
+pub(crate) fn check_tolerance(tolerance: f64) -> Result<()> {
+    if tolerance.is_finite() && tolerance >= 0.0 {
+        Ok(())
+    } else {
+        Err(Error::InvalidParameter(format!(
+            "the snap tolerance must be a finite distance >= 0, got {tolerance}"
+        )))
+    }
+}
+
+/// Removes the edges shorter than `tolerance` and the triangles with an altitude below
+/// it by edge collapses and flips, only where each change keeps the mesh manifold, turns
+/// no triangle over, makes no self-intersection, moves no vertex more than `tolerance`
+/// from its input position, and keeps the total volume change within
+/// `tolerance × area` (see the module doc). `mesh` must be valid. Returns the mesh (the
+/// input unchanged when nothing was done: exactly so for `tolerance` 0) and the report.
+///
+/// Errors: a tolerance that is negative, NaN or infinite; a mesh with a non-finite
+/// coordinate.
+///
+/// ```
+/// use meshbool::repair::snap;
+/// use meshbool::Mesh;
+///
+/// // A unit square of four triangles around a vertex 1e-3 (diagonally) from its corner
+/// // (1, 1): two needles there.
+/// let square = Mesh::new(
+///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0], [0.999, 0.999, 0.0]],
+///     vec![[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]],
+/// )?;
+/// let (snapped, report) = snap(&square, 0.01)?;
+/// // The vertex went into the corner (a boundary vertex stays where it is).
+/// assert_eq!((report.found, report.collapsed, report.left), (2, 1, 0));
+/// assert_eq!((snapped.triangle_count(), snapped.vertex_count()), (2, 4));
+/// assert!(report.max_move < 0.0015 && report.volume_change == 0.0);
+/// // Without a tolerance nothing changes.
+/// assert_eq!(snap(&square, 0.0)?.0, square);
+/// # Ok::<(), meshbool::Error>(())
+/// ```
+pub fn snap(mesh: &Mesh, tolerance: f64) -> Result<(Mesh, SnapReport)> {
+    check_tolerance(tolerance)?;
+    mesh.validate()?;
+    let mut out = mesh.clone();
+    let (report, _) = snap_unchecked(
+        &mut out,
+        &SnapOptions {
+            tolerance,
+            ..SnapOptions::default()
+        },
+    );
+    Ok((out, report))
+}
+
+/// [`snap`] with the options of a boolean's result: its seam points (moved rather than
+/// input vertices) and a label per triangle (no flips across the seam), and the parent of
+/// every result triangle (to carry provenance over).
+///
+/// Errors: a tolerance that is negative, NaN or infinite; a mesh with a non-finite
+/// coordinate; labels not one per triangle.
+pub fn snap_with(mesh: &Mesh, opts: &SnapOptions) -> Result<Snapped> {
+    let mut out = mesh.clone();
+    let (report, removed) = snap_in_place(&mut out, opts)?;
+    let mut parent: Vec<u32> = (0..mesh.triangles.len() as u32).collect();
+    remove_sorted(&mut parent, &removed);
+    Ok(Snapped {
+        mesh: out,
+        parent,
+        report,
+    })
+}
+
+/// [`snap_with`] editing `mesh` in place, without copying it (for large meshes): returns
+/// the report and the triangles removed, as their sorted ids in `mesh` as it was. Every
+/// other triangle keeps its place in the order, changed or not, so whatever is kept per
+/// triangle (provenance) follows by removing the same positions; vertices collapsed
+/// away are removed the same way (the others keep their order).
+///
+/// Errors: as [`snap_with`] (then `mesh` is unchanged).
+pub fn snap_in_place(mesh: &mut Mesh, opts: &SnapOptions) -> Result<(SnapReport, Vec<u32>)> {
+    check_tolerance(opts.tolerance)?;
+    mesh.validate()?;
+    if let Some(l) = opts.labels {
+        if l.len() != mesh.triangles.len() {
+            return Err(Error::InvalidParameter(format!(
+                "snap: {} labels for {} triangles",
+                l.len(),
+                mesh.triangles.len()
+            )));
+        }
+    }
+    let (report, removed) = snap_unchecked(mesh, opts);
+    Ok((report, removed.triangles))
+}
+
+/// What [`snap_unchecked`] took out of a mesh: sorted ids in the mesh as it was.
+#[derive(Default)]
+pub(crate) struct Removed {
+    /// Triangles removed (every other triangle keeps its place in the order).
+    pub triangles: Vec<u32>,
+    /// Vertices removed (every other vertex keeps its place in the order).
+    pub vertices: Vec<u32>,
+}
+
+/// [`snap_in_place`] of options known to be valid.
+pub(crate) fn snap_unchecked(mesh: &mut Mesh, opts: &SnapOptions) -> (SnapReport, Removed) {
+    let d = opts.tolerance;
+    let mut report = SnapReport {
+        tolerance: d,
+        ..SnapReport::default()
+    };
+    if d == 0.0 || mesh.triangles.is_empty() {
+        return (report, Removed::default());
+    }
+    let grid = Grid::new(mesh, d);
+    let mut scan = Scan::of(mesh, d, &grid);
+    if opts.seam_only {
+        let at_seam = |t: u32| {
+            let tri = mesh.triangles[t as usize];
+            tri.iter().any(|v| opts.seam.binary_search(v).is_ok())
+        };
+        scan.bad.retain(|&(_, t)| at_seam(t));
+    }
+    report.found = scan.bad.len();
+    if scan.bad.is_empty() {
+        return (report, Removed::default());
+    }
+    let seeds = scan.bad.iter().map(|&(_, t)| t).collect();
+    let mut w = Work::new(mesh, opts, scan, grid);
+    w.report = report;
+    w.run(seeds);
+    let report = w.finish_report();
+    if report.collapsed + report.flipped == 0 {
+        return (report, Removed::default());
+    }
+    let removed = w.edit().apply(mesh);
+    let report = SnapReport {
+        triangles_removed: removed.triangles.len(),
+        vertices_removed: removed.vertices.len(),
+        ..report
+    };
+    (report, removed)
+}
+
+/// [`snap_unchecked`] carrying what is kept per triangle (`per_triangle`, one per
+/// triangle: provenance, parents) over to the snapped mesh. Returns the report and the
+/// vertices removed (sorted ids in `mesh` as it was).
+pub(crate) fn snap_carrying<T: Copy>(
+    mesh: &mut Mesh,
+    opts: &SnapOptions,
+    per_triangle: &mut Vec<T>,
+) -> (SnapReport, Vec<u32>) {
+    let (report, removed) = snap_unchecked(mesh, opts);
+    remove_sorted(per_triangle, &removed.triangles);
+    (report, removed.vertices)
+}
+
+/// Removes the elements at the sorted, distinct positions `removed` from `v`, keeping the
+/// order of the others (a few block moves).
+pub(crate) fn remove_sorted<T: Copy>(v: &mut Vec<T>, removed: &[u32]) {
+    let mut to = match removed.first() {
+        Some(&r) => r as usize,
+        None => return,
+    };
+    for (j, &r) in removed.iter().enumerate() {
+        let end = removed.get(j + 1).map_or(v.len(), |&n| n as usize);
+        let from = r as usize + 1;
+        v.copy_within(from..end, to);
+        to += end - from;
+    }
+    v.truncate(to);
+}
+
+/// The changes the work made, to apply to the mesh it worked on.
+struct Edit {
+    /// Vertices collapsed away (sorted).
+    dead: Vec<u32>,
+    /// Triangles left without a successor (sorted).
+    removed: Vec<u32>,
+    /// Triangles replaced: (id, new corners).
+    replaced: Vec<(u32, [u32; 3])>,
+}
+
+impl Edit {
+    /// Applies the changes to `mesh`: triangles replaced in their places, removed ones
+    /// and dead vertices taken out (the rest keep their order), corners renumbered.
+    fn apply(self, mesh: &mut Mesh) -> Removed {
+        for &(t, tri) in &self.replaced {
+            mesh.triangles[t as usize] = tri;
+        }
+        remove_sorted(&mut mesh.triangles, &self.removed);
+        if !self.dead.is_empty() {
+            // Vertex v becomes v minus the dead vertices before it.
+            let nv = mesh.positions.len();
+            let mut new_id = vec![0u32; nv];
+            let mut j = 0;
+            for (v, id) in new_id.iter_mut().enumerate() {
+                while self.dead.get(j).is_some_and(|&x| (x as usize) < v) {
+                    j += 1;
+                }
+                *id = (v - j) as u32;
+            }
+            mesh.triangles
+                .par_iter_mut()
+                .with_min_len(1 << 12)
+                .for_each(|t| *t = t.map(|v| new_id[v as usize]));
+            remove_sorted(&mut mesh.positions, &self.dead);
+        }
+        Removed {
+            triangles: self.removed,
+            vertices: self.dead,
+        }
+    }
+}
+
+/// The smallest edge length and the smallest altitude (twice the area over the longest
+/// edge) of a triangle, and twice its area.
+fn shape(p: &[[f64; 3]; 3]) -> (f64, f64, f64) {
+    let l = [0, 1, 2].map(|k| norm(&sub(&p[(k + 1) % 3], &p[k])));
+    let twice = norm(&cross(&sub(&p[1], &p[0]), &sub(&p[2], &p[0])));
+    let longest = l[0].max(l[1]).max(l[2]);
+    let h = if longest > 0.0 { twice / longest } else { 0.0 };
+    (l[0].min(l[1]).min(l[2]), h, twice)
+}
+
+/// Whether a triangle is bad at tolerance `d`: its key (smallest altitude, or shortest
+/// edge where smaller: worst first), `None` when it is not bad.
+fn badness(p: &[[f64; 3]; 3], d: f64) -> Option<f64> {
+    let (e, h, _) = shape(p);
+    (e < d || h < d).then_some(h.min(e))
+}
+
+/// The smallest altitude of a triangle.
+fn altitude(p: &[[f64; 3]; 3]) -> f64 {
+    shape(p).1
+}
+
+/// Six times the signed volume of the tetrahedron of a triangle and `o`.
+fn volume6(p: &[[f64; 3]; 3], o: &[f64; 3]) -> f64 {
+    let [a, b, c] = p.map(|x| sub(&x, o));
+    dot(&a, &cross(&b, &c))
+}
+
+/// The smaller of two numbers that are not NaN (`f64::min` also orders NaN, in more
+/// instructions: this runs for every triangle).
+#[inline]
+fn min(a: f64, b: f64) -> f64 {
+    if a < b {
+        a
+    } else {
+        b
+    }
+}
+
+/// The larger of two numbers that are not NaN.
+#[inline]
+fn max(a: f64, b: f64) -> f64 {
+    if a > b {
+        a
+    } else {
+        b
+    }
+}
+
+#[inline]
+fn tri_box(p: &[[f64; 3]; 3]) -> Box3 {
+    let lo = |k: usize| min(min(p[0][k], p[1][k]), p[2][k]);
+    let hi = |k: usize| max(max(p[0][k], p[1][k]), p[2][k]);
+    [[lo(0), lo(1), lo(2)], [hi(0), hi(1), hi(2)]]
+}
+
+fn grown(b: &Box3, by: f64) -> Box3 {
+    [b[0].map(|x| x - by), b[1].map(|x| x + by)]
+}
+
+fn overlap(a: &Box3, b: &Box3) -> bool {
+    (0..3).all(|k| a[0][k] <= b[1][k] && b[0][k] <= a[1][k])
+}
+
+/// The first pass, over every triangle: the bad ones (key, id) in triangle order, the
+/// area, each triangle's cells in the grid ([`Grid::key`]) and each vertex's
+/// ([`Grid::packed`]).
+struct Scan {
+    bad: Vec<(f64, u32)>,
+    area: f64,
+    keys: Vec<u32>,
+    cells: Vec<u64>,
+}
+
+impl Scan {
+    fn of(mesh: &Mesh, d: f64, grid: &Grid) -> Scan {
+        const PIECE: usize = 1 << 13;
+        let n = mesh.triangles.len();
+        let mut keys = vec![0u32; n];
+        let d2 = d * d;
+        let cells: Vec<u64> = mesh
+            .positions
+            .par_iter()
+            .with_min_len(PIECE)
+            .map(|p| grid.packed(p))
+            .collect();
+        let pieces: Vec<(Vec<(f64, u32)>, f64)> = mesh
+            .triangles
+            .par_chunks(PIECE)
+            .zip(keys.par_chunks_mut(PIECE))
+            .enumerate()
+            .map(|(k, (tris, keys))| {
+                let mut bad = Vec::new();
+                let mut area = 0.0;
+                let pos = &mesh.positions;
+                for (i, (tri, key)) in tris.iter().zip(keys.iter_mut()).enumerate() {
+                    let p = [
+                        pos[tri[0] as usize],
+                        pos[tri[1] as usize],
+                        pos[tri[2] as usize],
+                    ];
+                    let (u, v, w) = (sub(&p[1], &p[0]), sub(&p[2], &p[0]), sub(&p[2], &p[1]));
+                    let (eu, ev, ew) = (dot(&u, &u), dot(&v, &v), dot(&w, &w));
+                    let c = cross(&u, &v);
+                    let twice2 = dot(&c, &c);
+                    area += twice2.sqrt();
+                    let (short, long) = (min(min(eu, ev), ew), max(max(eu, ev), ew));
+                    // A filter, squared: edge² ≤ d², or (2 · area)² ≤ d² · longest² (≤ so
+                    // that zero edges and areas pass where d² underflows); `badness`
+                    // decides, as everywhere else.
+                    if short <= d2 || twice2 <= d2 * long {
+                        if let Some(key) = badness(&p, d) {
+                            bad.push((key, (k * PIECE + i) as u32));
+                        }
+                    }
+                    *key = grid.key([
+                        cells[tri[0] as usize],
+                        cells[tri[1] as usize],
+                        cells[tri[2] as usize],
+                    ]);
+                }
+                (bad, area / 2.0)
+            })
+            .collect();
+        let mut scan = Scan {
+            bad: Vec::new(),
+            area: 0.0,
+            keys,
+            cells,
+        };
+        for (bad, area) in pieces {
+            scan.bad.extend(bad);
+            scan.area += area;
+        }
+        scan
+    }
+}
+
+/// Why a change was refused: the first gate that refused it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Refusal {
+    Manifold,
+    Inversion,
+    SelfIntersection,
+    Distance,
+    Volume,
+    Seam,
+    NoGain,
+}
+
+/// Why a change was not made.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Stop {
+    /// A gate refused it.
+    Refused(Refusal),
+    /// The neighbourhood it needs is not gathered yet: the next round.
+    Later,
+}
+
+use Refusal::*;
+
+type Gate<T> = std::result::Result<T, Stop>;
+
+fn refuse<T>(r: Refusal) -> Gate<T> {
+    Err(Stop::Refused(r))
+}
+
+/// A bad triangle waiting in the queue, smallest key first.
+#[derive(Clone, Copy, Debug)]
+struct Item {
+    key: f64,
+    t: u32,
+}
+
+impl PartialEq for Item {
+    fn eq(&self, o: &Self) -> bool {
+        self.cmp(o) == Ordering::Equal
+    }
+}
+
+impl Eq for Item {}
+
+impl PartialOrd for Item {
+    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+
+impl Ord for Item {
+    fn cmp(&self, o: &Self) -> Ordering {
+        // Reversed: the max-heap pops the smallest key (then the lowest id).
+        o.key.total_cmp(&self.key).then(o.t.cmp(&self.t))
+    }
+}
+
+/// A uniform grid of cells over the mesh's box, some of them marked: the region where
+/// the spatial index of the work is complete. A box's range of cells is monotone in its
+/// coordinates, so a triangle whose box meets a box whose cells are all marked has a
+/// marked cell in its own range.
+struct Grid {
+    lo: [f64; 3],
+    /// `1 / cell size` (0 for a mesh in one point).
+    inv: f64,
+    n: [usize; 3],
+    bits: Vec<u64>,
+}
+
+impl Grid {
+    /// At most this many cells.
+    const CELLS: usize = 1 << 24;
+    /// At most this many cells along an axis (a vertex's cell packs in 64 bits).
+    const AXIS: usize = 1 << 21;
+    /// [`Grid::key`] of a box spanning more than two cells along an axis.
+    const WIDE: u32 = u32::MAX;
+
+    /// A grid over the mesh's vertices, with cells about the size of its triangles (so
+    /// that most span one or two along each axis) and at most [`Grid::CELLS`].
+    fn new(mesh: &Mesh, d: f64) -> Grid {
+        let (lo, hi) = mesh
+            .positions
+            .par_chunks(1 << 14)
+            .map(|ps| {
+                ps.iter().fold(
+                    ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]),
+                    |(lo, hi), p| {
+                        (
+                            std::array::from_fn(|k| lo[k].min(p[k])),
+                            std::array::from_fn(|k| hi[k].max(p[k])),
+                        )
+                    },
+                )
+            })
+            .reduce(
+                || ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]),
+                |a, b| {
+                    (
+                        std::array::from_fn(|k| a.0[k].min(b.0[k])),
+                        std::array::from_fn(|k| a.1[k].max(b.1[k])),
+                    )
+                },
+            );
+        let ext: [f64; 3] = std::array::from_fn(|k| (hi[k] - lo[k]).max(0.0));
+        // A typical triangle's longest edge, from a sample.
+        let step = (mesh.triangles.len() / 256).max(1);
+        let mut sample: Vec<f64> = mesh
+            .triangles
+            .iter()
+            .step_by(step)
+            .map(|t| {
+                let p = t.map(|v| mesh.positions[v as usize]);
+                let b = tri_box(&p);
+                (0..3).map(|k| b[1][k] - b[0][k]).fold(0.0, f64::max)
+            })
+            .collect();
+        sample.sort_by(f64::total_cmp);
+        let typical = sample.get(sample.len() / 2).copied().unwrap_or(0.0);
+        let count = |h: f64| -> [usize; 3] {
+            ext.map(|e| {
+                if h > 0.0 {
+                    ((e / h) as usize).saturating_add(1)
+                } else {
+                    1
+                }
+            })
+        };
+        let fits = |n: [usize; 3]| {
+            n.iter().all(|&c| c <= Self::AXIS)
+                && n[0].saturating_mul(n[1]).saturating_mul(n[2]) <= Self::CELLS
+        };
+        let largest = ext[0].max(ext[1]).max(ext[2]);
+        let mut h = typical.max(4.0 * d).max(largest / (1 << 23) as f64);
+        while h > 0.0 && !fits(count(h)) {
+            h *= 1.25;
+        }
+        let n = count(h);
+        Grid {
+            lo,
+            inv: if h > 0.0 { 1.0 / h } else { 0.0 },
+            n,
+            bits: vec![0; (n[0] * n[1] * n[2]).div_ceil(64)],
+        }
+    }
+
+    /// The cells' edge length.
+    fn size(&self) -> f64 {
+        if self.inv > 0.0 {
+            1.0 / self.inv
+        } else {
+            0.0
+        }
+    }
+
+    /// The cell of coordinate `x` along axis `k`, clamped to the grid. Monotone in `x`.
+    #[inline]
+    fn cell(&self, x: f64, k: usize) -> usize {
+        // `as` saturates: below the grid → 0.
+        let c = ((x - self.lo[k]) * self.inv) as usize;
+        if c < self.n[k] {
+            c
+        } else {
+            self.n[k] - 1
+        }
+    }
+
+    /// The cells a box meets: `[lo, hi]` per axis.
+    #[inline]
+    fn range(&self, b: &Box3) -> [[usize; 3]; 2] {
+        let c = |i: usize, k: usize| self.cell(b[i][k], k);
+        [[c(0, 0), c(0, 1), c(0, 2)], [c(1, 0), c(1, 1), c(1, 2)]]
+    }
+
+    fn index(&self, c: [usize; 3]) -> usize {
+        (c[2] * self.n[1] + c[1]) * self.n[0] + c[0]
+    }
+
+    /// A point's cell, packed: 21 bits per axis.
+    #[inline]
+    fn packed(&self, p: &[f64; 3]) -> u64 {
+        self.cell(p[0], 0) as u64
+            | (self.cell(p[1], 1) as u64) << 21
+            | (self.cell(p[2], 2) as u64) << 42
+    }
+
+    /// A triangle's cells in 32 bits, from its corners' [`Grid::packed`] cells (the range
+    /// of its box: cells are monotone): its lowest cell's index times 8, plus a bit per
+    /// axis along which it spans two cells; [`Grid::WIDE`] when it spans more.
+    #[inline]
+    fn key(&self, c: [u64; 3]) -> u32 {
+        const MASK: u64 = (1 << 21) - 1;
+        let mut low = [0usize; 3];
+        let mut span = 0;
+        for (k, low) in low.iter_mut().enumerate() {
+            let [a, b, d] = c.map(|x| x >> (21 * k) & MASK);
+            let (lo, hi) = (a.min(b).min(d), a.max(b).max(d));
+            match hi - lo {
+                0 => {}
+                1 => span |= 1 << k,
+                _ => return Self::WIDE,
+            }
+            *low = lo as usize;
+        }
+        (self.index(low) as u32) << 3 | span
+    }
+
+    /// The index of a [`Grid::packed`] cell.
+    #[inline]
+    fn unpacked(&self, c: u64) -> usize {
+        const MASK: u64 = (1 << 21) - 1;
+        self.index([0, 1, 2].map(|k| (c >> (21 * k) & MASK) as usize))
+    }
+
+    #[inline]
+    fn get(&self, i: usize) -> bool {
+        self.bits[i / 64] >> (i % 64) & 1 == 1
+    }
+
+    /// Whether any cell of a [`Grid::key`] (not [`Grid::WIDE`]) is marked.
+    #[inline]
+    fn key_touches(&self, key: u32) -> bool {
+        let (base, span) = ((key >> 3) as usize, key & 7);
+        if span == 0 {
+            return self.get(base);
+        }
+        let (sy, sz) = (self.n[0], self.n[0] * self.n[1]);
+        let (nx, ny, nz) = (span & 1, span >> 1 & 1, span >> 2 & 1);
+        for z in 0..=nz {
+            for y in 0..=ny {
+                for x in 0..=nx {
+                    if self.get(base + x as usize + y as usize * sy + z as usize * sz) {
+                        return true;
+                    }
+                }
+            }
+        }
+        false
+    }
+
+    /// The number of cells in a range.
+    fn cells(r: &[[usize; 3]; 2]) -> usize {
+        (0..3).map(|k| r[1][k] - r[0][k] + 1).product()
+    }
+
+    /// Visits the cells of `r` until `f` says stop; whether it went through all of them.
+    fn all(&self, r: &[[usize; 3]; 2], mut f: impl FnMut(usize) -> bool) -> bool {
+        for z in r[0][2]..=r[1][2] {
+            for y in r[0][1]..=r[1][1] {
+                for x in r[0][0]..=r[1][0] {
+                    if !f(self.index([x, y, z])) {
+                        return false;
+                    }
+                }
+            }
+        }
+        true
+    }
+
+    /// Calls `f(word, mask)` for the bits of every row (along x) of the cells of `r`, a
+    /// word at a time, until it says stop; whether it went through all of them.
+    fn rows(&self, r: &[[usize; 3]; 2], mut f: impl FnMut(usize, u64) -> bool) -> bool {
+        for z in r[0][2]..=r[1][2] {
+            for y in r[0][1]..=r[1][1] {
+                let (first, last) = (self.index([r[0][0], y, z]), self.index([r[1][0], y, z]));
+                for w in first / 64..=last / 64 {
+                    let lo = if w == first / 64 { first % 64 } else { 0 };
+                    let hi = if w == last / 64 { last % 64 } else { 63 };
+                    let mask = (u64::MAX >> (63 - hi)) & (u64::MAX << lo);
+                    if !f(w, mask) {
+                        return false;
+                    }
+                }
+            }
+        }
+        true
+    }
+
+    /// Marks the cells of `b`; whether any was new.
+    fn mark(&mut self, b: &Box3) -> bool {
+        let r = self.range(b);
+        let mut words = Vec::new();
+        self.rows(&r, |w, mask| {
+            if self.bits[w] & mask != mask {
+                words.push((w, mask));
+            }
+            true
+        });
+        for &(w, mask) in &words {
+            self.bits[w] |= mask;
+        }
+        !words.is_empty()
+    }
+
+    /// Whether every cell of `b` is marked.
+    fn covers(&self, b: &Box3) -> bool {
+        self.rows(&self.range(b), |w, mask| self.bits[w] & mask == mask)
+    }
+
+    /// Whether some cell of `b` is marked.
+    fn touches(&self, b: &Box3) -> bool {
+        !self.rows(&self.range(b), |w, mask| self.bits[w] & mask == 0)
+    }
+}
+
+/// What is known of the mesh near the work: the live triangles touching the marked
+/// cells, gathered at the start of a round, with a tree over them and the triangles
+/// around each of their vertices; the triangles made since by grid cell.
+#[derive(Default)]
+struct Near {
+    /// Triangle ids of the tree's triangles.
+    ids: Vec<u32>,
+    sub: Mesh,
+    tree: Bvh,
+    /// Each vertex's id in `sub` (`u32::MAX`: none).
+    local: Vec<u32>,
+    /// The triangles (ids) around local vertex `l`: `around[start[l]..start[l + 1]]`.
+    start: Vec<u32>,
+    around: Vec<u32>,
+    /// Triangles made since, by the grid cells their boxes meet; those meeting many
+    /// cells in `wide`.
+    cells: FxHashMap<u32, Vec<u32>>,
+    wide: Vec<u32>,
+    /// The first triangle made after the tree was built.
+    first_made: u32,
+}
+
+/// The working mesh. Triangles are never edited, only killed and made anew (so the
+/// index's boxes stay true): ids below the input's triangle count are the input's,
+/// those above are made, each in the place (`slot`) of an input triangle, which holds
+/// at most one live triangle at a time.
+struct Work<'a> {
+    mesh: &'a Mesh,
+    d: f64,
+    seam: &'a [u32],
+    labels: Option<&'a [u32]>,
+    /// The input's triangle count: the first made triangle's id.
+    base: u32,
+    killed: Vec<bool>,
+    /// The input triangles killed, in order.
+    killed_list: Vec<u32>,
+    made: Vec<[u32; 3]>,
+    made_alive: Vec<bool>,
+    made_slot: Vec<u32>,
+    /// The live triangle made in each slot whose input triangle was killed.
+    in_slot: FxHashMap<u32, u32>,
+    /// The triangles around vertices changed since the round began (dead ones dropped
+    /// lazily); the others' are in `near`.
+    stars: FxHashMap<u32, Vec<u32>>,
+    /// Vertices collapsed away.
+    dead: FxHashSet<u32>,
+    /// For a vertex that others were collapsed into: those (input) vertices.
+    absorbed: FxHashMap<u32, Vec<u32>>,
+    /// Changes made so far, and for each vertex the count when it last changed.
+    changes: u32,
+    /// A bound on the changes (each collapse removes a triangle and each flip makes two
+    /// better, so the work ends anyway; this keeps it in proportion to what was found).
+    max_changes: u32,
+    touched: FxHashMap<u32, u32>,
+    grid: Grid,
+    keys: Vec<u32>,
+    /// Each vertex's cell ([`Grid::packed`]).
+    cells: Vec<u64>,
+    near: Near,
+    budget: f64,
+    spent: f64,
+    heap: BinaryHeap<Item>,
+    /// Every triangle found bad (to count those left).
+    ever_bad: Vec<u32>,
+    /// The refusal of the last attempt to fix a triangle.
+    refusal: FxHashMap<u32, Refusal>,
+    report: SnapReport,
+}
+
+/// Rounds of gathering neighbourhoods and fixing.
+const MAX_ROUNDS: usize = 8;
+
+/// In a list of triangles met ([`Work::crossings`]): a meeting of two of the triangles
+/// tested, rather than of one of them and a live triangle.
+const AMONG: u32 = u32::MAX;
+
+/// Edge counts by kind around one vertex.
+#[derive(Clone, Copy, Default, Debug)]
+struct Defects {
+    boundary: usize,
+    non_manifold: usize,
+    inconsistent: usize,
+}
+
+impl<'a> Work<'a> {
+    /// Made triangles meeting at most this many cells are indexed by cell.
+    const FEW_CELLS: usize = 64;
+
+    fn new(mesh: &'a Mesh, opts: &SnapOptions<'a>, scan: Scan, grid: Grid) -> Self {
+        let n = mesh.triangles.len();
+        Work {
+            mesh,
+            d: opts.tolerance,
+            seam: opts.seam,
+            labels: opts.labels,
+            base: n as u32,
+            killed: vec![false; n],
+            killed_list: Vec::new(),
+            made: Vec::new(),
+            made_alive: Vec::new(),
+            made_slot: Vec::new(),
+            in_slot: FxHashMap::default(),
+            stars: FxHashMap::default(),
+            dead: FxHashSet::default(),
+            absorbed: FxHashMap::default(),
+            changes: 0,
+            max_changes: u32::try_from(16 * scan.bad.len() + 1024).unwrap_or(u32::MAX),
+            touched: FxHashMap::default(),
+            grid,
+            keys: scan.keys,
+            cells: scan.cells,
+            near: Near::default(),
+            budget: opts.tolerance * scan.area,
+            spent: 0.0,
+            heap: BinaryHeap::new(),
+            ever_bad: scan.bad.iter().map(|&(_, t)| t).collect(),
+            refusal: FxHashMap::default(),
+            report: SnapReport::default(),
+        }
+    }
+
+    fn tri(&self, t: u32) -> [u32; 3] {
+        if t < self.base {
+            self.mesh.triangles[t as usize]
+        } else {
+            self.made[(t - self.base) as usize]
+        }
+    }
+
+    fn alive(&self, t: u32) -> bool {
+        if t < self.base {
+            !self.killed[t as usize]
+        } else {
+            self.made_alive[(t - self.base) as usize]
+        }
+    }
+
+    fn kill(&mut self, t: u32) {
+        if t < self.base {
+            self.killed[t as usize] = true;
+            self.killed_list.push(t);
+        } else {
+            self.made_alive[(t - self.base) as usize] = false;
+        }
+    }
+
+    fn slot(&self, t: u32) -> u32 {
+        if t < self.base {
+            t
+        } else {
+            self.made_slot[(t - self.base) as usize]
+        }
+    }
+
+    fn label(&self, t: u32) -> Option<u32> {
+        self.labels.map(|l| l[self.slot(t) as usize])
+    }
+
+    fn corners(&self, t: &[u32; 3]) -> [[f64; 3]; 3] {
+        t.map(|v| self.mesh.positions[v as usize])
+    }
+
+    fn pos(&self, v: u32) -> [f64; 3] {
+        self.mesh.positions[v as usize]
+    }
+
+    fn bad_key(&self, t: u32) -> Option<f64> {
+        badness(&self.corners(&self.tri(t)), self.d)
+    }
+
+    /// The live triangles around `v`; `Later` when they are not all gathered (`v` is not
+    /// in a marked cell: then some of its triangles may not touch one).
+    fn star(&self, v: u32) -> Gate<Vec<u32>> {
+        let all: &[u32] = match self.stars.get(&v) {
+            Some(s) => s,
+            None => {
+                if !self.grid.get(self.grid.unpacked(self.cells[v as usize])) {
+                    return Err(Stop::Later);
+                }
+                match self.near.local.get(v as usize).filter(|&&l| l != u32::MAX) {
+                    Some(&l) => {
+                        let n = &self.near;
+                        &n.around[n.start[l as usize] as usize..n.start[l as usize + 1] as usize]
+                    }
+                    None => &[],
+                }
+            }
+        };
+        Ok(all.iter().copied().filter(|&t| self.alive(t)).collect())
+    }
+
+    /// Fixes bad triangles in rounds, starting from `seeds`.
+    fn run(&mut self, mut seeds: Vec<u32>) {
+        for _ in 0..MAX_ROUNDS {
+            if seeds.is_empty() {
+                break;
+            }
+            let gathered = self.gather(&seeds);
+            let before = self.changes;
+            self.queue(&seeds);
+            let mut later = Vec::new();
+            let mut failed: Vec<(u32, u32)> = Vec::new();
+            while let Some(Item { t, .. }) = self.heap.pop() {
+                if self.changes >= self.max_changes {
+                    self.heap.clear();
+                    break;
+                }
+                if !self.alive(t) || self.bad_key(t).is_none() {
+                    continue;
+                }
+                match self.fix(t) {
+                    Ok(()) => {}
+                    Err(Stop::Later) => later.push(t),
+                    Err(Stop::Refused(r)) => {
+                        self.refusal.insert(t, r);
+                        failed.push((t, self.changes));
+                    }
+                }
+            }
+            if self.changes == before && !gathered {
+                break;
+            }
+            // Next: what waited for its neighbourhood, and what was refused before
+            // something around it changed.
+            let touched_since = |w: &Self, t: u32, at: u32| {
+                w.tri(t)
+                    .iter()
+                    .any(|v| w.touched.get(v).is_some_and(|&c| c > at))
+            };
+            later.extend(
+                failed
+                    .into_iter()
+                    .filter(|&(t, at)| self.alive(t) && touched_since(self, t, at))
+                    .map(|(t, _)| t),
+            );
+            later.sort_unstable();
+            later.dedup();
+            later.retain(|&t| self.alive(t));
+            seeds = later;
+        }
+    }
+
+    /// Marks the cells around `seeds` (their boxes grown by a cell and a few tolerances,
+    /// and the boxes of the triangles around their vertices where those are known) and
+    /// gathers every live triangle touching a marked cell; whether anything new was
+    /// marked. A change at a seed then finds everything it needs: the triangles around
+    /// its vertices (in marked cells), and every triangle its new triangles could meet.
+    fn gather(&mut self, seeds: &[u32]) -> bool {
+        let by = self.grid.size() + 4.0 * self.d;
+        let mut boxes: Vec<Box3> = Vec::new();
+        let mut around: Vec<u32> = Vec::new();
+        for &t in seeds {
+            let tri = self.tri(t);
+            boxes.push(grown(&tri_box(&self.corners(&tri)), by));
+            for v in tri {
+                around.extend(self.star(v).unwrap_or_default());
+            }
+        }
+        // Each triangle once (a large one is around many seeds).
+        around.sort_unstable();
+        around.dedup();
+        boxes.extend(
+            around
+                .iter()
+                .map(|&s| grown(&tri_box(&self.corners(&self.tri(s))), 4.0 * self.d)),
+        );
+        let mut marked = false;
+        for b in &boxes {
+            marked |= self.grid.mark(b);
+        }
+        if marked {
+            self.pass();
+        }
+        marked
+    }
+
+    /// One pass over the triangles: every live one touching a marked cell, indexed (a
+    /// tree, and the triangles around each vertex).
+    fn pass(&mut self) {
+        const PIECE: usize = 1 << 13;
+        let w = &*self;
+        let pieces: Vec<Vec<u32>> = self
+            .keys
+            .par_chunks(PIECE)
+            .enumerate()
+            .map(|(k, keys)| {
+                let mut ids = Vec::new();
+                for (i, &key) in keys.iter().enumerate() {
+                    let t = (k * PIECE + i) as u32;
+                    let near = if key == Grid::WIDE {
+                        w.grid.touches(&tri_box(&w.corners(&w.tri(t))))
+                    } else {
+                        w.grid.key_touches(key)
+                    };
+                    if near && w.alive(t) {
+                        ids.push(t);
+                    }
+                }
+                ids
+            })
+            .collect();
+        let mut ids: Vec<u32> = pieces.concat();
+        for i in 0..self.made.len() {
+            let t = self.base + i as u32;
+            if self.made_alive[i] && self.grid.touches(&tri_box(&self.corners(&self.made[i]))) {
+                ids.push(t);
+            }
+        }
+        self.index(ids);
+    }
+
+    /// The index over the triangles `ids`: a tree, each vertex's triangles; the made
+    /// triangles' cells and the changed stars start anew.
+    fn index(&mut self, ids: Vec<u32>) {
+        let pos = &self.mesh.positions;
+        let mut local = vec![u32::MAX; pos.len()];
+        let mut positions = Vec::new();
+        let triangles: Vec<[u32; 3]> = ids
+            .iter()
+            .map(|&t| {
+                self.tri(t).map(|v| {
+                    let l = &mut local[v as usize];
+                    if *l == u32::MAX {
+                        *l = positions.len() as u32;
+                        positions.push(pos[v as usize]);
+                    }
+                    *l
+                })
+            })
+            .collect();
+        // The triangles around each local vertex (a counting sort).
+        let mut start = vec![0u32; positions.len() + 1];
+        for tri in &triangles {
+            for (j, &l) in tri.iter().enumerate() {
+                if !tri[..j].contains(&l) {
+                    start[l as usize + 1] += 1;
+                }
+            }
+        }
+        for i in 0..positions.len() {
+            start[i + 1] += start[i];
+        }
+        let mut fill = start.clone();
+        let mut around = vec![0u32; start[positions.len()] as usize];
+        for (tri, &t) in triangles.iter().zip(&ids) {
+            for (j, &l) in tri.iter().enumerate() {
+                if !tri[..j].contains(&l) {
+                    around[fill[l as usize] as usize] = t;
+                    fill[l as usize] += 1;
+                }
+            }
+        }
+        let sub = Mesh::new_unchecked(positions, triangles);
+        self.near = Near {
+            tree: Bvh::new(&sub),
+            ids,
+            sub,
+            local,
+            start,
+            around,
+            cells: FxHashMap::default(),
+            wide: Vec::new(),
+            first_made: self.base + self.made.len() as u32,
+        };
+        self.stars.clear();
+    }
+
+    /// The live triangles whose boxes meet `b`, which the grid must cover.
+    fn near_triangles(&self, b: &Box3) -> Vec<u32> {
+        let mut out: Vec<u32> = self
+            .near
+            .tree
+            .in_box(&self.near.sub, b)
+            .into_iter()
+            .map(|i| self.near.ids[i as usize])
+            .filter(|&t| self.alive(t))
+            .collect();
+        let r = self.grid.range(b);
+        let mut made: Vec<u32> = self.near.wide.clone();
+        if Grid::cells(&r) <= Self::FEW_CELLS {
+            self.grid.all(&r, |i| {
+                if let Some(ids) = self.near.cells.get(&(i as u32)) {
+                    made.extend(ids);
+                }
+                true
+            });
+            made.sort_unstable();
+            made.dedup();
+        } else {
+            made = (self.near.first_made..self.base + self.made.len() as u32).collect();
+        }
+        out.extend(
+            made.into_iter()
+                .filter(|&t| self.alive(t) && overlap(&tri_box(&self.corners(&self.tri(t))), b)),
+        );
+        out
+    }
+
+    /// Tries to fix bad triangle `t`: its short edges collapsed (shortest first, the
+    /// better end kept first: the one that keeps the shape ([`Work::offset`]), else the
+    /// better ranked ([`Work::rank`])), else its longest edge flipped.
+    fn fix(&mut self, t: u32) -> Gate<()> {
+        let tri = self.tri(t);
+        if tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0] {
+            return refuse(Manifold);
+        }
+        let p = self.corners(&tri);
+        let len = [0, 1, 2].map(|k| norm(&sub(&p[(k + 1) % 3], &p[k])));
+        let mut order = [0usize, 1, 2];
+        order.sort_by(|&i, &j| len[i].total_cmp(&len[j]));
+        let mut first: Option<Refusal> = None;
+        for &k in &order {
+            if len[k] >= self.d {
+                break;
+            }
+            let (u, v) = (tri[k], tri[(k + 1) % 3]);
+            // Keep the end that keeps the shape; where both do, the better ranked.
+            let keep_v = match self.offset(v, u)?.total_cmp(&self.offset(u, v)?) {
+                Ordering::Less => true,
+                Ordering::Greater => false,
+                Ordering::Equal => {
+                    let (ru, rv) = (self.rank(u)?, self.rank(v)?);
+                    rv < ru || (rv == ru && v < u)
+                }
+            };
+            let pairs = if keep_v {
+                [(v, u), (u, v)]
+            } else {
+                [(u, v), (v, u)]
+            };
+            for (keep, gone) in pairs {
+                match self.collapse(keep, gone) {
+                    Err(Stop::Refused(r)) => {
+                        first.get_or_insert(r);
+                    }
+                    done => return done,
+                }
+            }
+        }
+        if altitude(&p) < self.d {
+            match self.flip(t, order[2]) {
+                Err(Stop::Refused(r)) => {
+                    first.get_or_insert(r);
+                }
+                done => return done,
+            }
+        }
+        refuse(first.unwrap_or(NoGain))
+    }
+
+    /// How far moving `other` onto `keep` takes it off the planes of its triangles: zero
+    /// (up to the rounding of the coordinates) along a flat surface or a crease, where the
+    /// shape stays.
+    fn offset(&self, keep: u32, other: u32) -> Gate<f64> {
+        let so = self.star(other)?;
+        let (pk, po) = (self.pos(keep), self.pos(other));
+        let step = sub(&pk, &po);
+        let mut off = 0.0f64;
+        let mut scale = pk.iter().chain(&po).fold(0.0f64, |m, x| m.max(x.abs()));
+        for &t in &so {
+            let tri = self.tri(t);
+            if tri.contains(&keep) {
+                continue;
+            }
+            let p = self.corners(&tri);
+            let n = cross(&sub(&p[1], &p[0]), &sub(&p[2], &p[0]));
+            let len = norm(&n);
+            if len > 0.0 {
+                off = off.max(dot(&n, &step).abs() / len);
+            }
+            scale = p.iter().flatten().fold(scale, |m, x| m.max(x.abs()));
+        }
+        // Rounded coordinates put a point of a plane up to about an ulp of the largest
+        // coordinate off it: offsets below a thousand times that count as none.
+        Ok(if off <= 1e-13 * scale { 0.0 } else { off })
+    }
+
+    /// How much `keep` is worth keeping in place, smaller being better: fewer creases
+    /// through it (boundary, non-manifold and label edges, and edges between triangles
+    /// not in one plane, decided exactly; three or more: a corner), then an input vertex
+    /// before a seam point.
+    fn rank(&self, keep: u32) -> Gate<(u8, bool)> {
+        let sk = self.star(keep)?;
+        let mut creases = 0u8;
+        for x in neighbours(self, &sk, keep) {
+            let on: Vec<u32> = sk
+                .iter()
+                .copied()
+                .filter(|&t| self.tri(t).contains(&x))
+                .collect();
+            let crease = match on[..] {
+                [s, t] => {
+                    let far = self
+                        .tri(t)
+                        .into_iter()
+                        .find(|&w| w != keep && w != x)
+                        .unwrap_or(keep);
+                    let [a, b, c] = self.corners(&self.tri(s));
+                    self.label(s) != self.label(t)
+                        || orient3d_explicit(&a, &b, &c, &self.pos(far)) != Sign::Zero
+                }
+                _ => true,
+            };
+            creases += u8::from(crease);
+            if creases >= 3 {
+                break;
+            }
+        }
+        Ok((3 - creases, self.seam.binary_search(&keep).is_ok()))
+    }
+
+    /// Refuses a change that would spend more than the volume budget.
+    fn volume_gate(&self, dv: f64) -> Gate<()> {
+        if self.spent + dv.abs() > self.budget {
+            refuse(Volume)
+        } else {
+            Ok(())
+        }
+    }
+
+    /// Refuses new triangles that meet live triangles (other than `killed`) or each other
+    /// beyond what they share, unless the `killed` triangles they replace met each of
+    /// those live triangles too and each other at least as often (almost always: refuses
+    /// any meeting; an exact result whose rounded seam points cross leaves crossings that
+    /// a change may keep or remove but not move onto another triangle); `Later` where the
+    /// index does not cover them yet.
+    fn clear_of(&self, new: &[[u32; 3]], killed: &[u32]) -> Gate<()> {
+        let after = self.crossings(new, killed)?;
+        if after.is_empty() {
+            return Ok(());
+        }
+        let old: Vec<[u32; 3]> = killed.iter().map(|&t| self.tri(t)).collect();
+        let before = self.crossings(&old, killed)?;
+        let among = |c: &[u32]| c.iter().filter(|&&t| t == AMONG).count();
+        let kept = after.iter().all(|t| *t == AMONG || before.contains(t));
+        if kept && among(&after) <= among(&before) {
+            Ok(())
+        } else {
+            refuse(SelfIntersection)
+        }
+    }
+
+    /// The live triangles other than `skip` that one of `tris` meets beyond what they share
+    /// (exact), once per meeting, and [`AMONG`] once per pair of `tris` that meet; `Later`
+    /// where the index does not cover them.
+    fn crossings(&self, tris: &[[u32; 3]], skip: &[u32]) -> Gate<Vec<u32>> {
+        if tris.is_empty() {
+            return Ok(Vec::new());
+        }
+        let corners: Vec<[[f64; 3]; 3]> = tris.iter().map(|n| self.corners(n)).collect();
+        let boxes: Vec<Box3> = corners.iter().map(tri_box).collect();
+        if !boxes.iter().all(|b| self.grid.covers(b)) {
+            return Err(Stop::Later);
+        }
+        let planes: Vec<FloatPlane> = corners.iter().map(FloatPlane::new).collect();
+        let meets = |i: usize, m: [u32; 3], pm: [[f64; 3]; 3]| {
+            let (n, pn) = (tris[i], corners[i]);
+            let shared = n.iter().filter(|v| m.contains(v)).count();
+            if shared == 3 {
+                return true;
+            }
+            // The common case first: the corners of `m` that `n` does not share all
+            // certainly on one side of `n`'s plane (floating-point filter): they meet at
+            // most in what they share.
+            let mut side = None;
+            let apart = (0..3).filter(|&k| !n.contains(&m[k])).all(|k| {
+                match (planes[i].side(&pm[k]), side) {
+                    (Some(s), None) => {
+                        side = Some(s);
+                        true
+                    }
+                    (Some(s), Some(t)) => s == t,
+                    (None, _) => false,
+                }
+            });
+            !apart && corners_meet_beyond_shared([(0, n, pn), (1, m, pm)], shared)
+        };
+        // One query for all of them.
+        let all = boxes.iter().fold(boxes[0], |a, b| {
+            [
+                [
+                    min(a[0][0], b[0][0]),
+                    min(a[0][1], b[0][1]),
+                    min(a[0][2], b[0][2]),
+                ],
+                [
+                    max(a[1][0], b[1][0]),
+                    max(a[1][1], b[1][1]),
+                    max(a[1][2], b[1][2]),
+                ],
+            ]
+        });
+        // (id, corners' ids, corners, box) of each live triangle near them.
+        type Candidate = (u32, [u32; 3], [[f64; 3]; 3], Box3);
+        let near: Vec<Candidate> = self
+            .near_triangles(&all)
+            .into_iter()
+            .filter(|t| !skip.contains(t))
+            .map(|t| {
+                let m = self.tri(t);
+                let pm = self.corners(&m);
+                (t, m, pm, tri_box(&pm))
+            })
+            .collect();
+        let mut met = Vec::new();
+        for i in 0..tris.len() {
+            for &(t, m, pm, bm) in &near {
+                if overlap(&boxes[i], &bm) && meets(i, m, pm) {
+                    met.push(t);
+                }
+            }
+            for j in i + 1..tris.len() {
+                if overlap(&boxes[i], &boxes[j]) && meets(i, tris[j], corners[j]) {
+                    met.push(AMONG);
+                }
+            }
+        }
+        Ok(met)
+    }
+
+    /// Collapses edge `keep`–`gone` onto `keep` if every gate passes.
+    fn collapse(&mut self, keep: u32, gone: u32) -> Gate<()> {
+        let (sk, sg) = (self.star(keep)?, self.star(gone)?);
+        // Distance: `gone` and whatever was collapsed into it end up at `keep`.
+        let pk = self.pos(keep);
+        let mut moved = norm(&sub(&self.pos(gone), &pk));
+        for &a in self.absorbed.get(&gone).into_iter().flatten() {
+            moved = moved.max(norm(&sub(&self.pos(a), &pk)));
+        }
+        if moved > self.d {
+            return refuse(Distance);
+        }
+        // Topology.
+        let sk_tris: Vec<[u32; 3]> = sk.iter().map(|&t| self.tri(t)).collect();
+        let sg_tris: Vec<[u32; 3]> = sg.iter().map(|&t| self.tri(t)).collect();
+        let on_edge = |tri: &[u32; 3]| tri.contains(&keep);
+        let shared: Vec<usize> = (0..sg.len()).filter(|&i| on_edge(&sg_tris[i])).collect();
+        if shared.is_empty() || shared.len() > 2 {
+            return refuse(Manifold);
+        }
+        let runs_keep_gone =
+            |tri: &[u32; 3]| (0..3).any(|k| tri[k] == keep && tri[(k + 1) % 3] == gone);
+        if shared.len() == 2
+            && runs_keep_gone(&sg_tris[shared[0]]) == runs_keep_gone(&sg_tris[shared[1]])
+        {
+            return refuse(Manifold);
+        }
+        let mut far: Vec<u32> = shared
+            .iter()
+            .map(|&i| {
+                sg_tris[i]
+                    .into_iter()
+                    .find(|&w| w != keep && w != gone)
+                    .unwrap_or(keep)
+            })
+            .collect();
+        far.sort_unstable();
+        if far.windows(2).any(|w| w[0] == w[1]) {
+            return refuse(Manifold);
+        }
+        let (nk, ng) = (neighbours(self, &sk, keep), neighbours(self, &sg, gone));
+        let common: Vec<u32> = nk
+            .iter()
+            .copied()
+            .filter(|x| ng.binary_search(x).is_ok())
+            .collect();
+        if common != far {
+            return refuse(Manifold);
+        }
+        let uses = |tris: &[[u32; 3]], x: u32| tris.iter().filter(|t| t.contains(&x)).count();
+        for &x in &ng {
+            let c = uses(&sg_tris, x);
+            // A vertex on a boundary (or a non-manifold edge) moves only along it.
+            if c > 2 || (c == 1 && shared.len() == 2) {
+                return refuse(Manifold);
+            }
+        }
+        if shared.len() == 1 && uses(&sg_tris, far[0]) == 1 && uses(&sk_tris, far[0]) == 1 {
+            return refuse(Manifold); // a lone triangle: it would vanish
+        }
+        // (triangle, its corners, its corners with `gone` moved onto `keep`).
+        let moved_tris: Vec<(u32, [u32; 3], [u32; 3])> = (0..sg.len())
+            .filter(|i| !shared.contains(i))
+            .map(|i| {
+                let old = sg_tris[i];
+                (sg[i], old, old.map(|v| if v == gone { keep } else { v }))
+            })
+            .collect();
+        let after: Vec<[u32; 3]> = sk_tris
+            .iter()
+            .copied()
+            .filter(|t| !t.contains(&gone))
+            .chain(moved_tris.iter().map(|&(_, _, n)| n))
+            .collect();
+        let before = defects(keep, &sk_tris, None).plus(defects(gone, &sg_tris, Some(keep)));
+        let now = defects(keep, &after, None);
+        if now.boundary > before.boundary
+            || now.non_manifold > before.non_manifold
+            || now.inconsistent > before.inconsistent
+        {
+            return refuse(Manifold);
+        }
+        let mut sets: Vec<[u32; 3]> = after
+            .iter()
+            .map(|t| {
+                let mut s = *t;
+                s.sort_unstable();
+                s
+            })
+            .collect();
+        sets.sort_unstable();
+        if sets.windows(2).any(|w| w[0] == w[1]) || fans(keep, &after) != 1 {
+            return refuse(Manifold);
+        }
+        // Inversion.
+        for &(_, old, n) in &moved_tris {
+            if turns_over(&self.corners(&old), &self.corners(&n)) {
+                return refuse(Inversion);
+            }
+        }
+        // Volume.
+        let mut dv6 = 0.0;
+        for tri in &sg_tris {
+            dv6 -= volume6(&self.corners(tri), &pk);
+        }
+        for &(_, _, n) in &moved_tris {
+            dv6 += volume6(&self.corners(&n), &pk);
+        }
+        let dv = dv6 / 6.0;
+        self.volume_gate(dv)?;
+        // Self-intersection.
+        let new: Vec<[u32; 3]> = moved_tris.iter().map(|&(_, _, n)| n).collect();
+        self.clear_of(&new, &sg)?;
+        // Commit.
+        let mut da = 0.0;
+        for (i, &t) in sg.iter().enumerate() {
+            da -= shape(&self.corners(&sg_tris[i])).2 / 2.0;
+            self.kill(t);
+        }
+        let mut made = Vec::with_capacity(moved_tris.len());
+        for &(t, _, n) in &moved_tris {
+            da += shape(&self.corners(&n)).2 / 2.0;
+            made.push(self.make(n, self.slot(t)));
+        }
+        self.stars.insert(gone, Vec::new());
+        self.dead.insert(gone);
+        let mut taken = self.absorbed.remove(&gone).unwrap_or_default();
+        taken.push(gone);
+        self.absorbed.entry(keep).or_default().extend(taken);
+        let around: Vec<u32> = sg_tris.iter().flatten().copied().collect();
+        self.changed(&around, &made);
+        self.report.collapsed += 1;
+        self.report.max_move = self.report.max_move.max(moved);
+        self.report.volume_change += dv;
+        self.report.area_change += da;
+        self.spent += dv.abs();
+        // What is around `keep` now may be fixable.
+        let around_keep = self.star(keep).unwrap_or_default();
+        self.queue(&around_keep);
+        Ok(())
+    }
+
+    /// Flips edge `k` of bad triangle `t` (corner `k` to `k + 1`) if every gate passes and
+    /// both new triangles are better shaped than the worse of the two old ones.
+    fn flip(&mut self, t: u32, k: usize) -> Gate<()> {
+        let tri = self.tri(t);
+        let (a, b, c) = (tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);
+        let (sa, sc) = (self.star(a)?, self.star(c)?);
+        let on: Vec<u32> = sa
+            .iter()
+            .copied()
+            .filter(|&s| self.tri(s).contains(&b))
+            .collect();
+        let [x, y] = on[..] else {
+            return refuse(Manifold);
+        };
+        let u = if x == t { y } else { x };
+        let ut = self.tri(u);
+        let Some(kb) = (0..3).find(|&i| ut[i] == b && ut[(i + 1) % 3] == a) else {
+            return refuse(Manifold); // not oriented consistently with `t`
+        };
+        let dd = ut[(kb + 2) % 3];
+        if self.label(t) != self.label(u) {
+            return refuse(Seam);
+        }
+        if dd == c || sc.iter().any(|&s| self.tri(s).contains(&dd)) {
+            return refuse(Manifold);
+        }
+        let (t2, u2) = ([c, a, dd], [dd, b, c]);
+        let (pt, pu) = (self.corners(&tri), self.corners(&ut));
+        let (pt2, pu2) = (self.corners(&t2), self.corners(&u2));
+        // Distance: the cap's height over the flipped edge.
+        let (pa, pb, pc) = (self.pos(a), self.pos(b), self.pos(c));
+        let height = norm(&cross(&sub(&pb, &pa), &sub(&pc, &pa))) / norm(&sub(&pb, &pa));
+        if height >= self.d {
+            return refuse(Distance);
+        }
+        if altitude(&pt2).min(altitude(&pu2)) <= altitude(&pt).min(altitude(&pu)) {
+            return refuse(NoGain);
+        }
+        // The facing to keep: that of the replaced triangles that are not themselves
+        // thinner than the tolerance (a sliver's normal is rounding noise at that
+        // scale), or of both when both are.
+        let flat = |p: &[[f64; 3]; 3]| normals_dot_sign(p, p) == Sign::Zero;
+        if flat(&pt) && flat(&pu) {
+            return refuse(Inversion); // nothing to tell which way is up
+        }
+        let sound: Vec<&[[f64; 3]; 3]> = [&pt, &pu]
+            .into_iter()
+            .filter(|p| altitude(p) >= self.d)
+            .collect();
+        let reference = if sound.is_empty() {
+            vec![&pt, &pu]
+        } else {
+            sound
+        };
+        for new in [&pt2, &pu2] {
+            for old in &reference {
+                if turns_over(old, new) {
+                    return refuse(Inversion);
+                }
+            }
+        }
+        let dv =
+            (volume6(&pt2, &pa) + volume6(&pu2, &pa) - volume6(&pt, &pa) - volume6(&pu, &pa)) / 6.0;
+        self.volume_gate(dv)?;
+        self.clear_of(&[t2, u2], &[t, u])?;
+        let twice = |p: &[[f64; 3]; 3]| shape(p).2;
+        let da = (twice(&pt2) + twice(&pu2) - twice(&pt) - twice(&pu)) / 2.0;
+        self.kill(t);
+        self.kill(u);
+        let made = [self.make(t2, self.slot(t)), self.make(u2, self.slot(u))];
+        self.changed(&[a, b, c, dd], &made);
+        self.report.flipped += 1;
+        self.report.volume_change += dv;
+        self.report.area_change += da;
+        self.spent += dv.abs();
+        Ok(())
+    }
+
+    /// A new triangle in the place of input triangle `slot`, indexed; its id.
+    fn make(&mut self, tri: [u32; 3], slot: u32) -> u32 {
+        let id = self.base + self.made.len() as u32;
+        self.made.push(tri);
+        self.made_alive.push(true);
+        self.made_slot.push(slot);
+        self.in_slot.insert(slot, id);
+        let r = self.grid.range(&tri_box(&self.corners(&tri)));
+        if Grid::cells(&r) <= Self::FEW_CELLS {
+            let cells = &mut self.near.cells;
+            self.grid.all(&r, |i| {
+                cells.entry(i as u32).or_default().push(id);
+                true
+            });
+        } else {
+            self.near.wide.push(id);
+        }
+        id
+    }
+
+    /// After a change: the stars of the vertices of the new triangles `made` take them in,
+    /// the vertices `around` are marked changed, bad new triangles are queued.
+    fn changed(&mut self, around: &[u32], made: &[u32]) {
+        self.changes += 1;
+        for &v in around {
+            self.touched.insert(v, self.changes);
+        }
+        for &m in made {
+            for v in self.tri(m) {
+                self.touched.insert(v, self.changes);
+                // Only vertices whose triangles are all known keep a list.
+                if let Ok(mut s) = self.star(v) {
+                    if !s.contains(&m) {
+                        s.push(m);
+                    }
+                    self.stars.insert(v, s);
+                }
+            }
+        }
+        for &m in made {
+            if self.bad_key(m).is_some() {
+                self.ever_bad.push(m);
+            }
+        }
+        self.queue(made);
+    }
+
+    /// Queues the bad ones of `ts`.
+    fn queue(&mut self, ts: &[u32]) {
+        for &t in ts {
+            if let Some(key) = self.bad_key(t) {
+                self.heap.push(Item { key, t });
+            }
+        }
+    }
+
+    /// The report with the bad triangles left, counted by the refusal of their last fix.
+    fn finish_report(&mut self) -> SnapReport {
+        let mut r = std::mem::take(&mut self.report);
+        self.ever_bad.sort_unstable();
+        self.ever_bad.dedup();
+        for &t in &self.ever_bad {
+            if !self.alive(t) || self.bad_key(t).is_none() {
+                continue;
+            }
+            r.left += 1;
+            match self.refusal.get(&t) {
+                Some(Manifold) => r.refused_manifold += 1,
+                Some(Inversion) => r.refused_inversion += 1,
+                Some(SelfIntersection) => r.refused_self_intersection += 1,
+                Some(Distance) => r.refused_distance += 1,
+                Some(Volume) => r.refused_volume += 1,
+                Some(Seam) => r.refused_seam += 1,
+                Some(NoGain) => r.refused_no_gain += 1,
+                None => r.not_reached += 1,
+            }
+        }
+        r
+    }
+
+    /// The changes made: dead vertices, slots left empty, slots with a new triangle.
+    fn edit(&self) -> Edit {
+        let mut dead: Vec<u32> = self.dead.iter().copied().collect();
+        dead.sort_unstable();
+        let (mut removed, mut replaced) = (Vec::new(), Vec::new());
+        for &s in &self.killed_list {
+            match self.in_slot.get(&s) {
+                Some(&m) if self.alive(m) => replaced.push((s, self.tri(m))),
+                _ => removed.push(s),
+            }
+        }
+        removed.sort_unstable();
+        Edit {
+            dead,
+            removed,
+            replaced,
+        }
+    }
+}
+
+impl Defects {
+    fn plus(self, o: Defects) -> Defects {
+        Defects {
+            boundary: self.boundary + o.boundary,
+            non_manifold: self.non_manifold + o.non_manifold,
+            inconsistent: self.inconsistent + o.inconsistent,
+        }
+    }
+}
+
+/// Whether a triangle with corners `old` turns over (or becomes degenerate) when its
+/// corners become `new`: the new normal is zero, or at a right angle or more to the old
+/// one (exact signs). A degenerate `old` has no side to keep: only the first test applies.
+fn turns_over(old: &[[f64; 3]; 3], new: &[[f64; 3]; 3]) -> bool {
+    if normals_dot_sign(new, new) == Sign::Zero {
+        return true;
+    }
+    match normals_dot_sign(old, new) {
+        Sign::Positive => false,
+        Sign::Negative => true,
+        Sign::Zero => normals_dot_sign(old, old) != Sign::Zero,
+    }
+}
+
+/// The neighbours of `v` in the triangles `star` (all containing `v`), sorted.
+fn neighbours(w: &Work, star: &[u32], v: u32) -> Vec<u32> {
+    let mut n: Vec<u32> = star
+        .iter()
+        .flat_map(|&t| w.tri(t))
+        .filter(|&x| x != v)
+        .collect();
+    n.sort_unstable();
+    n.dedup();
+    n
+}
+
+/// The kinds of the edges at `v` in the triangles `star` (all containing `v`), leaving
+/// out the edge to `skip`.
+fn defects(v: u32, star: &[[u32; 3]], skip: Option<u32>) -> Defects {
+    // (other end, uses v -> other, uses other -> v).
+    let mut uses: Vec<(u32, usize, usize)> = Vec::new();
+    let mut add = |x: u32, forward: bool| {
+        if Some(x) == skip || x == v {
+            return;
+        }
+        let i = match uses.iter().position(|u| u.0 == x) {
+            Some(i) => i,
+            None => {
+                uses.push((x, 0, 0));
+                uses.len() - 1
+            }
+        };
+        if forward {
+            uses[i].1 += 1;
+        } else {
+            uses[i].2 += 1;
+        }
+    };
+    for t in star {
+        for k in 0..3 {
+            if t[k] == v {
+                add(t[(k + 1) % 3], true);
+                add(t[(k + 2) % 3], false);
+            }
+        }
+    }
+    let mut d = Defects::default();
+    for (_, f, b) in uses {
+        match (f, b) {
+            (1, 0) | (0, 1) => d.boundary += 1,
+            (1, 1) => {}
+            (f, b) if f + b == 2 => d.inconsistent += 1,
+            _ => d.non_manifold += 1,
+        }
+    }
+    d
+}
+
+/// The number of fans the triangles `star` (all containing `v`) form around `v`:
+/// triangles sharing an edge at `v` are in one fan.
+fn fans(v: u32, star: &[[u32; 3]]) -> usize {
+    let n = star.len();
+    let mut parent: Vec<usize> = (0..n).collect();
+    fn root(p: &mut [usize], mut i: usize) -> usize {
+        while p[i] != i {
+            p[i] = p[p[i]];
+            i = p[i];
+        }
+        i
+    }
+    let others: Vec<[u32; 3]> = star
+        .iter()
+        .map(|t| t.map(|w| if w == v { u32::MAX } else { w }))
+        .collect();
+    for i in 0..n {
+        for j in i + 1..n {
+            if others[i]
+                .iter()
+                .any(|&x| x != u32::MAX && others[j].contains(&x))
+            {
+                let (a, b) = (root(&mut parent, i), root(&mut parent, j));
+                parent[a] = b;
+            }
+        }
+    }
+    (0..n).filter(|&i| root(&mut parent, i) == i).count()
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,200 @@
+use super::*;
+
+/// A unit square (z = 0) of four triangles around vertex 4 at `p`.
+fn square_around(p: [f64; 3]) -> Mesh {
+    Mesh::new(
+        vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            p,
+        ],
+        vec![[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]],
+    )
+    .unwrap()
+}
+
+#[test]
+fn a_vertex_next_to_a_corner_goes_into_it_and_parents_follow() {
+    let square = square_around([0.999, 0.999, 0.0]);
+    let s = snap_with(
+        &square,
+        &SnapOptions {
+            tolerance: 0.01,
+            ..SnapOptions::default()
+        },
+    )
+    .unwrap();
+    let r = &s.report;
+    assert_eq!((r.found, r.collapsed, r.flipped, r.left), (2, 1, 0, 0));
+    // The interior vertex moved (never the boundary corner), the two triangles on the
+    // edge went, the other two keep their places.
+    assert_eq!(s.mesh.triangles, vec![[0, 1, 2], [3, 0, 2]]);
+    assert_eq!(s.mesh.positions.len(), 4);
+    assert_eq!(s.parent, vec![0, 3]);
+    assert_eq!((r.volume_change, r.area_change), (0.0, 0.0));
+    assert!((r.max_move - 0.001 * 2f64.sqrt()).abs() < 1e-15);
+}
+
+#[test]
+fn a_needle_on_the_boundary_stays_and_is_counted() {
+    // Vertex 4 a millimetre inside the boundary edge 0-1: a needle on it, with no short
+    // edge to collapse and no neighbour across the boundary edge to flip with.
+    let square = square_around([0.5, 0.001, 0.0]);
+    let (m, r) = snap(&square, 0.01).unwrap();
+    assert_eq!(m, square);
+    assert_eq!((r.found, r.collapsed, r.flipped, r.left), (1, 0, 0, 1));
+    assert_eq!(r.refused_manifold, 1);
+}
+
+#[test]
+fn a_boundary_vertex_moves_only_along_the_boundary() {
+    // Vertex 4 on the boundary edge 0-1, a millimetre from corner 1: moving it onto the
+    // interior vertex would open the boundary; it goes into the corner along the edge.
+    let m = Mesh::new(
+        vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.999, 0.0, 0.0],
+            [0.5, 0.5, 0.0],
+        ],
+        vec![[0, 4, 5], [4, 1, 5], [1, 2, 5], [2, 3, 5], [3, 0, 5]],
+    )
+    .unwrap();
+    let (s, r) = snap(&m, 0.01).unwrap();
+    assert_eq!((r.collapsed, r.left), (1, 0));
+    assert_eq!(s.positions.len(), 5);
+    assert!(!s.positions.contains(&[0.999, 0.0, 0.0]));
+    assert!(s.positions.contains(&[0.5, 0.5, 0.0]));
+    let counts = crate::edges::EdgeCounts::of(&s);
+    assert_eq!((counts.boundary, counts.non_manifold), (4, 0));
+}
+
+#[test]
+fn a_thin_tetrahedron_is_left_alone() {
+    // Collapsing its short edge would fold it into two coincident triangles (the link
+    // condition fails); flipping turns a face over.
+    let t = Mesh::new(
+        vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 0.001],
+        ],
+        vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]],
+    )
+    .unwrap();
+    let (m, r) = snap(&t, 0.01).unwrap();
+    assert_eq!(m, t);
+    assert_eq!((r.collapsed, r.flipped), (0, 0));
+    assert_eq!(r.left, r.found);
+    assert!(r.left > 0);
+}
+
+/// A square split by the diagonal 0-2 with vertex 4 a millimetre off that diagonal: the
+/// cap 0-4-2 is 7e-4 high over its long edge 0-2 and has no short edge.
+fn cap_square() -> Mesh {
+    Mesh::new(
+        vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.5005, 0.4995, 0.0],
+        ],
+        vec![[0, 1, 4], [1, 2, 4], [0, 4, 2], [0, 2, 3]],
+    )
+    .unwrap()
+}
+
+#[test]
+fn a_cap_is_flipped_away() {
+    // The cap 0-4-2 goes by flipping 0-2 into 4-3.
+    let m = cap_square();
+    let (s, r) = snap(&m, 0.01).unwrap();
+    assert_eq!((r.found, r.flipped, r.left), (1, 1, 0));
+    assert_eq!(s.triangles.len(), 4);
+    assert_eq!(r.volume_change, 0.0);
+    assert!((r.area_change).abs() < 1e-15);
+}
+
+#[test]
+fn zero_changes_nothing_and_bad_tolerances_are_errors() {
+    let square = square_around([0.999, 0.999, 0.0]);
+    let (m, r) = snap(&square, 0.0).unwrap();
+    assert_eq!(m, square);
+    assert_eq!(r.found, 0);
+    for bad in [-1.0, f64::NAN, f64::INFINITY] {
+        assert!(matches!(
+            snap(&square, bad),
+            Err(Error::InvalidParameter(_))
+        ));
+    }
+    let labels = [0u32; 3];
+    let opts = SnapOptions {
+        tolerance: 0.01,
+        labels: Some(&labels),
+        ..SnapOptions::default()
+    };
+    assert!(snap_with(&square, &opts).is_err());
+}
+
+#[test]
+fn labels_keep_flips_off_the_seam() {
+    // The cap of `a_cap_is_flipped_away` with its neighbour across the long edge from the
+    // other input: no flip across the seam.
+    let m = cap_square();
+    let labels = [0, 0, 0, 1];
+    let s = snap_with(
+        &m,
+        &SnapOptions {
+            tolerance: 0.01,
+            labels: Some(&labels),
+            ..SnapOptions::default()
+        },
+    )
+    .unwrap();
+    assert_eq!((s.report.flipped, s.report.left), (0, 1));
+    assert_eq!(s.report.refused_seam, 1);
+    assert_eq!(s.mesh, m);
+}
+
+/// A unit square of four triangles around vertex 4 raised 5e-3 just inside corner 2
+/// (two needles along the edges at corner 2, edge 4-2 8.7e-3 long), and with `poker` a
+/// separate vertical triangle in the plane y = 0.9 reaching from z = −1 up to `top`.
+fn raised_square(poker_top: Option<f64>) -> Mesh {
+    let mut positions = vec![
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.995, 0.995, 0.005],
+    ];
+    let mut triangles = vec![[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]];
+    if let Some(top) = poker_top {
+        positions.extend([[0.85, 0.9, -1.0], [0.95, 0.9, -1.0], [0.9, 0.9, top]]);
+        triangles.push([5, 6, 7]);
+    }
+    Mesh::new(positions, triangles).unwrap()
+}
+
+#[test]
+fn a_collapse_that_would_cross_another_sheet_is_refused() {
+    // Alone, vertex 4 goes into corner 2 and the square lies flat.
+    let (flat, r) = snap(&raised_square(None), 0.01).unwrap();
+    assert_eq!((r.found, r.collapsed, r.left), (2, 1, 0));
+    assert!(flat.positions.iter().all(|p| p[2] == 0.0));
+    // A sheet poking up to z = 0.001 under the raised square (which is 4.5e-3 high
+    // there) would cross the flat square: the collapse is refused, nothing crosses.
+    let poked = raised_square(Some(0.001));
+    assert!(crate::intersect::self_intersections(&poked).is_empty());
+    // (Each needle is counted by the first refusal of its fixes: moving the boundary
+    // corner 2 off its boundary comes before moving vertex 4.)
+    let (m, r) = snap(&poked, 0.01).unwrap();
+    assert_eq!((r.collapsed, r.flipped, r.left), (0, 0, 2), "{r:?}");
+    assert_eq!(m, poked);
+    assert!(crate::intersect::self_intersections(&m).is_empty());
+}

@@ -1,0 +1,367 @@
+//! Snapping results at a tolerance (`BooleanOptions::snap`, `ResolveOptions::snap`,
+//! `RepairConfig::snap`, `repair::snap`): the short edges and needles of exact results go,
+//! and nothing the result had is lost: closed stays closed, manifold stays manifold, no
+//! self-intersection appears, no vertex moves more than the tolerance, the volume changes
+//! by at most the tolerance times the area.
+
+use meshbool::intersect::self_intersections;
+use meshbool::measure::{area, signed_volume};
+use meshbool::ops::{self, BooleanOptions, BooleanOutput, ResolveOptions};
+use meshbool::repair::{RepairConfig, SnapReport};
+use meshbool::shapes::{heightfield, rigid_motion};
+use meshbool::{Error, Mesh, Op, Source};
+
+const D: f64 = 0.01;
+
+/// The shortest edge and the smallest altitude of a mesh's triangles.
+fn worst(m: &Mesh) -> (f64, f64) {
+    let (pos, tris) = (m.positions(), m.triangles());
+    let mut worst = (f64::INFINITY, f64::INFINITY);
+    for t in tris {
+        let p = t.map(|v| pos[v as usize]);
+        let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+        let len = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        let l = [0, 1, 2].map(|k| len(sub(p[(k + 1) % 3], p[k])));
+        let (u, v) = (sub(p[1], p[0]), sub(p[2], p[0]));
+        let c = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        let altitude = len(c) / l[0].max(l[1]).max(l[2]);
+        worst.0 = worst.0.min(l[0].min(l[1]).min(l[2]));
+        worst.1 = worst.1.min(altitude);
+    }
+    worst
+}
+
+/// The unit cube, and a box cutting off the part x > 0.5, z > 0.5 whose other walls lie
+/// 1e-3 outside the cube's faces (a cutter drawn "a little larger"): its faces' diagonals
+/// cross the cube's faces a millimetre from the cube's edges, 5e-4 from the cut's corners.
+fn cube_and_cutter() -> (Mesh, Mesh) {
+    (
+        Mesh::unit_cube(),
+        Mesh::cuboid([0.5, -0.001, 0.5], [1.001, 1.001, 1.001]),
+    )
+}
+
+fn boolean(a: &Mesh, b: &Mesh, op: Op, snap: f64) -> BooleanOutput {
+    let opts = BooleanOptions {
+        snap,
+        ..BooleanOptions::default()
+    };
+    ops::boolean(a, b, op, &opts).unwrap()
+}
+
+/// What every snapped closed result must be, compared with the exact one: closed and
+/// manifold, no edge shorter and no altitude smaller than `D` (the inputs have none), the
+/// volume within `D × area` of the exact one (and as reported), no vertex moved more
+/// than `D`, no more self-intersections than the exact result, provenance for every
+/// triangle.
+fn check_closed(exact: &BooleanOutput, snapped: &BooleanOutput, what: &str) -> SnapReport {
+    let r = snapped.report();
+    let s = r.snap.clone().expect("a snap report");
+    assert!(r.result.closed, "{what}");
+    assert_eq!(r.result.non_manifold_edges, 0, "{what}");
+    let (edge, height) = worst(&snapped.mesh);
+    assert!(edge >= D && height >= D, "{what}: {edge} {height}");
+    let (v0, v1) = (signed_volume(&exact.mesh), signed_volume(&snapped.mesh));
+    let bound = D * area(&exact.mesh);
+    assert!((v1 - v0).abs() <= bound, "{what}: {v0} -> {v1}");
+    assert!(s.volume_change.abs() <= bound, "{what}");
+    assert!((s.volume_change - (v1 - v0)).abs() < 1e-12, "{what}");
+    assert!((s.area_change - (area(&snapped.mesh) - area(&exact.mesh))).abs() < 1e-12);
+    assert!(s.max_move <= D, "{what}");
+    assert_eq!(
+        (s.triangles_removed, s.vertices_removed),
+        (
+            exact.mesh.triangle_count() - snapped.mesh.triangle_count(),
+            exact.mesh.vertex_count() - snapped.mesh.vertex_count()
+        ),
+        "{what}"
+    );
+    assert_eq!(
+        (s.left, s.found > 0, s.collapsed > 0),
+        (0, true, true),
+        "{what}"
+    );
+    assert!(
+        self_intersections(&snapped.mesh).len() <= self_intersections(&exact.mesh).len(),
+        "{what}"
+    );
+    assert_eq!(
+        snapped.provenance.len(),
+        snapped.mesh.triangle_count(),
+        "{what}"
+    );
+    s
+}
+
+#[test]
+fn snapping_a_cube_cut_by_a_slightly_larger_box_removes_every_needle() {
+    let (a, b) = cube_and_cutter();
+    for (op, triangles, volume) in [(Op::Difference, 24, 0.75), (Op::Intersection, 16, 0.25)] {
+        let exact = boolean(&a, &b, op, 0.0);
+        let (edge, height) = worst(&exact.mesh);
+        assert!(
+            edge < 1e-3 && height < 1e-3,
+            "{op}: the exact result has needles"
+        );
+        let snapped = boolean(&a, &b, op, D);
+        let s = check_closed(&exact, &snapped, &op.to_string());
+        // Seam points went into the cut's corners along the creases: the shape is the
+        // exact one, the volume too; no self-intersection.
+        assert_eq!(snapped.mesh.triangle_count(), triangles, "{op}");
+        assert_eq!(
+            (s.volume_change, signed_volume(&snapped.mesh)),
+            (0.0, volume)
+        );
+        assert!(self_intersections(&snapped.mesh).is_empty());
+        // Provenance follows: every triangle lies in the face (an axis plane) of the
+        // input triangle it names.
+        for (t, p) in snapped.mesh.triangles().iter().zip(&snapped.provenance) {
+            let source = if p.source == Source::A { &a } else { &b };
+            let face =
+                source.triangles()[p.triangle as usize].map(|v| source.positions()[v as usize]);
+            let axis = (0..3)
+                .find(|&k| face[0][k] == face[1][k] && face[1][k] == face[2][k])
+                .unwrap();
+            for v in t {
+                assert_eq!(snapped.mesh.positions()[*v as usize][axis], face[0][axis]);
+            }
+        }
+    }
+}
+
+#[test]
+fn without_a_tolerance_the_result_is_the_exact_one() {
+    let (a, b) = cube_and_cutter();
+    for op in Op::ALL {
+        let plain = ops::boolean(&a, &b, op, &BooleanOptions::default()).unwrap();
+        let zero = boolean(&a, &b, op, 0.0);
+        assert_eq!(plain.mesh, zero.mesh, "{op}");
+        assert_eq!(plain.provenance, zero.provenance, "{op}");
+        // Nothing was cleaned: the exact result's needles are there.
+        let (edge, height) = worst(&plain.mesh);
+        assert!(edge.min(height) < 1e-3, "{op}: {edge} {height}");
+        assert!(zero.snap.is_none());
+        let json = serde_json::to_value(zero.report()).unwrap();
+        assert!(json.get("snap").is_none());
+    }
+}
+
+#[test]
+fn rigid_motions_snap_the_same() {
+    let (a, b) = cube_and_cutter();
+    for seed in 0..6u64 {
+        // A rotation about a skew axis and a translation, different for every seed.
+        let f = |k: u64| ((seed * 7919 + k * 104_729) % 1000) as f64 / 1000.0;
+        let axis = [f(1) - 0.5, f(2) - 0.5, f(3) + 0.1];
+        let (angle, shift) = (6.0 * f(4), [10.0 * f(5), -3.0 * f(6), 100.0 * f(7)]);
+        let (a, b) = (
+            rigid_motion(&a, axis, angle, shift),
+            rigid_motion(&b, axis, angle, shift),
+        );
+        for (op, triangles) in [(Op::Difference, 24), (Op::Intersection, 16)] {
+            let exact = boolean(&a, &b, op, 0.0);
+            let snapped = boolean(&a, &b, op, D);
+            let what = format!("seed {seed} {op}");
+            check_closed(&exact, &snapped, &what);
+            assert_eq!(snapped.mesh.triangle_count(), triangles, "{what}");
+            // Rounding the seam points of the rotated exact result can make slivers cross;
+            // snapping takes them away.
+            assert!(self_intersections(&snapped.mesh).is_empty(), "{what}");
+        }
+    }
+}
+
+#[test]
+fn snapping_an_open_terrain_keeps_its_boundary() {
+    // A terrain (grid of 1) cut by a box whose walls pass 1e-3 from grid lines, crossing
+    // the terrain's edge 1e-3 from a boundary vertex.
+    let terrain = heightfield([0.0, 0.0], [10.0, 10.0], 10, 10, |x, y| {
+        0.1 * x + 0.05 * y + 0.02 * (x * y).sin()
+    });
+    let cutter = Mesh::cuboid([2.001, -1.0, -5.0], [6.999, 5.0005, 0.5]);
+    for op in [Op::Difference, Op::Intersection, Op::Union] {
+        let exact = boolean(&terrain, &cutter, op, 0.0);
+        let snapped = boolean(&terrain, &cutter, op, D);
+        let (e, r) = (exact.report(), snapped.report());
+        let s = r.snap.expect("a snap report");
+        assert!(worst(&exact.mesh).1 < 1e-3);
+        assert!(r.result.boundary_edges <= e.result.boundary_edges, "{op}");
+        assert_eq!(r.result.non_manifold_edges, 0, "{op}");
+        let (edge, height) = worst(&snapped.mesh);
+        assert!(edge >= D && height >= D, "{op}: {edge} {height}");
+        assert_eq!(s.left, 0, "{op}");
+        assert!(s.max_move <= D);
+        assert!(self_intersections(&snapped.mesh).is_empty(), "{op}");
+    }
+}
+
+#[test]
+fn resolve_and_repair_snap_too() {
+    // Two overlapping cubes in one mesh, the second a little larger than the first's
+    // half: resolved into their union, with needles where the faces nearly meet.
+    let mut two = Mesh::unit_cube();
+    two.append(&Mesh::cuboid([0.5, -0.001, 0.5], [1.001, 1.001, 1.001]))
+        .unwrap();
+    let exact = ops::resolve(&two, &ResolveOptions::default()).unwrap();
+    let opts = ResolveOptions {
+        snap: D,
+        ..ResolveOptions::default()
+    };
+    let snapped = ops::resolve(&two, &opts).unwrap();
+    let s = snapped.snap.clone().expect("a snap report");
+    assert!(s.collapsed > 0 && s.left == 0);
+    assert_eq!(snapped.parent.len(), snapped.mesh.triangle_count());
+    let r = snapped.report();
+    assert!(r.result.closed);
+    assert!((r.result.volume - signed_volume(&exact.mesh)).abs() <= D * area(&exact.mesh));
+    assert!(worst(&snapped.mesh).1 >= D);
+    // The same as a repair step on the exact result.
+    let config = RepairConfig {
+        snap: Some(D),
+        ..RepairConfig::default()
+    };
+    let repaired = ops::repair(&exact.mesh, &config).unwrap();
+    let rs = repaired.repair.snap.clone().expect("the step ran");
+    assert_eq!(rs.left, 0);
+    assert!(repaired.repair.after.closed);
+    assert!(worst(&repaired.mesh).1 >= D);
+}
+
+#[test]
+fn tolerances_must_be_finite_and_not_negative() {
+    let (a, b) = cube_and_cutter();
+    for bad in [f64::NAN, -1.0, -0.0001, f64::INFINITY, f64::NEG_INFINITY] {
+        let opts = BooleanOptions {
+            snap: bad,
+            ..BooleanOptions::default()
+        };
+        let refused = |r: Result<(), Error>| matches!(r, Err(Error::InvalidParameter(m)) if m.contains("snap"));
+        assert!(
+            refused(ops::boolean(&a, &b, Op::Union, &opts).map(drop)),
+            "{bad}"
+        );
+        let inputs = [(&a).into(), (&b).into()];
+        assert!(refused(
+            ops::boolean_many(&inputs, Op::Union, &opts).map(drop)
+        ));
+        let resolve = ResolveOptions {
+            snap: bad,
+            ..ResolveOptions::default()
+        };
+        assert!(refused(ops::resolve(&a, &resolve).map(drop)));
+        let config = RepairConfig {
+            snap: Some(bad),
+            ..RepairConfig::default()
+        };
+        assert!(refused(ops::repair(&a, &config).map(drop)));
+        assert!(refused(meshbool::repair::snap(&a, bad).map(drop)));
+    }
+}
+
+#[test]
+fn many_inputs_snap_with_provenance() {
+    let (a, b) = cube_and_cutter();
+    let c = Mesh::cuboid([-0.001, 0.5, -0.001], [0.5, 1.001, 0.5]);
+    let opts = BooleanOptions {
+        snap: D,
+        ..BooleanOptions::default()
+    };
+    let inputs = [(&a).into(), (&b).into(), (&c).into()];
+    let exact = ops::boolean_many(&inputs, Op::Union, &BooleanOptions::default()).unwrap();
+    let out = ops::boolean_many(&inputs, Op::Union, &opts).unwrap();
+    let s = out.snap.clone().expect("a snap report");
+    assert!(s.collapsed > 0 && s.left == 0);
+    assert_eq!(out.provenance.len(), out.mesh.triangle_count());
+    let r = out.report();
+    assert!(r.result.closed && r.result.non_manifold_edges == 0);
+    assert!((r.result.volume - signed_volume(&exact.mesh)).abs() <= D * area(&exact.mesh));
+    assert!(worst(&out.mesh).0 >= D);
+}
+
+#[test]
+fn extreme_scales_snap_as_at_unit_size() {
+    let (a, b) = cube_and_cutter();
+    let unit = boolean(&a, &b, Op::Difference, D);
+    let s0 = unit.snap.clone().expect("a snap report");
+    for e in [-600, 500] {
+        let k = 2f64.powi(e);
+        let scaled = |m: &Mesh| {
+            let (p, t) = m.clone().into_parts();
+            Mesh::new(p.into_iter().map(|q| q.map(|x| x * k)).collect(), t).unwrap()
+        };
+        let out = boolean(&scaled(&a), &scaled(&b), Op::Difference, D * k);
+        let s = out.snap.clone().expect("a snap report");
+        assert_eq!(
+            out.mesh.triangle_count(),
+            unit.mesh.triangle_count(),
+            "2^{e}"
+        );
+        assert_eq!(
+            (s.collapsed, s.flipped, s.left),
+            (s0.collapsed, s0.flipped, 0)
+        );
+        assert_eq!(s.tolerance, D * k);
+        assert_eq!(s.max_move, s0.max_move * k);
+        for (p, q) in out.mesh.positions().iter().zip(unit.mesh.positions()) {
+            assert_eq!(*p, q.map(|x| x * k), "2^{e}");
+        }
+    }
+}
+
+/// `boolean::snap_result` keeps the result's seam vertices in step with its vertices (the
+/// ones collapsed away gone, the others renumbered) and refuses a bad tolerance.
+#[test]
+fn snapping_a_pipeline_result_renumbers_its_seam_vertices() {
+    let (a, b) = cube_and_cutter();
+    let mut r = meshbool::boolean::boolean(&a, &b, Op::Difference, &Default::default());
+    let at = |r: &meshbool::boolean::BooleanResult, v: u32| r.mesh.positions()[v as usize];
+    let seam: Vec<[f64; 3]> = r.seam_vertices.iter().map(|&v| at(&r, v)).collect();
+    assert!(meshbool::boolean::snap_result(&mut r, -1.0).is_err());
+    let report = meshbool::boolean::snap_result(&mut r, D).unwrap();
+    assert!(report.vertices_removed > 0);
+    assert_eq!(r.provenance.len(), r.mesh.triangle_count());
+    // Exactly the vertices still at seam points are listed.
+    let listed: Vec<u32> = (0..r.mesh.vertex_count() as u32)
+        .filter(|&v| seam.contains(&at(&r, v)))
+        .collect();
+    assert_eq!(r.seam_vertices, listed);
+    assert!(listed.len() < seam.len());
+}
+
+/// A boolean snaps where it cut, not the inputs' own needles elsewhere: a UV sphere's
+/// pole fans (altitudes about 2e-3) stay as they were, `repair --snap` would take them.
+#[test]
+fn a_boolean_snaps_where_it_cut_and_leaves_the_inputs_needles() {
+    let sphere = meshbool::shapes::uv_sphere([0.0; 3], 1.0, 200, 50);
+    let pole_fan = |m: &Mesh| {
+        let (pos, tris) = (m.positions(), m.triangles());
+        tris.iter()
+            .filter(|t| t.iter().any(|&v| pos[v as usize] == [0.0, 0.0, 1.0]))
+            .count()
+    };
+    assert_eq!(pole_fan(&sphere), 200);
+    // A box across the equator, 1e-3 beyond the sphere on one side.
+    let cutter = Mesh::cuboid([0.5, -0.3, -0.3], [1.001, 0.3, 0.3]);
+    let exact = boolean(&sphere, &cutter, Op::Difference, 0.0);
+    let snapped = boolean(&sphere, &cutter, Op::Difference, D);
+    let s = snapped.snap.clone().unwrap();
+    assert!(s.collapsed + s.flipped > 0, "{s:?}");
+    assert_eq!(pole_fan(&snapped.mesh), 200);
+    let r = snapped.report();
+    assert!(r.result.closed);
+    assert_eq!(r.result.non_manifold_edges, 0);
+    assert!(
+        (signed_volume(&snapped.mesh) - signed_volume(&exact.mesh)).abs() <= D * area(&exact.mesh)
+    );
+    // The whole mesh snapped by repair takes the pole fans too.
+    let config = RepairConfig {
+        snap: Some(D),
+        ..RepairConfig::default()
+    };
+    let repaired = ops::repair(&exact.mesh, &config).unwrap();
+    assert!(pole_fan(&repaired.mesh) < 200);
+}
