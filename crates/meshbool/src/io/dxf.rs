@@ -1,7 +1,7 @@
 //! ASCII DXF, the exchange format of mining packages: `3DFACE` entities (a triangle, or a
 //! quad as two triangles; a 3DFACE lacking a coordinate of its first three corners is an
-//! error) and polyface meshes (`POLYLINE` with flag 64 and its `VERTEX` records) in the
-//! ENTITIES section are read; written as R12-style `3DFACE`s.
+//! error) and polyface meshes (`POLYLINE` with flag 64 and its `VERTEX` records; a mesh
+//! vertex lacking a coordinate is an error) in the ENTITIES section are read; written as R12-style `3DFACE`s.
 //!
 //! Written by hand rather than with a DXF crate: only group-code pairs and two entity kinds
 //! are needed, and coordinates must round-trip exactly, which the general crates do not
@@ -139,6 +139,20 @@ pub(super) fn read(bytes: &[u8]) -> Result<Mesh> {
             b"VERTEX" if *in_polyline => {
                 if let Some(verts) = polyface {
                     if ent.flags & 64 != 0 {
+                        if ent.seen[0] != [true; 3] {
+                            let missing: Vec<&str> = ["10", "20", "30"]
+                                .into_iter()
+                                .zip(ent.seen[0])
+                                .filter(|&(_, seen)| !seen)
+                                .map(|(code, _)| code)
+                                .collect();
+                            return Err(err(format!(
+                                "polyface mesh VERTEX without group code{} {}: a mesh vertex \
+                                 needs x, y and z (10/20/30)",
+                                if missing.len() == 1 { "" } else { "s" },
+                                missing.join(", ")
+                            )));
+                        }
                         verts.push(welder.index(ent.xyz[0]));
                     } else if ent.flags & 128 != 0 {
                         let mut poly = Vec::with_capacity(4);

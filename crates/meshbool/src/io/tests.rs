@@ -386,6 +386,19 @@ fn dxf_quads_and_polyface_meshes() {
     assert!(parse_err(bad.as_bytes(), Format::Dxf)
         .1
         .contains("vertex 9"));
+    // A mesh vertex without its z (or without x and y): an error naming the codes, not a
+    // vertex at 0 (the face record, flag 128, needs no coordinates).
+    let no_z = s.replacen("10\n6\n20\n0\n30\n0\n", "10\n6\n20\n0\n", 1);
+    assert_eq!(no_z.len(), s.len() - 5);
+    let (_, msg) = parse_err(no_z.as_bytes(), Format::Dxf);
+    assert!(
+        msg.contains("VERTEX") && msg.contains("group code 30"),
+        "{msg}"
+    );
+    let no_xy = s.replacen("10\n6\n20\n0\n", "", 1);
+    assert!(parse_err(no_xy.as_bytes(), Format::Dxf)
+        .1
+        .contains("group codes 10, 20"));
     assert!(parse_err(b"AutoCAD Binary DXF\r\n\x1a\0", Format::Dxf)
         .1
         .contains("binary DXF"));

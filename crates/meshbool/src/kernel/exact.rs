@@ -55,8 +55,10 @@ fn times_power_of_two(mut x: f64, mut e: i64) -> f64 {
 }
 
 impl Num for Dyadic {
+    /// Exact for finite `x`. A non-finite `x` (only from a public caller's unvalidated
+    /// mesh: every operation validates its inputs) is read by its bits as a large finite
+    /// number: a defined, meaningless answer rather than a panic.
     fn from_f64(x: f64) -> Self {
-        debug_assert!(x.is_finite());
         let bits = x.to_bits();
         let exp = ((bits >> 52) & 0x7ff) as i64;
         let frac = (bits & ((1 << 52) - 1)) as i64;

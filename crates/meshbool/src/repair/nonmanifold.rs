@@ -267,7 +267,13 @@ fn angular_order(
             .iter()
             .find(|aux| orient3d(p, q, w, aux) != Sign::Zero)
     };
-    let Some((w0, aux)) = items.iter().find_map(|it| Some((&it.2, off_axis(&it.2)?))) else {
+    // Non-finite coordinates (a public caller's broken mesh) have no angles: the order by
+    // triangle, as for far vertices all on the axis.
+    let finite = |x: &Point| !matches!(x, Point::Explicit(c) if !c.iter().all(|v| v.is_finite()));
+    let all_finite = finite(p) && finite(q) && near.iter().all(|v| v.is_finite());
+    let reference = || items.iter().find_map(|it| Some((&it.2, off_axis(&it.2)?)));
+    let usable = all_finite && items.iter().all(|it| finite(&it.2));
+    let Some((w0, aux)) = usable.then(reference).flatten() else {
         let mut all: Vec<usize> = (0..items.len()).collect();
         all.sort_by_key(|&i| items[i].3);
         return all;
