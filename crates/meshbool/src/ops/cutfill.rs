@@ -84,6 +84,24 @@ pub struct CutFillReport {
 }
 
 impl CutFillOutput {
+    /// The output of surfaces computed at unit size, for the surfaces scaled by `2^e`:
+    /// lengths times `2^e`, areas `2^2e`, volumes `2^3e`.
+    fn scale_back(&mut self, e: i32) {
+        use super::scaled;
+        let cube = |v: f64| scaled(scaled(scaled(v, e), e), e);
+        (self.cut, self.fill) = (cube(self.cut), cube(self.fill));
+        for a in [
+            &mut self.design_area,
+            &mut self.topo_area,
+            &mut self.common_area,
+        ] {
+            *a = scaled(scaled(*a, e), e);
+        }
+        for l in &mut self.lines {
+            super::scale_points(&mut l.points, e);
+        }
+    }
+
     /// The report.
     pub fn report(&self) -> CutFillReport {
         CutFillReport {
@@ -111,6 +129,10 @@ pub fn cutfill<'a>(
     opts: &CutFillOptions,
 ) -> Result<CutFillOutput> {
     let (design, topo): (Input<'a>, Input<'a>) = (design.into(), topo.into());
+    let unit = |d: &Mesh, t: &Mesh| cutfill(d, t, opts);
+    if let Some(out) = super::at_unit_scale(design, topo, unit, CutFillOutput::scale_back) {
+        return out;
+    }
     with_threads(opts.run.threads, || {
         let d = design.operand("design", &Checks::NONE)?;
         let t = topo.operand("topography", &Checks::NONE)?;
@@ -122,9 +144,14 @@ pub fn cutfill<'a>(
                 "cut and fill need two surfaces with triangles".into(),
             ));
         };
-        // A floor below both, and a raise that lifts either surface above the other.
+        // A floor below both, and a raise that lifts either surface above the other, by a
+        // margin of the surfaces' own size (any fixed length would make the curtains'
+        // walls needles on a small model and slivers on a large one).
         let (lo, hi) = (bd.min[2].min(bt.min[2]), bd.max[2].max(bt.max[2]));
-        let margin = (hi - lo).max(1.0);
+        let size = (0..3)
+            .map(|k| bd.max[k].max(bt.max[k]) - bd.min[k].min(bt.min[k]))
+            .fold(0.0f64, f64::max);
+        let margin = (hi - lo).max(size).max(f64::MIN_POSITIVE);
         let (floor, raise) = (lo - margin, (hi - lo) + margin);
         let solid = |m: &Mesh| curtain_to(m, floor).0;
         let raised = |m: &Mesh| {

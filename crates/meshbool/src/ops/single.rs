@@ -129,12 +129,40 @@ impl CloseOutput {
 
 /// Closes the exactly welded mesh as `mode` says ([`repair::close`]): capping holes,
 /// stitching loop pairs, curtain walls to a floor. Orient a surface up before a curtain.
+///
+/// A mesh of extreme magnitude (coordinates beyond 2^±200) is closed at unit size, its
+/// distances with it, and scaled back (powers of two: exact), so that no decision
+/// overflows or underflows.
 pub fn close<'a>(
     mesh: impl Into<Input<'a>>,
     mode: CloseMode,
     opts: &CloseOptions,
 ) -> Result<CloseOutput> {
-    let (mesh, close) = repair::close(welded(mesh)?.mesh(), mode, opts)?;
+    let input: Input<'a> = mesh.into();
+    if let Input::Mesh(m) = input {
+        if let Some(e) = super::extreme_scale(&[m]) {
+            // (A non-finite distance stays as given, for the check to name it.)
+            let length = |x: f64| match x.is_finite() {
+                true => super::scaled(x, e).min(f64::MAX),
+                false => x,
+            };
+            let unit = CloseOptions {
+                stitch_max_gap: opts.stitch_max_gap.map(length),
+                floor_offset: length(opts.floor_offset),
+            };
+            let mut out = close(&super::scaled_mesh(m, e), mode, &unit)?;
+            super::scale_points(&mut out.mesh.positions, -e);
+            let back = |x: &mut f64| *x = super::scaled(*x, -e);
+            if let Some(s) = &mut out.close.stitch {
+                back(&mut s.largest_gap);
+            }
+            if let Some(c) = &mut out.close.curtain {
+                back(&mut c.floor);
+            }
+            return Ok(out);
+        }
+    }
+    let (mesh, close) = repair::close(welded(input)?.mesh(), mode, opts)?;
     Ok(CloseOutput { mesh, close })
 }
 

@@ -3,7 +3,7 @@ use std::sync::{Arc, Mutex};
 use super::*;
 use crate::boolean::{Group, Op};
 use crate::measure::signed_volume;
-use crate::repair::{CloseMode, Facing};
+use crate::repair::{CloseMode, CloseOptions, Facing};
 use crate::test_util::data;
 
 fn cubes() -> (Mesh, Mesh) {
@@ -732,5 +732,45 @@ fn tiny_and_huge_inputs_give_the_unit_result_scaled_bit_for_bit() {
             super::scale_points(&mut want, k);
             assert_eq!(l.points, want, "2^{k}");
         }
+    }
+}
+
+#[test]
+fn closing_and_cut_fill_at_extreme_scales_are_the_unit_results_scaled() {
+    // Before: capping an open box at 2^300 reversed the cap (a float product of its
+    // normals overflowed), and cut and fill at 2^-300 built its curtains down to a floor
+    // a fixed 1 unit below (walls 2^300 times longer than the surfaces were wide) and ran
+    // out of memory.
+    let scaled = |m: &Mesh, k: i32| {
+        let mut m = m.clone();
+        super::scale_points(&mut m.positions, k);
+        m
+    };
+    let cube = Mesh::cuboid([0.0; 3], [1.0; 3]);
+    let open = Mesh::new(cube.positions.clone(), cube.triangles[..10].to_vec()).unwrap();
+    let design = crate::shapes::heightfield([0.0, 0.0], [1.0, 1.0], 8, 8, |x, _| 0.3 * x);
+    let topo = crate::shapes::heightfield([0.0, 0.0], [1.0, 1.0], 7, 7, |_, y| 0.1 + 0.05 * y);
+    let opts = CloseOptions::default();
+    let unit_cap = close(&open, CloseMode::Cap, &opts).unwrap();
+    let unit_curtain = close(&design, CloseMode::Curtain, &opts).unwrap();
+    let unit_cf = cutfill(&design, &topo, &CutFillOptions::default()).unwrap();
+    assert!(unit_cf.cut > 0.02 && unit_cf.fill > 0.05);
+    for k in [-330, -300, -256, 256, 300, 330] {
+        let cap = close(&scaled(&open, k), CloseMode::Cap, &opts).unwrap();
+        assert_eq!(cap.mesh, scaled(&unit_cap.mesh, k), "2^{k}");
+        let offset = CloseOptions {
+            floor_offset: super::scaled(opts.floor_offset, k),
+            ..opts
+        };
+        let curtain = close(&scaled(&design, k), CloseMode::Curtain, &offset).unwrap();
+        assert_eq!(curtain.mesh, scaled(&unit_curtain.mesh, k), "2^{k}");
+        let cf = cutfill(&scaled(&design, k), &scaled(&topo, k), &Default::default()).unwrap();
+        let cube = |v: f64| super::scaled(super::scaled(super::scaled(v, k), k), k);
+        assert_eq!(
+            (cf.cut, cf.fill),
+            (cube(unit_cf.cut), cube(unit_cf.fill)),
+            "2^{k}"
+        );
+        assert_eq!(cf.lines.len(), unit_cf.lines.len());
     }
 }
