@@ -135,10 +135,14 @@ fn cap_loops(mesh: &Mesh, keep: impl Fn(&[[f64; 3]]) -> bool) -> (Mesh, CapRepor
             continue;
         }
         let (c, nn) = centroid_and_newell_normal(&pts);
-        // An orthonormal basis (u, v) of the Newell plane with u x v = normal.
-        let len = norm(&nn);
+        // An orthonormal basis (u, v) of the Newell plane with u x v = normal. The normal
+        // is divided by its largest component before its length is taken: its squares
+        // overflow beyond about 2^256 coordinates and underflow below 2^-256.
+        let big = nn.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         let mut tris: Vec<[u32; 3]> = Vec::new();
-        if len > 0.0 {
+        if big > 0.0 && big.is_finite() {
+            let nn = nn.map(|x| x / big);
+            let len = norm(&nn);
             let nz = nn.map(|x| x / len);
             let helper = if nz[0].abs() < 0.9 {
                 [1.0, 0.0, 0.0]
@@ -211,6 +215,23 @@ mod tests {
             );
             assert_eq!(s.volume, 1.0, "face {drop}");
             assert_eq!((r.capped, r.triangles_added, r.fan_fallbacks), (1, 2, 0));
+        }
+    }
+
+    #[test]
+    fn caps_at_extreme_scales_are_the_unit_caps_scaled() {
+        // Before: at 2^300 the Newell normal's squared length overflowed and the cap came
+        // out reversed; at 2^-330 it underflowed and the cap fell back to a fan.
+        let mut m = Mesh::unit_cube();
+        m.triangles.drain(10..12);
+        let (unit, _) = cap_holes(&m);
+        for k in [-330, -300, 300, 330] {
+            let f = 2f64.powi(k);
+            let mut scaled = m.clone();
+            scaled.positions.iter_mut().flatten().for_each(|x| *x *= f);
+            let (c, r) = cap_holes(&scaled);
+            assert_eq!((r.capped, r.fan_fallbacks), (1, 0), "2^{k}");
+            assert_eq!(c.triangles, unit.triangles, "2^{k}");
         }
     }
 
