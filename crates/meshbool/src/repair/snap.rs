@@ -48,7 +48,7 @@ use rayon::prelude::*;
 use rustc_hash::{FxHashMap, FxHashSet};
 use serde::Serialize;
 
-use crate::bvh::{Box3, Bvh};
+use crate::bvh::{overlaps as overlap, Box3, Bvh};
 use crate::intersect::corners_meet_beyond_shared;
 use crate::kernel::{normals_dot_sign, orient3d_explicit, FloatPlane, Sign};
 use crate::vec3::{cross, dot, norm, sub};
@@ -424,10 +424,6 @@ fn tri_box(p: &[[f64; 3]; 3]) -> Box3 {
 
 fn grown(b: &Box3, by: f64) -> Box3 {
     [b[0].map(|x| x - by), b[1].map(|x| x + by)]
-}
-
-fn overlap(a: &Box3, b: &Box3) -> bool {
-    (0..3).all(|k| a[0][k] <= b[1][k] && b[0][k] <= a[1][k])
 }
 
 /// The first pass, over every triangle: the bad ones (key, id) in triangle order, the

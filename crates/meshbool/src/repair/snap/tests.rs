@@ -97,17 +97,8 @@ fn a_thin_tetrahedron_is_left_alone() {
 /// A square split by the diagonal 0-2 with vertex 4 a millimetre off that diagonal: the
 /// cap 0-4-2 is 7e-4 high over its long edge 0-2 and has no short edge.
 fn cap_square() -> Mesh {
-    Mesh::new(
-        vec![
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [1.0, 1.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.5005, 0.4995, 0.0],
-        ],
-        vec![[0, 1, 4], [1, 2, 4], [0, 4, 2], [0, 2, 3]],
-    )
-    .unwrap()
+    let positions = square_around([0.5005, 0.4995, 0.0]).positions;
+    Mesh::new(positions, vec![[0, 1, 4], [1, 2, 4], [0, 4, 2], [0, 2, 3]]).unwrap()
 }
 
 #[test]
