@@ -83,10 +83,11 @@ export interface CheckOptions {
 	/** Keep edges used by more than two triangles (default: split apart). */
 	keepNonmanifold?: boolean;
 	/**
-	 * Snap tolerance D (booleans; default 0, the exact result): edges shorter than D
-	 * collapsed and needles (altitude below D) removed where that keeps the result
+	 * Snap tolerance D (booleans and splits; default 0, the exact result): edges shorter
+	 * than D collapsed and needles (altitude below D) removed where that keeps the result
 	 * manifold, turns no triangle over, makes no self-intersection and moves no vertex more
-	 * than D. The report's `snap` says what was done.
+	 * than D; a split's groups are snapped together, so that any pick of them is closed
+	 * where the exact pick is. The report's `snap` says what was done.
 	 */
 	snap?: number;
 }

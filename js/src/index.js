@@ -112,7 +112,8 @@ export function booleanIndexed(a, b, op, options) {
 /**
  * Splits two indexed meshes along their intersection: `{groups, report}`, `groups` keyed by
  * the library's group names (`a_in_b`, `a_out_b`, `b_in_a`, `b_out_a`, and the coplanar
- * `a_on_b_same`, ...) each `{positions, index, source, triangle, flipped}`.
+ * `a_on_b_same`, ...) each `{positions, index, source, triangle, flipped}`. Options as for
+ * `booleanIndexed` (`snap` cleans all groups together, the report's `snap` says how).
  */
 export function splitIndexed(a, b, options) {
 	const A = indexedArrays(a, "a"), B = indexedArrays(b, "b");

@@ -99,6 +99,16 @@ test("snap: a cutter drawn a little larger leaves no needles, closed, volume wit
 	assert.equal(t.index.length, 3 * snapped.soup.length);
 	assert.equal(t.source.length, snapped.soup.length);
 	assert.throws(() => mb.boolean(a, b, "union", { snap: -1 }), /snap must be a distance/);
+	// A split snapped: its groups together, the difference picked from them closed.
+	const sp = mb.splitIndexed(mb.soupToTyped(a), mb.soupToTyped(b), { snap: D });
+	assert.equal(sp.report.snap.left, 0);
+	assert.ok(sp.report.snap.collapsed > 0);
+	assert.equal(mb.splitIndexed(mb.soupToTyped(a), mb.soupToTyped(b)).report.snap, undefined);
+	const g = sp.groups;
+	assert.ok(g.a_in_b.index.length < mb.splitIndexed(mb.soupToTyped(a), mb.soupToTyped(b)).groups.a_in_b.index.length);
+	for (const name of ["a_in_b", "a_out_b", "b_in_a", "b_out_a"]) {
+		assert.equal(g[name].source.length * 3, g[name].index.length, name);
+	}
 });
 
 test("identical and touching meshes", () => {

@@ -2139,6 +2139,17 @@ fn snap_cleans_needles_and_refuses_bad_tolerances() {
             vec!["union", a, b, a, "-o", "never.obj", "--snap", bad],
             vec!["resolve", a, "-o", "never.obj", "--snap", bad],
             vec!["repair", a, "-o", "never.obj", "--snap", bad],
+            vec!["split", a, b, "-o", "never_dir", "--snap", bad],
+            vec![
+                "pick",
+                "never_dir",
+                "--op",
+                "union",
+                "-o",
+                "never.obj",
+                "--snap",
+                bad,
+            ],
         ] {
             let out = meshbool(&cmd);
             let err = String::from_utf8_lossy(&out.stderr);
@@ -2147,4 +2158,78 @@ fn snap_cleans_needles_and_refuses_bad_tolerances() {
         }
     }
     assert!(!std::path::Path::new("never.obj").exists());
+    assert!(!std::path::Path::new("never_dir").exists());
+}
+
+#[test]
+fn split_and_pick_snap() {
+    // The pair of `snap_cleans_needles_and_refuses_bad_tolerances`, split with `--snap`:
+    // four groups, each one piece, no edge under the tolerance; the difference picked
+    // from them closed, with the volume of the exact one. Then `pick --snap` from the
+    // exact split's directory: the same difference as `difference --snap`.
+    let a = write_cube("split_snap_a.obj", [0.0; 3], [1.0; 3]);
+    let b = write_cube(
+        "split_snap_b.obj",
+        [0.5, -0.001, 0.5],
+        [1.001, 1.001, 1.001],
+    );
+    let (a, b) = (a.to_str().unwrap(), b.to_str().unwrap());
+    let (dir, exact_dir) = (tmp("split_snap_dir"), tmp("split_exact_dir"));
+    let (dir, exact_dir) = (dir.to_str().unwrap(), exact_dir.to_str().unwrap());
+    let m = report(&[
+        "split", a, b, "-o", dir, "--format", "obj", "--snap", "0.01", "--json",
+    ]);
+    assert_eq!(m["snap"]["left"], 0);
+    assert!(m["snap"]["collapsed"].as_u64().unwrap() > 0);
+    let groups = m["groups"].as_array().unwrap();
+    assert_eq!(groups.len(), 4);
+    for g in groups {
+        assert_eq!(g["components"].as_array().unwrap().len(), 0, "{g}");
+    }
+    let manifest: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(format!("{dir}/manifest.json")).unwrap()).unwrap();
+    assert_eq!(manifest["snap"], m["snap"]);
+    let out = tmp("split_snap_diff.obj");
+    let r = report(&[
+        "pick",
+        dir,
+        "--op",
+        "difference",
+        "-o",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    assert_eq!(
+        (r["closed"].clone(), r["non_manifold_edges"].clone()),
+        (true.into(), 0.into())
+    );
+    assert!((r["volume"].as_f64().unwrap() - 0.75).abs() <= 0.01 * r["area"].as_f64().unwrap());
+    assert!(r.get("snap").is_none());
+    let mesh = meshbool::io::read_path(&out).unwrap();
+    let p = mesh.positions();
+    for t in mesh.triangles() {
+        for k in 0..3 {
+            let (u, v) = (p[t[k] as usize], p[t[(k + 1) % 3] as usize]);
+            let d = ((u[0] - v[0]).powi(2) + (u[1] - v[1]).powi(2) + (u[2] - v[2]).powi(2)).sqrt();
+            assert!(d >= 0.01, "edge of {d}");
+        }
+    }
+    report(&["split", a, b, "-o", exact_dir, "--format", "obj", "--json"]);
+    let r = report(&[
+        "pick",
+        exact_dir,
+        "--op",
+        "difference",
+        "-o",
+        tmp("split_snap_pick.obj").to_str().unwrap(),
+        "--snap",
+        "0.01",
+        "--json",
+    ]);
+    assert_eq!(r["snap"]["left"], 0);
+    assert_eq!(
+        (r["triangles"].clone(), r["volume"].clone()),
+        (24.into(), 0.75.into())
+    );
+    assert_eq!(r["closed"], true);
 }

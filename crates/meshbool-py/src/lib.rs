@@ -246,17 +246,22 @@ impl Split {
 
     /// Merges pieces (`GROUP[#COMPONENT][:flip]`) into one welded mesh: its arrays and
     /// the pick report.
+    #[pyo3(signature = (specs, keep_nonmanifold, snap=0.0))]
     fn pick<'py>(
         &self,
         py: Python<'py>,
         specs: Vec<String>,
         keep_nonmanifold: bool,
+        snap: f64,
     ) -> PyResult<WithReport<'py>> {
         let specs = specs
             .iter()
             .map(|s| parse::<PieceSpec>(s))
             .collect::<PyResult<Vec<_>>>()?;
-        let opts = PickOptions { keep_nonmanifold };
+        let opts = PickOptions {
+            keep_nonmanifold,
+            snap,
+        };
         let out = py.detach(|| self.out.pick(&specs, &opts)).map_err(py_err)?;
         let report = json(&out.report())?;
         let (v, f) = arrays(py, out.mesh)?;
@@ -280,7 +285,7 @@ impl Split {
 
 /// Splits two meshes along their intersection.
 #[pyfunction]
-#[pyo3(signature = (av, af, bv, bf, force, self_check, resolve, orient, threads, merge_small))]
+#[pyo3(signature = (av, af, bv, bf, force, self_check, resolve, orient, threads, merge_small, snap=0.0))]
 #[allow(clippy::too_many_arguments)]
 fn split(
     py: Python<'_>,
@@ -294,11 +299,13 @@ fn split(
     orient: bool,
     threads: Option<usize>,
     merge_small: usize,
+    snap: f64,
 ) -> PyResult<Split> {
     let (a, b) = (mesh(&av, &af)?, mesh(&bv, &bf)?);
     let opts = SplitOptions {
         checks: checks(force, self_check, resolve, orient),
         merge_small,
+        snap,
         run: run(threads),
     };
     let out = py
@@ -366,16 +373,21 @@ fn pieces_for_op(op: &str) -> PyResult<Vec<String>> {
 
 /// Merges meshes, each flipped where its flag says, welding exactly equal positions.
 #[pyfunction]
+#[pyo3(signature = (pieces, keep_nonmanifold, snap=0.0))]
 fn pick<'py>(
     py: Python<'py>,
     pieces: Vec<(PyReadonlyArray2<'py, f64>, PyReadonlyArray2<'py, u32>, bool)>,
     keep_nonmanifold: bool,
+    snap: f64,
 ) -> PyResult<WithReport<'py>> {
     let meshes = pieces
         .iter()
         .map(|(v, f, flip)| Ok((mesh(v, f)?, *flip)))
         .collect::<PyResult<Vec<_>>>()?;
-    let opts = PickOptions { keep_nonmanifold };
+    let opts = PickOptions {
+        keep_nonmanifold,
+        snap,
+    };
     let out = py
         .detach(move || {
             let refs: Vec<(&Mesh, bool)> = meshes.iter().map(|(m, f)| (m, *f)).collect();

@@ -421,3 +421,31 @@ def test_snap_removes_needles_of_a_cutter_drawn_a_little_larger():
         assert m.report["snap"]["collapsed"] > 0
     with pytest.raises(ValueError, match="snap"):
         meshbool.boolean(cube, cutter, "union", snap=-1.0)
+
+
+def test_split_and_pick_snap():
+    # The same pair split with snap: the groups snapped together stay one piece each,
+    # without edges under the tolerance, and every boolean picked from them is closed.
+    cube = meshbool.box([0, 0, 0], [1, 1, 1])
+    cutter = meshbool.box([0.5, -0.001, 0.5], [1.001, 1.001, 1.001])
+    d = 0.01
+    s = meshbool.split(cube, cutter, snap=d)
+    rep = s.report()
+    assert rep["snap"]["left"] == 0 and rep["snap"]["collapsed"] > 0
+    assert "snap" not in meshbool.split(cube, cutter).report()
+    for name in ("a_in_b", "a_out_b", "b_in_a", "b_out_a"):
+        assert len(s.components(name)) == 1
+        assert min(shortest_edge_and_altitude(s.group(name))) >= d
+    for op, volume in (("union", 1.0), ("intersection", 0.25), ("difference", 0.75)):
+        m = s.pick(op=op)
+        assert m.is_closed and m.stats()["non_manifold_edges"] == 0
+        assert abs(m.volume - volume) <= d * m.area
+    # pick with snap, from the exact split: the snapped difference.
+    exact = meshbool.split(cube, cutter)
+    m = exact.pick(op="difference", snap=d)
+    assert m.is_closed and m.report["snap"]["left"] == 0
+    assert len(m.faces) == 24 and m.volume == 0.75
+    parts = [(exact.a_out_b, False), (exact.b_in_a, True)]
+    assert meshbool.pick(parts, snap=d).report["snap"]["collapsed"] > 0
+    with pytest.raises(ValueError, match="snap"):
+        meshbool.split(cube, cutter, snap=-1.0)

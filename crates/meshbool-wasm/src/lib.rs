@@ -222,6 +222,7 @@ pub fn split(
     let o = options(opts)?;
     let opts = SplitOptions {
         checks: checks(&o)?,
+        snap: number(&o, "snap")?.unwrap_or(0.0),
         ..SplitOptions::default()
     };
     let out = ops::split(&a, &b, &opts).map_err(js_err)?;
@@ -388,7 +389,14 @@ pub fn merge(
         removed = r.same_orientation_removed + r.anti_parallel_removed;
         m = d;
     }
-    let out = ops::pick(&[(&m, false)], &PickOptions { keep_nonmanifold }).map_err(js_err)?;
+    let out = ops::pick(
+        &[(&m, false)],
+        &PickOptions {
+            keep_nonmanifold,
+            ..PickOptions::default()
+        },
+    )
+    .map_err(js_err)?;
     Ok(Out::new()
         .mesh(&out.mesh)
         .set("duplicates", removed as u32)

@@ -140,6 +140,25 @@ fn samples() -> BTreeMap<&'static str, Vec<Value>> {
     let d = ops::boolean(&cube, &cutter, Op::Difference, &snapped).unwrap();
     assert!(d.snap.as_ref().is_some_and(|s| s.collapsed > 0));
     s.entry("boolean").or_default().push(json(&d.report()));
+    let snapped_split = SplitOptions {
+        snap: 0.01,
+        ..SplitOptions::default()
+    };
+    let sp = ops::split(&cube, &cutter, &snapped_split).unwrap();
+    assert!(sp.snap.is_some());
+    s.entry("split")
+        .or_default()
+        .push(json(&sp.report(Format::Obj)));
+    let snapped_pick = ops::PickOptions {
+        snap: 0.01,
+        ..Default::default()
+    };
+    let p = ops::split(&cube, &cutter, &SplitOptions::default())
+        .unwrap()
+        .pick_op(Op::Difference, &snapped_pick)
+        .unwrap();
+    assert!(p.snap.is_some());
+    s.entry("pick").or_default().push(json(&p.report()));
 
     let (slab, posts) = slab_and_posts();
     let split = ops::split(&slab, &posts, &SplitOptions::default()).unwrap();

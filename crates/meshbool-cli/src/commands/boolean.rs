@@ -163,6 +163,9 @@ fn finish(
             report.result.boundary_edges,
             report.seconds
         );
+        if let Some(s) = &report.snap {
+            super::print_snap(s);
+        }
         Ok(())
     }
 }

@@ -166,6 +166,15 @@ pub struct Snap {
     pub tolerance: f64,
 }
 
+/// Prints a line on what snapping did (`--snap D`, without `--json`).
+pub fn print_snap(s: &meshbool::repair::SnapReport) {
+    eprintln!(
+        "snapped at {}: {} edges collapsed, {} flipped, {} of {} short edges or needles left \
+         (vertices moved at most {}, volume change {})",
+        s.tolerance, s.collapsed, s.flipped, s.left, s.found, s.max_move, s.volume_change
+    );
+}
+
 /// Parses a snap tolerance (`--snap D`): a finite distance ≥ 0 (a usage error, before any
 /// work, otherwise).
 pub fn snap_tolerance(s: &str) -> Result<f64, String> {

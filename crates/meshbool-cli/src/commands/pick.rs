@@ -28,6 +28,8 @@ pub struct Args {
     /// edge or at a vertex) instead of splitting them.
     #[arg(long)]
     keep_nonmanifold: bool,
+    #[command(flatten)]
+    snap: super::Snap,
     /// Print a JSON report on stdout.
     #[arg(long)]
     json: bool,
@@ -37,6 +39,7 @@ pub struct Args {
 pub fn run(args: &Args) -> Result<()> {
     let opts = PickOptions {
         keep_nonmanifold: args.keep_nonmanifold,
+        snap: args.snap.tolerance,
     };
     let out = match args.op {
         Some(op) => ops::pick_dir_op(&args.dir, op, &opts)?,
@@ -53,5 +56,8 @@ pub fn run(args: &Args) -> Result<()> {
         report.stats.triangles,
         report.stats.boundary_edges
     );
+    if let Some(s) = &report.snap {
+        super::print_snap(s);
+    }
     Ok(())
 }

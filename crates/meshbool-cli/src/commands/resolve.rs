@@ -70,5 +70,8 @@ pub fn run(args: &Args) -> Result<()> {
         r.dropped_components,
         r.flipped_components
     );
+    if let Some(s) = &report.snap {
+        super::print_snap(s);
+    }
     Ok(())
 }

@@ -27,6 +27,8 @@ pub struct Args {
     #[arg(long, default_value_t = 0)]
     merge_small: usize,
     #[command(flatten)]
+    snap: super::Snap,
+    #[command(flatten)]
     flags: OperandFlags,
 }
 
@@ -42,6 +44,7 @@ pub fn run(args: &Args) -> Result<()> {
         // The operands were checked as they were read.
         let opts = SplitOptions {
             merge_small: args.merge_small,
+            snap: args.snap.tolerance,
             run: flags.run(&spinner),
             ..SplitOptions::default()
         };
@@ -60,6 +63,9 @@ pub fn run(args: &Args) -> Result<()> {
                 g.piece.area,
                 g.components.len().max(1)
             );
+        }
+        if let Some(s) = &manifest.snap {
+            super::print_snap(s);
         }
         Ok(())
     })?

@@ -323,13 +323,19 @@ class Split:
         return [Mesh._from(v, f) for v, f in self._native.components(group)]
 
     def pick(
-        self, *pieces: str, op: Optional[str] = None, keep_nonmanifold: bool = False
+        self,
+        *pieces: str,
+        op: Optional[str] = None,
+        keep_nonmanifold: bool = False,
+        snap: float = 0.0,
     ) -> Mesh:
         """Merges pieces into one welded mesh: ``"a_out_b"``, ``"b_in_a:flip"``,
         ``"a_in_b#2"`` (group, optional ``#component``, optional ``:flip``). A piece may be
         named once. ``op="difference"`` (or another boolean) picks the pieces that boolean
         keeps instead: its result, from the pieces. Where pieces touch along an edge or at
-        a vertex the result is made manifold unless ``keep_nonmanifold``."""
+        a vertex the result is made manifold unless ``keep_nonmanifold``. ``snap``: a
+        tolerance D > 0 cleans the merged mesh where its pieces meet, as
+        :func:`boolean`'s ``snap`` does (``report["snap"]``)."""
         if op is not None:
             if pieces:
                 raise ValueError("name pieces or an op, not both")
@@ -339,7 +345,7 @@ class Split:
             )
         if len(pieces) == 1 and not isinstance(pieces[0], str):
             pieces = tuple(pieces[0])
-        v, f, report = self._native.pick(list(pieces), keep_nonmanifold)
+        v, f, report = self._native.pick(list(pieces), keep_nonmanifold, float(snap))
         return Mesh._from(v, f, report)
 
     def report(self, format: str = "ply") -> dict:
@@ -365,20 +371,29 @@ def split(
     orient: bool = True,
     threads: Optional[int] = None,
     merge_small: int = 0,
+    snap: float = 0.0,
 ) -> Split:
     """Splits ``a`` and ``b`` along their intersection into groups and components.
     Checks as for :func:`boolean`; ``merge_small`` folds components of fewer triangles
-    into the nearest larger one of their group."""
+    into the nearest larger one of their group. ``snap``: a tolerance D > 0 cleans all
+    groups together where the split cut (as :func:`boolean`'s ``snap``), so that any
+    pick of them is closed where the exact pick is (``report()["snap"]``)."""
     av, af = _parts(a)
     bv, bf = _parts(b)
     return Split(
-        _native.split(av, af, bv, bf, force, self_check, resolve, orient, threads, merge_small)
+        _native.split(
+            av, af, bv, bf, force, self_check, resolve, orient, threads, merge_small,
+            float(snap),
+        )
     )
 
 
-def pick(pieces: Iterable[Any], *, keep_nonmanifold: bool = False) -> Mesh:
+def pick(
+    pieces: Iterable[Any], *, keep_nonmanifold: bool = False, snap: float = 0.0
+) -> Mesh:
     """Merges meshes into one, welding exactly equal positions: ``pieces`` are meshes or
-    ``(mesh, flip)`` pairs."""
+    ``(mesh, flip)`` pairs. ``snap``: a tolerance D > 0 cleans the result where the
+    pieces meet (see :meth:`Split.pick`)."""
     parts = []
     for p in pieces:
         if isinstance(p, tuple) and len(p) == 2 and isinstance(p[1], (bool, np.bool_)):
@@ -387,7 +402,7 @@ def pick(pieces: Iterable[Any], *, keep_nonmanifold: bool = False) -> Mesh:
             mesh, flip = p, False
         v, f = _parts(mesh)
         parts.append((v, f, bool(flip)))
-    v, f, report = _native.pick(parts, keep_nonmanifold)
+    v, f, report = _native.pick(parts, keep_nonmanifold, float(snap))
     return Mesh._from(v, f, report)
 
 

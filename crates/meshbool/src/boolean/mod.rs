@@ -39,7 +39,7 @@ pub mod nary;
 pub mod resolve;
 mod snap;
 pub use resolve::{resolve, FillRule, ResolveReport, Resolved};
-pub use snap::snap_result;
+pub use snap::{snap_result, snap_split, GroupMesh};
 
 /// A boolean operation. Written (and parsed, [`FromStr`]) as `union`, `intersection`,
 /// `difference`, `reverse-difference`; parsing also takes the reference library's

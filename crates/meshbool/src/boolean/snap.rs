@@ -4,9 +4,11 @@
 
 use rayon::prelude::*;
 
-use super::{BooleanResult, Source};
-use crate::repair::{check_tolerance, snap_carrying, SnapOptions, SnapReport};
-use crate::Result;
+use super::{merge, BooleanResult, Group, Keep, Provenance, Source, Split};
+use crate::repair::{
+    check_tolerance, remove_sorted, snap_carrying, snap_unchecked, SnapOptions, SnapReport,
+};
+use crate::{Mesh, Result};
 
 /// Snaps `r` at `tolerance` in place where the boolean cut (the bad triangles with a
 /// corner at a seam point; the inputs' own short edges and needles elsewhere stay): seam
@@ -27,6 +29,7 @@ pub fn snap_result(r: &mut BooleanResult, tolerance: f64) -> Result<SnapReport> 
         seam: &r.seam_vertices,
         labels: Some(&labels),
         seam_only: true,
+        sheets: None,
     };
     let (report, dead) = snap_carrying(&mut r.mesh, &opts, &mut r.provenance);
     if !dead.is_empty() {
@@ -40,4 +43,95 @@ pub fn snap_result(r: &mut BooleanResult, tolerance: f64) -> Result<SnapReport> 
             .collect();
     }
     Ok(report)
+}
+
+/// A group of a split: which, its triangles as a mesh, their provenance.
+pub type GroupMesh = (Group, Mesh, Vec<Provenance>);
+
+/// The groups of the split `s` ([`Split::group`]) snapped at `tolerance` together, so that
+/// they stay conforming: every group's triangles in one mesh (the seam's edges have four
+/// triangles there), A's and B's pieces as two sheets and each group a label (no flip
+/// across a group's border), the bad triangles at a seam point fixed as in
+/// [`snap_result`]. A pick of any set of the snapped groups is closed where the same
+/// pick of the exact groups is (vertices only merge, so every piece's border moves with
+/// the seam), and no picked piece crosses another. Returns the non-empty groups in the
+/// order of [`Group::ALL`], each with its mesh (vertices in the order of the exact
+/// groups', collapsed ones dropped) and provenance, and the report; its volume change is
+/// that of A's and B's pieces together.
+///
+/// Errors: a tolerance that is negative, NaN or infinite.
+pub fn snap_split(s: &Split, tolerance: f64) -> Result<(Vec<GroupMesh>, SnapReport)> {
+    check_tolerance(tolerance)?;
+    let na = s.a.mesh.triangles.len();
+    let mut all = merge(s, |_| Keep::AsIs, |_| Keep::AsIs);
+    let group_of = |k: usize| {
+        let (source, class) = if k < na {
+            (Source::A, s.class_a.class[k])
+        } else {
+            (Source::B, s.class_b.class[k - na])
+        };
+        Group::ALL
+            .iter()
+            .position(|g| g.side_and_class() == (source, class))
+            .map_or(u32::MAX, |i| i as u32)
+    };
+    let mut labels: Vec<u32> = (0..all.mesh.triangles.len())
+        .into_par_iter()
+        .map(group_of)
+        .collect();
+    let sheets: Vec<u32> = all
+        .provenance
+        .par_iter()
+        .map(|p| u32::from(p.source == Source::B))
+        .collect();
+    let opts = SnapOptions {
+        tolerance,
+        seam: &all.seam_vertices,
+        labels: Some(&labels),
+        seam_only: true,
+        sheets: Some(&sheets),
+    };
+    let (report, removed) = snap_unchecked(&mut all.mesh, &opts);
+    remove_sorted(&mut labels, &removed.triangles);
+    remove_sorted(&mut all.provenance, &removed.triangles);
+    let groups = Group::ALL
+        .iter()
+        .enumerate()
+        .filter_map(|(i, &g)| {
+            let ids: Vec<u32> = (0..labels.len() as u32)
+                .filter(|&t| labels[t as usize] == i as u32)
+                .collect();
+            if ids.is_empty() {
+                return None;
+            }
+            let provenance = ids.iter().map(|&t| all.provenance[t as usize]).collect();
+            Some((g, in_order(&all.mesh, &ids), provenance))
+        })
+        .collect();
+    Ok((groups, report))
+}
+
+/// The triangles `ids` of `m` as a mesh of the vertices they use, in `m`'s order.
+fn in_order(m: &Mesh, ids: &[u32]) -> Mesh {
+    let mut id = vec![u32::MAX; m.positions.len()];
+    for &t in ids {
+        for v in m.triangles[t as usize] {
+            id[v as usize] = 0;
+        }
+    }
+    let mut positions = Vec::new();
+    for (v, slot) in id.iter_mut().enumerate() {
+        if *slot == 0 {
+            *slot = positions.len() as u32;
+            positions.push(m.positions[v]);
+        }
+    }
+    let triangles = ids
+        .iter()
+        .map(|&t| m.triangles[t as usize].map(|v| id[v as usize]))
+        .collect();
+    Mesh {
+        positions,
+        triangles,
+    }
 }

@@ -14,7 +14,7 @@ use super::{Checks, Input, Operand, OperandReport, RunOptions, SCHEMA};
 use crate::boolean::{Group, Keep, Op, Provenance, Stage};
 use crate::edges::components_merged;
 use crate::measure::{area, mesh_stats, signed_volume, MeshStats};
-use crate::repair::{split_nonmanifold, NonManifoldReport};
+use crate::repair::{split_nonmanifold, NonManifoldReport, SnapReport};
 use crate::{Error, Format, Mesh, Result};
 
 /// Options of [`split`].
@@ -25,6 +25,11 @@ pub struct SplitOptions {
     /// Components of fewer triangles than this are merged into the nearest larger
     /// component of their group (stray fragments); 0 keeps every component.
     pub merge_small: usize,
+    /// Snap tolerance `D` (a length; 0, the default: the exact split): with `D > 0` the
+    /// groups are cleaned together where the split cut, as a boolean's result is
+    /// ([`super::BooleanOptions::snap`]), so that they stay conforming: a pick of any
+    /// set of them is closed where the exact pick is.
+    pub snap: f64,
     /// Threads and progress.
     pub run: RunOptions,
 }
@@ -55,6 +60,8 @@ pub struct SplitOutput {
     pub seam_points: usize,
     /// The non-empty groups, in the order of [`Group::ALL`].
     pub groups: Vec<GroupPieces>,
+    /// What snapping did ([`SplitOptions::snap`]); `None` without it.
+    pub snap: Option<SnapReport>,
     /// Time of the split and the components, in seconds.
     pub seconds: f64,
 }
@@ -105,6 +112,9 @@ pub struct SplitReport {
     /// What the split assumes (skipped checks, problems taken as given), one line each.
     #[serde(default)]
     pub assumed: Vec<String>,
+    /// What snapping did (only with a snap tolerance).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub snap: Option<SnapReport>,
 }
 
 /// Splits `a` and `b` along their intersection into groups and components. Inputs as for
@@ -115,33 +125,62 @@ pub fn split<'a>(
     opts: &SplitOptions,
 ) -> Result<SplitOutput> {
     let (a, b): (Input<'a>, Input<'a>) = (a.into(), b.into());
-    let unit = |a: &Mesh, b: &Mesh| split(a, b, opts);
+    crate::repair::check_tolerance(opts.snap)?;
+    // At unit size the tolerance is scaled as the meshes are.
+    let to_unit = match (a, b) {
+        (Input::Mesh(x), Input::Mesh(y)) if opts.snap > 0.0 => super::extreme_scale(&[x, y]),
+        _ => None,
+    };
+    let unit_opts = SplitOptions {
+        snap: super::scaled(opts.snap, to_unit.unwrap_or(0)).min(f64::MAX),
+        ..opts.clone()
+    };
+    let unit = |a: &Mesh, b: &Mesh| split(a, b, &unit_opts);
     if let Some(out) = super::at_unit_scale(a, b, unit, SplitOutput::scale_back) {
         return out;
     }
     let run = |a: &Operand, b: &Operand| {
         let s = crate::boolean::split(a.mesh(), b.mesh(), &opts.run.pipeline());
-        opts.run.stage(Stage::Merge);
-        let groups = Group::ALL
+        let (exact, snap) = if opts.snap > 0.0 {
+            opts.run.stage(Stage::Snap);
+            // The tolerance was checked above: never an error here.
+            match crate::boolean::snap_split(&s, opts.snap) {
+                Ok((groups, report)) => (groups, Some(report)),
+                Err(_) => (Vec::new(), None),
+            }
+        } else {
+            opts.run.stage(Stage::Merge);
+            let groups = Group::ALL
+                .into_iter()
+                .map(|group| {
+                    let (mesh, provenance) = s.group(group);
+                    (group, mesh, provenance)
+                })
+                .collect();
+            (groups, None)
+        };
+        let groups = exact
             .into_iter()
-            .filter_map(|group| {
-                let (mesh, mut provenance) = s.group(group);
+            .filter(|(_, mesh, _)| !mesh.is_empty())
+            .map(|(group, mesh, mut provenance)| {
                 Operand::to_input_triangles(&mut provenance, a, b);
-                (!mesh.is_empty()).then(|| group_pieces(group, mesh, provenance, opts.merge_small))
+                group_pieces(group, mesh, provenance, opts.merge_small)
             })
             .collect();
         (
             s.seam.points.len(),
             groups,
+            snap,
             [a.report().clone(), b.report().clone()],
         )
     };
-    let ((seam_points, groups, operands), seconds) =
+    let ((seam_points, groups, snap, operands), seconds) =
         Input::with_both(a, b, &opts.checks, &opts.run, run)?;
     Ok(SplitOutput {
         operands,
         seam_points,
         groups,
+        snap,
         seconds,
     })
 }
@@ -189,6 +228,9 @@ impl SplitOutput {
         for o in &mut self.operands {
             o.scale_back(e);
         }
+        if let Some(s) = &mut self.snap {
+            s.scale_back(e);
+        }
     }
 
     /// What the split holds, with the file names [`SplitOutput::write_dir`] gives the
@@ -216,6 +258,7 @@ impl SplitOutput {
                 })
                 .collect(),
             assumed: self.operands.iter().flat_map(|o| o.assumed()).collect(),
+            snap: self.snap.clone(),
         }
     }
 
@@ -400,12 +443,18 @@ impl FromStr for PieceSpec {
 }
 
 /// Options of a pick.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PickOptions {
     /// Keep the merged mesh's topology where it is not manifold (pieces touching along an
     /// edge or at a vertex then share it). By default such edges and vertices are split
     /// ([`crate::repair::split_nonmanifold`]; positions unchanged).
     pub keep_nonmanifold: bool,
+    /// Snap tolerance `D` (a length; 0, the default: the pieces as they are): with
+    /// `D > 0` the merged mesh is cleaned where its pieces meet, as a boolean's result is
+    /// ([`super::BooleanOptions::snap`]): the bad triangles with a corner shared by two
+    /// pieces, no edge between two pieces flipped. (A split snapped with
+    /// [`SplitOptions::snap`] has clean pieces already.)
+    pub snap: f64,
 }
 
 /// The result of a pick: one welded mesh.
@@ -416,6 +465,13 @@ pub struct PickOutput {
     pub mesh: Mesh,
     /// Where the merged mesh was not manifold and was split.
     pub nonmanifold: NonManifoldReport,
+    /// Triangles removed because welding gave them two equal corners: where two seam
+    /// points of the exact intersection are distinct but round to one `f64` point, a
+    /// sliver between them has no area left once the pieces are welded (it would pinch
+    /// its two other edges into one, used four times).
+    pub collapsed_by_weld: usize,
+    /// What snapping did ([`PickOptions::snap`]); `None` without it.
+    pub snap: Option<SnapReport>,
 }
 
 /// The JSON of `meshbool pick --json`: the merged mesh's measures.
@@ -428,6 +484,12 @@ pub struct PickReport {
     pub stats: MeshStats,
     /// Where the merged mesh was not manifold and was split.
     pub split_nonmanifold: NonManifoldReport,
+    /// Triangles removed because welding gave them two equal corners
+    /// ([`PickOutput::collapsed_by_weld`]).
+    pub collapsed_by_weld: usize,
+    /// What snapping did (only with a snap tolerance).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub snap: Option<SnapReport>,
 }
 
 impl PickOutput {
@@ -437,6 +499,8 @@ impl PickOutput {
             schema: SCHEMA,
             stats: mesh_stats(&self.mesh),
             split_nonmanifold: self.nonmanifold.clone(),
+            collapsed_by_weld: self.collapsed_by_weld,
+            snap: self.snap.clone(),
         }
     }
 }
@@ -446,18 +510,91 @@ impl PickOutput {
 /// bit for bit). Where the pieces touch along an edge or at a vertex, the merged mesh is
 /// made manifold unless `opts` says otherwise.
 /// Errors when a piece has non-finite coordinates, or all together more than
-/// `u32::MAX` vertices.
+/// `u32::MAX` vertices; a bad snap tolerance.
 pub fn pick(pieces: &[(&Mesh, bool)], opts: &PickOptions) -> Result<PickOutput> {
+    crate::repair::check_tolerance(opts.snap)?;
     for (m, _) in pieces {
         m.validate()?;
     }
-    let mesh = crate::boolean::pick(pieces)?;
-    let (mesh, nonmanifold) = if opts.keep_nonmanifold {
+    let mut mesh = crate::boolean::pick(pieces)?;
+    // Triangles keep their order through the weld and the split: piece by piece.
+    let mut labels = Vec::with_capacity(mesh.triangles.len());
+    for (k, (m, _)) in pieces.iter().enumerate() {
+        labels.extend(std::iter::repeat_n(k as u32, m.triangles.len()));
+    }
+    let pinched: Vec<u32> = (0..mesh.triangles.len() as u32)
+        .filter(|&t| {
+            let [a, b, c] = mesh.triangles[t as usize];
+            a == b || b == c || c == a
+        })
+        .collect();
+    if !pinched.is_empty() {
+        crate::repair::remove_sorted(&mut mesh.triangles, &pinched);
+        crate::repair::remove_sorted(&mut labels, &pinched);
+        mesh = mesh.without_unreferenced().0;
+    }
+    let (mut mesh, nonmanifold) = if opts.keep_nonmanifold {
         (mesh, NonManifoldReport::default())
     } else {
         split_nonmanifold(&mesh)
     };
-    Ok(PickOutput { mesh, nonmanifold })
+    let snap = (opts.snap > 0.0).then(|| snap_pieces(&mut mesh, &labels, opts.snap));
+    Ok(PickOutput {
+        mesh,
+        nonmanifold,
+        collapsed_by_weld: pinched.len(),
+        snap,
+    })
+}
+
+/// Snaps a mesh of pieces (`labels`: each triangle's piece) at `tolerance` where pieces
+/// meet: the vertices of triangles of two pieces are its seam. At unit size where the
+/// mesh is of extreme magnitude ([`super::extreme_scale`]).
+fn snap_pieces(mesh: &mut Mesh, labels: &[u32], tolerance: f64) -> SnapReport {
+    let mut first = vec![u32::MAX; mesh.positions.len()];
+    let mut seam = vec![false; mesh.positions.len()];
+    for (t, &l) in mesh.triangles.iter().zip(labels) {
+        for &v in t {
+            let f = &mut first[v as usize];
+            if *f == u32::MAX {
+                *f = l;
+            } else if *f != l {
+                seam[v as usize] = true;
+            }
+        }
+    }
+    let seam: Vec<u32> = (0..seam.len() as u32)
+        .filter(|&v| seam[v as usize])
+        .collect();
+    let Some(e) = super::extreme_scale(&[mesh]) else {
+        return crate::repair::snap_unchecked(mesh, &snap_options(&seam, labels, tolerance)).0;
+    };
+    // Snapping moves no vertex (it only drops some): the positions kept are the input's,
+    // bit for bit, whatever scaling did to them.
+    let mut positions = mesh.positions.clone();
+    super::scale_points(&mut mesh.positions, e);
+    let tolerance = super::scaled(tolerance, e).min(f64::MAX);
+    let (mut report, removed) =
+        crate::repair::snap_unchecked(mesh, &snap_options(&seam, labels, tolerance));
+    crate::repair::remove_sorted(&mut positions, &removed.vertices);
+    mesh.positions = positions;
+    report.scale_back(-e);
+    report
+}
+
+/// The options of snapping where pieces meet.
+fn snap_options<'a>(
+    seam: &'a [u32],
+    labels: &'a [u32],
+    tolerance: f64,
+) -> crate::repair::SnapOptions<'a> {
+    crate::repair::SnapOptions {
+        tolerance,
+        seam,
+        labels: Some(labels),
+        seam_only: true,
+        sheets: None,
+    }
 }
 
 /// Picks from a split's directory ([`SplitOutput::write_dir`]): reads its manifest and the

@@ -46,7 +46,7 @@ use std::collections::BinaryHeap;
 
 use rayon::prelude::*;
 use rustc_hash::{FxHashMap, FxHashSet};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::bvh::{overlaps as overlap, Box3, Bvh};
 use crate::intersect::corners_meet_beyond_shared;
@@ -56,7 +56,7 @@ use crate::{Error, Mesh, Result};
 
 /// What [`snap`] did. Serialised under the key `snap` of the boolean, resolve and repair
 /// reports.
-#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct SnapReport {
     /// The tolerance `D`.
     pub tolerance: f64,
@@ -134,6 +134,11 @@ pub struct SnapOptions<'a> {
     /// an operation's result cleaned where the operation cut, its inputs' own short
     /// edges and needles left as they were. `false`: every bad triangle.
     pub seam_only: bool,
+    /// A sheet for every triangle: surfaces that share vertices but are each manifold on
+    /// their own (a split's pieces of A and of B, glued along their seam). Manifoldness
+    /// is judged in each sheet, and a collapse merges no edge of one sheet into another
+    /// sheet's edge; the seam moves as one curve in all of them. `None`: one sheet.
+    pub sheets: Option<&'a [u32]>,
 }
 
 /// The result of [`snap_with`].
@@ -233,10 +238,10 @@ pub fn snap_with(mesh: &Mesh, opts: &SnapOptions) -> Result<Snapped> {
 pub fn snap_in_place(mesh: &mut Mesh, opts: &SnapOptions) -> Result<(SnapReport, Vec<u32>)> {
     check_tolerance(opts.tolerance)?;
     mesh.validate()?;
-    if let Some(l) = opts.labels {
-        if l.len() != mesh.triangles.len() {
+    for (what, per) in [("labels", opts.labels), ("sheets", opts.sheets)] {
+        if let Some(l) = per.filter(|l| l.len() != mesh.triangles.len()) {
             return Err(Error::InvalidParameter(format!(
-                "snap: {} labels for {} triangles",
+                "snap: {} {what} for {} triangles",
                 l.len(),
                 mesh.triangles.len()
             )));
@@ -835,6 +840,7 @@ struct Work<'a> {
     d: f64,
     seam: &'a [u32],
     labels: Option<&'a [u32]>,
+    sheets: Option<&'a [u32]>,
     /// The input's triangle count: the first made triangle's id.
     base: u32,
     killed: Vec<bool>,
@@ -899,6 +905,7 @@ impl<'a> Work<'a> {
             d: opts.tolerance,
             seam: opts.seam,
             labels: opts.labels,
+            sheets: opts.sheets,
             base: n as u32,
             killed: vec![false; n],
             killed_list: Vec::new(),
@@ -960,6 +967,10 @@ impl<'a> Work<'a> {
 
     fn label(&self, t: u32) -> Option<u32> {
         self.labels.map(|l| l[self.slot(t) as usize])
+    }
+
+    fn sheet(&self, t: u32) -> u32 {
+        self.sheets.map_or(0, |s| s[self.slot(t) as usize])
     }
 
     fn corners(&self, t: &[u32; 3]) -> [[f64; 3]; 3] {
@@ -1436,53 +1447,43 @@ impl<'a> Work<'a> {
         if moved > self.d {
             return refuse(Distance);
         }
-        // Topology.
+        // Topology, in each sheet apart (one unless sheets were given), then across them.
         let sk_tris: Vec<[u32; 3]> = sk.iter().map(|&t| self.tri(t)).collect();
         let sg_tris: Vec<[u32; 3]> = sg.iter().map(|&t| self.tri(t)).collect();
-        let on_edge = |tri: &[u32; 3]| tri.contains(&keep);
-        let shared: Vec<usize> = (0..sg.len()).filter(|&i| on_edge(&sg_tris[i])).collect();
-        if shared.is_empty() || shared.len() > 2 {
+        let mut sheets: Vec<u32> = sg.iter().map(|&t| self.sheet(t)).collect();
+        sheets.sort_unstable();
+        sheets.dedup();
+        let mut shared: Vec<usize> = Vec::new();
+        let mut far: Vec<u32> = Vec::new();
+        for &sheet in &sheets {
+            let of_k: Vec<[u32; 3]> = (0..sk.len())
+                .filter(|&i| self.sheet(sk[i]) == sheet)
+                .map(|i| sk_tris[i])
+                .collect();
+            let of_g: Vec<usize> = (0..sg.len())
+                .filter(|&i| self.sheet(sg[i]) == sheet)
+                .collect();
+            let (s, f) = collapse_topology(keep, gone, &of_k, &of_g, &sg_tris)?;
+            shared.extend(s);
+            far.extend(f);
+        }
+        if shared.is_empty() {
             return refuse(Manifold);
         }
-        let runs_keep_gone =
-            |tri: &[u32; 3]| (0..3).any(|k| tri[k] == keep && tri[(k + 1) % 3] == gone);
-        if shared.len() == 2
-            && runs_keep_gone(&sg_tris[shared[0]]) == runs_keep_gone(&sg_tris[shared[1]])
-        {
-            return refuse(Manifold);
-        }
-        let mut far: Vec<u32> = shared
-            .iter()
-            .map(|&i| {
-                sg_tris[i]
-                    .into_iter()
-                    .find(|&w| w != keep && w != gone)
-                    .unwrap_or(keep)
-            })
-            .collect();
+        // Across sheets: the end points' common neighbours are the far corners of the
+        // edge's triangles (no edge of one sheet merged into another's).
         far.sort_unstable();
-        if far.windows(2).any(|w| w[0] == w[1]) {
-            return refuse(Manifold);
-        }
-        let (nk, ng) = (neighbours(self, &sk, keep), neighbours(self, &sg, gone));
-        let common: Vec<u32> = nk
-            .iter()
-            .copied()
-            .filter(|x| ng.binary_search(x).is_ok())
-            .collect();
-        if common != far {
-            return refuse(Manifold);
-        }
-        let uses = |tris: &[[u32; 3]], x: u32| tris.iter().filter(|t| t.contains(&x)).count();
-        for &x in &ng {
-            let c = uses(&sg_tris, x);
-            // A vertex on a boundary (or a non-manifold edge) moves only along it.
-            if c > 2 || (c == 1 && shared.len() == 2) {
+        far.dedup();
+        if self.sheets.is_some() {
+            let (nk, ng) = (neighbours(self, &sk, keep), neighbours(self, &sg, gone));
+            let common: Vec<u32> = nk
+                .iter()
+                .copied()
+                .filter(|x| ng.binary_search(x).is_ok())
+                .collect();
+            if common != far {
                 return refuse(Manifold);
             }
-        }
-        if shared.len() == 1 && uses(&sg_tris, far[0]) == 1 && uses(&sk_tris, far[0]) == 1 {
-            return refuse(Manifold); // a lone triangle: it would vanish
         }
         // (triangle, its corners, its corners with `gone` moved onto `keep`).
         let moved_tris: Vec<(u32, [u32; 3], [u32; 3])> = (0..sg.len())
@@ -1492,32 +1493,6 @@ impl<'a> Work<'a> {
                 (sg[i], old, old.map(|v| if v == gone { keep } else { v }))
             })
             .collect();
-        let after: Vec<[u32; 3]> = sk_tris
-            .iter()
-            .copied()
-            .filter(|t| !t.contains(&gone))
-            .chain(moved_tris.iter().map(|&(_, _, n)| n))
-            .collect();
-        let before = defects(keep, &sk_tris, None).plus(defects(gone, &sg_tris, Some(keep)));
-        let now = defects(keep, &after, None);
-        if now.boundary > before.boundary
-            || now.non_manifold > before.non_manifold
-            || now.inconsistent > before.inconsistent
-        {
-            return refuse(Manifold);
-        }
-        let mut sets: Vec<[u32; 3]> = after
-            .iter()
-            .map(|t| {
-                let mut s = *t;
-                s.sort_unstable();
-                s
-            })
-            .collect();
-        sets.sort_unstable();
-        if sets.windows(2).any(|w| w[0] == w[1]) || fans(keep, &after) != 1 {
-            return refuse(Manifold);
-        }
         // Inversion.
         for &(_, old, n) in &moved_tris {
             if turns_over(&self.corners(&old), &self.corners(&n)) {
@@ -1752,6 +1727,117 @@ impl Defects {
             inconsistent: self.inconsistent + o.inconsistent,
         }
     }
+}
+
+/// The topology gate of collapsing `gone` onto `keep` within one sheet: `of_keep` are
+/// `keep`'s triangles in the sheet, `of_gone` the indices in `sg_tris` (`gone`'s
+/// triangles) of those in the sheet. Returns the indices of the sheet's triangles on the
+/// edge and their far corners; none where the sheet has `gone` but not `keep` (its
+/// triangles there only take `keep`'s name). Refuses what would break the sheet's
+/// manifoldness (see [`Work::collapse`]).
+fn collapse_topology(
+    keep: u32,
+    gone: u32,
+    of_keep: &[[u32; 3]],
+    of_gone: &[usize],
+    sg_tris: &[[u32; 3]],
+) -> Gate<(Vec<usize>, Vec<u32>)> {
+    let on_edge = |tri: &[u32; 3]| tri.contains(&keep);
+    let shared: Vec<usize> = of_gone
+        .iter()
+        .copied()
+        .filter(|&i| on_edge(&sg_tris[i]))
+        .collect();
+    if shared.is_empty() {
+        // Both ends in the sheet but no edge between them there: it would be pinched.
+        return if of_keep.is_empty() {
+            Ok((Vec::new(), Vec::new()))
+        } else {
+            refuse(Manifold)
+        };
+    }
+    if shared.len() > 2 {
+        return refuse(Manifold);
+    }
+    let runs_keep_gone =
+        |tri: &[u32; 3]| (0..3).any(|k| tri[k] == keep && tri[(k + 1) % 3] == gone);
+    if shared.len() == 2
+        && runs_keep_gone(&sg_tris[shared[0]]) == runs_keep_gone(&sg_tris[shared[1]])
+    {
+        return refuse(Manifold);
+    }
+    let mut far: Vec<u32> = shared
+        .iter()
+        .map(|&i| {
+            sg_tris[i]
+                .into_iter()
+                .find(|&w| w != keep && w != gone)
+                .unwrap_or(keep)
+        })
+        .collect();
+    far.sort_unstable();
+    if far.windows(2).any(|w| w[0] == w[1]) {
+        return refuse(Manifold);
+    }
+    let sg_sheet: Vec<[u32; 3]> = of_gone.iter().map(|&i| sg_tris[i]).collect();
+    let around = |tris: &[[u32; 3]], v: u32| {
+        let mut n: Vec<u32> = tris.iter().flatten().copied().filter(|&x| x != v).collect();
+        n.sort_unstable();
+        n.dedup();
+        n
+    };
+    let (nk, ng) = (around(of_keep, keep), around(&sg_sheet, gone));
+    let common: Vec<u32> = nk
+        .iter()
+        .copied()
+        .filter(|x| ng.binary_search(x).is_ok())
+        .collect();
+    if common != far {
+        return refuse(Manifold);
+    }
+    let uses = |tris: &[[u32; 3]], x: u32| tris.iter().filter(|t| t.contains(&x)).count();
+    for &x in &ng {
+        let c = uses(&sg_sheet, x);
+        // A vertex on a boundary (or a non-manifold edge) moves only along it.
+        if c > 2 || (c == 1 && shared.len() == 2) {
+            return refuse(Manifold);
+        }
+    }
+    if shared.len() == 1 && uses(&sg_sheet, far[0]) == 1 && uses(of_keep, far[0]) == 1 {
+        return refuse(Manifold); // a lone triangle: it would vanish
+    }
+    let after: Vec<[u32; 3]> = of_keep
+        .iter()
+        .copied()
+        .filter(|t| !t.contains(&gone))
+        .chain(
+            of_gone
+                .iter()
+                .filter(|i| !shared.contains(i))
+                .map(|&i| sg_tris[i].map(|v| if v == gone { keep } else { v })),
+        )
+        .collect();
+    let before = defects(keep, of_keep, None).plus(defects(gone, &sg_sheet, Some(keep)));
+    let now = defects(keep, &after, None);
+    if now.boundary > before.boundary
+        || now.non_manifold > before.non_manifold
+        || now.inconsistent > before.inconsistent
+    {
+        return refuse(Manifold);
+    }
+    let mut sets: Vec<[u32; 3]> = after
+        .iter()
+        .map(|t| {
+            let mut s = *t;
+            s.sort_unstable();
+            s
+        })
+        .collect();
+    sets.sort_unstable();
+    if sets.windows(2).any(|w| w[0] == w[1]) || fans(keep, &after) != 1 {
+        return refuse(Manifold);
+    }
+    Ok((shared, far))
 }
 
 /// Whether a triangle with corners `old` turns over (or becomes degenerate) when its
