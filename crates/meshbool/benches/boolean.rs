@@ -47,6 +47,17 @@ fn union_2m_spheres_snap() -> usize {
     r.mesh.triangle_count()
 }
 
+/// Snapping alone, on the 2M-sphere union's result (made once; each sample snaps a copy):
+/// the cost the two benches above differ by, without their noise.
+#[divan::bench(sample_count = 10)]
+fn snap_2m_union_result(bencher: divan::Bencher) {
+    let (a, b) = &*P2M;
+    let r = boolean(a, b, Op::Union, &Default::default());
+    bencher.with_inputs(|| r.clone()).bench_values(|mut r| {
+        meshbool::boolean::snap_result(&mut r, 1e-4).expect("a valid tolerance")
+    });
+}
+
 /// Two crossing open terrains (80k and 34k triangles): the seam stops inside both, so
 /// both are classified triangle by triangle by winding number (the open-surface case of
 /// the peer benchmark's terrain × terrain).

@@ -38,8 +38,9 @@
 //! onto an existing one, a flip moves none), so every decision is on input coordinates.
 //!
 //! Cost: one parallel pass finds the bad triangles; vertex neighbourhoods and a spatial
-//! index are built only around them (a few further passes over the triangles, testing
-//! bits), never for the whole mesh, and changes are local.
+//! index are built only around them (further passes test cell bits: over the triangles
+//! near the seam, kept by the first pass, while the work stays there; over all otherwise),
+//! never for the whole mesh, and changes are local.
 
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -271,20 +272,30 @@ pub(crate) fn snap_unchecked(mesh: &mut Mesh, opts: &SnapOptions) -> (SnapReport
         return (report, Removed::default());
     }
     let grid = Grid::new(mesh, d);
-    let mut scan = Scan::of(mesh, d, &grid);
-    if opts.seam_only {
-        let at_seam = |t: u32| {
-            let tri = mesh.triangles[t as usize];
-            tri.iter().any(|v| opts.seam.binary_search(v).is_ok())
-        };
-        scan.bad.retain(|&(_, t)| at_seam(t));
-    }
+    // Where only the seam's bad triangles are taken, the work stays near the seam: the
+    // cells a few cells around its points are the halo whose triangles the scan keeps as
+    // the first gathering's candidates (no pass over all triangles unless the work
+    // leaves it).
+    let mut halo = grid.empty();
+    let seam = opts.seam_only.then(|| {
+        let mut at = vec![false; mesh.positions.len()];
+        let margin = (Work::HALO + 1.0) * grid.size() + 4.0 * d;
+        for &v in opts.seam {
+            if let Some(a) = at.get_mut(v as usize) {
+                *a = true;
+                let p = mesh.positions[v as usize];
+                halo.mark(&grown(&[p, p], margin));
+            }
+        }
+        at
+    });
+    let scan = Scan::of(mesh, d, &grid, seam.as_deref(), &halo);
     report.found = scan.bad.len();
     if scan.bad.is_empty() {
         return (report, Removed::default());
     }
     let seeds = scan.bad.iter().map(|&(_, t)| t).collect();
-    let mut w = Work::new(mesh, opts, scan, grid);
+    let mut w = Work::new(mesh, opts, scan, grid, halo);
     w.report = report;
     w.run(seeds);
     let report = w.finish_report();
@@ -431,21 +442,27 @@ fn grown(b: &Box3, by: f64) -> Box3 {
     [b[0].map(|x| x - by), b[1].map(|x| x + by)]
 }
 
-/// The first pass, over every triangle: the bad ones (key, id) in triangle order, the
-/// area, each triangle's cells in the grid ([`Grid::key`]) and each vertex's
-/// ([`Grid::packed`]).
+/// The first pass, over every triangle: the bad ones (key, id) in triangle order (only
+/// those with a corner in `seam` when given), the area (with `seam`: of the triangles
+/// touching the halo, a lower bound), and the triangles touching the
+/// halo's marked cells with their [`Grid::key`]s (the candidates of the first gathering).
+/// Input triangles with their [`Grid::key`]s: (id, key).
+type Keyed = Vec<(u32, u32)>;
+
+/// What [`Scan::of`] finds in a piece of the triangles: bad ones, area, candidates.
+type ScanPiece = (Vec<(f64, u32)>, f64, Keyed);
+
 struct Scan {
     bad: Vec<(f64, u32)>,
     area: f64,
-    keys: Vec<u32>,
+    candidates: Vec<(u32, u32)>,
+    /// Each vertex's cell ([`Grid::packed`]).
     cells: Vec<u64>,
 }
 
 impl Scan {
-    fn of(mesh: &Mesh, d: f64, grid: &Grid) -> Scan {
+    fn of(mesh: &Mesh, d: f64, grid: &Grid, seam: Option<&[bool]>, halo: &Grid) -> Scan {
         const PIECE: usize = 1 << 13;
-        let n = mesh.triangles.len();
-        let mut keys = vec![0u32; n];
         let d2 = d * d;
         let cells: Vec<u64> = mesh
             .positions
@@ -453,53 +470,67 @@ impl Scan {
             .with_min_len(PIECE)
             .map(|p| grid.packed(p))
             .collect();
-        let pieces: Vec<(Vec<(f64, u32)>, f64)> = mesh
+        let pieces: Vec<ScanPiece> = mesh
             .triangles
             .par_chunks(PIECE)
-            .zip(keys.par_chunks_mut(PIECE))
             .enumerate()
-            .map(|(k, (tris, keys))| {
-                let mut bad = Vec::new();
-                let mut area = 0.0;
+            .map(|(k, tris)| {
+                let (mut bad, mut area, mut near) = (Vec::new(), 0.0, Vec::new());
                 let pos = &mesh.positions;
-                for (i, (tri, key)) in tris.iter().zip(keys.iter_mut()).enumerate() {
-                    let p = [
-                        pos[tri[0] as usize],
-                        pos[tri[1] as usize],
-                        pos[tri[2] as usize],
-                    ];
+                for (i, tri) in tris.iter().enumerate() {
+                    let t = (k * PIECE + i) as u32;
+                    let key = grid.key(tri.map(|v| cells[v as usize]));
+                    let p = || {
+                        [
+                            pos[tri[0] as usize],
+                            pos[tri[1] as usize],
+                            pos[tri[2] as usize],
+                        ]
+                    };
+                    let in_halo = if key == Grid::WIDE {
+                        halo.touches(&tri_box(&p()))
+                    } else {
+                        halo.key_touches(key)
+                    };
+                    if in_halo {
+                        near.push((t, key));
+                    } else if seam.is_some() {
+                        // Far from the seam: neither bad nor counted in the area (the
+                        // area of the triangles near it bounds the whole from below).
+                        continue;
+                    }
+                    let p = p();
                     let (u, v, w) = (sub(&p[1], &p[0]), sub(&p[2], &p[0]), sub(&p[2], &p[1]));
-                    let (eu, ev, ew) = (dot(&u, &u), dot(&v, &v), dot(&w, &w));
                     let c = cross(&u, &v);
                     let twice2 = dot(&c, &c);
                     area += twice2.sqrt();
+                    if seam.is_some_and(|s| !tri.iter().any(|&v| s[v as usize])) {
+                        continue;
+                    }
+                    let (eu, ev, ew) = (dot(&u, &u), dot(&v, &v), dot(&w, &w));
                     let (short, long) = (min(min(eu, ev), ew), max(max(eu, ev), ew));
                     // A filter, squared: edge² ≤ d², or (2 · area)² ≤ d² · longest² (≤ so
                     // that zero edges and areas pass where d² underflows); `badness`
                     // decides, as everywhere else.
                     if short <= d2 || twice2 <= d2 * long {
                         if let Some(key) = badness(&p, d) {
-                            bad.push((key, (k * PIECE + i) as u32));
+                            bad.push((key, t));
                         }
                     }
-                    *key = grid.key([
-                        cells[tri[0] as usize],
-                        cells[tri[1] as usize],
-                        cells[tri[2] as usize],
-                    ]);
                 }
-                (bad, area / 2.0)
+                (bad, area / 2.0, near)
             })
             .collect();
         let mut scan = Scan {
             bad: Vec::new(),
             area: 0.0,
-            keys,
+            candidates: Vec::new(),
             cells,
         };
-        for (bad, area) in pieces {
+        for (bad, area, near) in pieces {
             scan.bad.extend(bad);
             scan.area += area;
+            scan.candidates.extend(near);
         }
         scan
     }
@@ -647,6 +678,24 @@ impl Grid {
             inv: if h > 0.0 { 1.0 / h } else { 0.0 },
             n,
             bits: vec![0; (n[0] * n[1] * n[2]).div_ceil(64)],
+        }
+    }
+
+    /// The same grid with no cell marked.
+    fn empty(&self) -> Grid {
+        Grid {
+            bits: vec![0; self.bits.len()],
+            ..*self
+        }
+    }
+
+    /// Whether a triangle with corners `p` and [`Grid::key`] `key` touches a marked cell.
+    #[inline]
+    fn touches_key(&self, key: u32, p: &[[f64; 3]; 3]) -> bool {
+        if key == Self::WIDE {
+            self.touches(&tri_box(p))
+        } else {
+            self.key_touches(key)
         }
     }
 
@@ -865,11 +914,17 @@ struct Work<'a> {
     max_changes: u32,
     touched: FxHashMap<u32, u32>,
     grid: Grid,
-    keys: Vec<u32>,
+    /// Cells around the marked ones (by [`Work::HALO`] cells, marked at each full
+    /// pass, or around the seam's points from the start), and the input triangles
+    /// touching them at the last full pass (or the scan) with their [`Grid::key`]s.
+    halo: Grid,
+    candidates: Vec<(u32, u32)>,
     /// Each vertex's cell ([`Grid::packed`]).
     cells: Vec<u64>,
     near: Near,
     budget: f64,
+    /// Whether `budget` is `D` times the whole area (else times a part of it).
+    budget_whole: bool,
     spent: f64,
     heap: BinaryHeap<Item>,
     /// Every triangle found bad (to count those left).
@@ -897,8 +952,10 @@ struct Defects {
 impl<'a> Work<'a> {
     /// Made triangles meeting at most this many cells are indexed by cell.
     const FEW_CELLS: usize = 64;
+    /// The halo's margin around the boxes marked at a full pass, in cells.
+    const HALO: f64 = 3.0;
 
-    fn new(mesh: &'a Mesh, opts: &SnapOptions<'a>, scan: Scan, grid: Grid) -> Self {
+    fn new(mesh: &'a Mesh, opts: &SnapOptions<'a>, scan: Scan, grid: Grid, halo: Grid) -> Self {
         let n = mesh.triangles.len();
         Work {
             mesh,
@@ -919,11 +976,13 @@ impl<'a> Work<'a> {
             changes: 0,
             max_changes: u32::try_from(16 * scan.bad.len() + 1024).unwrap_or(u32::MAX),
             touched: FxHashMap::default(),
-            grid,
-            keys: scan.keys,
+            candidates: scan.candidates,
             cells: scan.cells,
+            halo,
+            grid,
             near: Near::default(),
             budget: opts.tolerance * scan.area,
+            budget_whole: !opts.seam_only,
             spent: 0.0,
             heap: BinaryHeap::new(),
             ever_bad: scan.bad.iter().map(|&(_, t)| t).collect(),
@@ -991,7 +1050,10 @@ impl<'a> Work<'a> {
         let all: &[u32] = match self.stars.get(&v) {
             Some(s) => s,
             None => {
-                if !self.grid.get(self.grid.unpacked(self.cells[v as usize])) {
+                if !self
+                    .grid
+                    .get(self.grid.unpacked(self.grid.packed(&self.pos(v))))
+                {
                     return Err(Stop::Later);
                 }
                 match self.near.local.get(v as usize).filter(|&&l| l != u32::MAX) {
@@ -1086,37 +1148,66 @@ impl<'a> Work<'a> {
             marked |= self.grid.mark(b);
         }
         if marked {
-            self.pass();
+            // Within the halo the last full pass (or the scan) gathered its candidates
+            // from, a pass over those finds every triangle; else the halo grows and all
+            // are passed over.
+            if boxes.iter().all(|b| self.halo.covers(b)) {
+                self.pass(false);
+            } else {
+                let margin = Self::HALO * self.grid.size();
+                for b in &boxes {
+                    self.halo.mark(&grown(b, margin));
+                }
+                self.pass(true);
+            }
         }
         marked
     }
 
     /// One pass over the triangles: every live one touching a marked cell, indexed (a
-    /// tree, and the triangles around each vertex).
-    fn pass(&mut self) {
+    /// tree, and the triangles around each vertex). `full`: over all of them, keeping
+    /// those touching the halo as the candidates of the next passes; else over the
+    /// candidates (the marked cells are all in the halo).
+    fn pass(&mut self, full: bool) {
         const PIECE: usize = 1 << 13;
         let w = &*self;
-        let pieces: Vec<Vec<u32>> = self
-            .keys
-            .par_chunks(PIECE)
-            .enumerate()
-            .map(|(k, keys)| {
-                let mut ids = Vec::new();
-                for (i, &key) in keys.iter().enumerate() {
-                    let t = (k * PIECE + i) as u32;
-                    let near = if key == Grid::WIDE {
-                        w.grid.touches(&tri_box(&w.corners(&w.tri(t))))
-                    } else {
-                        w.grid.key_touches(key)
-                    };
-                    if near && w.alive(t) {
-                        ids.push(t);
+        let mut ids: Vec<u32> = if full {
+            let pieces: Vec<(Vec<u32>, Keyed)> = self
+                .mesh
+                .triangles
+                .par_chunks(PIECE)
+                .enumerate()
+                .map(|(k, tris)| {
+                    let (mut ids, mut halo) = (Vec::new(), Vec::new());
+                    for (i, tri) in tris.iter().enumerate() {
+                        let t = (k * PIECE + i) as u32;
+                        let p = w.corners(tri);
+                        let key = w.grid.key(tri.map(|v| w.cells[v as usize]));
+                        if w.halo.touches_key(key, &p) && w.alive(t) {
+                            halo.push((t, key));
+                            if w.grid.touches_key(key, &p) {
+                                ids.push(t);
+                            }
+                        }
                     }
-                }
-                ids
-            })
-            .collect();
-        let mut ids: Vec<u32> = pieces.concat();
+                    (ids, halo)
+                })
+                .collect();
+            let (ids, halo): (Vec<Vec<u32>>, Vec<Keyed>) = pieces.into_iter().unzip();
+            self.candidates = halo.concat();
+            ids.concat()
+        } else {
+            self.candidates
+                .par_iter()
+                .with_min_len(PIECE)
+                .filter(|&&(t, key)| {
+                    w.alive(t)
+                        && w.grid
+                            .touches_key(key, &w.corners(&w.mesh.triangles[t as usize]))
+                })
+                .map(|&(t, _)| t)
+                .collect()
+        };
         for i in 0..self.made.len() {
             let t = self.base + i as u32;
             if self.made_alive[i] && self.grid.touches(&tri_box(&self.corners(&self.made[i]))) {
@@ -1326,8 +1417,20 @@ impl<'a> Work<'a> {
         Ok((3 - creases, self.seam.binary_search(&keep).is_ok()))
     }
 
-    /// Refuses a change that would spend more than the volume budget.
-    fn volume_gate(&self, dv: f64) -> Gate<()> {
+    /// Refuses a change that would spend more than the volume budget (measuring the
+    /// whole area the first time a budget of a part of it would refuse).
+    fn volume_gate(&mut self, dv: f64) -> Gate<()> {
+        if self.spent + dv.abs() > self.budget && !self.budget_whole {
+            let twice: f64 = self
+                .mesh
+                .triangles
+                .par_iter()
+                .with_min_len(1 << 13)
+                .map(|t| shape(&self.corners(t)).2)
+                .sum();
+            self.budget = self.d * twice / 2.0;
+            self.budget_whole = true;
+        }
         if self.spent + dv.abs() > self.budget {
             refuse(Volume)
         } else {
