@@ -19,11 +19,7 @@ use crate::{Mesh, Result};
 /// mesh has finite coordinates, as every boolean's result of valid meshes does.
 pub fn snap_result(r: &mut BooleanResult, tolerance: f64) -> Result<SnapReport> {
     check_tolerance(tolerance)?;
-    let labels: Vec<u32> = r
-        .provenance
-        .par_iter()
-        .map(|p| u32::from(p.source == Source::B))
-        .collect();
+    let labels = by_source(&r.provenance);
     let opts = SnapOptions {
         tolerance,
         seam: &r.seam_vertices,
@@ -79,11 +75,7 @@ pub fn snap_split(s: &Split, tolerance: f64) -> Result<(Vec<GroupMesh>, SnapRepo
         .into_par_iter()
         .map(group_of)
         .collect();
-    let sheets: Vec<u32> = all
-        .provenance
-        .par_iter()
-        .map(|p| u32::from(p.source == Source::B))
-        .collect();
+    let sheets = by_source(&all.provenance);
     let opts = SnapOptions {
         tolerance,
         seam: &all.seam_vertices,
@@ -109,6 +101,14 @@ pub fn snap_split(s: &Split, tolerance: f64) -> Result<(Vec<GroupMesh>, SnapRepo
         })
         .collect();
     Ok((groups, report))
+}
+
+/// Each triangle's input as a label: 0 for A, 1 for B.
+fn by_source(provenance: &[Provenance]) -> Vec<u32> {
+    provenance
+        .par_iter()
+        .map(|p| u32::from(p.source == Source::B))
+        .collect()
 }
 
 /// The triangles `ids` of `m` as a mesh of the vertices they use, in `m`'s order.

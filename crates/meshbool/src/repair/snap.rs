@@ -1390,7 +1390,8 @@ impl<'a> Work<'a> {
     fn rank(&self, keep: u32) -> Gate<(u8, bool)> {
         let sk = self.star(keep)?;
         let mut creases = 0u8;
-        for x in neighbours(self, &sk, keep) {
+        let sk_tris: Vec<[u32; 3]> = sk.iter().map(|&t| self.tri(t)).collect();
+        for x in neighbours(&sk_tris, keep) {
             let on: Vec<u32> = sk
                 .iter()
                 .copied()
@@ -1578,13 +1579,8 @@ impl<'a> Work<'a> {
         far.sort_unstable();
         far.dedup();
         if self.sheets.is_some() {
-            let (nk, ng) = (neighbours(self, &sk, keep), neighbours(self, &sg, gone));
-            let common: Vec<u32> = nk
-                .iter()
-                .copied()
-                .filter(|x| ng.binary_search(x).is_ok())
-                .collect();
-            if common != far {
+            let (nk, ng) = (neighbours(&sk_tris, keep), neighbours(&sg_tris, gone));
+            if common(&nk, &ng) != far {
                 return refuse(Manifold);
             }
         }
@@ -1883,19 +1879,8 @@ fn collapse_topology(
         return refuse(Manifold);
     }
     let sg_sheet: Vec<[u32; 3]> = of_gone.iter().map(|&i| sg_tris[i]).collect();
-    let around = |tris: &[[u32; 3]], v: u32| {
-        let mut n: Vec<u32> = tris.iter().flatten().copied().filter(|&x| x != v).collect();
-        n.sort_unstable();
-        n.dedup();
-        n
-    };
-    let (nk, ng) = (around(of_keep, keep), around(&sg_sheet, gone));
-    let common: Vec<u32> = nk
-        .iter()
-        .copied()
-        .filter(|x| ng.binary_search(x).is_ok())
-        .collect();
-    if common != far {
+    let (nk, ng) = (neighbours(of_keep, keep), neighbours(&sg_sheet, gone));
+    if common(&nk, &ng) != far {
         return refuse(Manifold);
     }
     let uses = |tris: &[[u32; 3]], x: u32| tris.iter().filter(|t| t.contains(&x)).count();
@@ -1958,15 +1943,19 @@ fn turns_over(old: &[[f64; 3]; 3], new: &[[f64; 3]; 3]) -> bool {
 }
 
 /// The neighbours of `v` in the triangles `star` (all containing `v`), sorted.
-fn neighbours(w: &Work, star: &[u32], v: u32) -> Vec<u32> {
-    let mut n: Vec<u32> = star
-        .iter()
-        .flat_map(|&t| w.tri(t))
-        .filter(|&x| x != v)
-        .collect();
+fn neighbours(star: &[[u32; 3]], v: u32) -> Vec<u32> {
+    let mut n: Vec<u32> = star.iter().flatten().copied().filter(|&x| x != v).collect();
     n.sort_unstable();
     n.dedup();
     n
+}
+
+/// The elements of sorted `a` that are in sorted `b`.
+fn common(a: &[u32], b: &[u32]) -> Vec<u32> {
+    a.iter()
+        .copied()
+        .filter(|x| b.binary_search(x).is_ok())
+        .collect()
 }
 
 /// The kinds of the edges at `v` in the triangles `star` (all containing `v`), leaving
