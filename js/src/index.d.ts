@@ -90,6 +90,13 @@ export interface CheckOptions {
 	 * where the exact pick is. The report's `snap` says what was done.
 	 */
 	snap?: number;
+	/**
+	 * Keep every seam point of the exact arrangement (booleans). By default seam points
+	 * where the result is flat or straight are removed and zero-area triangles made by
+	 * rounding are collapsed or flipped away, no surface moving; the report's `cleanup`
+	 * says what was done.
+	 */
+	keepSeamPoints?: boolean;
 }
 
 export interface BooleanOptions extends CheckOptions {

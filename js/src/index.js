@@ -70,7 +70,7 @@ function opName(op) {
 function checkOptions(opts) {
 	const o = opts || {};
 	const out = {};
-	for (const key of ["force", "selfCheck", "resolve", "orient", "keepNonmanifold", "withCoplanar"]) {
+	for (const key of ["force", "selfCheck", "resolve", "orient", "keepNonmanifold", "keepSeamPoints", "withCoplanar"]) {
 		if (o[key] !== undefined) {
 			if (typeof o[key] !== "boolean") throw new Error(`meshbool: option ${key} must be true or false`);
 			out[key] = o[key];
@@ -100,7 +100,9 @@ function emptyCheck(arrays, what) {
  * "reverse-difference". Options: `force`, `selfCheck`, `resolve`, `orient` (the operand
  * checks, all on but `force` by default), `keepNonmanifold`, `snap` (a tolerance D:
  * edges shorter than D collapsed and needles removed where that makes no defect; the
- * report's `snap` says what was done).
+ * report's `snap` says what was done), `keepSeamPoints` (no exact clean-up: by default
+ * seam points where the result is flat or straight are removed and zero-area triangles
+ * made by rounding go, no surface moving; the report's `cleanup` says what was done).
  */
 export function booleanIndexed(a, b, op, options) {
 	const A = indexedArrays(a, "a"), B = indexedArrays(b, "b");

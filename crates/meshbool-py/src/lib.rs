@@ -159,7 +159,7 @@ impl Boolean {
 /// A boolean: the result's arrays, its provenance (source 0 = A / 1 = B, triangle,
 /// flipped) and what else it found ([`Boolean`]).
 #[pyfunction]
-#[pyo3(signature = (av, af, bv, bf, op, force, self_check, resolve, orient, threads, keep_nonmanifold, snap=0.0))]
+#[pyo3(signature = (av, af, bv, bf, op, force, self_check, resolve, orient, threads, keep_nonmanifold, snap=0.0, keep_seam_points=false))]
 #[allow(clippy::too_many_arguments, clippy::type_complexity)]
 fn boolean<'py>(
     py: Python<'py>,
@@ -175,6 +175,7 @@ fn boolean<'py>(
     threads: Option<usize>,
     keep_nonmanifold: bool,
     snap: f64,
+    keep_seam_points: bool,
 ) -> PyResult<(
     Bound<'py, PyArray2<f64>>,
     Bound<'py, PyArray2<u32>>,
@@ -187,6 +188,7 @@ fn boolean<'py>(
     let opts = BooleanOptions {
         checks: checks(force, self_check, resolve, orient),
         keep_nonmanifold,
+        keep_seam_points,
         snap,
         run: run(threads),
     };
@@ -317,7 +319,7 @@ fn split(
 /// The union or intersection of several meshes in one call: the result's arrays, the
 /// input and triangle of each result triangle, the report.
 #[pyfunction]
-#[pyo3(signature = (meshes, op, force, self_check, resolve, orient, threads, keep_nonmanifold, snap=0.0))]
+#[pyo3(signature = (meshes, op, force, self_check, resolve, orient, threads, keep_nonmanifold, snap=0.0, keep_seam_points=false))]
 #[allow(clippy::type_complexity, clippy::too_many_arguments)]
 fn boolean_many<'py>(
     py: Python<'py>,
@@ -330,6 +332,7 @@ fn boolean_many<'py>(
     threads: Option<usize>,
     keep_nonmanifold: bool,
     snap: f64,
+    keep_seam_points: bool,
 ) -> PyResult<(
     Bound<'py, PyArray2<f64>>,
     Bound<'py, PyArray2<u32>>,
@@ -345,6 +348,7 @@ fn boolean_many<'py>(
     let opts = BooleanOptions {
         checks: checks(force, self_check, resolve, orient),
         keep_nonmanifold,
+        keep_seam_points,
         snap,
         run: run(threads),
     };

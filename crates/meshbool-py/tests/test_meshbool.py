@@ -137,8 +137,12 @@ def test_kirra_terrain_minus_cylinder_split_and_pick(tmp_path):
     assert len(s.a_on_b_same) == 0
     assert [len(c) for c in s.components("a_out_b")] == [10645]
     mined = s.pick("a_out_b", "b_in_a:flip")
+    # The pick keeps every seam point; the boolean removes the 16 where the rim is
+    # straight (2 triangles each), the same without its clean-up.
     diff = meshbool.boolean(up, cylinder, "difference")
-    assert len(mined) == len(diff) and mined.report["boundary_edges"] == 560
+    raw = meshbool.boolean(up, cylinder, "difference", keep_seam_points=True)
+    assert len(mined) == len(raw) == len(diff) + 32 and mined.report["boundary_edges"] == 560
+    assert diff.report["cleanup"]["removed_points"] == 16
     assert abs(mined.volume - diff.volume) < 1e-6 * abs(diff.volume)
     with pytest.raises(ValueError, match="a piece may be picked once"):
         s.pick("a_out_b", "a_out_b#0")
@@ -371,7 +375,7 @@ def test_readme_python_example_runs(monkeypatch, capsys):
     monkeypatch.chdir(root)
     exec(compile(block, "README.md", "exec"), {})
     out = capsys.readouterr().out.splitlines()
-    assert out[0] == "(5704, 3) uint32 560"
+    assert out[0] == "(5688, 3) uint32 560"
     assert out[2].startswith("['a_in_b', 'a_out_b', 'b_in_a', 'b_out_a'] 897 [10645]")
     assert out[3].endswith("True True")
 
@@ -403,11 +407,14 @@ def test_snap_removes_needles_of_a_cutter_drawn_a_little_larger():
     # outside the cube: the exact result has edges and altitudes of about 1e-3.
     cube = meshbool.box([0, 0, 0], [1, 1, 1])
     cutter = meshbool.box([0.5, -0.001, 0.5], [1.001, 1.001, 1.001])
-    exact = meshbool.boolean(cube, cutter, "difference")
+    # (On the arrangement as it is: by default the exact clean-up already removes the
+    # straight seam points that make these needles, see below.)
+    exact = meshbool.boolean(cube, cutter, "difference", keep_seam_points=True)
     assert "snap" not in exact.report
+    assert exact.report["cleanup"]["removed_points"] == 0
     assert min(shortest_edge_and_altitude(exact)) < 1e-3
     d = 0.01
-    snapped = meshbool.boolean(cube, cutter, "difference", snap=d)
+    snapped = meshbool.boolean(cube, cutter, "difference", snap=d, keep_seam_points=True)
     assert snapped.is_closed and snapped.stats()["non_manifold_edges"] == 0
     assert min(shortest_edge_and_altitude(snapped)) >= d
     assert abs(snapped.volume - exact.volume) <= d * exact.area
@@ -421,6 +428,14 @@ def test_snap_removes_needles_of_a_cutter_drawn_a_little_larger():
         assert m.report["snap"]["collapsed"] > 0
     with pytest.raises(ValueError, match="snap"):
         meshbool.boolean(cube, cutter, "union", snap=-1.0)
+    # The default result: the same solid, cleaned exactly (no vertex moved) to the fewest
+    # triangles an L-shaped prism has, without needles.
+    clean = meshbool.boolean(cube, cutter, "difference")
+    assert len(clean.faces) == 20 and clean.volume == 0.75 and clean.is_closed
+    assert clean.report["cleanup"]["removed_points"] == 6
+    assert min(shortest_edge_and_altitude(clean)) >= d
+    many = meshbool.boolean_many([cube, cutter], "union", keep_seam_points=True)
+    assert many.report["cleanup"]["removed_points"] == 0
 
 
 def test_split_and_pick_snap():

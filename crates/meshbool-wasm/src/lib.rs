@@ -182,7 +182,8 @@ fn provenance_arrays(out: Out, prov: &[meshbool::Provenance]) -> Out {
 /// input triangle it is part of; `flipped[t]`: 1 when reversed). `op`: `union`,
 /// `intersection` (`intersect`), `difference` (`subtract`), `reverse-difference`.
 /// Options (JSON): `force`, `selfCheck`, `resolve`, `orient`, `keepNonmanifold`, `snap`
-/// (a tolerance, [`BooleanOptions::snap`]).
+/// (a tolerance, [`BooleanOptions::snap`]), `keepSeamPoints`
+/// ([`BooleanOptions::keep_seam_points`]).
 #[wasm_bindgen]
 pub fn boolean(
     a_positions: &[f64],
@@ -198,6 +199,7 @@ pub fn boolean(
     let opts = BooleanOptions {
         checks: checks(&o)?,
         keep_nonmanifold: flag(&o, "keepNonmanifold", false)?,
+        keep_seam_points: flag(&o, "keepSeamPoints", false)?,
         snap: number(&o, "snap")?.unwrap_or(0.0),
         ..BooleanOptions::default()
     };

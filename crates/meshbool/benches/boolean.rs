@@ -19,6 +19,18 @@ fn union_200k_spheres() -> usize {
         .triangle_count()
 }
 
+/// The same union without the exact clean-up (`PipelineOptions::cleanup` off): the
+/// clean-up's cost is the difference to `union_2m_spheres`.
+#[divan::bench(sample_count = 5)]
+fn union_2m_spheres_raw() -> usize {
+    let (a, b) = &*P2M;
+    let raw = meshbool::boolean::PipelineOptions {
+        cleanup: false,
+        ..Default::default()
+    };
+    boolean(a, b, Op::Union, &raw).mesh.triangle_count()
+}
+
 /// The same union snapped at 1e-4 (about a hundredth of the spheres' triangle size), as
 /// the front door does with `snap: 1e-4`: the cost of snapping over the boolean.
 #[divan::bench(sample_count = 10)]

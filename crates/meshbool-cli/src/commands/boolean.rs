@@ -24,6 +24,11 @@ pub struct Args {
     /// at a vertex) instead of splitting them.
     #[arg(long)]
     keep_nonmanifold: bool,
+    /// Keep every seam point of the exact arrangement. By default seam points where the
+    /// result is flat or straight are removed and zero-area triangles made by rounding are
+    /// collapsed or flipped away (no surface moves).
+    #[arg(long)]
+    keep_seam_points: bool,
     #[command(flatten)]
     snap: super::Snap,
     #[command(flatten)]
@@ -43,6 +48,11 @@ pub struct ManyArgs {
     /// at a vertex) instead of splitting them.
     #[arg(long)]
     keep_nonmanifold: bool,
+    /// Keep every seam point of the exact arrangement. By default seam points where the
+    /// result is flat or straight are removed and zero-area triangles made by rounding are
+    /// collapsed or flipped away (no surface moves).
+    #[arg(long)]
+    keep_seam_points: bool,
     #[command(flatten)]
     snap: super::Snap,
     #[command(flatten)]
@@ -58,6 +68,7 @@ impl ManyArgs {
                 b: b.clone(),
                 output: self.output.clone(),
                 keep_nonmanifold: self.keep_nonmanifold,
+                keep_seam_points: self.keep_seam_points,
                 snap: self.snap,
                 flags: self.flags.clone(),
             };
@@ -74,6 +85,7 @@ impl ManyArgs {
             let inputs: Vec<Input> = operands.iter().map(Input::from).collect();
             let opts = BooleanOptions {
                 keep_nonmanifold: self.keep_nonmanifold,
+                keep_seam_points: self.keep_seam_points,
                 snap: self.snap.tolerance,
                 run: flags.run(&spinner),
                 ..BooleanOptions::default()
@@ -121,6 +133,7 @@ pub fn run(args: &Args, op: Op) -> Result<()> {
         // The operands were checked as they were read.
         let opts = BooleanOptions {
             keep_nonmanifold: args.keep_nonmanifold,
+            keep_seam_points: args.keep_seam_points,
             snap: args.snap.tolerance,
             run: flags.run(&spinner),
             ..BooleanOptions::default()

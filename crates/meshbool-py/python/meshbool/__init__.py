@@ -225,6 +225,7 @@ def boolean(
     threads: Optional[int] = None,
     keep_nonmanifold: bool = False,
     snap: float = 0.0,
+    keep_seam_points: bool = False,
 ) -> Mesh:
     """The boolean ``op`` of ``a`` and ``b``.
 
@@ -246,7 +247,10 @@ def boolean(
     the result (edges shorter than D collapsed, needles with an altitude below D removed)
     where that keeps it manifold, turns no triangle over, makes no self-intersection and
     moves no vertex more than D; ``report["snap"]`` says what it did (0, the default: the
-    exact result).
+    exact result). ``keep_seam_points``: keep every seam point of the exact arrangement;
+    by default seam points where the result is flat or straight are removed and zero-area
+    triangles made by rounding collapsed or flipped away, no surface moving
+    (``report["cleanup"]``).
 
     Returns a :class:`Mesh` with ``report`` (the ``--json`` dict) and ``provenance``
     (a dict of arrays: ``source`` 0 for a / 1 for b, ``triangle`` in that input,
@@ -256,7 +260,7 @@ def boolean(
     bv, bf = _parts(b)
     v, f, source, triangle, flipped, pending = _native.boolean(
         av, af, bv, bf, op, force, self_check, resolve, orient, threads, keep_nonmanifold,
-        float(snap),
+        float(snap), keep_seam_points,
     )
     out = Mesh._from(v, f)
     out._pending = pending
@@ -275,6 +279,7 @@ def boolean_many(
     threads: Optional[int] = None,
     keep_nonmanifold: bool = False,
     snap: float = 0.0,
+    keep_seam_points: bool = False,
 ) -> Mesh:
     """The union (``op="union"``) or intersection (``"intersection"``) of any number of
     meshes in one call: pairwise booleans in a balanced tree, in parallel, rather than a
@@ -283,7 +288,7 @@ def boolean_many(
     parts = [_parts(m) for m in meshes]
     v, f, input, triangle, report = _native.boolean_many(
         parts, op, force, self_check, resolve, orient, threads, keep_nonmanifold,
-        float(snap),
+        float(snap), keep_seam_points,
     )
     out = Mesh._from(v, f, report)
     out.provenance = {"input": input, "triangle": triangle}

@@ -35,9 +35,11 @@ use crate::repair::nonmanifold::split_at;
 use crate::repair::NonManifoldReport;
 use crate::Mesh;
 
+mod cleanup;
 pub mod nary;
 pub mod resolve;
 mod snap;
+pub use cleanup::CleanupReport;
 pub use resolve::{resolve, FillRule, ResolveReport, Resolved};
 pub use snap::{snap_result, snap_split, GroupMesh};
 
@@ -131,6 +133,8 @@ pub struct BooleanResult {
     /// The vertices of `mesh` at seam points (sorted; copies made by the non-manifold
     /// split included): the vertices the boolean made rather than took from an input.
     pub seam_vertices: Vec<u32>,
+    /// What the exact clean-up did ([`PipelineOptions::cleanup`]; all zero when off).
+    pub cleanup: CleanupReport,
 }
 
 /// An input triangle that could not be cut along the seam (inconsistent input, such as a
@@ -368,6 +372,11 @@ pub struct PipelineOptions<'p> {
     /// or at a vertex share that edge or vertex) instead of splitting it
     /// ([`crate::repair::split_nonmanifold`], at the seam only).
     pub keep_nonmanifold: bool,
+    /// The exact clean-up of the result (on by default): seam points where the result is
+    /// flat or straight removed, zero-area triangles made by rounding seam points
+    /// collapsed or flipped away, no surface moved ([`CleanupReport`]). Off, the result
+    /// keeps every seam point of the arrangement.
+    pub cleanup: bool,
 }
 
 impl Default for PipelineOptions<'_> {
@@ -377,6 +386,7 @@ impl Default for PipelineOptions<'_> {
             grid_from: crate::intersect::GRID_FROM,
             exact_winding_up_to: crate::classify::EXACT_WINDING_UP_TO,
             keep_nonmanifold: false,
+            cleanup: true,
         }
     }
 }
@@ -620,6 +630,29 @@ pub fn boolean(a: &Mesh, b: &Mesh, op: Op, opts: &PipelineOptions) -> BooleanRes
     // The split's copies (of seam vertices) come after the merged vertices.
     let mut seam_vertices = merged.seam_vertices;
     seam_vertices.extend(merged_vertices..mesh.positions.len() as u32);
+    let (mut mesh, mut provenance) = (mesh, merged.provenance);
+    let cleanup = if opts.cleanup {
+        // The seam points the arrangement added (neither A's vertex nor B's).
+        let mut b_vertex = vec![false; s.a.mesh.positions.len()];
+        for (&va, &vb) in s.a.seam_vertex.iter().zip(&s.b.seam_vertex) {
+            if (vb as usize) < s.b.input_vertices {
+                b_vertex[va as usize] = true;
+            }
+        }
+        let added: Vec<u32> = (merged.seam_origin.iter().zip(&seam_vertices))
+            .filter(|&(&o, _)| o as usize >= s.a.input_vertices && !b_vertex[o as usize])
+            .map(|(_, &v)| v)
+            .collect();
+        cleanup::clean_up(
+            &mut mesh,
+            &mut provenance,
+            &mut seam_vertices,
+            &added,
+            [a, b],
+        )
+    } else {
+        CleanupReport::default()
+    };
     let kept = |arr: &Arranged, cls: &Classified, keep: &Selection| {
         arr.rounding_flips
             .iter()
@@ -641,13 +674,14 @@ pub fn boolean(a: &Mesh, b: &Mesh, op: Op, opts: &PipelineOptions) -> BooleanRes
         .collect();
     BooleanResult {
         mesh,
-        provenance: merged.provenance,
+        provenance,
         nonmanifold,
         seam_points: s.seam.points.len(),
         degenerate: s.seam.degenerate,
         failed,
         rounding_flips,
         seam_vertices,
+        cleanup,
     }
 }
 

@@ -8,7 +8,7 @@
 
 use rayon::prelude::*;
 
-use super::{boolean, Op, PipelineOptions, Source};
+use super::{boolean, CleanupReport, Op, PipelineOptions, Source};
 use crate::arrange::FailReason;
 use crate::repair::{split_nonmanifold, NonManifoldReport};
 use crate::Mesh;
@@ -38,6 +38,8 @@ pub struct Reduced {
     pub rounding_flips: usize,
     /// Where the result was not manifold and was split.
     pub nonmanifold: NonManifoldReport,
+    /// What the exact clean-ups of all the pairwise booleans did, added up.
+    pub cleanup: CleanupReport,
 }
 
 /// `op` ([`Op::Union`] or [`Op::Intersection`]) of `parts`, pairwise in a balanced tree.
@@ -78,11 +80,12 @@ pub fn reduce(mut parts: Vec<Part>, op: Op, opts: &PipelineOptions) -> Reduced {
                     .iter()
                     .map(|f| (of(f.source, f.triangle), f.reason))
                     .collect();
-                (part, r.seam_points, failed, r.rounding_flips)
+                (part, r.seam_points, failed, r.rounding_flips, r.cleanup)
             })
             .collect();
         parts = Vec::with_capacity(done.len() + 1);
-        for (part, seam_points, failed, flips) in done {
+        for (part, seam_points, failed, flips, cleanup) in done {
+            out.cleanup.add(&cleanup);
             out.seam_points += seam_points;
             out.failed.extend(failed);
             out.rounding_flips += flips;

@@ -281,22 +281,32 @@ fn terrain_split_by_cylinder_and_cup() {
     ] {
         let (terrain, cyl) = (data(t), data(c));
         check_open_split(&terrain, &cyl);
-        // Terrain minus the cylinder: a hole whose boundary is the seam loop.
-        let r = boolean(&terrain, &cyl, Op::Difference);
-        let holed: Vec<[u32; 3]> = r
-            .provenance
-            .iter()
-            .zip(&r.mesh.triangles)
-            .filter(|(p, _)| p.source == Source::A)
-            .map(|(_, t)| *t)
-            .collect();
-        let holed = Mesh::new_unchecked(r.mesh.positions.clone(), holed);
+        // Terrain minus the cylinder: a hole whose boundary is the seam loop, less the seam
+        // points the clean-up removed (where the loop is straight); all of them kept
+        // without it.
         let seam_len = crate::intersect::chain(&crate::intersect::intersect(&terrain, &cyl), true)
             [0]
         .points
         .len();
-        let st = mesh_stats(&holed);
-        assert_eq!(st.boundary_edges, 560 + seam_len, "{t}");
+        for cleanup in [false, true] {
+            let opts = PipelineOptions {
+                cleanup,
+                ..Default::default()
+            };
+            let r = super::boolean(&terrain, &cyl, Op::Difference, &opts);
+            let holed: Vec<[u32; 3]> = r
+                .provenance
+                .iter()
+                .zip(&r.mesh.triangles)
+                .filter(|(p, _)| p.source == Source::A)
+                .map(|(_, t)| *t)
+                .collect();
+            let holed = Mesh::new_unchecked(r.mesh.positions.clone(), holed);
+            let st = mesh_stats(&holed);
+            let gone = r.cleanup.removed_points + r.cleanup.zero_length_edges;
+            assert_eq!(st.boundary_edges, 560 + seam_len - gone, "{t}");
+            assert_eq!(gone > 0, cleanup, "{t}: {:?}", r.cleanup);
+        }
     }
     check_open_split(&data("kirra_terrain.obj"), &data("kirra_cup.obj"));
 }

@@ -10,7 +10,7 @@ use rayon::prelude::*;
 use super::{with_threads, Checks, Input, Measures, Operand, OperandReport, RunOptions, SCHEMA};
 use crate::arrange::FailReason;
 use crate::boolean::nary::{reduce, Part};
-use crate::boolean::{FailedTriangle, Op, PipelineOptions, Provenance, Stage};
+use crate::boolean::{CleanupReport, FailedTriangle, Op, PipelineOptions, Provenance, Stage};
 use crate::repair::{NonManifoldReport, SnapOptions, SnapReport};
 use crate::{Error, Mesh, Result};
 
@@ -23,6 +23,11 @@ pub struct BooleanOptions {
     /// or at a vertex then share it). By default such edges and vertices are split so that
     /// the result is manifold ([`crate::repair::split_nonmanifold`]; positions unchanged).
     pub keep_nonmanifold: bool,
+    /// Keep every seam point of the arrangement: no exact clean-up of the result. By
+    /// default seam points where the result is flat or straight are removed and zero-area
+    /// triangles made by rounding seam points are collapsed or flipped away, changing no
+    /// geometry ([`CleanupReport`]).
+    pub keep_seam_points: bool,
     /// Snap tolerance `D` (a length; 0, the default: the exact result as it is). With
     /// `D > 0` the assembled result is cleaned by [`crate::repair::snap_with`]: edges
     /// shorter than `D` collapsed and needles (altitude below `D`) removed, only where that
@@ -64,6 +69,8 @@ pub struct BooleanOutput {
     /// Result triangles that turn over when their seam points are rounded to `f64`
     /// (exact before rounding); 0 in almost every case.
     pub rounding_flips: usize,
+    /// What the exact clean-up did ([`BooleanOptions::keep_seam_points`]).
+    pub cleanup: CleanupReport,
     /// What snapping did ([`BooleanOptions::snap`]); `None` without it.
     pub snap: Option<SnapReport>,
     /// Time of the boolean itself and of snapping (not of checking the inputs), in
@@ -95,6 +102,8 @@ pub struct BooleanReport {
     pub assumed: Vec<String>,
     /// What the checks found in A and B (in every input, for [`boolean_many`]).
     pub operands: Vec<OperandReport>,
+    /// What the exact clean-up did (all zero with [`BooleanOptions::keep_seam_points`]).
+    pub cleanup: CleanupReport,
     /// What snapping did (only with a snap tolerance).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub snap: Option<SnapReport>,
@@ -147,6 +156,7 @@ impl BooleanOutput {
             split_nonmanifold: self.nonmanifold.clone(),
             assumed: self.assumed(),
             operands: self.operands.to_vec(),
+            cleanup: self.cleanup,
             snap: self.snap.clone(),
             seconds: self.seconds,
         }
@@ -182,6 +192,7 @@ pub fn boolean<'a>(
     let run = |a: &Operand, b: &Operand| {
         let pipeline = PipelineOptions {
             keep_nonmanifold: opts.keep_nonmanifold,
+            cleanup: !opts.keep_seam_points,
             ..opts.run.pipeline()
         };
         let mut r = crate::boolean::boolean(a.mesh(), b.mesh(), op, &pipeline);
@@ -212,6 +223,7 @@ pub fn boolean<'a>(
         degenerate: r.degenerate,
         failed: r.failed,
         rounding_flips: r.rounding_flips,
+        cleanup: r.cleanup,
         snap,
         seconds,
     })
@@ -239,6 +251,8 @@ pub struct BooleanManyOutput {
     pub failed: Vec<([u32; 2], FailReason)>,
     /// Result triangles that turn over when their seam points are rounded to `f64`.
     pub rounding_flips: usize,
+    /// What the exact clean-up did ([`BooleanOptions::keep_seam_points`]).
+    pub cleanup: CleanupReport,
     /// What snapping did ([`BooleanOptions::snap`]); `None` without it.
     pub snap: Option<SnapReport>,
     /// Time of the booleans (not of checking the inputs), in seconds.
@@ -266,6 +280,7 @@ impl BooleanManyOutput {
             split_nonmanifold: self.nonmanifold.clone(),
             assumed,
             operands: self.operands.clone(),
+            cleanup: self.cleanup,
             snap: self.snap.clone(),
             seconds: self.seconds,
         }
@@ -324,6 +339,7 @@ pub fn boolean_many<'a>(
             .collect();
         let pipeline = PipelineOptions {
             keep_nonmanifold: opts.keep_nonmanifold,
+            cleanup: !opts.keep_seam_points,
             ..opts.run.pipeline()
         };
         let r = reduce(parts, op, &pipeline);
@@ -358,6 +374,7 @@ pub fn boolean_many<'a>(
                 .map(|&(g, why)| (input_of(g), why))
                 .collect(),
             rounding_flips: r.rounding_flips,
+            cleanup: r.cleanup,
             snap,
             seconds: start.elapsed().as_secs_f64(),
         })

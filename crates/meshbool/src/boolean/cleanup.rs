@@ -1,0 +1,527 @@
+//! The exact clean-up of a boolean's result: what the arrangement added and the result
+//! does not need goes, and no surface moves.
+//!
+//! An exact arrangement keeps every seam point, also where the result is straight or flat
+//! through it (the seam crossing a flat diagonal of the other mesh, a coplanar contact),
+//! and rounding seam points to `f64` can make zero-area triangles (two seam points that
+//! round to one point, or three onto one line). Only seam vertices and the triangles at
+//! them are looked at; input vertices never move. Three edits, each changing no geometry:
+//!
+//! - **zero-length edges** (two seam vertices at one position) are collapsed;
+//! - a **removable seam point** — its triangles lie in one plane (the same plane and
+//!   facing, decided exactly on their parent input triangles), or in two planes that meet
+//!   in a line with the point between its two neighbours along that line — is collapsed
+//!   onto a neighbour (onto one of the two on the line for the second kind), where no
+//!   triangle of its star turns over or degenerates at the written coordinates (exact
+//!   sign of its normal against its parent's);
+//! - **caps** (three distinct corners exactly on one line) are flipped into the
+//!   neighbour across their longest edge, which is split at the middle corner.
+//!
+//! Every edit keeps the mesh manifold (the link condition: the two ends of a collapsed
+//! edge share no neighbour but the edge's far corners; a flip makes no edge twice).
+
+use rayon::prelude::*;
+use serde::Serialize;
+
+use super::{Provenance, Source};
+use crate::kernel::{normals_cross_sign, normals_dot_sign, orient3d_explicit, Sign};
+use crate::measure::is_degenerate;
+use crate::Mesh;
+
+/// What the exact clean-up of a boolean's result did ([`super::PipelineOptions::cleanup`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct CleanupReport {
+    /// Seam points removed where the result is flat or straight through them: each a
+    /// collapse onto a neighbour in the same plane or on the same line.
+    pub removed_points: usize,
+    /// Edges of zero length (two seam points rounded to one position) collapsed.
+    pub zero_length_edges: usize,
+    /// Zero-area triangles with three distinct corners on one line, flipped into their
+    /// neighbour across the longest edge.
+    pub flipped_caps: usize,
+    /// Zero-area triangles at seam points left (no collapse or flip kept the mesh
+    /// manifold): normally 0.
+    pub zero_area_left: usize,
+    /// Triangles fewer than before.
+    pub triangles_removed: usize,
+}
+
+impl CleanupReport {
+    /// Adds `o`'s counts to these (the clean-ups of several booleans).
+    pub fn add(&mut self, o: &CleanupReport) {
+        self.removed_points += o.removed_points;
+        self.zero_length_edges += o.zero_length_edges;
+        self.flipped_caps += o.flipped_caps;
+        self.zero_area_left += o.zero_area_left;
+        self.triangles_removed += o.triangles_removed;
+    }
+}
+
+/// The mesh under clean-up: its triangles (dead ones kept in place until the end), the
+/// stars of the vertices at and next to seam points, and where each triangle came from.
+struct Work<'a> {
+    positions: &'a [[f64; 3]],
+    triangles: Vec<[u32; 3]>,
+    alive: Vec<bool>,
+    provenance: Vec<Provenance>,
+    inputs: [&'a Mesh; 2],
+    /// Per vertex: its slot in `stars`, or `u32::MAX` for one no edit touches.
+    slot: Vec<u32>,
+    /// Per slot: triangles that contained the vertex at some time (check before use).
+    stars: Vec<Vec<u32>>,
+    /// Per slot: whether the star holds every triangle of the vertex.
+    complete: Vec<bool>,
+    /// Per vertex: whether it is one the clean-up may remove (a seam point that is not
+    /// an input vertex).
+    seam: Vec<bool>,
+    dead_vertex: Vec<bool>,
+    /// The dead triangles and vertices, as they died.
+    dead_triangles: Vec<u32>,
+    dead_vertices: Vec<u32>,
+    report: CleanupReport,
+}
+
+impl Work<'_> {
+    /// The live triangles at `v` (empty for a vertex without a slot).
+    fn star(&self, v: u32) -> Vec<u32> {
+        let s = self.slot[v as usize];
+        if s == u32::MAX {
+            return Vec::new();
+        }
+        let mut star: Vec<u32> = self.stars[s as usize]
+            .iter()
+            .copied()
+            .filter(|&t| self.alive[t as usize] && self.triangles[t as usize].contains(&v))
+            .collect();
+        star.sort_unstable();
+        star.dedup();
+        star
+    }
+
+    fn complete(&self, v: u32) -> bool {
+        let s = self.slot[v as usize];
+        s != u32::MAX && self.complete[s as usize]
+    }
+
+    fn add(&mut self, v: u32, t: u32) {
+        if self.slot[v as usize] == u32::MAX {
+            self.slot[v as usize] = self.stars.len() as u32;
+            self.stars.push(Vec::new());
+            self.complete.push(false);
+        }
+        self.stars[self.slot[v as usize] as usize].push(t);
+    }
+
+    fn corners(&self, t: [u32; 3]) -> [[f64; 3]; 3] {
+        t.map(|v| self.positions[v as usize])
+    }
+
+    /// The parent input triangle of `t`, turned as `t` faces.
+    fn parent(&self, t: u32) -> [[f64; 3]; 3] {
+        let p = self.provenance[t as usize];
+        let m = self.inputs[usize::from(p.source == Source::B)];
+        let [a, b, c] = m.corners(p.triangle as usize);
+        if p.flipped {
+            [a, c, b]
+        } else {
+            [a, b, c]
+        }
+    }
+
+    /// Whether triangles `t` and `u` lie in one plane facing the same way (exact, on their
+    /// parents).
+    fn flat(&self, t: u32, u: u32) -> bool {
+        let (p, q) = (self.provenance[t as usize], self.provenance[u as usize]);
+        if p.source == q.source && p.triangle == q.triangle {
+            return p.flipped == q.flipped;
+        }
+        let (pt, pu) = (self.parent(t), self.parent(u));
+        pu.iter()
+            .all(|x| orient3d_explicit(&pt[0], &pt[1], &pt[2], x) == Sign::Zero)
+            && normals_dot_sign(&pt, &pu) == Sign::Positive
+    }
+
+    /// The neighbours of `v` in `star` (sorted).
+    fn neighbours(&self, star: &[u32], v: u32) -> Vec<u32> {
+        let mut n: Vec<u32> = star
+            .iter()
+            .flat_map(|&t| self.triangles[t as usize])
+            .filter(|&x| x != v)
+            .collect();
+        n.sort_unstable();
+        n.dedup();
+        n
+    }
+
+    /// Whether collapsing `p` onto `q` keeps the mesh manifold: `q`'s star is known,
+    /// exactly two triangles hold the edge, and the ends share no other neighbour.
+    fn link_ok(&self, p: u32, q: u32, star_p: &[u32]) -> bool {
+        if !self.complete(q) {
+            return false;
+        }
+        let on_edge: Vec<u32> = star_p
+            .iter()
+            .copied()
+            .filter(|&t| self.triangles[t as usize].contains(&q))
+            .collect();
+        if on_edge.len() != 2 {
+            return false;
+        }
+        let star_q = self.star(q);
+        let (np, nq) = (self.neighbours(star_p, p), self.neighbours(&star_q, q));
+        let common = np.iter().filter(|x| nq.binary_search(x).is_ok()).count();
+        let far: Vec<u32> = on_edge
+            .iter()
+            .map(|&t| {
+                let tri = self.triangles[t as usize];
+                tri.into_iter().find(|&x| x != p && x != q).unwrap_or(p)
+            })
+            .collect();
+        far[0] != far[1] && common == 2
+    }
+
+    /// Collapses `p` onto `q` (checked by the caller): the triangles on the edge die, the
+    /// others take `q` for `p`.
+    fn collapse(&mut self, p: u32, q: u32, star_p: &[u32]) {
+        for &t in star_p {
+            let tri = &mut self.triangles[t as usize];
+            if tri.contains(&q) {
+                self.alive[t as usize] = false;
+                self.dead_triangles.push(t);
+                self.report.triangles_removed += 1;
+            } else {
+                for v in tri.iter_mut() {
+                    if *v == p {
+                        *v = q;
+                    }
+                }
+                self.add(q, t);
+            }
+        }
+        self.dead_vertex[p as usize] = true;
+        self.dead_vertices.push(p);
+    }
+
+    /// Whether no triangle of `star_p` but those on the edge to `q` turns over or
+    /// degenerates when `p` moves to `q`'s position (exact, at the written coordinates).
+    fn keeps_facing(&self, p: u32, q: u32, star_p: &[u32]) -> bool {
+        star_p.iter().all(|&t| {
+            let tri = self.triangles[t as usize];
+            if tri.contains(&q) {
+                return true;
+            }
+            let moved = tri.map(|v| if v == p { q } else { v });
+            normals_dot_sign(&self.corners(moved), &self.parent(t)) == Sign::Positive
+        })
+    }
+
+    /// Tries to remove seam vertex `p`; returns the vertex it went onto.
+    fn remove(&mut self, p: u32) -> Option<u32> {
+        if self.dead_vertex[p as usize] || !self.complete(p) {
+            return None;
+        }
+        let star = self.star(p);
+        // A closed fan: every neighbour starts exactly one triangle's edge out of p and
+        // ends exactly one (`out[x]`, `into[x]`).
+        let mut fan: Vec<(u32, u32, u32)> = Vec::with_capacity(star.len()); // (next, prev, t)
+        for &t in &star {
+            let tri = self.triangles[t as usize];
+            let i = tri.iter().position(|&v| v == p)?;
+            fan.push((tri[(i + 1) % 3], tri[(i + 2) % 3], t));
+        }
+        let neighbours = self.neighbours(&star, p);
+        if neighbours.len() != fan.len() {
+            return None;
+        }
+        let mut out = vec![u32::MAX; neighbours.len()];
+        let mut into = vec![u32::MAX; neighbours.len()];
+        for &(next, prev, t) in &fan {
+            let (i, j) = (
+                neighbours.binary_search(&next).ok()?,
+                neighbours.binary_search(&prev).ok()?,
+            );
+            if out[i] != u32::MAX || into[j] != u32::MAX {
+                return None;
+            }
+            out[i] = t;
+            into[j] = t;
+        }
+        let position = |v: u32| self.positions[v as usize];
+        // Zero-length edges first: the same position, nothing to check but the link.
+        for &q in &neighbours {
+            if position(q) == position(p) && self.link_ok(p, q, &star) {
+                self.collapse(p, q, &star);
+                self.report.zero_length_edges += 1;
+                return Some(q);
+            }
+        }
+        let creases: Vec<usize> = (0..neighbours.len())
+            .filter(|&i| !self.flat(out[i], into[i]))
+            .collect();
+        let targets: Vec<u32> = match creases[..] {
+            [] => {
+                // Input vertices (exact points) first.
+                let mut t = neighbours.clone();
+                t.sort_by_key(|&v| self.seam[v as usize]);
+                t
+            }
+            [i, j] => {
+                // Two planes that meet in a line (not one plane folded back): p and its
+                // two neighbours on the crease lie on that line, exactly; p must be
+                // strictly between them, which rounding (monotone) keeps per coordinate.
+                let (pt, pu) = (self.parent(out[i]), self.parent(into[i]));
+                if (0..3).all(|k| normals_cross_sign(&pt, &pu, k) == Sign::Zero) {
+                    return None;
+                }
+                let (q, r, x) = (
+                    position(neighbours[i]),
+                    position(neighbours[j]),
+                    position(p),
+                );
+                let between =
+                    (0..3).any(|k| (q[k] < x[k] && x[k] < r[k]) || (q[k] > x[k] && x[k] > r[k]));
+                if !between {
+                    return None;
+                }
+                vec![neighbours[i], neighbours[j]]
+            }
+            _ => return None,
+        };
+        for q in targets {
+            if self.link_ok(p, q, &star) && self.keeps_facing(p, q, &star) {
+                self.collapse(p, q, &star);
+                self.report.removed_points += 1;
+                return Some(q);
+            }
+        }
+        None
+    }
+
+    /// Flips the cap `t` (three distinct corners on one line) into the neighbour across
+    /// its longest edge, split at the middle corner. Returns whether it did.
+    fn flip_cap(&mut self, t: u32) -> bool {
+        let tri = self.triangles[t as usize];
+        let p = self.corners(tri);
+        // The middle corner: strictly between the other two on some coordinate.
+        let Some(k) = (0..3).find(|&k| {
+            let (m, a, b) = (p[k], p[(k + 1) % 3], p[(k + 2) % 3]);
+            (0..3).any(|x| (a[x] < m[x] && m[x] < b[x]) || (a[x] > m[x] && m[x] > b[x]))
+        }) else {
+            return false;
+        };
+        // The cap is (a, b, c) with c on a → b; the neighbour is (b, a, d).
+        let (c, a, b) = (tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);
+        if !(self.complete(a) && self.complete(b) && self.complete(c)) {
+            return false;
+        }
+        let star_a = self.star(a);
+        let across: Vec<u32> = star_a
+            .iter()
+            .copied()
+            .filter(|&u| u != t && self.triangles[u as usize].contains(&b))
+            .collect();
+        let [n] = across[..] else {
+            return false;
+        };
+        let nt = self.triangles[n as usize];
+        let i = nt.iter().position(|&v| v == b).unwrap_or(0);
+        if nt[(i + 1) % 3] != a {
+            return false; // not oriented as the cap: the surface is not consistent here
+        }
+        let d = nt[(i + 2) % 3];
+        if self.neighbours(&self.star(c), c).binary_search(&d).is_ok() {
+            return false; // the new edge c–d exists
+        }
+        let (new_t, new_n) = ([c, a, d], [b, c, d]);
+        for x in [new_t, new_n] {
+            let q = self.corners(x);
+            if is_degenerate(q[0], q[1], q[2]) {
+                return false;
+            }
+        }
+        self.triangles[t as usize] = new_t;
+        self.triangles[n as usize] = new_n;
+        self.provenance[t as usize] = self.provenance[n as usize];
+        self.add(c, n);
+        self.add(d, t);
+        self.report.flipped_caps += 1;
+        true
+    }
+
+    fn zero_area(&self, t: u32) -> bool {
+        let q = self.corners(self.triangles[t as usize]);
+        is_degenerate(q[0], q[1], q[2])
+    }
+}
+
+/// The exact clean-up of `mesh` (a boolean's result: valid, with `provenance` naming its
+/// triangles' parents in `a` and `b`, and `seam_vertices` sorted): see the module's text.
+/// Only the vertices `added` (seam points that are neither input's vertex) are removed.
+/// Dead triangles and vertices are removed, the others keep their order; `provenance` and
+/// `seam_vertices` follow.
+pub(crate) fn clean_up(
+    mesh: &mut Mesh,
+    provenance: &mut Vec<Provenance>,
+    seam_vertices: &mut Vec<u32>,
+    added: &[u32],
+    [a, b]: [&Mesh; 2],
+) -> CleanupReport {
+    if added.is_empty() {
+        return CleanupReport::default();
+    }
+    let nv = mesh.positions.len();
+    let mut seam = vec![false; nv];
+    for &v in added {
+        seam[v as usize] = true;
+    }
+    // The stars of the seam vertices and of their neighbours: two passes over the
+    // triangles (the second picks every triangle at a vertex of the first's).
+    let touching = |marked: &[bool]| -> Vec<u32> {
+        const CHUNK: usize = 1 << 15;
+        let found: Vec<Vec<u32>> = mesh
+            .triangles
+            .par_chunks(CHUNK)
+            .enumerate()
+            .map(|(c, tris)| {
+                let mut out = Vec::new();
+                for (k, t) in tris.iter().enumerate() {
+                    if marked[t[0] as usize] | marked[t[1] as usize] | marked[t[2] as usize] {
+                        out.push((c * CHUNK + k) as u32);
+                    }
+                }
+                out
+            })
+            .collect();
+        found.concat()
+    };
+    let mut ring = seam.clone();
+    for &t in &touching(&seam) {
+        for v in mesh.triangles[t as usize] {
+            ring[v as usize] = true;
+        }
+    }
+    let around = touching(&ring);
+    let mut slot = vec![u32::MAX; nv];
+    let mut stars: Vec<Vec<u32>> = Vec::new();
+    for &t in &around {
+        for v in mesh.triangles[t as usize] {
+            if ring[v as usize] {
+                if slot[v as usize] == u32::MAX {
+                    slot[v as usize] = stars.len() as u32;
+                    stars.push(Vec::new());
+                }
+                stars[slot[v as usize] as usize].push(t);
+            }
+        }
+    }
+    let complete = vec![true; stars.len()];
+    let mut w = Work {
+        positions: &mesh.positions,
+        triangles: std::mem::take(&mut mesh.triangles),
+        alive: vec![true; provenance.len()],
+        provenance: std::mem::take(provenance),
+        inputs: [a, b],
+        slot,
+        stars,
+        complete,
+        seam,
+        dead_vertex: vec![false; nv],
+        dead_triangles: Vec::new(),
+        dead_vertices: Vec::new(),
+        report: CleanupReport::default(),
+    };
+    // Seam points, then again those next to a removed one (its removal can make theirs
+    // possible), until nothing changes.
+    let mut queue: Vec<u32> = added.iter().rev().copied().collect();
+    let mut queued = w.seam.clone();
+    while let Some(p) = queue.pop() {
+        queued[p as usize] = false;
+        let star = w.star(p);
+        if let Some(q) = w.remove(p) {
+            for x in w.neighbours(&star, p).into_iter().chain([q]) {
+                if w.seam[x as usize] && !w.dead_vertex[x as usize] && !queued[x as usize] {
+                    queued[x as usize] = true;
+                    queue.push(x);
+                }
+            }
+        }
+    }
+    // Caps left at the seam.
+    let mut caps: Vec<u32> = added
+        .iter()
+        .filter(|&&v| !w.dead_vertex[v as usize])
+        .flat_map(|&v| w.star(v))
+        .collect();
+    caps.sort_unstable();
+    caps.dedup();
+    caps.retain(|&t| w.zero_area(t));
+    for &t in &caps {
+        if w.alive[t as usize] && w.zero_area(t) && !w.flip_cap(t) {
+            w.report.zero_area_left += 1;
+        }
+    }
+    let Work {
+        triangles,
+        alive,
+        provenance: provenance_in,
+        dead_vertex,
+        mut dead_triangles,
+        mut dead_vertices,
+        report,
+        ..
+    } = w;
+    if report.triangles_removed == 0 {
+        // Flips only: nothing to compact.
+        mesh.triangles = triangles;
+        *provenance = provenance_in;
+        return report;
+    }
+    // Compact without moving what stays in place (few go): each dead triangle's and
+    // dead vertex's slot below the new count takes the live one from the end (dead
+    // vertices were collapsed, so they are unreferenced); ids follow.
+    let mut triangles = triangles;
+    let mut provenance_in = provenance_in;
+    // (k dead among len, ids sorted: the new count and the (from, to) moves.)
+    let fill = |dead: &[u32], is_dead: &dyn Fn(usize) -> bool, len: usize| {
+        let n = len - dead.len();
+        let holes = dead.iter().copied().filter(|&k| (k as usize) < n);
+        let moves: Vec<(u32, u32)> = (n..len)
+            .filter(|&k| !is_dead(k))
+            .map(|k| k as u32)
+            .zip(holes)
+            .collect();
+        (n, moves)
+    };
+    dead_triangles.sort_unstable();
+    dead_vertices.sort_unstable();
+    let (nt, tmoves) = fill(&dead_triangles, &|t| !alive[t], alive.len());
+    for &(from, to) in &tmoves {
+        triangles[to as usize] = triangles[from as usize];
+        provenance_in[to as usize] = provenance_in[from as usize];
+    }
+    triangles.truncate(nt);
+    provenance_in.truncate(nt);
+    let (n, moves) = fill(&dead_vertices, &|v| dead_vertex[v], nv);
+    for &(from, to) in &moves {
+        mesh.positions[to as usize] = mesh.positions[from as usize];
+    }
+    mesh.positions.truncate(n);
+    let renamed = |v: u32| {
+        if (v as usize) < n {
+            v
+        } else {
+            moves[moves.partition_point(|&(f, _)| f < v)].1
+        }
+    };
+    if !moves.is_empty() {
+        triangles.par_iter_mut().for_each(|t| *t = t.map(renamed));
+    }
+    mesh.triangles = triangles;
+    *provenance = provenance_in;
+    seam_vertices.retain(|&v| !dead_vertex[v as usize]);
+    for v in seam_vertices.iter_mut() {
+        *v = renamed(*v);
+    }
+    seam_vertices.sort_unstable();
+    report
+}
