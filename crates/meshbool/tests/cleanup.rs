@@ -7,7 +7,10 @@ use meshbool::intersect::self_intersections;
 use meshbool::measure::{degenerate_triangles, mesh_stats, signed_volume};
 use meshbool::ops::{self, BooleanOptions, BooleanOutput};
 use meshbool::shapes::rigid_motion;
-use meshbool::{Mesh, Op, Source};
+use meshbool::{Mesh, Op};
+
+mod common;
+use common::{assert_in_parent_faces, cube_and_cutter};
 
 fn boolean(a: &Mesh, b: &Mesh, op: Op, keep_seam_points: bool) -> BooleanOutput {
     let opts = BooleanOptions {
@@ -15,15 +18,6 @@ fn boolean(a: &Mesh, b: &Mesh, op: Op, keep_seam_points: bool) -> BooleanOutput 
         ..BooleanOptions::default()
     };
     ops::boolean(a, b, op, &opts).unwrap()
-}
-
-/// The unit cube and a box cutting off its part x > 0.5, z > 0.5, its other walls 1e-3
-/// outside the cube's faces: the seam crosses the faces' diagonals on straight lines.
-fn cube_and_cutter() -> (Mesh, Mesh) {
-    (
-        Mesh::unit_cube(),
-        Mesh::cuboid([0.5, -0.001, 0.5], [1.001, 1.001, 1.001]),
-    )
 }
 
 /// What the clean-up must keep of the result `raw` it starts from: closed (and manifold)
@@ -106,21 +100,7 @@ fn straight_seam_points_go_and_the_shape_stays() {
             assert_eq!(signed_volume(&clean.mesh), volume, "{op}");
             assert!(raw.mesh.triangle_count() > triangles, "{op}");
         }
-        for (t, p) in clean.mesh.triangles().iter().zip(&clean.provenance) {
-            let source = if p.source == Source::A { &a } else { &b };
-            let face =
-                source.triangles()[p.triangle as usize].map(|v| source.positions()[v as usize]);
-            let axis = (0..3)
-                .find(|&k| face[0][k] == face[1][k] && face[1][k] == face[2][k])
-                .unwrap();
-            for v in t {
-                assert_eq!(
-                    clean.mesh.positions()[*v as usize][axis],
-                    face[0][axis],
-                    "{op}"
-                );
-            }
-        }
+        assert_in_parent_faces(&clean.mesh, &clean.provenance, &a, &b, &op.to_string());
     }
 }
 

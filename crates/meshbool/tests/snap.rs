@@ -9,7 +9,10 @@ use meshbool::measure::{area, signed_volume};
 use meshbool::ops::{self, BooleanOptions, BooleanOutput, ResolveOptions};
 use meshbool::repair::{RepairConfig, SnapReport};
 use meshbool::shapes::{heightfield, rigid_motion};
-use meshbool::{Error, Mesh, Op, Source};
+use meshbool::{Error, Mesh, Op};
+
+mod common;
+use common::{assert_in_parent_faces, cube_and_cutter};
 
 const D: f64 = 0.01;
 
@@ -33,16 +36,6 @@ fn worst(m: &Mesh) -> (f64, f64) {
         worst.1 = worst.1.min(altitude);
     }
     worst
-}
-
-/// The unit cube, and a box cutting off the part x > 0.5, z > 0.5 whose other walls lie
-/// 1e-3 outside the cube's faces (a cutter drawn "a little larger"): its faces' diagonals
-/// cross the cube's faces a millimetre from the cube's edges, 5e-4 from the cut's corners.
-fn cube_and_cutter() -> (Mesh, Mesh) {
-    (
-        Mesh::unit_cube(),
-        Mesh::cuboid([0.5, -0.001, 0.5], [1.001, 1.001, 1.001]),
-    )
 }
 
 /// The boolean snapped at `snap`, on the arrangement as it is (`keep_seam_points`: the
@@ -123,17 +116,7 @@ fn snapping_a_cube_cut_by_a_slightly_larger_box_removes_every_needle() {
         assert!(self_intersections(&snapped.mesh).is_empty());
         // Provenance follows: every triangle lies in the face (an axis plane) of the
         // input triangle it names.
-        for (t, p) in snapped.mesh.triangles().iter().zip(&snapped.provenance) {
-            let source = if p.source == Source::A { &a } else { &b };
-            let face =
-                source.triangles()[p.triangle as usize].map(|v| source.positions()[v as usize]);
-            let axis = (0..3)
-                .find(|&k| face[0][k] == face[1][k] && face[1][k] == face[2][k])
-                .unwrap();
-            for v in t {
-                assert_eq!(snapped.mesh.positions()[*v as usize][axis], face[0][axis]);
-            }
-        }
+        assert_in_parent_faces(&snapped.mesh, &snapped.provenance, &a, &b, &op.to_string());
     }
 }
 

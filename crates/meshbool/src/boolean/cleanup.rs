@@ -26,6 +26,7 @@ use serde::Serialize;
 use super::{Provenance, Source};
 use crate::kernel::{normals_cross_sign, normals_dot_sign, orient3d_explicit, Sign};
 use crate::measure::is_degenerate;
+use crate::repair::{common, neighbours};
 use crate::Mesh;
 
 /// What the exact clean-up of a boolean's result did ([`super::PipelineOptions::cleanup`]).
@@ -69,8 +70,9 @@ struct Work<'a> {
     slot: Vec<u32>,
     /// Per slot: triangles that contained the vertex at some time (check before use).
     stars: Vec<Vec<u32>>,
-    /// Per slot: whether the star holds every triangle of the vertex.
-    complete: Vec<bool>,
+    /// Slots below this hold every triangle of their vertex (those made at the start);
+    /// later ones only the triangles edits gave it.
+    complete_slots: usize,
     /// Per vertex: whether it is one the clean-up may remove (a seam point that is not
     /// an input vertex).
     seam: Vec<bool>,
@@ -100,14 +102,13 @@ impl Work<'_> {
 
     fn complete(&self, v: u32) -> bool {
         let s = self.slot[v as usize];
-        s != u32::MAX && self.complete[s as usize]
+        (s as usize) < self.complete_slots
     }
 
     fn add(&mut self, v: u32, t: u32) {
         if self.slot[v as usize] == u32::MAX {
             self.slot[v as usize] = self.stars.len() as u32;
             self.stars.push(Vec::new());
-            self.complete.push(false);
         }
         self.stars[self.slot[v as usize] as usize].push(t);
     }
@@ -141,16 +142,10 @@ impl Work<'_> {
             && normals_dot_sign(&pt, &pu) == Sign::Positive
     }
 
-    /// The neighbours of `v` in `star` (sorted).
+    /// The neighbours of `v` in the triangles `star` (sorted).
     fn neighbours(&self, star: &[u32], v: u32) -> Vec<u32> {
-        let mut n: Vec<u32> = star
-            .iter()
-            .flat_map(|&t| self.triangles[t as usize])
-            .filter(|&x| x != v)
-            .collect();
-        n.sort_unstable();
-        n.dedup();
-        n
+        let tris: Vec<[u32; 3]> = star.iter().map(|&t| self.triangles[t as usize]).collect();
+        neighbours(&tris, v)
     }
 
     /// Whether collapsing `p` onto `q` keeps the mesh manifold: `q`'s star is known,
@@ -169,7 +164,7 @@ impl Work<'_> {
         }
         let star_q = self.star(q);
         let (np, nq) = (self.neighbours(star_p, p), self.neighbours(&star_q, q));
-        let common = np.iter().filter(|x| nq.binary_search(x).is_ok()).count();
+        let shared = common(&np, &nq).len();
         let far: Vec<u32> = on_edge
             .iter()
             .map(|&t| {
@@ -177,7 +172,7 @@ impl Work<'_> {
                 tri.into_iter().find(|&x| x != p && x != q).unwrap_or(p)
             })
             .collect();
-        far[0] != far[1] && common == 2
+        far[0] != far[1] && shared == 2
     }
 
     /// Collapses `p` onto `q` (checked by the caller): the triangles on the edge die, the
@@ -215,8 +210,9 @@ impl Work<'_> {
         })
     }
 
-    /// Tries to remove seam vertex `p`; returns the vertex it went onto.
-    fn remove(&mut self, p: u32) -> Option<u32> {
+    /// Tries to remove seam vertex `p`; returns the vertex it went onto and `p`'s
+    /// neighbours before.
+    fn remove(&mut self, p: u32) -> Option<(u32, Vec<u32>)> {
         if self.dead_vertex[p as usize] || !self.complete(p) {
             return None;
         }
@@ -252,7 +248,7 @@ impl Work<'_> {
             if position(q) == position(p) && self.link_ok(p, q, &star) {
                 self.collapse(p, q, &star);
                 self.report.zero_length_edges += 1;
-                return Some(q);
+                return Some((q, neighbours));
             }
         }
         let creases: Vec<usize> = (0..neighbours.len())
@@ -291,7 +287,7 @@ impl Work<'_> {
             if self.link_ok(p, q, &star) && self.keeps_facing(p, q, &star) {
                 self.collapse(p, q, &star);
                 self.report.removed_points += 1;
-                return Some(q);
+                return Some((q, neighbours));
             }
         }
         None
@@ -357,8 +353,8 @@ impl Work<'_> {
 /// The exact clean-up of `mesh` (a boolean's result: valid, with `provenance` naming its
 /// triangles' parents in `a` and `b`, and `seam_vertices` sorted): see the module's text.
 /// Only the vertices `added` (seam points that are neither input's vertex) are removed.
-/// Dead triangles and vertices are removed, the others keep their order; `provenance` and
-/// `seam_vertices` follow.
+/// Dead triangles and vertices are removed, each slot filled by the last live one (the
+/// others keep their places); `provenance` and `seam_vertices` (sorted) follow.
 pub(crate) fn clean_up(
     mesh: &mut Mesh,
     provenance: &mut Vec<Provenance>,
@@ -414,7 +410,7 @@ pub(crate) fn clean_up(
             }
         }
     }
-    let complete = vec![true; stars.len()];
+    let complete_slots = stars.len();
     let mut w = Work {
         positions: &mesh.positions,
         triangles: std::mem::take(&mut mesh.triangles),
@@ -423,7 +419,7 @@ pub(crate) fn clean_up(
         inputs: [a, b],
         slot,
         stars,
-        complete,
+        complete_slots,
         seam,
         dead_vertex: vec![false; nv],
         dead_triangles: Vec::new(),
@@ -436,9 +432,8 @@ pub(crate) fn clean_up(
     let mut queued = w.seam.clone();
     while let Some(p) = queue.pop() {
         queued[p as usize] = false;
-        let star = w.star(p);
-        if let Some(q) = w.remove(p) {
-            for x in w.neighbours(&star, p).into_iter().chain([q]) {
+        if let Some((q, neighbours)) = w.remove(p) {
+            for x in neighbours.into_iter().chain([q]) {
                 if w.seam[x as usize] && !w.dead_vertex[x as usize] && !queued[x as usize] {
                     queued[x as usize] = true;
                     queue.push(x);
@@ -461,9 +456,9 @@ pub(crate) fn clean_up(
         }
     }
     let Work {
-        triangles,
+        mut triangles,
         alive,
-        provenance: provenance_in,
+        provenance: mut provenance_in,
         dead_vertex,
         mut dead_triangles,
         mut dead_vertices,
@@ -479,8 +474,6 @@ pub(crate) fn clean_up(
     // Compact without moving what stays in place (few go): each dead triangle's and
     // dead vertex's slot below the new count takes the live one from the end (dead
     // vertices were collapsed, so they are unreferenced); ids follow.
-    let mut triangles = triangles;
-    let mut provenance_in = provenance_in;
     // (k dead among len, ids sorted: the new count and the (from, to) moves.)
     let fill = |dead: &[u32], is_dead: &dyn Fn(usize) -> bool, len: usize| {
         let n = len - dead.len();

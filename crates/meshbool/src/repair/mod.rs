@@ -35,7 +35,9 @@ pub use pipeline::{
     close, repair, repair_with_progress, CloseMode, CloseOptions, CloseReport, RepairConfig,
     RepairReport,
 };
-pub(crate) use snap::{check_tolerance, remove_sorted, snap_carrying, snap_unchecked};
+pub(crate) use snap::{
+    check_tolerance, common, neighbours, remove_sorted, snap_carrying, snap_unchecked,
+};
 pub use snap::{snap, snap_in_place, snap_with, SnapOptions, SnapReport, Snapped};
 pub use stitch::{stitch, zipper, StitchReport};
 pub use tjunction::{resolve_t_junctions, resolve_t_junctions_within, TJunctionReport};

@@ -1,0 +1,35 @@
+//! What the cube-and-cutter tests of snapping and of the exact clean-up share.
+
+use meshbool::boolean::Provenance;
+use meshbool::{Mesh, Source};
+
+/// The unit cube, and a box cutting off the part x > 0.5, z > 0.5 whose other walls lie
+/// 1e-3 outside the cube's faces (a cutter drawn "a little larger"): its faces' diagonals
+/// cross the cube's faces a millimetre from the cube's edges, 5e-4 from the cut's corners.
+pub fn cube_and_cutter() -> (Mesh, Mesh) {
+    (
+        Mesh::unit_cube(),
+        Mesh::cuboid([0.5, -0.001, 0.5], [1.001, 1.001, 1.001]),
+    )
+}
+
+/// Asserts that every triangle of `mesh` lies in the face (an axis plane) of the input
+/// triangle its provenance names, in `a` or `b` (axis-aligned boxes).
+pub fn assert_in_parent_faces(
+    mesh: &Mesh,
+    provenance: &[Provenance],
+    a: &Mesh,
+    b: &Mesh,
+    what: &str,
+) {
+    for (t, p) in mesh.triangles().iter().zip(provenance) {
+        let source = if p.source == Source::A { a } else { b };
+        let face = source.triangles()[p.triangle as usize].map(|v| source.positions()[v as usize]);
+        let axis = (0..3)
+            .find(|&k| face[0][k] == face[1][k] && face[1][k] == face[2][k])
+            .unwrap();
+        for v in t {
+            assert_eq!(mesh.positions()[*v as usize][axis], face[0][axis], "{what}");
+        }
+    }
+}
