@@ -91,10 +91,11 @@ export interface CheckOptions {
 	 */
 	snap?: number;
 	/**
-	 * Keep every seam point of the exact arrangement (booleans). By default seam points
-	 * where the result is flat or straight are removed and zero-area triangles made by
-	 * rounding are collapsed or flipped away, no surface moving; the report's `cleanup`
-	 * says what was done.
+	 * Keep every seam point of the exact arrangement (booleans; default true, so that a
+	 * boolean equals its merged split groups as in the reference library). `false` runs
+	 * the exact clean-up: seam points where the result is flat or straight are removed and
+	 * zero-area triangles made by rounding are collapsed or flipped away, no surface
+	 * moving; the report's `cleanup` says what was done.
 	 */
 	keepSeamPoints?: boolean;
 }

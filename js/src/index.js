@@ -100,9 +100,10 @@ function emptyCheck(arrays, what) {
  * "reverse-difference". Options: `force`, `selfCheck`, `resolve`, `orient` (the operand
  * checks, all on but `force` by default), `keepNonmanifold`, `snap` (a tolerance D:
  * edges shorter than D collapsed and needles removed where that makes no defect; the
- * report's `snap` says what was done), `keepSeamPoints` (no exact clean-up: by default
- * seam points where the result is flat or straight are removed and zero-area triangles
- * made by rounding go, no surface moving; the report's `cleanup` says what was done).
+ * report's `snap` says what was done), `keepSeamPoints` (default true, as the reference
+ * library's booleans equal their merged split groups; `false` runs the exact clean-up:
+ * seam points where the result is flat or straight removed and zero-area triangles made
+ * by rounding gone, no surface moving; the report's `cleanup` says what was done).
  */
 export function booleanIndexed(a, b, op, options) {
 	const A = indexedArrays(a, "a"), B = indexedArrays(b, "b");

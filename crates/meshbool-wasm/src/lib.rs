@@ -183,7 +183,9 @@ fn provenance_arrays(out: Out, prov: &[meshbool::Provenance]) -> Out {
 /// `intersection` (`intersect`), `difference` (`subtract`), `reverse-difference`.
 /// Options (JSON): `force`, `selfCheck`, `resolve`, `orient`, `keepNonmanifold`, `snap`
 /// (a tolerance, [`BooleanOptions::snap`]), `keepSeamPoints`
-/// ([`BooleanOptions::keep_seam_points`]).
+/// ([`BooleanOptions::keep_seam_points`]; **true** by default here, unlike the library:
+/// the reference library's contract is that a boolean equals its merged split groups,
+/// which keep every seam point; `false` turns the exact clean-up on).
 #[wasm_bindgen]
 pub fn boolean(
     a_positions: &[f64],
@@ -199,7 +201,7 @@ pub fn boolean(
     let opts = BooleanOptions {
         checks: checks(&o)?,
         keep_nonmanifold: flag(&o, "keepNonmanifold", false)?,
-        keep_seam_points: flag(&o, "keepSeamPoints", false)?,
+        keep_seam_points: flag(&o, "keepSeamPoints", true)?,
         snap: number(&o, "snap")?.unwrap_or(0.0),
         ..BooleanOptions::default()
     };
