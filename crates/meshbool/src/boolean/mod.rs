@@ -31,6 +31,7 @@ use crate::classify::{classify, Class, Classified, CutMesh};
 use crate::edges::SeamTopology;
 pub use crate::intersect::Source;
 use crate::intersect::{intersect_with, Seam};
+use crate::kernel::Point;
 use crate::repair::nonmanifold::split_at;
 use crate::repair::NonManifoldReport;
 use crate::Mesh;
@@ -377,11 +378,17 @@ pub struct PipelineOptions<'p> {
     /// collapsed or flipped away, no surface moved ([`CleanupReport`]). Off, the result
     /// keeps every seam point of the arrangement.
     pub cleanup: bool,
+    /// Split the result's topology at every vertex where it is not manifold, not only at
+    /// the seam: for an input that is not manifold itself (an operand resolved at the
+    /// door whose parts touch along an edge or at a vertex). Ignored with
+    /// `keep_nonmanifold`.
+    pub split_everywhere: bool,
 }
 
 impl Default for PipelineOptions<'_> {
     fn default() -> Self {
         PipelineOptions {
+            split_everywhere: false,
             progress: None,
             grid_from: crate::intersect::GRID_FROM,
             exact_winding_up_to: crate::classify::EXACT_WINDING_UP_TO,
@@ -619,17 +626,40 @@ pub fn boolean(a: &Mesh, b: &Mesh, op: Op, opts: &PipelineOptions) -> BooleanRes
         |t| rule.b.of(s.class_b.class[t]),
     );
     let merged_vertices = merged.mesh.positions.len() as u32;
-    let (mesh, nonmanifold) = if opts.keep_nonmanifold {
-        (merged.mesh, NonManifoldReport::default())
+    let (mesh, nonmanifold, copied) = if opts.keep_nonmanifold {
+        (merged.mesh, NonManifoldReport::default(), Vec::new())
+    } else if opts.split_everywhere {
+        // Every vertex, the seam's at their exact points.
+        let mut seam_index = vec![u32::MAX; merged.mesh.positions.len()];
+        for (i, &v) in merged.seam_vertices.iter().enumerate() {
+            seam_index[v as usize] = i as u32;
+        }
+        let exact = |v: usize| match seam_index[v] {
+            u32::MAX => Point::Explicit(merged.mesh.positions[v]),
+            i => s.a.point(merged.seam_origin[i as usize]),
+        };
+        let all: Vec<u32> = (0..merged_vertices).collect();
+        let (mesh, report, copied) = split_at(merged.mesh.clone(), &all, Some(&exact));
+        let copied = copied
+            .into_iter()
+            .map(|v| seam_index[v as usize] != u32::MAX)
+            .collect();
+        (mesh, report, copied)
     } else {
         // Pairing at the seam's exact points: rounded, thin triangles there can tie or
         // swap angles around an edge.
         let exact = |i: usize| s.a.point(merged.seam_origin[i]);
-        split_at(merged.mesh, &merged.seam_vertices, Some(&exact))
+        let (mesh, report, copied) = split_at(merged.mesh, &merged.seam_vertices, Some(&exact));
+        (mesh, report, vec![true; copied.len()])
     };
-    // The split's copies (of seam vertices) come after the merged vertices.
+    // The split's copies come after the merged vertices; those of seam vertices are seam
+    // vertices too.
     let mut seam_vertices = merged.seam_vertices;
-    seam_vertices.extend(merged_vertices..mesh.positions.len() as u32);
+    seam_vertices.extend(
+        (merged_vertices..mesh.positions.len() as u32)
+            .zip(copied)
+            .filter_map(|(v, seam)| seam.then_some(v)),
+    );
     let (mut mesh, mut provenance) = (mesh, merged.provenance);
     let cleanup = if opts.cleanup {
         // The seam points the arrangement added (neither A's vertex nor B's).

@@ -20,7 +20,7 @@ use super::{Op, PipelineOptions};
 use crate::arrange::arrange_self;
 use crate::classify::{winding_number, winding_number_without, winding_term, FastWinding};
 use crate::edges::{EdgeKind, EdgeTopology};
-use crate::intersect::self_seam;
+use crate::intersect::{self_intersections, self_seam};
 use crate::kernel::{orient3d_explicit, Sign};
 use crate::measure::signed_volume;
 use crate::repair::{split_nonmanifold, NonManifoldReport};
@@ -101,6 +101,11 @@ pub struct ResolveReport {
     pub rounding_flips: usize,
     /// Where the result was not manifold and was split.
     pub split_nonmanifold: NonManifoldReport,
+    /// Where the *input* had edges of more than two triangles (closed parts glued along
+    /// edges, a part given twice), its triangles were paired into closed sheets first
+    /// (vertices duplicated, positions unchanged), and the sheets resolved as components
+    /// that touch or overlap.
+    pub separated_input: NonManifoldReport,
 }
 
 /// The resolved solid: a mesh, the input triangle each of its triangles is part of, and
@@ -131,6 +136,11 @@ struct Piece {
 ///
 /// Errors (the reason, one phrase): a component that is not closed and consistently
 /// oriented, a component of zero volume.
+///
+/// An input with edges of more than two triangles is first separated into sheets
+/// ([`split_nonmanifold`]: triangle ids kept, vertices duplicated) and its crossing pairs
+/// found again, so that closed parts glued along edges or given twice resolve like parts
+/// that touch or overlap ([`ResolveReport::separated_input`]).
 pub fn resolve(
     mesh: &Mesh,
     pairs: &[(u32, u32)],
@@ -138,6 +148,25 @@ pub fn resolve(
     opts: &PipelineOptions,
 ) -> Result<Resolved, String> {
     let topo = EdgeTopology::new(mesh);
+    if (0..topo.edge_count()).any(|e| topo.kind(e) == EdgeKind::NonManifold) {
+        let (sheets, separated) = split_nonmanifold(mesh);
+        let pairs = self_intersections(&sheets);
+        let topo = EdgeTopology::new(&sheets);
+        let mut r = resolve_sheets(&sheets, &topo, &pairs, rule, opts)?;
+        r.report.separated_input = separated;
+        return Ok(r);
+    }
+    resolve_sheets(mesh, &topo, pairs, rule, opts)
+}
+
+/// [`resolve`] of a mesh with no edge of more than two triangles (`topo` its edges).
+fn resolve_sheets(
+    mesh: &Mesh,
+    topo: &EdgeTopology,
+    pairs: &[(u32, u32)],
+    rule: FillRule,
+    opts: &PipelineOptions,
+) -> Result<Resolved, String> {
     let (count, component) = topo.components();
     let mut report = ResolveReport {
         components: count,

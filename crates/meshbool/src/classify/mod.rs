@@ -54,37 +54,32 @@ pub struct Classified {
 struct FanFace {
     plane: [[f64; 3]; 3],
     far: Point,
+    /// Whether its triangle runs from the edge's first end to its second.
+    forward: bool,
 }
 
 /// The class of a triangle with far vertex `w` at seam edge `e0 e1` against the fan.
 /// `own` is the input triangle the classified triangle comes from. `None` when the fan does
 /// not decide (a boundary or non-manifold edge of the other mesh).
-fn local_class(own: &[[f64; 3]; 3], w: &Point, e: [&Point; 2], fan: &[FanFace]) -> Option<Class> {
-    let [f0, f1] = fan else { return None };
+fn local_class(
+    own: &[[f64; 3]; 3],
+    w: &Point,
+    e: [&Point; 2],
+    near: [f64; 3],
+    fan: &[FanFace],
+) -> Option<Class> {
+    let [f0, f1] = fan else {
+        return glued_class(own, w, e, near, fan);
+    };
     let s = [f0, f1].map(|f| orient3d_plane(&f.plane[0], &f.plane[1], &f.plane[2], w));
     for (k, f) in [f0, f1].iter().enumerate() {
         if s[k] != Sign::Zero {
             continue;
         }
         // In the plane of this face: overlapping it when on the same side of the edge.
-        let plane = Triangle::new(f.plane)?;
-        let axis = plane.axis();
-        let (ow, of) = (
-            orient2d(e[0], e[1], w, axis),
-            orient2d(e[0], e[1], &f.far, axis),
-        );
-        if ow != Sign::Zero && ow == of {
-            let own_sign = orient2d(
-                &Point::Explicit(own[0]),
-                &Point::Explicit(own[1]),
-                &Point::Explicit(own[2]),
-                axis,
-            );
-            return Some(if own_sign == plane.sign() {
-                Class::CoplanarSame
-            } else {
-                Class::CoplanarOpposite
-            });
+        Triangle::new(f.plane)?;
+        if let Some(c) = on_face(own, w, e, f) {
+            return Some(c);
         }
     }
     let convex = orient3d_plane(&f0.plane[0], &f0.plane[1], &f0.plane[2], &f1.far);
@@ -95,6 +90,96 @@ fn local_class(own: &[[f64; 3]; 3], w: &Point, e: [&Point; 2], fan: &[FanFace]) 
         Sign::Zero => behind(s[0]) || behind(s[1]),
     };
     Some(if inside {
+        Class::Inside
+    } else {
+        Class::Outside
+    })
+}
+
+/// Whether `w`, seen from edge `e`, lies on face `f` (in its plane, on its side of the
+/// edge); then the class by the facing of `own` (the classified triangle's input
+/// triangle) against it.
+fn on_face(own: &[[f64; 3]; 3], w: &Point, e: [&Point; 2], f: &FanFace) -> Option<Class> {
+    let plane = Triangle::new(f.plane)?;
+    let axis = plane.axis();
+    let (ow, of) = (
+        orient2d(e[0], e[1], w, axis),
+        orient2d(e[0], e[1], &f.far, axis),
+    );
+    if ow == Sign::Zero || ow != of {
+        return None;
+    }
+    let own_sign = orient2d(
+        &Point::Explicit(own[0]),
+        &Point::Explicit(own[1]),
+        &Point::Explicit(own[2]),
+        axis,
+    );
+    Some(if own_sign == plane.sign() {
+        Class::CoplanarSame
+    } else {
+        Class::CoplanarOpposite
+    })
+}
+
+/// [`local_class`] at an edge of more than two faces of the other mesh (closed parts
+/// glued along it, an operand resolved at the door whose parts touch): on a face where
+/// `w` lies on one (all such faces agreeing), else inside where the fan wraps around
+/// `w`'s side: the sectors between the faces, taken in angular order around the edge,
+/// each gain one crossing a face that opens an inside and lose one crossing a face
+/// that closes it; the fan of a solid's boundary wraps the sectors with the least count
+/// zero times. `None` for fewer than three faces or an odd count (a boundary), and where
+/// faces `w` lies on disagree. `near` is the position of `e[0]`.
+fn glued_class(
+    own: &[[f64; 3]; 3],
+    w: &Point,
+    e: [&Point; 2],
+    near: [f64; 3],
+    fan: &[FanFace],
+) -> Option<Class> {
+    if fan.len() < 3 || fan.len() % 2 == 1 {
+        return None;
+    }
+    let mut found = None;
+    for f in fan {
+        if orient3d_plane(&f.plane[0], &f.plane[1], &f.plane[2], w) != Sign::Zero {
+            continue;
+        }
+        if let Some(c) = on_face(own, w, e, f) {
+            if found.is_some_and(|d| d != c) {
+                return None;
+            }
+            found = Some(c);
+        }
+    }
+    if found.is_some() {
+        return found;
+    }
+    // The faces and `w` in angular order around e[0] -> e[1]; `w` is the last item.
+    let mut items: Vec<(u32, bool, Point, u32)> = fan
+        .iter()
+        .enumerate()
+        .map(|(i, f)| (i as u32, f.forward, f.far.clone(), i as u32))
+        .collect();
+    items.push((fan.len() as u32, true, w.clone(), fan.len() as u32));
+    let order = crate::repair::nonmanifold::angular_order(e[0], e[1], near, &items);
+    // Counter-clockwise past a face running e1 -> e0 enters its inside, past one running
+    // e0 -> e1 leaves it.
+    let (mut count, mut lowest, mut at_w) = (0i64, 0i64, None);
+    for &i in &order {
+        if i == fan.len() {
+            at_w = Some(count);
+            continue;
+        }
+        count += if fan[i].forward { -1 } else { 1 };
+        lowest = lowest.min(count);
+    }
+    // The sectors before the first face continue the last (the circle closes at zero).
+    if count != 0 {
+        return None;
+    }
+    let at_w = at_w?;
+    Some(if at_w - lowest >= 1 {
         Class::Inside
     } else {
         Class::Outside
@@ -177,6 +262,7 @@ fn seam_votes(x: &CutMesh, y: &CutMesh) -> Vec<Vote> {
                             FanFace {
                                 plane: y_in.corners(y.parent[use_.triangle as usize] as usize),
                                 far: y.point(tri[(use_.corner as usize + 2) % 3]),
+                                forward: tri[use_.corner as usize] == yu,
                             }
                         })
                         .collect()
@@ -190,7 +276,8 @@ fn seam_votes(x: &CutMesh, y: &CutMesh) -> Vec<Vote> {
                     let t = use_.triangle as usize;
                     let w = &x.point(x.mesh.triangles[t][(use_.corner as usize + 2) % 3]);
                     let own = x_in.corners(x.parent[t] as usize);
-                    (patch[t], t as u32, local_class(&own, w, ends, &fan))
+                    let near = x.mesh.positions[u as usize];
+                    (patch[t], t as u32, local_class(&own, w, ends, near, &fan))
                 })
                 .collect::<Vec<_>>()
         })

@@ -193,6 +193,7 @@ pub fn boolean<'a>(
         let pipeline = PipelineOptions {
             keep_nonmanifold: opts.keep_nonmanifold,
             cleanup: !opts.keep_seam_points,
+            split_everywhere: a.glued() || b.glued(),
             ..opts.run.pipeline()
         };
         let mut r = crate::boolean::boolean(a.mesh(), b.mesh(), op, &pipeline);

@@ -33,8 +33,11 @@ pub struct Checks {
     /// Resolve a self-intersecting operand made of closed, consistently oriented
     /// components into the solid it encloses (fill rule positive: the union of its
     /// overlapping parts, a self-crossing part cut along its own seam; see
-    /// [`super::resolve()`]). Needs `self_intersections`. Off: self-intersections are a
-    /// problem.
+    /// [`super::resolve()`]). Also an operand whose closed parts are glued along edges of
+    /// more than two triangles (parts sharing an edge, a part given twice): its triangles
+    /// are paired into closed sheets first, which are resolved as parts that touch or
+    /// overlap. Needs `self_intersections` (and `edges` for glued parts). Off:
+    /// self-intersections and non-manifold edges are a problem.
     pub resolve: bool,
     /// Proceed when a check finds a problem, taking the input as given; the problems are
     /// listed in the report's `assumed`. Without it they are an [`Error::Operand`].
@@ -80,7 +83,8 @@ pub struct OperandReport {
     /// Triangles reversed at the door to make the orientation consistent (each component
     /// facing as most of its triangles did; [`Checks::orient`]); 0 when none.
     pub reoriented_triangles: usize,
-    /// Edges used by more than two triangles; `None`: not checked.
+    /// Edges used by more than two triangles in the input; `None`: not checked. Not a
+    /// problem when the operand was resolved ([`OperandReport::resolved`] says how).
     pub non_manifold_edges: Option<usize>,
     /// Self-intersecting triangle pairs; `None`: not checked.
     pub self_intersections: Option<SelfIntersections>,
@@ -128,7 +132,7 @@ impl OperandReport {
         if let (Some(n @ 1..), 0) = (self.inconsistent_edges, self.reoriented_triangles) {
             problems.push(format!("{n} inconsistently oriented edges"));
         }
-        if let Some(n @ 1..) = self.non_manifold_edges {
+        if let (Some(n @ 1..), None) = (self.non_manifold_edges, &self.resolved) {
             problems.push(format!("{n} non-manifold edges"));
         }
         if let (
@@ -191,8 +195,12 @@ impl OperandReport {
                     r.united_components, r.components, r.dropped_components
                 )
             };
+            let glued = match r.separated_input.edges_split {
+                0 => String::new(),
+                n => format!("{n} edges of more than two triangles separated into sheets, "),
+            };
             lines.push(format!(
-                "{}: {} self-intersecting triangle pairs resolved: the operand is the solid it encloses (fill rule positive; {how})",
+                "{}: {glued}{} self-intersecting triangle pairs resolved: the operand is the solid it encloses (fill rule positive; {how})",
                 self.name, r.crossing_pairs
             ));
         }
@@ -219,6 +227,9 @@ pub struct Operand {
     /// Input triangles reversed at the door (orientation made consistent, inside-out
     /// components), sorted.
     reversed: Vec<u32>,
+    /// Whether `mesh` is not manifold (a resolved operand whose parts touch along edges
+    /// or at vertices, kept welded there).
+    glued: bool,
 }
 
 impl Operand {
@@ -284,7 +295,7 @@ impl Operand {
                 unresolved: None,
             }
         });
-        let (mut resolved, mut parent) = (None, None);
+        let (mut resolved, mut parent, mut glued_result) = (None, None, false);
         let clean_edges = counts.is_some_and(|c| c.inconsistent == 0 && c.non_manifold == 0);
         // Inside-out closed components are reversed (a closed mesh's inside is where its
         // normals point away from; written the other way round it would be its complement).
@@ -301,17 +312,27 @@ impl Operand {
         let reversed: Vec<u32> = (0..flipped.len() as u32)
             .filter(|&t| flipped[t as usize])
             .collect();
-        if let (Some(found), Some(si), true, true) =
-            (&found, &mut self_intersections, checks.resolve, clean_edges)
-        {
-            if !found.is_empty() {
-                match resolve(
-                    &mesh,
-                    found,
-                    FillRule::Positive,
-                    &PipelineOptions::default(),
-                ) {
+        // Edges of more than two triangles (closed parts glued along edges, a part given
+        // twice) are separated into sheets by the resolve.
+        let glued = counts.is_some_and(|c| c.inconsistent == 0 && c.non_manifold > 0);
+        if let (Some(found), Some(si), true, true) = (
+            &found,
+            &mut self_intersections,
+            checks.resolve,
+            clean_edges || glued,
+        ) {
+            if !found.is_empty() || glued {
+                // Welded where parts touch: a later boolean takes edges of four triangles
+                // (it pairs them into sheets on its result), not distinct vertices at
+                // one position, which its seam would cut twice.
+                let opts = PipelineOptions {
+                    keep_nonmanifold: true,
+                    ..PipelineOptions::default()
+                };
+                match resolve(&mesh, found, FillRule::Positive, &opts) {
                     Ok(r) => {
+                        glued_result =
+                            crate::repair::split_nonmanifold(&r.mesh).1.vertices_added > 0;
                         mesh = r.mesh;
                         parent = Some(r.parent);
                         resolved = Some(r.report);
@@ -347,6 +368,7 @@ impl Operand {
             report,
             parent,
             reversed,
+            glued: glued_result,
         })
     }
 
@@ -357,6 +379,13 @@ impl Operand {
             Some(p) => p[t as usize],
             None => t,
         }
+    }
+
+    /// Whether the checked mesh is not manifold: an operand resolved at the door whose
+    /// parts touch along edges or at vertices (kept welded there; a boolean on it splits
+    /// its result there too).
+    pub(crate) fn glued(&self) -> bool {
+        self.glued
     }
 
     /// Whether input triangle `t` was reversed at the door (orientation made consistent,

@@ -163,6 +163,18 @@ pub fn split<'a>(
             .into_iter()
             .filter(|(_, mesh, _)| !mesh.is_empty())
             .map(|(group, mesh, mut provenance)| {
+                // An operand resolved at the door whose parts touch along an edge or at a
+                // vertex stays welded there: its groups are split into edge-manifold
+                // sheets (triangle order kept).
+                let from_a = matches!(
+                    group,
+                    Group::AInB | Group::AOutB | Group::AOnBSame | Group::AOnBOpposite
+                );
+                let mesh = if (from_a && a.glued()) || (!from_a && b.glued()) {
+                    split_nonmanifold(&mesh).0
+                } else {
+                    mesh
+                };
                 Operand::to_input_triangles(&mut provenance, a, b);
                 group_pieces(group, mesh, provenance, opts.merge_small)
             })

@@ -35,7 +35,8 @@ pub struct NonManifoldReport {
 /// orientation.
 pub fn split_nonmanifold(mesh: &Mesh) -> (Mesh, NonManifoldReport) {
     let all: Vec<u32> = (0..mesh.positions.len() as u32).collect();
-    split_at(mesh.clone(), &all, None)
+    let (mesh, report, _) = split_at(mesh.clone(), &all, None);
+    (mesh, report)
 }
 
 /// The exact point of the `i`th candidate of [`split_at`].
@@ -44,12 +45,13 @@ pub(crate) type ExactPoint<'a> = &'a (dyn Fn(usize) -> Point + Sync);
 /// [`split_nonmanifold`] looking only at the vertices `candidates` (sorted, distinct):
 /// where a boolean glues its two inputs, the only places it can make the result
 /// non-manifold. `exact(i)` is the exact point of `candidates[i]` where its position is
-/// rounded (a seam point); `None`: positions are exact.
+/// rounded (a seam point); `None`: positions are exact. Also returns, for each copy
+/// appended, the vertex it copies.
 pub(crate) fn split_at(
     mut mesh: Mesh,
     candidates: &[u32],
     exact: Option<ExactPoint>,
-) -> (Mesh, NonManifoldReport) {
+) -> (Mesh, NonManifoldReport, Vec<u32>) {
     let n = mesh.positions.len();
     // The corners (triangle, position in it) of each candidate vertex, in triangle order.
     let mut slot = vec![u32::MAX; n];
@@ -92,6 +94,7 @@ pub(crate) fn split_at(
         .collect();
     // Every fan but the first gets a new vertex at the same position.
     let mut report = NonManifoldReport::default();
+    let mut copied = Vec::new();
     for (i, f) in fans.iter().enumerate() {
         let v = candidates[i];
         report.edges_split += f.split_edges;
@@ -100,6 +103,7 @@ pub(crate) fn split_at(
         for fan in 1..f.count {
             let copy = mesh.positions.len() as u32;
             mesh.positions.push(mesh.positions[v as usize]);
+            copied.push(v);
             report.vertices_added += 1;
             for (c, &(t, k)) in cs.iter().enumerate() {
                 if f.fan[c] == fan {
@@ -108,7 +112,7 @@ pub(crate) fn split_at(
             }
         }
     }
-    (mesh, report)
+    (mesh, report, copied)
 }
 
 /// The fans of one vertex: `fan[c]` for each of its corners (0 for the fan holding its
@@ -221,16 +225,27 @@ fn pair_around(
     // Around the axis lo -> hi, angles increasing counter-clockwise (seen with the axis
     // pointing at the viewer): a triangle running hi -> lo faces backwards, so its inside
     // is towards the next triangle, which (oriented consistently) runs lo -> hi.
+    // Such a pair opens a sheet's inside and closes it: they are matched as parentheses
+    // around the circle, so that sheets nested in one another's wedge (parts that overlap
+    // there, a part given twice) pair up too, innermost first. The pass starts just after
+    // the lowest point of the running count (opens +1, closes −1), where no sheet is open.
     let m = order.len();
-    let mut taken = vec![false; m];
-    let mut sheets = Vec::new();
+    let opens = |i: usize| !items[order[i]].1;
+    let (mut count, mut lowest, mut start) = (0i64, 0i64, 0usize);
     for i in 0..m {
-        let j = (i + 1) % m;
-        let (a, b) = (&items[order[i]], &items[order[j]]);
-        if !a.1 && b.1 && !taken[i] && !taken[j] {
-            taken[i] = true;
-            taken[j] = true;
-            sheets.push((a.0, b.0));
+        count += if opens(i) { 1 } else { -1 };
+        if count < lowest {
+            (lowest, start) = (count, i + 1);
+        }
+    }
+    let mut open = Vec::new();
+    let mut sheets = Vec::new();
+    for s in 0..m {
+        let i = (start + s) % m;
+        if opens(i) {
+            open.push(i);
+        } else if let Some(j) = open.pop() {
+            sheets.push((items[order[j]].0, items[order[i]].0));
         }
     }
     sheets
@@ -238,10 +253,11 @@ fn pair_around(
 
 /// The uses' indices ordered by the angle of their far vertices around the axis `p -> q`,
 /// counter-clockwise, starting at the first use's far vertex; at equal angles those
-/// running `p -> q` (whose inside is before them) first, then by triangle.
+/// running `p -> q` (whose inside is before them) first, by increasing triangle, then the
+/// others by decreasing triangle.
 /// Exact (`orient3d` on the points). Far vertices on the axis itself (zero-area
 /// triangles) come first. `near` is `p`'s position (its coordinates when explicit).
-fn angular_order(
+pub(crate) fn angular_order(
     p: &Point,
     q: &Point,
     near: [f64; 3],
@@ -305,10 +321,17 @@ fn angular_order(
             } else {
                 std::cmp::Ordering::Equal
             };
-            // At one angle (faces on faces), the one bounding the wedge before it first.
-            by_angle
-                .then(items[j].1.cmp(&items[i].1))
-                .then(items[i].3.cmp(&items[j].3))
+            // At one angle (faces on faces), the one bounding the wedge before it first;
+            // coincident layers by triangle, closes up and opens down, so that the
+            // matching pairs the k-th lowest open with the k-th lowest close (a part given
+            // twice pairs each copy with itself at every edge).
+            by_angle.then(items[j].1.cmp(&items[i].1)).then_with(|| {
+                if items[i].1 {
+                    items[i].3.cmp(&items[j].3)
+                } else {
+                    items[j].3.cmp(&items[i].3)
+                }
+            })
         })
     });
     order
@@ -341,7 +364,7 @@ mod tests {
         assert_eq!(signed_volume(m), volume);
         // Vertex-manifold: every vertex's triangles form one fan.
         let all: Vec<u32> = (0..m.positions.len() as u32).collect();
-        let (again, r) = split_at(m.clone(), &all, None);
+        let (again, r, _) = split_at(m.clone(), &all, None);
         assert_eq!(r, NonManifoldReport::default());
         assert_eq!(&again, m);
     }
@@ -388,6 +411,72 @@ mod tests {
             assert_eq!(s.components, 4, "shift {shift}");
             assert_eq!(signed_volume(&out), 4.0);
         }
+    }
+
+    #[test]
+    fn a_cube_given_twice_becomes_its_two_copies() {
+        // Welded: every edge has four triangles, two layers at each of its two faces.
+        let mut m = Mesh::unit_cube();
+        m.append(&Mesh::unit_cube()).unwrap();
+        let m = crate::weld_exact(&m).mesh;
+        assert_eq!(EdgeTopology::new(&m).kind_counts().non_manifold, 18);
+        for shift in [0, 5, 12, 17] {
+            let mut rotated = m.clone();
+            rotated.triangles.rotate_left(shift);
+            let (out, r) = split_nonmanifold(&rotated);
+            assert_eq!((r.edges_split, r.vertices_added, r.unpaired), (18, 8, 0));
+            let s = mesh_stats(&out);
+            assert_eq!((s.boundary_edges, s.non_manifold_edges), (0, 0));
+            assert_eq!(s.components, 2, "shift {shift}");
+            assert_eq!(signed_volume(&out), 2.0);
+            if shift > 0 {
+                continue; // coincident layers pair by id: copies may mix, still closed
+            }
+            // In input order each copy is one sheet: the first copy's triangles share no
+            // vertex with the second's.
+            let first = |t: usize| t < 12;
+            let mut side = vec![None; out.positions.len()];
+            for (t, tri) in out.triangles.iter().enumerate() {
+                for &v in tri {
+                    assert_ne!(side[v as usize].replace(first(t)), Some(!first(t)));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_wedge_nested_in_another_pairs_inside_out() {
+        // Two wedges around the z axis, the second inside the first: a box and a thinner
+        // box turned about the shared edge. The uses alternate open, open, close, close.
+        let outer = Mesh::cuboid([0.0, 0.0, 0.0], [2.0, 2.0, 1.0]);
+        let inner = Mesh::new(
+            vec![
+                [0.0, 0.0, 0.0],
+                [1.0, 0.2, 0.0],
+                [0.2, 1.0, 0.0],
+                [0.0, 0.0, 1.0],
+                [1.0, 0.2, 1.0],
+                [0.2, 1.0, 1.0],
+            ],
+            vec![
+                [0, 2, 1],
+                [3, 4, 5],
+                [0, 1, 4],
+                [0, 4, 3],
+                [1, 2, 5],
+                [1, 5, 4],
+                [2, 0, 3],
+                [2, 3, 5],
+            ],
+        )
+        .unwrap();
+        assert!(signed_volume(&inner) > 0.0);
+        let m = two(outer, &inner);
+        let (out, r) = split_nonmanifold(&m);
+        assert_eq!((r.edges_split, r.unpaired), (1, 0));
+        let s = mesh_stats(&out);
+        assert_eq!((s.boundary_edges, s.non_manifold_edges), (0, 0));
+        assert_eq!(s.components, 2);
     }
 
     #[test]
