@@ -2254,3 +2254,59 @@ fn split_and_pick_snap() {
     );
     assert_eq!(r["closed"], true);
 }
+
+#[test]
+fn resolve_envelope_of_the_kirra_terrain_keeps_its_outline() {
+    let terrain = data("kirra_terrain.obj");
+    for side in ["upper", "lower"] {
+        let out_path = tmp(&format!("envelope_{side}.ply"));
+        let out = meshbool(&[
+            "resolve",
+            terrain.to_str().unwrap(),
+            "--envelope",
+            side,
+            "-o",
+            out_path.to_str().unwrap(),
+            "--json",
+        ]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(v["envelope"]["side"], side);
+        assert_eq!(v["envelope"]["folded_triangles"], 22);
+        assert_eq!(v["envelope"]["hidden_triangles"], 22);
+        assert_eq!(v["boundary_edges"], 560);
+        assert_eq!(v["non_manifold_edges"], 0);
+        // Written as reported, and no longer folded: every edge consistent.
+        let info = meshbool(&["info", "--json", out_path.to_str().unwrap()]);
+        let w: serde_json::Value = serde_json::from_slice(&info.stdout).unwrap();
+        assert_eq!(w["triangles"], v["triangles"]);
+        assert_eq!(w["inconsistent_edges"], 0);
+    }
+    // A fill rule means nothing for an envelope: a usage error before any work.
+    let out = meshbool(&[
+        "resolve",
+        terrain.to_str().unwrap(),
+        "--envelope",
+        "upper",
+        "--rule",
+        "evenodd",
+        "-o",
+        tmp("never.ply").to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    // A closed mesh: a clear error.
+    let out = meshbool(&[
+        "resolve",
+        data("kirra_cylinder.obj").to_str().unwrap(),
+        "--envelope",
+        "lower",
+        "-o",
+        tmp("never.ply").to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("closed"));
+}

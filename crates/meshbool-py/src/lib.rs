@@ -548,6 +548,37 @@ fn resolve<'py>(
     Ok((v, f, parent, report))
 }
 
+/// The upper or lower envelope of a folded open surface: its arrays, the input triangle
+/// of each result triangle, the report.
+#[pyfunction]
+#[pyo3(signature = (v, f, side, threads))]
+#[allow(clippy::type_complexity)]
+fn envelope<'py>(
+    py: Python<'py>,
+    v: PyReadonlyArray2<'py, f64>,
+    f: PyReadonlyArray2<'py, u32>,
+    side: &str,
+    threads: Option<usize>,
+) -> PyResult<(
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray2<u32>>,
+    Bound<'py, PyArray1<u32>>,
+    String,
+)> {
+    let m = mesh(&v, &f)?;
+    let opts = ops::EnvelopeOptions {
+        side: parse::<ops::Envelope>(side)?,
+        run: run(threads),
+    };
+    let mut out = py
+        .detach(move || ops::envelope(&m, &opts))
+        .map_err(py_err)?;
+    let report = json(&py.detach(|| out.report()))?;
+    let parent = PyArray1::from_vec(py, std::mem::take(&mut out.parent));
+    let (v, f) = arrays(py, out.mesh)?;
+    Ok((v, f, parent, report))
+}
+
 /// Closing an open mesh into a solid.
 #[pyfunction]
 fn close<'py>(
@@ -648,6 +679,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
         wrap_pyfunction!(classify, m)?,
         wrap_pyfunction!(cutfill, m)?,
         wrap_pyfunction!(resolve, m)?,
+        wrap_pyfunction!(envelope, m)?,
         wrap_pyfunction!(orient, m)?,
         wrap_pyfunction!(close, m)?,
         wrap_pyfunction!(repair, m)?,

@@ -464,3 +464,23 @@ def test_split_and_pick_snap():
     assert meshbool.pick(parts, snap=d).report["snap"]["collapsed"] > 0
     with pytest.raises(ValueError, match="snap"):
         meshbool.split(cube, cutter, snap=-1.0)
+
+
+def test_envelopes_of_the_folded_kirra_terrain():
+    terrain = meshbool.read(DATA / "kirra_terrain.obj")
+    for side in ["upper", "lower"]:
+        env = meshbool.envelope(terrain, side)
+        r = env.report["envelope"]
+        assert r["side"] == side
+        assert r["folded_triangles"] == 22 and r["hidden_triangles"] == 22
+        assert env.report["boundary_edges"] == 560
+        assert env.provenance["triangle"].shape == (len(env),)
+        assert env.provenance["triangle"].max() < len(terrain)
+        # Faced up everywhere but its vertical walls, over the terrain's plan area.
+        p = env.vertices[env.faces]
+        plan = (p[:, 1, 0] - p[:, 0, 0]) * (p[:, 2, 1] - p[:, 0, 1]) - (
+            p[:, 2, 0] - p[:, 0, 0]
+        ) * (p[:, 1, 1] - p[:, 0, 1])
+        assert plan.min() > -1e-9
+    with pytest.raises(ValueError, match="closed"):
+        meshbool.envelope(meshbool.box([0, 0, 0], [1, 1, 1]))

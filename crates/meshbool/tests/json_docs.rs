@@ -212,6 +212,15 @@ fn samples() -> BTreeMap<&'static str, Vec<Value>> {
         .or_default()
         .push(json(&ops::make(&plane).unwrap().report()));
 
+    // A grid with one vertex pushed over its neighbours and raised: folded triangles.
+    let (mut positions, triangles) =
+        heightfield([0.0, 0.0], [4.0, 4.0], 4, 4, |x, y| 0.1 * x + 0.05 * y).into_parts();
+    positions[12] = [3.6, 2.0, 1.5];
+    let folded = Mesh::new(positions, triangles).unwrap();
+    let env = ops::envelope(&folded, &Default::default()).unwrap();
+    assert!(env.report.folded_triangles > 0 && env.report.jump_walls > 0);
+    s.entry("envelope").or_default().push(json(&env.report()));
+
     let terrain = rough_terrain();
     let (positions, mut triangles) = Mesh::unit_cube().into_parts();
     triangles.truncate(10);
@@ -252,7 +261,7 @@ fn samples() -> BTreeMap<&'static str, Vec<Value>> {
 fn docs_list_every_key_of_every_report_and_no_other() {
     let tables = doc_tables();
     let samples = samples();
-    assert_eq!(samples.len(), 13);
+    assert_eq!(samples.len(), 14);
     for (report, runs) in &samples {
         let mut doc = BTreeSet::new();
         documented(&tables, report, "", &mut doc);

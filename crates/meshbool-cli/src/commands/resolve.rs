@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use anyhow::Result;
-use meshbool::ops::{self, Checks, Operand, ResolveOptions, RunOptions};
+use meshbool::ops::{self, Checks, Envelope, EnvelopeOptions, Operand, ResolveOptions, RunOptions};
 use meshbool::FillRule;
 
 use super::{one_of, print_json, Spinner};
@@ -25,6 +25,12 @@ pub struct Args {
     /// instead of splitting them.
     #[arg(long)]
     keep_nonmanifold: bool,
+    /// For an open surface that folds over itself (terrain): keep its `upper` or `lower`
+    /// envelope instead, the single-valued surface seen from above or below (exact; walls
+    /// kept where it jumps from a sheet to the one under it; faced up).
+    #[arg(long, ignore_case = true, conflicts_with_all = ["rule", "keep_nonmanifold", "snap"],
+          value_parser = one_of::<Envelope>(Envelope::ALL.map(Envelope::name)))]
+    envelope: Option<Envelope>,
     #[command(flatten)]
     snap: super::Snap,
     /// Worker threads (default: all cores).
@@ -39,15 +45,39 @@ pub struct Args {
 pub fn run(args: &Args) -> Result<()> {
     let spinner = Spinner::new("reading the input");
     let input = Operand::read(&args.input, &Checks::NONE)?;
+    let run = RunOptions {
+        threads: args.threads,
+        progress: None,
+    };
+    if let Some(side) = args.envelope {
+        spinner.set_message("taking the envelope");
+        let out = ops::envelope(&input, &EnvelopeOptions { side, run })?;
+        spinner.set_message("writing the result");
+        ops::write(&args.output, &out.mesh, None)?;
+        drop(spinner);
+        let report = out.report();
+        if args.json {
+            return print_json(&report);
+        }
+        let e = &report.envelope;
+        eprintln!(
+            "wrote {}: {} envelope, {} triangles, {} boundary edges ({} folded input triangles, {} hidden, {} jump-wall triangles)",
+            args.output.display(),
+            side.name(),
+            report.result.triangles,
+            report.result.boundary_edges,
+            e.folded_triangles,
+            e.hidden_triangles,
+            e.jump_walls
+        );
+        return Ok(());
+    }
     spinner.set_message("resolving");
     let opts = ResolveOptions {
         rule: args.rule,
         keep_nonmanifold: args.keep_nonmanifold,
         snap: args.snap.tolerance,
-        run: RunOptions {
-            threads: args.threads,
-            progress: None,
-        },
+        run,
     };
     let out = ops::resolve(&input, &opts)?;
     spinner.set_message("writing the result");

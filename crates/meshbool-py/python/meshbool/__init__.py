@@ -41,6 +41,7 @@ __all__ = [
     "cutfill",
     "repair",
     "resolve",
+    "envelope",
     "orient",
     "close",
     "read",
@@ -503,6 +504,23 @@ def resolve(
     v, f, parent, report = _native.resolve(
         v, f, rule, keep_nonmanifold, threads, float(snap)
     )
+    out = Mesh._from(v, f, report)
+    out.provenance = {"triangle": parent}
+    return out
+
+
+def envelope(
+    mesh: MeshLike, side: str = "upper", *, threads: Optional[int] = None
+) -> Mesh:
+    """The envelope of an open surface that folds over itself (a terrain with folds or
+    overhangs): ``"upper"`` keeps what is seen from above, ``"lower"`` from below, as one
+    single-valued surface faced up, exact (every triangle lies in an input triangle;
+    vertical walls keep it connected where it jumps from an overhang's edge to the sheet
+    under it). A closed mesh raises ``ValueError``. ``provenance["triangle"]`` is the
+    input triangle of each result triangle (for a wall, the triangle it hangs from);
+    ``report`` is the ``meshbool resolve --envelope SIDE --json`` dict."""
+    v, f = _parts(mesh)
+    v, f, parent, report = _native.envelope(v, f, side, threads)
     out = Mesh._from(v, f, report)
     out.provenance = {"triangle": parent}
     return out

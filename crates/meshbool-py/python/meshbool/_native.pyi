@@ -94,6 +94,9 @@ def resolve(
     threads: Optional[int],
     snap: float = 0.0,
 ) -> Tuple[F64, U32, U32, str]: ...
+def envelope(
+    v: F64, f: U32, side: str, threads: Optional[int]
+) -> Tuple[F64, U32, U32, str]: ...
 def orient(v: F64, f: U32, facing: str) -> Tuple[F64, U32, str]: ...
 def close(
     v: F64, f: U32, mode: str, floor_offset: float, max_gap: Optional[float]

@@ -55,6 +55,7 @@ use crate::{Error, Format, Mesh, Result};
 mod boolean;
 mod curves;
 mod cutfill;
+mod envelope;
 mod make;
 mod operand;
 mod points;
@@ -68,6 +69,9 @@ pub use boolean::{
 };
 pub use curves::{curves, self_curves, CurvesOptions, CurvesOutput, CurvesReport, TaggedSegment};
 pub use cutfill::{cutfill, CutFillOptions, CutFillOutput, CutFillReport};
+pub use envelope::{
+    envelope, Envelope, EnvelopeCommandReport, EnvelopeOptions, EnvelopeOutput, EnvelopeReport,
+};
 pub use make::{make, MakeOutput, MakeReport, Shape};
 pub use operand::{Checks, Input, Operand, OperandReport, SelfIntersections};
 pub use points::{
