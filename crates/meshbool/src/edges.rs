@@ -249,7 +249,10 @@ impl SeamTopology {
                 let n = rest.iter().take_while(|&&w| (w >> 32) as u32 == hi).count();
                 run.clear();
                 run.extend(rest[..n].iter().map(|&w| EdgeUse::of(mesh, lo, w as u32)));
-                out.closed &= n == 2;
+                // Two uses, or more in as many pairs of opposite directions (closed
+                // parts glued along the edge): the winding number is an integer.
+                out.closed &=
+                    n == 2 || (n > 2 && 2 * run.iter().filter(|u| u.forward).count() == n);
                 let edge = [lo as u32, hi];
                 if on_seam[lo] && seam.binary_search(&edge).is_ok() {
                     out.edges.push(edge);
@@ -271,8 +274,10 @@ impl SeamTopology {
         &self.uses[self.offsets[e] as usize..self.offsets[e + 1] as usize]
     }
 
-    /// True when every edge of the mesh has exactly two uses and there is at least one
-    /// edge ([`EdgeTopology::is_closed`]).
+    /// True when there is at least one edge and every edge has exactly two uses, or
+    /// more with as many running each way (closed parts glued along it, as in a union
+    /// kept non-manifold): the mesh bounds a solid, its winding number an integer off it.
+    /// (Not [`EdgeTopology::is_closed`], which wants two uses everywhere.)
     pub fn is_closed(&self) -> bool {
         self.closed
     }
@@ -614,6 +619,35 @@ mod tests {
         let open = seam_topology_matches(&b, &seam);
         assert!(!open.is_closed());
         assert!(!seam_topology_matches(&Mesh::default(), &[]).is_closed());
+    }
+
+    #[test]
+    fn closed_parts_glued_along_an_edge_are_closed_for_the_seam() {
+        // Two cubes welded along a shared edge: four uses there, two each way. A boolean
+        // on such an operand (a union kept non-manifold) must take it as a solid: as an
+        // open surface a part far from it was classified by the sign of a winding number
+        // that is zero up to rounding (the n-ary union dropped a prism of the Kirra
+        // terrain's envelope for one order of its inputs).
+        let mut m = Mesh::unit_cube();
+        m.append(&Mesh::cuboid([1.0, 1.0, 0.0], [2.0, 2.0, 1.0]))
+            .unwrap();
+        let m = crate::weld_exact(&m).mesh;
+        assert_eq!(EdgeTopology::new(&m).kind_counts().non_manifold, 1);
+        assert!(!EdgeTopology::new(&m).is_closed());
+        assert!(SeamTopology::new(&m, &[]).is_closed());
+        // Three uses (a cube with one extra triangle on an edge): not closed.
+        let mut three = m.clone();
+        three.triangles.push(m.triangles[0]);
+        assert!(!SeamTopology::new(&three, &[]).is_closed());
+        // Four uses, three running one way (a triangle at the shared edge turned over):
+        // not closed.
+        let topo = EdgeTopology::new(&m);
+        let shared = (0..topo.edge_count())
+            .find(|&e| topo.kind(e) == EdgeKind::NonManifold)
+            .unwrap();
+        let mut turned = m.clone();
+        turned.triangles[topo.uses_of(shared)[0].triangle as usize].swap(1, 2);
+        assert!(!SeamTopology::new(&turned, &[]).is_closed());
     }
 }
 

@@ -3,29 +3,27 @@
 //!
 //! With the surface `S` faced up, the solid `E` of every point below some point of `S`
 //! (down to a floor) is the union of exact solids: the curtain solid `C(S)` (walls from
-//! `S`'s boundary down to the floor, the floor capped) resolved under the positive rule,
-//! and a prism under each patch of `S`'s triangles that face down (the folds, turned up
-//! and curtained). A point below `S` whose winding number in `C(S)` is not positive has,
-//! on its way up, a down-facing sheet to cross (an up-facing one lowers the count), so it
-//! lies in that sheet's prism. The prisms stand on a floor halfway between `C(S)`'s and
-//! the surface, inside `C(S)`, so that no two floors overlap; above the surface's lowest
-//! point `E` is exact either way. `E` is computed with exact booleans; its boundary is the
-//! floors, vertical walls and, on top, exactly the points of `S` that nothing of `S` lies
-//! above: the upper envelope. The walls whose connected pieces stay above the surface's
-//! lowest point are the jumps between a sheet and the sheet under it (an overhang's
-//! edge): they are kept, so that the envelope is connected there; walls reaching down
-//! are the outline's curtain and are dropped. The lower envelope is the
-//! upper one of the surface mirrored in z.
+//! `S`'s boundary down to the floor, the floor capped) resolved under the positive
+//! rule, and a prism under each patch of `S`'s triangles that face down (the folds,
+//! turned up and curtained). A point below `S` whose winding number in `C(S)` is not
+//! positive has, on its way up, a down-facing sheet to cross (an up-facing one lowers
+//! the count), so it lies in that sheet's prism. The prisms stand on a floor halfway
+//! between `C(S)`'s and the surface, inside `C(S)`, so that no two floors overlap;
+//! above the surface's lowest point `E` is exact either way. `E` is computed with the
+//! exact n-ary union; its boundary is the floors, vertical walls and, on top, exactly
+//! the points of `S` that nothing of `S` lies above: the upper envelope. The walls
+//! whose connected pieces stay above the surface's lowest point are the jumps between a
+//! sheet and the sheet under it (an overhang's edge): they are kept, so that the
+//! envelope is connected there; walls reaching down are the outline's curtain and are
+//! dropped. The lower envelope is the upper one of the surface mirrored in z.
 
 use serde::Serialize;
 use web_time::Instant;
 
-use super::{Checks, Input, Measures, Operand, RunOptions, SCHEMA};
-use crate::boolean::{Op, PipelineOptions};
+use super::{BooleanOptions, Checks, Input, Measures, RunOptions, SCHEMA};
+use crate::boolean::Op;
 use crate::edges::{EdgeCounts, EdgeTopology};
-use crate::repair::split_nonmanifold;
 use crate::repair::{curtain_to, orient, Facing};
-use crate::Source;
 use crate::{Error, Mesh, Result};
 
 /// Which envelope of a surface: what is seen from above or from below.
@@ -197,36 +195,18 @@ pub fn envelope<'a>(mesh: impl Into<Input<'a>>, opts: &EnvelopeOptions) -> Resul
             (solid, ids.clone(), walls)
         })
         .collect();
-    // The union, one prism at a time into the curtain solid (each checked and, crossing
-    // itself, resolved at the door). Not the n-ary tree: unions of prisms that touch one
-    // another along an edge met the curtain solid wrongly there (an open defect of the
-    // tree, noted in issue 14).
-    let checked = Operand::new("curtain solid", &solid, &Checks::default())?;
-    let mut acc = checked.mesh().clone();
-    // Per triangle of `acc`: (part, triangle of that part); part 0 the curtain solid.
-    let mut origin: Vec<(u32, u32)> = (0..acc.triangles.len() as u32)
-        .map(|t| (0, checked.input_triangle(t)))
-        .collect();
-    let pipeline = PipelineOptions {
-        keep_nonmanifold: true,
-        ..opts.run.pipeline()
+    // The exact n-ary union (each input checked and, crossing itself, resolved at the
+    // door); provenance names an input and its triangle.
+    let mut inputs = vec![Input::from(&solid)];
+    inputs.extend(parts.iter().map(|(m, _, _)| Input::from(m)));
+    let bopts = BooleanOptions {
+        run: opts.run.clone(),
+        ..BooleanOptions::default()
     };
-    let (mut seam_points, mut failed) = (0, 0);
-    for (i, (prism, _, _)) in parts.iter().enumerate() {
-        let r = crate::boolean::boolean(&acc, prism, Op::Union, &pipeline);
-        seam_points += r.seam_points;
-        failed += r.failed.len();
-        origin = r
-            .provenance
-            .iter()
-            .map(|p| match p.source {
-                Source::A => origin[p.triangle as usize],
-                Source::B => (i as u32 + 1, p.triangle),
-            })
-            .collect();
-        acc = r.mesh;
-    }
-    let (union_mesh, _) = split_nonmanifold(&acc);
+    let union = super::boolean_many(&inputs, Op::Union, &bopts)?;
+    let (seam_points, failed) = (union.seam_points, union.failed.len());
+    let union_mesh = union.mesh;
+    let origin: Vec<(u32, u32)> = union.provenance.iter().map(|&[i, t]| (i, t)).collect();
     // Each result triangle: Some((parent, is a wall)), or None for a floor.
     let role: Vec<Option<(u32, bool)>> = origin
         .iter()
