@@ -187,6 +187,8 @@ export function cutFill(design: IndexedMesh | TriangleSoup, topo: IndexedMesh | 
 export function classifyPointsIndexed(mesh: IndexedMesh | TriangleSoup, points: Float64Array | Vertex[], options?: CheckOptions): { classes: Uint8Array; winding: Float64Array; report: Report };
 export function classifyPoints(soup: TriangleSoup | IndexedMesh, points: Vertex[], options?: CheckOptions): Array<"inside" | "outside" | "on">;
 export function resolveIndexed(mesh: IndexedMesh, options?: { rule?: "positive" | "nonzero" | "evenodd"; keepNonmanifold?: boolean }): IndexedResult & { parent: Uint32Array };
+/** The upper or lower envelope of a folded open surface (terrain): single-valued, exact, faced up; `report` is `meshbool resolve --envelope SIDE --json`. */
+export function envelopeIndexed(mesh: IndexedMesh, side?: "upper" | "lower"): IndexedResult & { parent: Uint32Array };
 export function repairIndexed(mesh: IndexedMesh, config?: Record<string, any>): IndexedResult;
 export function closeIndexed(mesh: IndexedMesh, mode: "cap" | "stitch" | "curtain" | "stitch+curtain", options?: { floorOffset?: number; maxGap?: number }): IndexedResult;
 export function orientIndexed(mesh: IndexedMesh, facing?: "majority" | "z-up" | "outward"): IndexedResult;

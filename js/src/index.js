@@ -195,6 +195,14 @@ export function resolveIndexed(m, options) {
 	return out;
 }
 
+/** The "upper" (default) or "lower" envelope of a folded open surface (terrain), exact and faced up: `{positions, index, parent, report}` (`meshbool resolve --envelope`). */
+export function envelopeIndexed(m, side) {
+	const M = indexedArrays(m);
+	const out = call("envelope", M.positions, M.index, side || "upper");
+	out.report = parseReport(out.report);
+	return out;
+}
+
 /** The library's repair pipeline on an indexed mesh; `config` is meshbool's RepairConfig (docs/json.md). */
 export function repairIndexed(m, config) {
 	const M = indexedArrays(m);

@@ -428,10 +428,14 @@ test("coincident faces: two cubes sharing faces resolved under each fill rule", 
 		assert.equal(r.diagnostics.volume, volume, rule);
 		assert.equal(r.diagnostics.closed, true, rule);
 	}
-	// the same cube twice shares every vertex: its edges have four triangles, which the
-	// resolver refuses (it needs closed components) with a message that says so
+	// the same cube twice shares every vertex: its edges have four triangles, paired into
+	// the two copies first; winding number 2 inside: one cube (nonzero), nothing (evenodd)
 	const twice = cube(0, 0, 0, 2).concat(cube(0, 0, 0, 2));
-	assert.throws(() => mb.bmsSelfResolve(twice, { rule: "nonzero" }), /not closed/);
+	const once = mb.bmsSelfResolve(twice, { rule: "nonzero" });
+	assert.equal(once.diagnostics.volume, 8);
+	assert.equal(once.diagnostics.closed, true);
+	assert.equal(once.diagnostics.resolve.separated_input.edges_split, 18);
+	assert.equal(mb.bmsSelfResolve(twice, { rule: "evenodd" }).soup.length, 0);
 });
 
 test("verification, finishing and the one-call boolean", () => {
@@ -570,6 +574,20 @@ test("cut and fill of a slope against flat ground", () => {
 	assert.ok(Math.abs(r.common_plan_area - 16) < 1e-12);
 	assert.equal(r.lines.length, 1);
 	assert.equal(r.zero_lines, 1);
+});
+
+test("envelopes of the folded Kirra terrain equal the CLI's", () => {
+	const terrain = mb.readMesh(readFileSync(data("kirra_terrain.obj")), "kirra_terrain.obj");
+	for (const side of ["upper", "lower"]) {
+		// meshbool resolve data/kirra_terrain.obj --envelope SIDE -o out.ply --json
+		const e = mb.envelopeIndexed(terrain, side);
+		assert.equal(e.report.envelope.side, side);
+		assert.equal(e.report.envelope.folded_triangles, 22);
+		assert.equal(e.report.envelope.hidden_triangles, 22);
+		assert.equal(e.report.boundary_edges, 560);
+		assert.equal(e.parent.length, e.index.length / 3);
+	}
+	assert.throws(() => mb.envelopeIndexed(mb.soupToTyped(cube(0, 0, 0, 1))), /closed/);
 });
 
 test("every export is exercised by this file", () => {

@@ -482,6 +482,24 @@ pub fn resolve(
         .done())
 }
 
+/// The `upper` or `lower` envelope of an open surface that folds over itself (terrain):
+/// `{positions, index, parent, report}` (`parent[t]`: the input triangle of result
+/// triangle `t`; for a jump wall, the triangle it hangs from).
+#[wasm_bindgen]
+pub fn envelope(positions: &[f64], index: &[u32], side: &str) -> Result<JsValue, JsError> {
+    let m = mesh(positions, index)?;
+    let opts = ops::EnvelopeOptions {
+        side: side.parse::<ops::Envelope>().map_err(js_err)?,
+        ..ops::EnvelopeOptions::default()
+    };
+    let out = ops::envelope(&m, &opts).map_err(js_err)?;
+    Ok(Out::new()
+        .mesh(&out.mesh)
+        .set("parent", Uint32Array::from(&out.parent[..]))
+        .report(&out.report())?
+        .done())
+}
+
 /// The repair pipeline, configured by the JSON of the library's `RepairConfig`
 /// (`docs/json.md`): `{positions, index, report}`.
 #[wasm_bindgen]
