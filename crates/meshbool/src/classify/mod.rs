@@ -59,8 +59,9 @@ struct FanFace {
 }
 
 /// The class of a triangle with far vertex `w` at seam edge `e0 e1` against the fan.
-/// `own` is the input triangle the classified triangle comes from. `None` when the fan does
-/// not decide (a boundary or non-manifold edge of the other mesh).
+/// `own` is the input triangle the classified triangle comes from. An edge of more than
+/// two faces (closed parts glued along it) goes to [`glued_class`]. `None` when the fan
+/// does not decide (a boundary edge of the other mesh).
 fn local_class(
     own: &[[f64; 3]; 3],
     w: &Point,
