@@ -75,6 +75,24 @@ fn two_overlapping_cubes_in_one_mesh_resolve_to_their_union() {
     let report = out.report();
     assert_eq!(report.result.volume, signed_volume(&out.mesh));
     assert!(report.result.closed);
+    // The unions' exact clean-up is counted, and the result is the boolean's union: here
+    // the parts share face planes, so seam points lie where the result is flat.
+    let side = Mesh::cuboid([0.5, 0.0, 0.0], [1.5, 1.0, 1.0]);
+    let out = resolve(
+        &joined(&[Mesh::unit_cube(), side.clone()]),
+        FillRule::Positive,
+    );
+    let union = ops::boolean(
+        &Mesh::unit_cube(),
+        &side,
+        Op::Union,
+        &BooleanOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(closed_manifold_volume(&out.mesh), 1.5);
+    assert_eq!(out.mesh.triangles().len(), union.mesh.triangles().len());
+    assert_eq!(out.resolve.cleanup, union.cleanup);
+    assert!(out.resolve.cleanup.removed_points > 0);
 }
 
 #[test]

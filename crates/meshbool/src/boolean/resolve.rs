@@ -101,6 +101,10 @@ pub struct ResolveReport {
     pub rounding_flips: usize,
     /// Where the result was not manifold and was split.
     pub split_nonmanifold: NonManifoldReport,
+    /// The exact clean-ups of the unions of crossing parts, added up (seam points removed
+    /// where the result is flat or straight; no surface moved). Zeros through the
+    /// self-arrangement, which has none yet.
+    pub cleanup: super::CleanupReport,
     /// Where the *input* had edges of more than two triangles (closed parts glued along
     /// edges, a part given twice), its triangles were paired into closed sheets first
     /// (vertices duplicated, positions unchanged), and the sheets resolved as components
@@ -306,6 +310,7 @@ fn resolve_sheets(
         report.seam_points += stats.seam_points;
         report.failed_triangles += stats.failed.len();
         report.rounding_flips += stats.rounding_flips;
+        report.cleanup.add(&stats.cleanup);
         let Some(flip) = keep else {
             report.dropped_components += p.components;
             continue;
