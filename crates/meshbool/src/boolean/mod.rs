@@ -31,7 +31,6 @@ use crate::classify::{classify, Class, Classified, CutMesh};
 use crate::edges::SeamTopology;
 pub use crate::intersect::Source;
 use crate::intersect::{intersect_with, Seam};
-use crate::kernel::Point;
 use crate::repair::nonmanifold::split_at;
 use crate::repair::NonManifoldReport;
 use crate::Mesh;
@@ -635,11 +634,11 @@ pub fn boolean(a: &Mesh, b: &Mesh, op: Op, opts: &PipelineOptions) -> BooleanRes
             seam_index[v as usize] = i as u32;
         }
         let exact = |v: usize| match seam_index[v] {
-            u32::MAX => Point::Explicit(merged.mesh.positions[v]),
-            i => s.a.point(merged.seam_origin[i as usize]),
+            u32::MAX => None,
+            i => Some(s.a.point(merged.seam_origin[i as usize])),
         };
         let all: Vec<u32> = (0..merged_vertices).collect();
-        let (mesh, report, copied) = split_at(merged.mesh.clone(), &all, Some(&exact));
+        let (mesh, report, copied) = split_at(merged.mesh, &all, Some(&exact));
         let copied = copied
             .into_iter()
             .map(|v| seam_index[v as usize] != u32::MAX)
@@ -648,7 +647,7 @@ pub fn boolean(a: &Mesh, b: &Mesh, op: Op, opts: &PipelineOptions) -> BooleanRes
     } else {
         // Pairing at the seam's exact points: rounded, thin triangles there can tie or
         // swap angles around an edge.
-        let exact = |i: usize| s.a.point(merged.seam_origin[i]);
+        let exact = |i: usize| Some(s.a.point(merged.seam_origin[i]));
         let (mesh, report, copied) = split_at(merged.mesh, &merged.seam_vertices, Some(&exact));
         (mesh, report, vec![true; copied.len()])
     };

@@ -144,12 +144,8 @@ pub fn envelope<'a>(mesh: impl Into<Input<'a>>, opts: &EnvelopeOptions) -> Resul
         }
         m
     };
-    let given = if mirror {
-        mirrored(input.mesh())
-    } else {
-        input.mesh().clone()
-    };
-    let (surface, _) = orient(&given, Facing::ZUp);
+    let given = mirror.then(|| mirrored(input.mesh()));
+    let (surface, _) = orient(given.as_ref().unwrap_or(input.mesh()), Facing::ZUp);
     let counts = EdgeCounts::of(&surface);
     if counts.boundary == 0 {
         return Err(refuse(
@@ -182,49 +178,40 @@ pub fn envelope<'a>(mesh: impl Into<Input<'a>>, opts: &EnvelopeOptions) -> Resul
     // The folds' prisms, one solid per edge-connected patch of folded triangles (the patch
     // turned up, curtained), standing on a floor halfway to the surface: inside the
     // curtain solid, so that no face of theirs lies on its floor.
-    let (solid, curtain) = curtain_to(&surface, floor);
-    let walls_of_solid = owners(&surface, &solid, curtain.wall_triangles);
+    // Every input of the union: the curtain solid of the whole surface, then the prisms;
+    // each a solid whose first triangles are surface triangles `tops`, then its walls,
+    // `walls[w]` the index in `tops` of the triangle wall `w` hangs from, then its floor.
     let mid = floor + (b.min[2] - floor) / 2.0;
     let patches = fold_patches(&surface, &folded);
-    let parts: Vec<(Mesh, Vec<u32>, Vec<u32>)> = patches
-        .iter()
-        .map(|ids| {
-            let top = surface.subset(ids).flipped();
-            let (solid, c) = curtain_to(&top, mid);
-            let walls = owners(&top, &solid, c.wall_triangles);
-            (solid, ids.clone(), walls)
-        })
-        .collect();
+    let curtained = |top: &Mesh, tops: Vec<u32>, floor: f64| {
+        let (solid, c) = curtain_to(top, floor);
+        let walls = owners(top, &solid, c.wall_triangles);
+        (solid, tops, walls)
+    };
+    let mut parts = vec![curtained(&surface, (0..n as u32).collect(), floor)];
+    parts.extend(
+        patches
+            .iter()
+            .map(|ids| curtained(&surface.subset(ids).flipped(), ids.clone(), mid)),
+    );
     // The exact n-ary union (each input checked and, crossing itself, resolved at the
     // door); provenance names an input and its triangle.
-    let mut inputs = vec![Input::from(&solid)];
-    inputs.extend(parts.iter().map(|(m, _, _)| Input::from(m)));
+    let inputs: Vec<Input> = parts.iter().map(|(m, _, _)| Input::from(m)).collect();
     let bopts = BooleanOptions {
         run: opts.run.clone(),
         ..BooleanOptions::default()
     };
     let union = super::boolean_many(&inputs, Op::Union, &bopts)?;
-    let (seam_points, failed) = (union.seam_points, union.failed.len());
-    let union_mesh = union.mesh;
-    let origin: Vec<(u32, u32)> = union.provenance.iter().map(|&[i, t]| (i, t)).collect();
-    // Each result triangle: Some((parent, is a wall)), or None for a floor.
-    let role: Vec<Option<(u32, bool)>> = origin
+    // Each result triangle: Some((surface triangle, is a wall)), or None for a floor.
+    let role: Vec<Option<(u32, bool)>> = union
+        .provenance
         .iter()
-        .map(|&(i, t)| {
+        .map(|&[i, t]| {
+            let (_, tops, walls) = &parts[i as usize];
             let t = t as usize;
-            let (tops, walls): (&[u32], &[u32]) = match i {
-                0 => (&[], &walls_of_solid),
-                _ => {
-                    let (_, ids, walls) = &parts[i as usize - 1];
-                    (ids, walls)
-                }
-            };
-            let k = if i == 0 { n } else { tops.len() };
-            if t < k {
-                Some((if i == 0 { t as u32 } else { tops[t] }, false))
-            } else {
-                let w = walls.get(t - k)?;
-                Some((if i == 0 { *w } else { tops[*w as usize] }, true))
+            match t.checked_sub(tops.len()) {
+                None => Some((tops[t], false)),
+                Some(w) => walls.get(w).map(|&k| (tops[k as usize], true)),
             }
         })
         .collect();
@@ -232,7 +219,7 @@ pub fn envelope<'a>(mesh: impl Into<Input<'a>>, opts: &EnvelopeOptions) -> Resul
     let wall_ids: Vec<u32> = (0..role.len() as u32)
         .filter(|&t| matches!(role[t as usize], Some((_, true))))
         .collect();
-    let wall_mesh = union_mesh.subset(&wall_ids);
+    let wall_mesh = union.mesh.subset(&wall_ids);
     let (pieces, piece) = EdgeTopology::new(&wall_mesh).components();
     let mut grounded = vec![false; pieces];
     for (k, tri) in wall_mesh.triangles.iter().enumerate() {
@@ -258,7 +245,7 @@ pub fn envelope<'a>(mesh: impl Into<Input<'a>>, opts: &EnvelopeOptions) -> Resul
     let kept: Vec<u32> = (0..role.len() as u32)
         .filter(|&t| keep[t as usize])
         .collect();
-    let mut out = union_mesh.subset(&kept);
+    let mut out = union.mesh.subset(&kept);
     let parent: Vec<u32> = kept
         .iter()
         .map(|&t| role[t as usize].expect("kept").0)
@@ -279,8 +266,8 @@ pub fn envelope<'a>(mesh: impl Into<Input<'a>>, opts: &EnvelopeOptions) -> Resul
         fold_patches: patches.len(),
         hidden_triangles: seen.iter().filter(|&&s| !s).count(),
         jump_walls,
-        seam_points,
-        failed_triangles: failed,
+        seam_points: union.seam_points,
+        failed_triangles: union.failed.len(),
     };
     Ok(EnvelopeOutput {
         mesh: out,

@@ -314,14 +314,14 @@ impl Operand {
             .collect();
         // Edges of more than two triangles (closed parts glued along edges, a part given
         // twice) are separated into sheets by the resolve.
-        let glued = counts.is_some_and(|c| c.inconsistent == 0 && c.non_manifold > 0);
+        let glued_input = counts.is_some_and(|c| c.inconsistent == 0 && c.non_manifold > 0);
         if let (Some(found), Some(si), true, true) = (
             &found,
             &mut self_intersections,
             checks.resolve,
-            clean_edges || glued,
+            clean_edges || glued_input,
         ) {
-            if !found.is_empty() || glued {
+            if !found.is_empty() || glued_input {
                 // Welded where parts touch: a later boolean takes edges of four triangles
                 // (it pairs them into sheets on its result), not distinct vertices at
                 // one position, which its seam would cut twice.

@@ -15,7 +15,7 @@ use crate::boolean::{Group, Keep, Op, Provenance, Stage};
 use crate::edges::components_merged;
 use crate::measure::{area, mesh_stats, signed_volume, MeshStats};
 use crate::repair::{split_nonmanifold, NonManifoldReport, SnapReport};
-use crate::{Error, Format, Mesh, Result};
+use crate::{Error, Format, Mesh, Result, Source};
 
 /// Options of [`split`].
 #[derive(Clone, Debug, Default)]
@@ -166,11 +166,11 @@ pub fn split<'a>(
                 // An operand resolved at the door whose parts touch along an edge or at a
                 // vertex stays welded there: its groups are split into edge-manifold
                 // sheets (triangle order kept).
-                let from_a = matches!(
-                    group,
-                    Group::AInB | Group::AOutB | Group::AOnBSame | Group::AOnBOpposite
-                );
-                let mesh = if (from_a && a.glued()) || (!from_a && b.glued()) {
+                let glued = match group.side_and_class().0 {
+                    Source::A => a.glued(),
+                    Source::B => b.glued(),
+                };
+                let mesh = if glued {
                     split_nonmanifold(&mesh).0
                 } else {
                     mesh

@@ -39,8 +39,8 @@ pub fn split_nonmanifold(mesh: &Mesh) -> (Mesh, NonManifoldReport) {
     (mesh, report)
 }
 
-/// The exact point of the `i`th candidate of [`split_at`].
-pub(crate) type ExactPoint<'a> = &'a (dyn Fn(usize) -> Point + Sync);
+/// The exact point of the `i`th candidate of [`split_at`]; `None`: its position is exact.
+pub(crate) type ExactPoint<'a> = &'a (dyn Fn(usize) -> Option<Point> + Sync);
 
 /// [`split_nonmanifold`] looking only at the vertices `candidates` (sorted, distinct):
 /// where a boolean glues its two inputs, the only places it can make the result
@@ -85,9 +85,12 @@ pub(crate) fn split_at(
             let cs = &corners[start[i] as usize..start[i + 1] as usize];
             let counts_here =
                 |other: u32| candidates[i] < other || slot[other as usize] == u32::MAX;
-            let point = |v: u32| match (exact, slot[v as usize]) {
-                (Some(exact), s) if s != u32::MAX => exact(s as usize),
-                _ => Point::Explicit(mesh.positions[v as usize]),
+            let point = |v: u32| {
+                match (exact, slot[v as usize]) {
+                    (Some(exact), s) if s != u32::MAX => exact(s as usize),
+                    _ => None,
+                }
+                .unwrap_or(Point::Explicit(mesh.positions[v as usize]))
             };
             fans_of(&mesh, candidates[i], cs, counts_here, point)
         })
