@@ -183,6 +183,23 @@ pub struct MeshStats {
     pub bbox: Option<Aabb>,
 }
 
+impl MeshStats {
+    /// The measures of a mesh measured at unit size, for the mesh scaled by `2^e`:
+    /// the box times `2^e`, areas `2^2e`, the volume `2^3e`.
+    pub(crate) fn scale_back(&mut self, e: i32) {
+        use crate::ops::scaled;
+        let area = |x: f64| scaled(scaled(x, e), e);
+        self.volume = scaled(area(self.volume), e);
+        self.area = area(self.area);
+        let p = &mut self.projected_area;
+        (p.xy, p.yz, p.xz) = (area(p.xy), area(p.yz), area(p.xz));
+        if let Some(b) = &mut self.bbox {
+            crate::ops::scale_points(std::slice::from_mut(&mut b.min), e);
+            crate::ops::scale_points(std::slice::from_mut(&mut b.max), e);
+        }
+    }
+}
+
 /// Measures a mesh.
 pub fn mesh_stats(mesh: &Mesh) -> MeshStats {
     let topo = EdgeTopology::new(mesh);

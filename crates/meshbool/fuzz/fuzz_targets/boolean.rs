@@ -3,7 +3,7 @@
 //!
 //! - Never a panic, whatever the meshes (triangle soups on a small grid included).
 //! - Two valid solids (closed, outward-facing, not crossing themselves: boxes,
-//!   tetrahedra, cylinders, spheres and tori on a small integer grid, moved by exact axis
+//!   tetrahedra, cylinders, cones, spheres and tori on a small integer grid, moved by exact axis
 //!   permutations and reflections or by an inexact rotation, the pair scaled by a power of
 //!   two up to 2^±1000): every operation succeeds, cuts every triangle (no failed
 //!   triangles), gives a closed result (no boundary edges; non-manifold edges are not
@@ -19,7 +19,7 @@
 use arbitrary::Arbitrary;
 use libfuzzer_sys::fuzz_target;
 use meshbool::measure::signed_volume;
-use meshbool::ops::{boolean, BooleanOptions, BooleanOutput, Checks, Measures};
+use meshbool::ops::{boolean, BooleanOptions, BooleanOutput, Checks, Measures, Shape as Primitive};
 use meshbool::{shapes, Mesh, Op};
 
 /// A grid coordinate in −4 … 4.
@@ -43,6 +43,13 @@ enum Shape {
         size: [u8; 3],
     },
     Tetrahedron([[i8; 3]; 4]),
+    Cone {
+        base: [i8; 3],
+        radius: u8,
+        top: u8,
+        height: u8,
+        segments: u8,
+    },
     Cylinder {
         base: [i8; 3],
         radius: u8,
@@ -102,11 +109,10 @@ impl Solid {
     /// not crossing itself, positive volume).
     fn build(&self) -> Option<(Mesh, bool)> {
         let (mesh, solid) = match &self.shape {
-            Shape::Cuboid { min, size } => {
-                let min = point(*min);
-                let max = [0, 1, 2].map(|k| min[k] + length(size[k], 4));
-                (Mesh::cuboid(min, max), true)
-            }
+            Shape::Cuboid { .. }
+            | Shape::Cylinder { .. }
+            | Shape::Cone { .. }
+            | Shape::Sphere { .. } => (self.primitive()?.mesh().ok()?, true),
             Shape::Tetrahedron(p) => {
                 let soup = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]]
                     .map(|t: [usize; 3]| t.map(|k| point(p[k])));
@@ -115,36 +121,6 @@ impl Solid {
                 let mesh = if v < 0.0 { mesh.flipped() } else { mesh };
                 let solid = v != 0.0 && mesh_is_tetrahedron(&mesh);
                 (mesh, solid)
-            }
-            Shape::Cylinder {
-                base,
-                radius,
-                height,
-                segments,
-            } => {
-                let m = shapes::cylinder(
-                    point(*base),
-                    length(*radius, 4),
-                    length(*height, 4),
-                    u32::from(segments % 8 + 3),
-                )
-                .ok()?;
-                (m, true)
-            }
-            Shape::Sphere {
-                center,
-                radius,
-                segments,
-                rings,
-            } => {
-                let m = shapes::sphere(
-                    point(*center),
-                    length(*radius, 4),
-                    u32::from(segments % 8 + 3),
-                    u32::from(rings % 6 + 2),
-                )
-                .ok()?;
-                (m, true)
             }
             Shape::Torus {
                 center,
@@ -169,6 +145,59 @@ impl Solid {
             }
         };
         Some((self.moved(mesh), solid))
+    }
+
+    /// The shapes `meshbool make` builds, as its [`Primitive`] ([`meshbool::ops::make()`]).
+    fn primitive(&self) -> Option<Primitive> {
+        Some(match self.shape {
+            Shape::Cuboid { min, size } => {
+                let min = point(min);
+                Primitive::Cube {
+                    min,
+                    max: [0, 1, 2].map(|k| min[k] + length(size[k], 4)),
+                }
+            }
+            Shape::Cylinder {
+                base,
+                radius,
+                height,
+                segments,
+            } => Primitive::Cylinder {
+                base: point(base),
+                radius: length(radius, 4),
+                height: length(height, 4),
+                segments: u32::from(segments % 8 + 3),
+            },
+            Shape::Cone {
+                base,
+                radius,
+                top,
+                height,
+                segments,
+            } => {
+                let radius = length(radius, 4);
+                Primitive::Cone {
+                    base: point(base),
+                    radius,
+                    // An apex, or a frustum's top no wider than its bottom.
+                    top_radius: f64::from(top) % (radius + 1.0),
+                    height: length(height, 4),
+                    segments: u32::from(segments % 8 + 3),
+                }
+            }
+            Shape::Sphere {
+                center,
+                radius,
+                segments,
+                rings,
+            } => Primitive::Sphere {
+                center: point(center),
+                radius: length(radius, 4),
+                segments: u32::from(segments % 8 + 3),
+                rings: u32::from(rings % 6 + 2),
+            },
+            _ => return None,
+        })
     }
 
     fn moved(&self, mesh: Mesh) -> Mesh {

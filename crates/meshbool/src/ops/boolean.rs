@@ -177,15 +177,14 @@ pub fn boolean<'a>(
     let (a, b): (Input<'a>, Input<'a>) = (a.into(), b.into());
     crate::repair::check_tolerance(opts.snap)?;
     // At unit size the tolerance is scaled as the meshes are.
-    let to_unit = match (a, b) {
-        (Input::Mesh(x), Input::Mesh(y)) if opts.snap > 0.0 => super::extreme_scale(&[x, y]),
-        _ => None,
-    };
+    let to_unit = (opts.snap > 0.0)
+        .then(|| super::extreme_scale(&[a.mesh(), b.mesh()]))
+        .flatten();
     let unit_opts = BooleanOptions {
         snap: super::scaled(opts.snap, to_unit.unwrap_or(0)).min(f64::MAX),
         ..opts.clone()
     };
-    let unit = |a: &Mesh, b: &Mesh| boolean(a, b, op, &unit_opts);
+    let unit = |a: Input<'_>, b: Input<'_>| boolean(a, b, op, &unit_opts);
     if let Some(out) = super::at_unit_scale(a, b, unit, BooleanOutput::scale_back) {
         return out;
     }
@@ -309,6 +308,25 @@ pub fn boolean_many<'a>(
         return Err(Error::InvalidParameter(format!("{op} of no inputs")));
     }
     crate::repair::check_tolerance(opts.snap)?;
+    // Inputs of extreme magnitude together are computed at unit size, as pairs are.
+    let meshes: Vec<&Mesh> = inputs.iter().map(|i| i.mesh()).collect();
+    if let Some(e) = super::extreme_scale(&meshes) {
+        let scaled: Vec<_> = inputs.iter().map(|i| i.scaled(e)).collect();
+        let unit: Vec<Input> = scaled.iter().map(|s| s.input()).collect();
+        let unit_opts = BooleanOptions {
+            snap: super::scaled(opts.snap, e).min(f64::MAX),
+            ..opts.clone()
+        };
+        let mut out = boolean_many(&unit, op, &unit_opts)?;
+        super::scale_points(&mut out.mesh.positions, -e);
+        for o in &mut out.operands {
+            o.scale_back(-e);
+        }
+        if let Some(s) = &mut out.snap {
+            s.scale_back(-e);
+        }
+        return Ok(out);
+    }
     with_threads(opts.run.threads, || {
         if inputs.iter().any(|i| matches!(i, Input::Mesh(_))) {
             opts.run.stage(Stage::Check);

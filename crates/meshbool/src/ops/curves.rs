@@ -11,7 +11,7 @@ use super::{with_threads, Checks, Input, Operand, RunOptions, SCHEMA};
 use crate::boolean::Stage;
 use crate::intersect::{chain, intersect, self_intersections, self_seam, PolylineXyz, Seam};
 use crate::io::write_polylines;
-use crate::{Error, Format, Mesh, Result};
+use crate::{Error, Format, Result};
 
 /// Options of [`curves`].
 #[derive(Clone, Debug)]
@@ -225,7 +225,7 @@ pub fn curves<'a>(
 ) -> Result<CurvesOutput> {
     opts.validate()?;
     let (a, b): (Input<'a>, Input<'a>) = (a.into(), b.into());
-    let unit = |a: &Mesh, b: &Mesh| curves(a, b, opts);
+    let unit = |a: Input<'_>, b: Input<'_>| curves(a, b, opts);
     if let Some(out) = super::at_unit_scale(a, b, unit, CurvesOutput::scale_back) {
         return out;
     }

@@ -129,7 +129,7 @@ pub fn cutfill<'a>(
     opts: &CutFillOptions,
 ) -> Result<CutFillOutput> {
     let (design, topo): (Input<'a>, Input<'a>) = (design.into(), topo.into());
-    let unit = |d: &Mesh, t: &Mesh| cutfill(d, t, opts);
+    let unit = |d: Input<'_>, t: Input<'_>| cutfill(d, t, opts);
     if let Some(out) = super::at_unit_scale(design, topo, unit, CutFillOutput::scale_back) {
         return out;
     }

@@ -184,20 +184,18 @@ fn extreme_scale(meshes: &[&Mesh]) -> Option<i32> {
     (!(-200..=200).contains(&e)).then_some(-e)
 }
 
-/// Runs `f` on `a` and `b` at unit size when both are meshes of extreme magnitude
-/// ([`extreme_scale`]), and `back` on its output to scale it back by the inverse power of
-/// two; `None` when the inputs are computed as given.
+/// Runs `f` on `a` and `b` at unit size when they are of extreme magnitude together
+/// ([`extreme_scale`]; meshes or operands, scaled copies), and `back` on its output to
+/// scale it back by the inverse power of two; `None` when the inputs are computed as given.
 fn at_unit_scale<T>(
     a: Input<'_>,
     b: Input<'_>,
-    f: impl FnOnce(&Mesh, &Mesh) -> Result<T>,
+    f: impl FnOnce(Input<'_>, Input<'_>) -> Result<T>,
     back: impl FnOnce(&mut T, i32),
 ) -> Option<Result<T>> {
-    let (Input::Mesh(a), Input::Mesh(b)) = (a, b) else {
-        return None;
-    };
-    let e = extreme_scale(&[a, b])?;
-    Some(f(&scaled_mesh(a, e), &scaled_mesh(b, e)).map(|mut out| {
+    let e = extreme_scale(&[a.mesh(), b.mesh()])?;
+    let (a, b) = (a.scaled(e), b.scaled(e));
+    Some(f(a.input(), b.input()).map(|mut out| {
         back(&mut out, -e);
         out
     }))
@@ -219,7 +217,7 @@ pub(crate) fn scaled(x: f64, e: i32) -> f64 {
 
 /// Multiplies every coordinate by `2^e`, in two steps where `2^e` alone is not a normal
 /// `f64`.
-fn scale_points(points: &mut [[f64; 3]], e: i32) {
+pub(crate) fn scale_points(points: &mut [[f64; 3]], e: i32) {
     let (half, rest) = (e / 2, e - e / 2);
     let (f, g) = (2f64.powi(half), 2f64.powi(rest));
     for p in points {

@@ -264,8 +264,22 @@ impl Operand {
         Ok((a?, b?))
     }
 
-    /// Checks a valid, welded mesh.
+    /// Checks a valid, welded mesh. A mesh of extreme magnitude (beyond 2^±200) is
+    /// checked (and resolved) at unit size and scaled back, as the functions taking meshes
+    /// do ([`super::extreme_scale`]); problems are judged on the report scaled back.
     fn checked(name: String, mut mesh: Mesh, checks: &Checks) -> Result<Operand> {
+        if let Some(e) = super::extreme_scale(&[&mesh]) {
+            super::scale_points(&mut mesh.positions, e);
+            let forced = Checks {
+                force: true,
+                ..*checks
+            };
+            let mut op = Operand::checked(name, mesh, &forced)?;
+            op.scale(-e);
+            op.report.forced = false;
+            op.report = settle(op.report, checks)?;
+            return Ok(op);
+        }
         let found_counts = checks.edges.then(|| EdgeCounts::of(&mesh));
         // Triangles reversed at the door (orientation, inside-out components).
         let mut flipped = vec![false; mesh.triangles.len()];
@@ -341,7 +355,7 @@ impl Operand {
                 }
             }
         }
-        let mut report = OperandReport {
+        let report = OperandReport {
             name,
             triangles: mesh.triangles.len(),
             vertices: mesh.positions.len(),
@@ -353,23 +367,20 @@ impl Operand {
             resolved,
             forced: false,
         };
-        let problems = report.problems();
-        if !problems.is_empty() {
-            if !checks.force {
-                return Err(Error::Operand {
-                    name: report.name,
-                    problems,
-                });
-            }
-            report.forced = true;
-        }
         Ok(Operand {
             mesh,
-            report,
+            report: settle(report, checks)?,
             parent,
             reversed,
             glued: glued_result,
         })
+    }
+
+    /// Multiplies the operand's coordinates by `2^e` (exact for normal numbers): its mesh
+    /// and its report's.
+    pub(crate) fn scale(&mut self, e: i32) {
+        super::scale_points(&mut self.mesh.positions, e);
+        self.report.scale_back(e);
     }
 
     /// The input triangle that triangle `t` of [`Operand::mesh`] is part of: `t` itself
@@ -438,6 +449,22 @@ impl Operand {
     }
 }
 
+/// The report with the problems it lists judged: an error unless `checks.force`, which
+/// marks the report forced.
+fn settle(mut report: OperandReport, checks: &Checks) -> Result<OperandReport> {
+    let problems = report.problems();
+    if !problems.is_empty() {
+        if !checks.force {
+            return Err(Error::Operand {
+                name: report.name,
+                problems,
+            });
+        }
+        report.forced = true;
+    }
+    Ok(report)
+}
+
 /// An input of a function of two meshes: a mesh, checked on the way in, or an operand
 /// checked before.
 #[derive(Clone, Copy, Debug)]
@@ -460,7 +487,45 @@ impl<'a> From<&'a Operand> for Input<'a> {
     }
 }
 
+/// An input scaled by a power of two ([`Input::scaled`]), owned.
+pub(crate) enum ScaledInput {
+    /// A mesh.
+    Mesh(Mesh),
+    /// An operand (boxed: an operand carries its report).
+    Operand(Box<Operand>),
+}
+
+impl ScaledInput {
+    /// The scaled input as an input.
+    pub(crate) fn input(&self) -> Input<'_> {
+        match self {
+            ScaledInput::Mesh(m) => Input::Mesh(m),
+            ScaledInput::Operand(o) => Input::Operand(o),
+        }
+    }
+}
+
 impl<'a> Input<'a> {
+    /// The mesh: the one given, or the operand's checked mesh.
+    pub(crate) fn mesh(self) -> &'a Mesh {
+        match self {
+            Input::Mesh(m) => m,
+            Input::Operand(o) => o.mesh(),
+        }
+    }
+
+    /// A copy with every coordinate multiplied by `2^e` (a computation at unit size).
+    pub(crate) fn scaled(self, e: i32) -> ScaledInput {
+        match self {
+            Input::Mesh(m) => ScaledInput::Mesh(super::scaled_mesh(m, e)),
+            Input::Operand(o) => {
+                let mut o = o.clone();
+                o.scale(e);
+                ScaledInput::Operand(Box::new(o))
+            }
+        }
+    }
+
     /// The input as an operand named `name`: a mesh checked as `checks` say, an operand
     /// as it is.
     pub(crate) fn operand(self, name: &str, checks: &Checks) -> Result<Cow<'a, Operand>> {

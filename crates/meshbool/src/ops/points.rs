@@ -141,13 +141,11 @@ pub fn classify_points<'a>(
         )));
     }
     let input: Input<'a> = mesh.into();
-    if let Input::Mesh(m) = input {
-        // The classes and winding numbers do not change with a power-of-two scale.
-        if let Some(e) = super::extreme_scale(&[m]) {
-            let mut pts = points.to_vec();
-            super::scale_points(&mut pts, e);
-            return classify_points(&super::scaled_mesh(m, e), &pts, opts);
-        }
+    // The classes and winding numbers do not change with a power-of-two scale.
+    if let Some(e) = super::extreme_scale(&[input.mesh()]) {
+        let mut pts = points.to_vec();
+        super::scale_points(&mut pts, e);
+        return classify_points(input.scaled(e).input(), &pts, opts);
     }
     with_threads(opts.run.threads, || {
         let operand = input.operand("mesh", &opts.checks)?;

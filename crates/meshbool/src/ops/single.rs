@@ -141,24 +141,9 @@ pub fn close<'a>(
     let input: Input<'a> = mesh.into();
     if let Input::Mesh(m) = input {
         if let Some(e) = super::extreme_scale(&[m]) {
-            // (A non-finite distance stays as given, for the check to name it.)
-            let length = |x: f64| match x.is_finite() {
-                true => super::scaled(x, e).min(f64::MAX),
-                false => x,
-            };
-            let unit = CloseOptions {
-                stitch_max_gap: opts.stitch_max_gap.map(length),
-                floor_offset: length(opts.floor_offset),
-            };
-            let mut out = close(&super::scaled_mesh(m, e), mode, &unit)?;
+            let mut out = close(&super::scaled_mesh(m, e), mode, &opts.scaled(e))?;
             super::scale_points(&mut out.mesh.positions, -e);
-            let back = |x: &mut f64| *x = super::scaled(*x, -e);
-            if let Some(s) = &mut out.close.stitch {
-                back(&mut s.largest_gap);
-            }
-            if let Some(c) = &mut out.close.curtain {
-                back(&mut c.floor);
-            }
+            out.close.scale_back(-e);
             return Ok(out);
         }
     }
@@ -204,12 +189,26 @@ pub fn repair<'a>(mesh: impl Into<Input<'a>>, config: &RepairConfig) -> Result<R
 /// [`repair()`] run as `run` says: in its threads, `run.progress` called with the
 /// [`Stage`] of each step that runs as it begins (from [`Stage::Weld`] to
 /// [`Stage::CloseGaps`], in the pipeline's order).
+///
+/// A mesh of extreme magnitude (coordinates beyond 2^±200) is repaired at unit size, its
+/// distances and thresholds with it, and scaled back with its report (powers of two:
+/// exact), so that no distance, area or exact test underflows or overflows.
 pub fn repair_with<'a>(
     mesh: impl Into<Input<'a>>,
     config: &RepairConfig,
     run: &RunOptions,
 ) -> Result<RepairOutput> {
     let input: Input<'a> = mesh.into();
+    if let Input::Mesh(m) = input {
+        if let Some(e) = super::extreme_scale(&[m]) {
+            // Parameters are checked as given, then scaled with the mesh.
+            config.check(m)?;
+            let mut out = repair_with(&super::scaled_mesh(m, e), &config.scaled(e), run)?;
+            super::scale_points(&mut out.mesh.positions, -e);
+            out.repair.scale_back(-e);
+            return Ok(out);
+        }
+    }
     with_threads(run.threads, || {
         let input = welded(input)?;
         let (mesh, repair) = repair::repair_with_progress(input.mesh(), config, &|s| run.stage(s))?;

@@ -127,15 +127,14 @@ pub fn split<'a>(
     let (a, b): (Input<'a>, Input<'a>) = (a.into(), b.into());
     crate::repair::check_tolerance(opts.snap)?;
     // At unit size the tolerance is scaled as the meshes are.
-    let to_unit = match (a, b) {
-        (Input::Mesh(x), Input::Mesh(y)) if opts.snap > 0.0 => super::extreme_scale(&[x, y]),
-        _ => None,
-    };
+    let to_unit = (opts.snap > 0.0)
+        .then(|| super::extreme_scale(&[a.mesh(), b.mesh()]))
+        .flatten();
     let unit_opts = SplitOptions {
         snap: super::scaled(opts.snap, to_unit.unwrap_or(0)).min(f64::MAX),
         ..opts.clone()
     };
-    let unit = |a: &Mesh, b: &Mesh| split(a, b, &unit_opts);
+    let unit = |a: Input<'_>, b: Input<'_>| split(a, b, &unit_opts);
     if let Some(out) = super::at_unit_scale(a, b, unit, SplitOutput::scale_back) {
         return out;
     }

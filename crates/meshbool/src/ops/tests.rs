@@ -774,3 +774,174 @@ fn closing_and_cut_fill_at_extreme_scales_are_the_unit_results_scaled() {
         assert_eq!(cf.lines.len(), unit_cf.lines.len());
     }
 }
+
+/// A unit cube as a soup needing every repair step: corners jittered by up to 1e-4
+/// (one weld at 1e-3 joins them), one triangle reversed, one given twice, one zero-area
+/// sliver along an edge, and one triangle missing (a hole `close_gaps` caps).
+fn broken_cube() -> Mesh {
+    let cube = Mesh::unit_cube();
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for t in 1..cube.triangles.len() {
+        let base = positions.len() as u32;
+        for (k, p) in cube.corners(t).into_iter().enumerate() {
+            let j = ((t * 3 + k) % 7) as f64 * 1.5e-5;
+            positions.push([p[0] + j, p[1] - j / 2.0, p[2] + j / 3.0]);
+        }
+        triangles.push(if t == 3 {
+            [base, base + 2, base + 1]
+        } else {
+            [base, base + 1, base + 2]
+        });
+        if t == 5 {
+            triangles.push([base, base + 1, base + 2]);
+        }
+    }
+    let base = positions.len() as u32;
+    positions.extend([[0.0, 0.0, 0.0], [0.5, 0.0, 0.0], [1.0, 0.0, 0.0]]);
+    triangles.push([base, base + 1, base + 2]);
+    Mesh::new(positions, triangles).unwrap()
+}
+
+#[test]
+fn repair_at_extreme_scales_is_the_unit_repair_scaled() {
+    let scaled = |m: &Mesh, k: i32| {
+        let mut m = m.clone();
+        super::scale_points(&mut m.positions, k);
+        m
+    };
+    let config = |k: i32| crate::repair::RepairConfig {
+        weld: Some(super::scaled(1e-3, k)),
+        remove_duplicates: true,
+        tjunctions: true,
+        degenerate: Some(crate::repair::DegenerateOptions {
+            // An area 2^2k is no f64 beyond |k| = 511: no threshold there.
+            min_area: if k.abs() < 500 {
+                super::scaled(1e-12, 2 * k)
+            } else {
+                0.0
+            },
+            max_aspect: Some(1e6),
+        }),
+        snap: Some(super::scaled(1e-3, k)),
+        close_gaps: Some(super::scaled(2.0, k)),
+        ..Default::default()
+    };
+    let input = broken_cube();
+    let unit = repair(&input, &config(0)).unwrap();
+    assert!(unit.repair.after.closed, "{:?}", unit.repair.after);
+    assert_eq!(unit.repair.after.components, 1);
+    assert!((unit.repair.after.volume - 1.0).abs() < 1e-3);
+    for k in [-1000, -700, -330, -256, 256, 330, 700, 1000] {
+        let out = repair(&scaled(&input, k), &config(k)).unwrap();
+        assert_eq!(out.mesh, scaled(&unit.mesh, k), "2^{k}");
+        let (after, unit_after) = (&out.repair.after, &unit.repair.after);
+        assert!(after.closed && after.components == 1, "2^{k}");
+        assert_eq!(
+            (after.triangles, after.vertices),
+            (unit_after.triangles, unit_after.vertices)
+        );
+        if k.abs() <= 330 {
+            // The report's measures are the unit ones scaled (volumes 2^3k, areas 2^2k).
+            let area = |x: f64| super::scaled(super::scaled(x, k), k);
+            assert_eq!(after.volume, super::scaled(area(unit_after.volume), k));
+            assert_eq!(after.area, area(unit_after.area), "2^{k}");
+            let snap = out.repair.snap.as_ref().unwrap();
+            let unit_snap = unit.repair.snap.as_ref().unwrap();
+            assert_eq!(snap.max_move, super::scaled(unit_snap.max_move, k));
+        }
+    }
+}
+
+#[test]
+fn prepared_operands_and_many_inputs_at_extreme_scales_are_the_unit_results_scaled() {
+    // Before: an operand prepared at 2^-700 was checked and used at that size (its
+    // self-overlap unresolved, the boolean's seam lost), and booleans of many inputs
+    // were never brought to unit size.
+    let a = crate::shapes::sphere([0.0; 3], 1.0, 16, 8).unwrap();
+    let b = crate::shapes::sphere([0.3, 0.2, 0.1], 1.0, 16, 8).unwrap();
+    let c = crate::shapes::sphere([-0.2, 0.4, 0.3], 0.8, 12, 6).unwrap();
+    let scaled = |m: &Mesh, k: i32| {
+        let mut m = m.clone();
+        super::scale_points(&mut m.positions, k);
+        m
+    };
+    let sorted = |m: &Mesh| {
+        let mut s = m.to_soup();
+        s.sort_by(|x, y| x.partial_cmp(y).unwrap());
+        s
+    };
+    // A and C given as one self-overlapping mesh: resolved at the door.
+    let mut ac = a.clone();
+    ac.append(&c).unwrap();
+    let opts = BooleanOptions::default();
+    let checks = Checks::default();
+    let unit = boolean(
+        &Operand::new("AC", &ac, &checks).unwrap(),
+        &Operand::new("B", &b, &checks).unwrap(),
+        Op::Difference,
+        &opts,
+    )
+    .unwrap();
+    assert!(unit.operands[0].resolved.is_some());
+    let unit_ac = Operand::new("AC", &ac, &checks).unwrap().into_mesh();
+    let inputs = [&a, &b, &c];
+    let unit_many = boolean_many(
+        &inputs.map(Input::Mesh),
+        Op::Union,
+        &BooleanOptions::default(),
+    )
+    .unwrap();
+    let probe = [[0.1, 0.1, 0.1], [0.0, 0.0, 1.0], [3.0, 0.0, 0.0]];
+    let unit_classes = classify_points(&a, &probe, &Default::default()).unwrap();
+    for k in [-960, -700, -300, 300, 700, 1000] {
+        let (x, y) = (
+            Operand::new("AC", &scaled(&ac, k), &checks).unwrap(),
+            Operand::new("B", &scaled(&b, k), &checks).unwrap(),
+        );
+        assert_eq!(x.mesh(), &scaled(&unit_ac, k), "2^{k}");
+        let near = x
+            .report()
+            .self_intersections
+            .as_ref()
+            .unwrap()
+            .near
+            .unwrap();
+        let mut want = unit.operands[0]
+            .self_intersections
+            .as_ref()
+            .unwrap()
+            .near
+            .unwrap();
+        super::scale_points(std::slice::from_mut(&mut want), k);
+        assert_eq!(near, want, "2^{k}");
+        let out = boolean(&x, &y, Op::Difference, &opts).unwrap();
+        assert_eq!(sorted(&out.mesh), sorted(&scaled(&unit.mesh, k)), "2^{k}");
+        assert_eq!(out.provenance, unit.provenance, "2^{k}");
+        // An operand with a mesh, and many inputs.
+        let mixed = boolean(&x, &scaled(&b, k), Op::Difference, &opts).unwrap();
+        assert_eq!(mixed.mesh, out.mesh, "2^{k}");
+        let many = [scaled(&a, k), scaled(&b, k), scaled(&c, k)];
+        let out = boolean_many(
+            &[
+                Input::Operand(&Operand::new("1", &many[0], &checks).unwrap()),
+                Input::Mesh(&many[1]),
+                Input::Mesh(&many[2]),
+            ],
+            Op::Union,
+            &BooleanOptions::default(),
+        )
+        .unwrap();
+        assert_eq!(
+            sorted(&out.mesh),
+            sorted(&scaled(&unit_many.mesh, k)),
+            "2^{k}"
+        );
+        assert!(out.report().result.closed, "2^{k}");
+        let mut pts = probe;
+        super::scale_points(&mut pts, k);
+        let prepared = Operand::new("A", &many[0], &checks).unwrap();
+        let classes = classify_points(&prepared, &pts, &Default::default()).unwrap();
+        assert_eq!(classes.classes, unit_classes.classes, "2^{k}");
+    }
+}

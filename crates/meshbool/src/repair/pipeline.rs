@@ -75,6 +75,35 @@ impl Default for CloseOptions {
     }
 }
 
+impl CloseOptions {
+    /// The options for a mesh scaled by `2^e` (closed at unit size): the distances times
+    /// `2^e`, clamped to the largest `f64`; a non-finite distance stays as given, for the
+    /// check to name it.
+    pub(crate) fn scaled(&self, e: i32) -> CloseOptions {
+        let length = |x: f64| match x.is_finite() {
+            true => crate::ops::scaled(x, e).min(f64::MAX),
+            false => x,
+        };
+        CloseOptions {
+            stitch_max_gap: self.stitch_max_gap.map(length),
+            floor_offset: length(self.floor_offset),
+        }
+    }
+}
+
+impl CloseReport {
+    /// The report of a closing done at unit size, for the mesh scaled by `2^e`: the
+    /// stitch's largest gap and the curtain's floor times `2^e`.
+    pub(crate) fn scale_back(&mut self, e: i32) {
+        if let Some(s) = &mut self.stitch {
+            s.largest_gap = crate::ops::scaled(s.largest_gap, e);
+        }
+        if let Some(c) = &mut self.curtain {
+            c.floor = crate::ops::scaled(c.floor, e);
+        }
+    }
+}
+
 /// What [`close`] did (the steps its mode ran).
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct CloseReport {
@@ -216,6 +245,88 @@ impl Default for RepairConfig {
     }
 }
 
+impl RepairConfig {
+    /// Checks the parameters before any work: distances finite and ≥ 0, fold removal
+    /// only on a surface oriented up, the degenerate thresholds
+    /// ([`DegenerateOptions::validate`]), and, with `snap`, finite coordinates in `mesh`.
+    pub(crate) fn check(&self, mesh: &Mesh) -> Result<(), Error> {
+        let distance = |name: &str, x: Option<f64>| match x {
+            Some(d) if !(d.is_finite() && d >= 0.0) => Err(Error::InvalidParameter(format!(
+                "{name} must be a finite distance >= 0, got {d}"
+            ))),
+            _ => Ok(()),
+        };
+        distance("weld", self.weld)?;
+        distance("remove_overlapping", self.remove_overlapping)?;
+        distance("weld_boundary", self.weld_boundary)?;
+        distance("tjunction_tolerance", self.tjunction_tolerance)?;
+        distance("close_gaps", self.close_gaps)?;
+        distance("snap", self.snap)?;
+        if self.snap.is_some() {
+            mesh.validate()?; // the snap's exact tests need finite coordinates
+        }
+        if self.remove_folds && self.orient != Some(Facing::ZUp) {
+            return Err(Error::InvalidParameter(
+                "fold removal works on a surface oriented up: set orient to z-up".into(),
+            ));
+        }
+        if let Some(d) = &self.degenerate {
+            d.validate()?;
+        }
+        Ok(())
+    }
+
+    /// The configuration for `mesh` scaled by `2^e` (a mesh of extreme magnitude repaired
+    /// at unit size): distances times `2^e`, the area threshold `2^2e` (clamped to the
+    /// largest `f64`), the aspect threshold as it is.
+    pub(crate) fn scaled(&self, e: i32) -> RepairConfig {
+        let length = |x: f64| crate::ops::scaled(x, e).min(f64::MAX);
+        let area = |x: f64| length(length(x));
+        RepairConfig {
+            weld: self.weld.map(length),
+            remove_overlapping: self.remove_overlapping.map(length),
+            weld_boundary: self.weld_boundary.map(length),
+            tjunction_tolerance: self.tjunction_tolerance.map(length),
+            degenerate: self.degenerate.map(|d| DegenerateOptions {
+                min_area: area(d.min_area),
+                ..d
+            }),
+            snap: self.snap.map(length),
+            close_options: self.close_options.scaled(e),
+            close_gaps: self.close_gaps.map(length),
+            ..self.clone()
+        }
+    }
+}
+
+impl RepairReport {
+    /// The report of a repair done at unit size, for the mesh scaled by `2^e`: lengths
+    /// times `2^e`, areas `2^2e`, volumes `2^3e`.
+    pub(crate) fn scale_back(&mut self, e: i32) {
+        let length = |x: &mut f64| *x = crate::ops::scaled(*x, e);
+        let volume = |x: &mut f64| {
+            *x = crate::ops::scaled(crate::ops::scaled(crate::ops::scaled(*x, e), e), e)
+        };
+        self.before.scale_back(e);
+        self.after.scale_back(e);
+        if let Some(d) = &mut self.duplicates {
+            length(&mut d.largest_distance);
+        }
+        if let Some(t) = &mut self.tjunctions {
+            length(&mut t.largest_distance);
+        }
+        if let Some(d) = &mut self.degenerate {
+            volume(&mut d.volume_change);
+        }
+        if let Some(s) = &mut self.snap {
+            s.scale_back(e);
+        }
+        if let Some(c) = &mut self.close {
+            c.scale_back(e);
+        }
+    }
+}
+
 /// What [`repair`] did: the measures before and after and the report of every step that
 /// ran (`None`: not asked for). Every triangle removed is counted in some step's report.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -273,29 +384,7 @@ pub fn repair_with_progress(
     config: &RepairConfig,
     progress: &dyn Fn(Stage),
 ) -> Result<(Mesh, RepairReport), Error> {
-    let distance = |name: &str, x: Option<f64>| match x {
-        Some(d) if !(d.is_finite() && d >= 0.0) => Err(Error::InvalidParameter(format!(
-            "{name} must be a finite distance >= 0, got {d}"
-        ))),
-        _ => Ok(()),
-    };
-    distance("weld", config.weld)?;
-    distance("remove_overlapping", config.remove_overlapping)?;
-    distance("weld_boundary", config.weld_boundary)?;
-    distance("tjunction_tolerance", config.tjunction_tolerance)?;
-    distance("close_gaps", config.close_gaps)?;
-    distance("snap", config.snap)?;
-    if config.snap.is_some() {
-        mesh.validate()?; // the snap's exact tests need finite coordinates
-    }
-    if config.remove_folds && config.orient != Some(Facing::ZUp) {
-        return Err(Error::InvalidParameter(
-            "fold removal works on a surface oriented up: set orient to z-up".into(),
-        ));
-    }
-    if let Some(d) = &config.degenerate {
-        d.validate()?;
-    }
+    config.check(mesh)?;
     let mut report = RepairReport {
         before: mesh_stats(mesh),
         weld: None,
