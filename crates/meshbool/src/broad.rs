@@ -494,7 +494,7 @@ pub fn overlapping_pairs(a: &Mesh, b: &Mesh) -> Vec<(u32, u32)> {
     let mut cells: Vec<u32> = pa.items.iter().map(|&(c, _)| c).collect();
     cells.dedup();
     let own = [[f64::NEG_INFINITY; 3], [f64::INFINITY; 3]];
-    let mut pairs: Vec<(u32, u32)> = cells
+    let pairs: Vec<(u32, u32)> = cells
         .par_iter()
         .flat_map_iter(|&c| {
             let (la, lb) = (pa.in_cell(c), pb.in_cell(c));
@@ -510,8 +510,7 @@ pub fn overlapping_pairs(a: &Mesh, b: &Mesh) -> Vec<(u32, u32)> {
             out
         })
         .collect();
-    pairs.par_sort_unstable();
-    pairs
+    crate::bvh::sort_pairs(pairs, a.triangles.len(), false)
 }
 
 /// Which corner points a piece reports pairs for: those in grid cell `cell` and in `own`

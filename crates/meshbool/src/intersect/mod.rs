@@ -233,9 +233,7 @@ fn candidate_pairs(a: &Mesh, b: &Mesh, from_grid: bool) -> Vec<(u32, u32)> {
             *j = p[*j as usize];
         }
     });
-    pairs.par_sort_unstable();
-    pairs.dedup();
-    pairs
+    crate::bvh::sort_pairs(pairs, a.triangles.len(), true)
 }
 
 /// A seam from the triangle pairs' intersections: points named by `name(label)` (one
@@ -422,18 +420,18 @@ pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
         // Large triangles through their pieces: the candidates (pieces of one triangle
         // aside) named by the triangles they stand for, each pair tested once.
         Some((stand_in, parent)) => {
-            let mut pairs: Vec<(u32, u32)> = bvh
+            let pairs: Vec<(u32, u32)> = bvh
                 .self_candidates_where(stand_in, &|i, j| parent[i as usize] != parent[j as usize])
-                .into_iter()
+                .into_par_iter()
                 .map(|(i, j)| {
                     let (i, j) = (parent[i as usize], parent[j as usize]);
                     (i.min(j), i.max(j))
                 })
                 .collect();
-            pairs.par_sort_unstable();
-            pairs.dedup();
-            pairs.retain(|&(i, j)| meets(i, j));
-            pairs
+            crate::bvh::sort_pairs(pairs, m.triangles.len(), true)
+                .into_par_iter()
+                .filter(|&(i, j)| meets(i, j))
+                .collect()
         }
     };
     found.par_sort_unstable();

@@ -552,6 +552,51 @@ fn separating_axis_filter_only_answers_apart_when_apart() {
     );
 }
 
+/// Coplanar triangles: the filter's axes in each triangle's plane call most coplanar
+/// pairs that are apart apart (its edge-cross-edge axes all lie along the normal and
+/// called none), and never a pair that touches (corners on a 0..=5 grid in one plane:
+/// shared corners, corners on edges, overlaps), in the plane z = 0, shifted to UTM-like
+/// coordinates, and turned into a tilted plane (rounded: near-contacts).
+#[test]
+fn separating_axis_filter_separates_coplanar_triangles_apart_in_their_plane() {
+    let mut rng = Rng(0x005e_edc0_91a4);
+    let (mut apart, mut said_apart) = (0, 0);
+    for round in 0..20_000 {
+        let mut next = || (rng.next() % 6) as f64;
+        let mut tri = || -> [[f64; 3]; 3] { std::array::from_fn(|_| [next(), next(), 0.0]) };
+        let (pa, pb) = (tri(), tri());
+        let moved = |t: [[f64; 3]; 3]| match round % 3 {
+            0 => t,
+            1 => t.map(|p| [p[0] + 4.5e5, p[1] + 6.1e6, p[2] + 300.0]),
+            _ => {
+                let m = rigid_motion(
+                    &Mesh::new_unchecked(t.to_vec(), vec![]),
+                    [1.0, 2.0, 3.0],
+                    0.7,
+                    [10.0; 3],
+                );
+                [m.positions[0], m.positions[1], m.positions[2]]
+            }
+        };
+        let (pa, pb) = (moved(pa), moved(pb));
+        let (Some(a), Some(b)) = (Tri::new(0, [0, 1, 2], pa), Tri::new(0, [10, 11, 12], pb)) else {
+            continue;
+        };
+        let meets = tt(&a, &b) != TriTri::None;
+        let says = crate::kernel::certainly_separated(&pa, &pb);
+        assert!(!(meets && says), "{pa:?} {pb:?}");
+        if round % 3 != 2 {
+            // Exactly coplanar: the pair is apart exactly when it does not meet.
+            apart += usize::from(!meets);
+            said_apart += usize::from(says);
+        }
+    }
+    assert!(
+        apart > 2000 && said_apart > apart * 9 / 10,
+        "{apart} {said_apart}"
+    );
+}
+
 #[test]
 fn self_seam_points_lie_on_both_triangles_and_match_the_two_mesh_seam() {
     use crate::kernel::{orient3d_plane, Sign};

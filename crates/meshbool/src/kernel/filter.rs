@@ -78,15 +78,17 @@ pub fn certainly_unfolded(a: &[f64; 3], b: &[f64; 3], u: &[f64; 3], v: &[f64; 3]
     margin.is_finite() && margin > 1e-250 && d < -margin
 }
 
-/// Whether an edge-cross-edge axis certainly separates triangles `p` and `q`: the
-/// separating-axis test in floating point, answering only "certainly apart". Any vector
+/// Whether an edge-cross-edge axis, or an axis in one triangle's plane square to one of
+/// its edges, certainly separates triangles `p` and `q`: the separating-axis test in
+/// floating point, answering only "certainly apart". Any vector
 /// is a valid axis (the one computed from rounded edges is just some direction); what
 /// must be certain is that the exact projections, onto it, of the corners (taken
 /// relative to `p[0]`, which moves neither) leave a gap. Each computed projection is
 /// within 4 ulp of |axis|₁ · (largest relative coordinate) of the exact one; the gap must
 /// exceed 1e-13 times that product, over 50 times the two projections' errors together.
 /// For pairs whose planes do not separate them: mostly neighbours across nearly planar
-/// quads, where rounded coordinates put a corner of each a hair over the other's plane.
+/// quads, where rounded coordinates put a corner of each a hair over the other's plane,
+/// and coplanar triangles apart in their plane (the slivers of a CAD model's flat faces).
 #[inline]
 pub fn certainly_separated(p: &[[f64; 3]; 3], q: &[[f64; 3]; 3]) -> bool {
     let o = p[0];
@@ -98,7 +100,19 @@ pub fn certainly_separated(p: &[[f64; 3]; 3], q: &[[f64; 3]; 3]) -> bool {
         .fold(0.0f64, |s, x| s.max(x.abs()));
     let edges = |t: &[[f64; 3]; 3]| [sub(&t[1], &t[0]), sub(&t[2], &t[1]), sub(&t[0], &t[2])];
     let (ep, eq) = (edges(&p), edges(&q));
-    for a in ep.iter().flat_map(|u| eq.iter().map(move |v| cross(u, v))) {
+    // Then each triangle's normal crossed with its edges: in its plane, square to an edge
+    // (what separates coplanar triangles, whose edge-cross-edge axes all lie along the
+    // normal).
+    let (np, nq) = (cross(&ep[0], &ep[1]), cross(&eq[0], &eq[1]));
+    let in_plane = ep
+        .iter()
+        .map(move |e| cross(&np, e))
+        .chain(eq.iter().map(move |e| cross(&nq, e)));
+    let axes = ep
+        .iter()
+        .flat_map(|u| eq.iter().map(move |v| cross(u, v)))
+        .chain(in_plane);
+    for a in axes {
         let margin = 1e-13 * (a[0].abs() + a[1].abs() + a[2].abs()) * scale;
         if !(margin.is_finite() && margin > 1e-250) {
             continue;
