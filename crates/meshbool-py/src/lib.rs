@@ -18,6 +18,13 @@ use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray2, PyUntypedArray
 use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
 
+/// mimalloc, as the command line uses it: a boolean's stages allocate and free large
+/// buffers one after another on the thread pool's workers, where the system allocator
+/// maps and zeroes fresh pages each time (2M-triangle union in process: see
+/// BENCHMARKS.md, "Calls from outside the thread pool").
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 /// The library's errors as Python exceptions: `OSError` for what the operating system
 /// refused (reading or writing files), `ValueError` for everything else (bad geometry,
 /// bad arguments, malformed files).

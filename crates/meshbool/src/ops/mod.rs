@@ -145,7 +145,11 @@ impl RunOptions {
 /// `threads` is over [`RunOptions::MAX_THREADS`] or the threads cannot be started.
 pub fn with_threads<R: Send>(threads: Option<usize>, f: impl FnOnce() -> R + Send) -> Result<R> {
     let n = match threads {
-        None | Some(0) => return Ok(f()),
+        // On a worker of the global pool: a call from outside it moves there once, so
+        // that its many parallel steps start as local tasks rather than each waking the
+        // pool from outside (tens of microseconds each: most of a small boolean).
+        None | Some(0) if rayon::current_thread_index().is_some() => return Ok(f()),
+        None | Some(0) => return Ok(rayon::scope(|_| f())),
         Some(n) => n,
     };
     if n > RunOptions::MAX_THREADS {
