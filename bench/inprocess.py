@@ -156,6 +156,42 @@ def libraries(names):
     return libs
 
 
+def table(names, records):
+    """Prints the table and the volume identities of a run's records. A peer's result
+    counts for the fastest peer only when it has triangles where meshbool's has (an
+    empty result is a refusal: manifold3d on open surfaces). Two ratios: meshbool's call
+    (numpy in -> numpy out, weld and checks included) over the fastest peer's boolean call
+    alone, and over the fastest peer's numpy in -> numpy out, the same work as ours."""
+    peers = [n for n in names if not n.startswith("meshbool")]
+    rows = {}
+    for r in records:
+        if "op" in r:
+            rows.setdefault((r["case"], r["op"]), {})[r["lib"]] = r
+    print("| case | op | " + " | ".join(f"{n} core / numpy (ms)" for n in names)
+          + " | meshbool ÷ fastest peer: core | : numpy |")
+    print("|---" * (len(names) + 4) + "|")
+    for (case, op), row in rows.items():
+        ours = row.get("meshbool")
+        usable = lambda r: "core" in r and (r["triangles"] > 0 or not ours or ours.get("triangles", 0) == 0)
+        cells = []
+        for n in names:
+            r = row.get(n)
+            if r is None or "core" not in r:
+                cells.append("fails")
+            else:
+                cell = f"{r['core'] * 1e3:.1f} / {r['numpy'] * 1e3:.1f}"
+                cells.append(cell if usable(r) else cell + " (empty)")
+        ok = [row[n] for n in peers if n in row and usable(row[n])]
+        ratio = lambda key: (f"{ours['core'] / min(r[key] for r in ok):.2f}"
+                             if ok and ours and "core" in ours else "–")
+        print(f"| {case} | {op} | " + " | ".join(cells) + f" | {ratio('core')} | {ratio('numpy')} |")
+    ident = [r for r in records if "identity_error" in r]
+    print()
+    print("Volume identity error |vol(A∪B)+vol(A∩B)−vol(A)−vol(B)| / (vol(A)+vol(B)):")
+    for r in ident:
+        print(f"- {r['case']} {r['lib']}: {r['identity_error']:.1e}")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("meshes", help="directory written by gen_meshes.py (with cases.json)")
@@ -165,14 +201,21 @@ def main():
     ap.add_argument("--json", help="also write every measurement to this file")
     ap.add_argument("--real", help="directory of the real model pairs (../shared/data/real): adds "
                     "the cases thingi_79741_65004 and thingi_908460_73416 (name them in --cases)")
+    ap.add_argument("--table", action="store_true",
+                    help="print the table of the records in MESHES (a --json file) instead of running")
     args = ap.parse_args()
+    if args.table:
+        records = json.load(open(args.meshes))
+        names = list(dict.fromkeys(r["lib"] for r in records))
+        table(names, records)
+        return
     cases = json.load(open(f"{args.meshes}/cases.json"))
     if args.real:
         for a, b in (("79741", "65004"), ("908460", "73416")):
             cases[f"thingi_{a}_{b}"] = {"A": os.path.join(args.real, f"thingi_{a}.obj"),
                                         "B": os.path.join(args.real, f"thingi_{b}.obj")}
     libs = libraries(args.libs.split(","))
-    rows, records = [], []
+    records = []
     for case in args.cases.split(","):
         c = cases[case]
         a = meshbool.read(os.path.join(args.meshes, c["A"]))
@@ -180,7 +223,6 @@ def main():
         reps = max(1, args.reps if len(a.faces) < 1_000_000 else (args.reps + 1) // 2)
         vols = {}
         for op in OPS:
-            row = {"case": case, "op": op, "triangles": len(a.faces)}
             for lib in libs:
                 try:
                     pa, pb = lib.prepare(a.vertices, a.faces), lib.prepare(b.vertices, b.faces)
@@ -193,13 +235,10 @@ def main():
                     full, (v, f) = median_time(whole, reps)
                     vol = volume(v, f)
                     vols.setdefault(op, {})[lib.name] = vol
-                    row[lib.name] = (core, full)
                     records.append({"case": case, "op": op, "lib": lib.name, "core": core, "numpy": full,
                                     "triangles": int(len(f)), "volume": vol})
                 except Exception as e:  # a library refusing a case is a result too
-                    row[lib.name] = None
                     records.append({"case": case, "op": op, "lib": lib.name, "error": str(e)[:200]})
-            rows.append(row)
         # Inclusion-exclusion per library: vol(A∪B) + vol(A∩B) = vol(A) + vol(B).
         va, vb = volume(a.vertices, a.faces), volume(b.vertices, b.faces)
         for lib in libs:
@@ -208,24 +247,7 @@ def main():
                 records.append({"case": case, "lib": lib.name, "identity_error": err})
             except KeyError:
                 pass
-    names = [lib.name for lib in libs]
-    peers = [n for n in names if not n.startswith("meshbool")]
-    print("| case | op | " + " | ".join(f"{n} core / numpy (ms)" for n in names) + " | meshbool ÷ fastest peer (core) |")
-    print("|---" * (len(names) + 3) + "|")
-    for row in rows:
-        cells = []
-        for n in names:
-            t = row.get(n)
-            cells.append("fails" if t is None else f"{t[0] * 1e3:.1f} / {t[1] * 1e3:.1f}")
-        best = min((row[n][0] for n in peers if row.get(n)), default=None)
-        ours = row.get("meshbool")
-        ratio = f"{ours[0] / best:.2f}" if best and ours else "–"
-        print(f"| {row['case']} | {row['op']} | " + " | ".join(cells) + f" | {ratio} |")
-    ident = [r for r in records if "identity_error" in r]
-    print()
-    print("Volume identity error |vol(A∪B)+vol(A∩B)−vol(A)−vol(B)| / (vol(A)+vol(B)):")
-    for r in ident:
-        print(f"- {r['case']} {r['lib']}: {r['identity_error']:.1e}")
+    table([lib.name for lib in libs], records)
     if args.json:
         json.dump(records, open(args.json, "w"), indent=1)
 
