@@ -183,14 +183,7 @@ fn boolean<'py>(
     keep_nonmanifold: bool,
     snap: f64,
     keep_seam_points: bool,
-) -> PyResult<(
-    Bound<'py, PyArray2<f64>>,
-    Bound<'py, PyArray2<u32>>,
-    Bound<'py, PyArray1<u8>>,
-    Bound<'py, PyArray1<u32>>,
-    Bound<'py, PyArray1<bool>>,
-    Boolean,
-)> {
+) -> PyResult<BooleanResult<'py>> {
     let (a, b, op) = (mesh(&av, &af)?, mesh(&bv, &bf)?, parse::<Op>(op)?);
     let opts = BooleanOptions {
         checks: checks(force, self_check, resolve, orient),
@@ -199,9 +192,24 @@ fn boolean<'py>(
         snap,
         run: run(threads),
     };
-    let mut out = py
+    let out = py
         .detach(move || ops::boolean(&a, &b, op, &opts))
         .map_err(py_err)?;
+    boolean_result(py, out)
+}
+
+/// What [`boolean`] returns, from the library's output.
+type BooleanResult<'py> = (
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray2<u32>>,
+    Bound<'py, PyArray1<u8>>,
+    Bound<'py, PyArray1<u32>>,
+    Bound<'py, PyArray1<bool>>,
+    Boolean,
+);
+
+/// The result's arrays, its provenance as three arrays and the rest of the output.
+fn boolean_result(py: Python<'_>, mut out: ops::BooleanOutput) -> PyResult<BooleanResult<'_>> {
     let provenance = std::mem::take(&mut out.provenance);
     let source = provenance.iter().map(|p| u8::from(p.source == Source::B));
     let triangle = provenance.iter().map(|p| p.triangle);
@@ -213,6 +221,80 @@ fn boolean<'py>(
     );
     let (v, f) = arrays(py, std::mem::take(&mut out.mesh))?;
     Ok((v, f, source, triangle, flipped, Boolean { out }))
+}
+
+/// A mesh welded and checked once, for many booleans ([`ops::Operand`]).
+#[pyclass(module = "meshbool._native", frozen)]
+struct Operand {
+    operand: ops::Operand,
+}
+
+#[pymethods]
+impl Operand {
+    /// Welds and checks the mesh `v`, `f` as the flags say, naming it `name` in reports
+    /// and errors.
+    #[new]
+    #[pyo3(signature = (v, f, name, force, self_check, resolve, orient, threads))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        py: Python<'_>,
+        v: PyReadonlyArray2<'_, f64>,
+        f: PyReadonlyArray2<'_, u32>,
+        name: String,
+        force: bool,
+        self_check: bool,
+        resolve: bool,
+        orient: bool,
+        threads: Option<usize>,
+    ) -> PyResult<Self> {
+        let m = mesh(&v, &f)?;
+        let checks = checks(force, self_check, resolve, orient);
+        let operand = py
+            .detach(move || {
+                ops::with_threads(threads, || ops::Operand::new(name, &m, &checks)).and_then(|r| r)
+            })
+            .map_err(py_err)?;
+        Ok(Operand { operand })
+    }
+
+    /// What the checks found, as JSON.
+    fn report(&self) -> PyResult<String> {
+        json(self.operand.report())
+    }
+
+    /// The checked mesh's arrays (welded; the solid it encloses when it was resolved).
+    fn arrays<'py>(&self, py: Python<'py>) -> PyResult<Arrays<'py>> {
+        arrays(py, self.operand.mesh().clone())
+    }
+}
+
+/// [`boolean`] of two operands checked before ([`Operand`]).
+#[pyfunction]
+#[pyo3(signature = (a, b, op, threads, keep_nonmanifold, snap=0.0, keep_seam_points=false))]
+#[allow(clippy::too_many_arguments)]
+fn boolean_operands<'py>(
+    py: Python<'py>,
+    a: &Operand,
+    b: &Operand,
+    op: &str,
+    threads: Option<usize>,
+    keep_nonmanifold: bool,
+    snap: f64,
+    keep_seam_points: bool,
+) -> PyResult<BooleanResult<'py>> {
+    let op = parse::<Op>(op)?;
+    let opts = BooleanOptions {
+        keep_nonmanifold,
+        keep_seam_points,
+        snap,
+        run: run(threads),
+        ..BooleanOptions::default()
+    };
+    let (a, b) = (&a.operand, &b.operand);
+    let out = py
+        .detach(move || ops::boolean(a, b, op, &opts))
+        .map_err(py_err)?;
+    boolean_result(py, out)
 }
 
 /// A split of two meshes along their intersection: its groups and their components.
@@ -672,12 +754,14 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SCHEMA", ops::SCHEMA)?;
     m.add("VERSION", env!("CARGO_PKG_VERSION"))?;
     m.add_class::<Boolean>()?;
+    m.add_class::<Operand>()?;
     m.add_class::<Split>()?;
     for f in [
         wrap_pyfunction!(check, m)?,
         wrap_pyfunction!(measures, m)?,
         wrap_pyfunction!(info, m)?,
         wrap_pyfunction!(boolean, m)?,
+        wrap_pyfunction!(boolean_operands, m)?,
         wrap_pyfunction!(boolean_many, m)?,
         wrap_pyfunction!(pieces_for_op, m)?,
         wrap_pyfunction!(split, m)?,

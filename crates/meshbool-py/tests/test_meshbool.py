@@ -249,6 +249,37 @@ def test_forced_inputs_list_what_was_assumed():
     ]
 
 
+def test_operands_are_checked_once_for_many_booleans():
+    a = meshbool.box([0, 0, 0], [1, 1, 1])
+    two = meshbool.Mesh(
+        np.vstack([a.vertices, a.vertices + 0.5]), np.vstack([a.faces, a.faces + 8])
+    )
+    b = meshbool.Mesh(*uv_sphere([1.1, 1.2, 0.9], 0.6, 32, 16))
+    # Resolved on the way in, once: its mesh is the solid the two cubes enclose.
+    prepared = meshbool.Operand(two, name="two cubes")
+    assert prepared.report["resolved"]["components"] == 2
+    assert prepared.report["name"] == "two cubes"
+    assert prepared.mesh.is_closed and prepared.mesh.volume == 2.0 - 0.125
+    for op in ("union", "intersection", "difference", "reverse_difference"):
+        plain = meshbool.boolean(two, b, op)
+        both = meshbool.boolean(prepared, meshbool.Operand(b), op)
+        mixed = meshbool.boolean(prepared, b, op)
+        for r in (both, mixed):
+            assert np.array_equal(r.vertices, plain.vertices), op
+            assert np.array_equal(r.faces, plain.faces), op
+            for key in ("source", "triangle", "flipped"):
+                assert np.array_equal(r.provenance[key], plain.provenance[key]), op
+            assert r.is_closed and r.volume == plain.volume
+    assert mixed.report["operands"][0]["name"] == "two cubes"
+    # Refused as a boolean would refuse it, unless forced.
+    with pytest.raises(ValueError, match="self-intersecting triangle pairs"):
+        meshbool.Operand(two, resolve=False)
+    forced = meshbool.Operand(two, resolve=False, force=True)
+    assert forced.report["forced"]
+    with pytest.raises(ValueError, match="expected a mesh"):
+        meshbool.Operand("no mesh")
+
+
 def test_overlapping_parts_are_resolved():
     a = meshbool.box([0, 0, 0], [1, 1, 1])
     two = meshbool.Mesh(

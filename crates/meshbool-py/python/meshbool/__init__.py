@@ -28,6 +28,7 @@ from . import _native
 
 __all__ = [
     "Mesh",
+    "Operand",
     "Split",
     "Polyline",
     "Curves",
@@ -214,6 +215,44 @@ def box(lo: Sequence[float], hi: Sequence[float]) -> Mesh:
 MeshLike = Union[Mesh, Tuple[Any, Any], Any]
 
 
+class Operand:
+    """A mesh welded and checked once, for many booleans: :func:`boolean` takes it in
+    place of a mesh and skips its weld and checks (what the door fixes, it fixed here:
+    see :func:`boolean` for the flags). ``report`` is what the checks found (the
+    ``operands`` entry of a boolean's report); ``mesh`` the checked mesh (welded, and the
+    solid it encloses when it was resolved).
+
+    ``ValueError`` when a check finds a problem and ``force`` is off, as :func:`boolean`
+    raises it.
+    """
+
+    __slots__ = ("_native",)
+
+    def __init__(
+        self,
+        mesh: MeshLike,
+        *,
+        name: str = "mesh",
+        force: bool = False,
+        self_check: bool = True,
+        resolve: bool = True,
+        orient: bool = True,
+        threads: Optional[int] = None,
+    ) -> None:
+        v, f = _parts(mesh)
+        self._native = _native.Operand(v, f, name, force, self_check, resolve, orient, threads)
+
+    @property
+    def report(self) -> dict:
+        """What the checks found."""
+        return json.loads(self._native.report())
+
+    @property
+    def mesh(self) -> "Mesh":
+        """The checked mesh."""
+        return Mesh._from(*self._native.arrays())
+
+
 def boolean(
     a: MeshLike,
     b: MeshLike,
@@ -253,16 +292,29 @@ def boolean(
     triangles made by rounding collapsed or flipped away, no surface moving
     (``report["cleanup"]``).
 
+    ``a`` and ``b`` may be :class:`Operand` s, welded and checked before (the flags
+    above then apply only to a plain mesh beside one): repeated booleans on one mesh
+    skip its weld and checks.
+
     Returns a :class:`Mesh` with ``report`` (the ``--json`` dict) and ``provenance``
     (a dict of arrays: ``source`` 0 for a / 1 for b, ``triangle`` in that input,
     ``flipped``).
     """
-    av, af = _parts(a)
-    bv, bf = _parts(b)
-    v, f, source, triangle, flipped, pending = _native.boolean(
-        av, af, bv, bf, op, force, self_check, resolve, orient, threads, keep_nonmanifold,
-        float(snap), keep_seam_points,
-    )
+    if isinstance(a, Operand) or isinstance(b, Operand):
+        flags = dict(force=force, self_check=self_check, resolve=resolve, orient=orient,
+                     threads=threads)
+        a = a if isinstance(a, Operand) else Operand(a, name="A", **flags)
+        b = b if isinstance(b, Operand) else Operand(b, name="B", **flags)
+        v, f, source, triangle, flipped, pending = _native.boolean_operands(
+            a._native, b._native, op, threads, keep_nonmanifold, float(snap), keep_seam_points
+        )
+    else:
+        av, af = _parts(a)
+        bv, bf = _parts(b)
+        v, f, source, triangle, flipped, pending = _native.boolean(
+            av, af, bv, bf, op, force, self_check, resolve, orient, threads,
+            keep_nonmanifold, float(snap), keep_seam_points,
+        )
     out = Mesh._from(v, f)
     out._pending = pending
     out.provenance = {"source": source, "triangle": triangle, "flipped": flipped}

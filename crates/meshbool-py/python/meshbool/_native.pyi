@@ -33,6 +33,31 @@ def boolean(
     snap: float = 0.0,
 ) -> Tuple[F64, U32, npt.NDArray[np.uint8], U32, npt.NDArray[np.bool_], Boolean]: ...
 
+class Operand:
+    def __init__(
+        self,
+        v: F64,
+        f: U32,
+        name: str,
+        force: bool,
+        self_check: bool,
+        resolve: bool,
+        orient: bool,
+        threads: Optional[int],
+    ) -> None: ...
+    def report(self) -> str: ...
+    def arrays(self) -> Tuple[F64, U32]: ...
+
+def boolean_operands(
+    a: Operand,
+    b: Operand,
+    op: str,
+    threads: Optional[int],
+    keep_nonmanifold: bool,
+    snap: float = 0.0,
+    keep_seam_points: bool = False,
+) -> Tuple[F64, U32, npt.NDArray[np.uint8], U32, npt.NDArray[np.bool_], Boolean]: ...
+
 def boolean_many(
     meshes: List[Tuple[F64, U32]],
     op: str,
