@@ -670,21 +670,25 @@ fn picking_the_pieces_of_an_op_gives_the_boolean() {
     assert_eq!(names, ["a_out_b", "b_in_a:flip", "a_on_b_opposite"]);
 }
 
+/// `m` with every coordinate multiplied by `2^k`.
+fn scaled(m: &Mesh, k: i32) -> Mesh {
+    let mut m = m.clone();
+    super::scale_points(&mut m.positions, k);
+    m
+}
+
+/// `m`'s triangles as corner triples, sorted: the same surface whatever the numbering.
+fn sorted(m: &Mesh) -> Vec<[[f64; 3]; 3]> {
+    let mut s = m.to_soup();
+    s.sort_by(|x, y| x.partial_cmp(y).unwrap());
+    s
+}
+
 #[test]
 fn tiny_and_huge_inputs_give_the_unit_result_scaled_bit_for_bit() {
     // Before: at 2^-256 the union's vertices drifted, at 2^-270 the curves vanished.
     let a = crate::shapes::sphere([0.0; 3], 1.0, 16, 8).unwrap();
     let b = crate::shapes::sphere([0.3, 0.2, 0.1], 1.0, 16, 8).unwrap();
-    let scaled = |m: &Mesh, k: i32| {
-        let mut m = m.clone();
-        super::scale_points(&mut m.positions, k);
-        m
-    };
-    let sorted = |m: &Mesh| {
-        let mut s = m.to_soup();
-        s.sort_by(|x, y| x.partial_cmp(y).unwrap());
-        s
-    };
     let opts = BooleanOptions::default();
     let unit = boolean(&a, &b, Op::Union, &opts).unwrap();
     let unit_split = split(&a, &b, &SplitOptions::default()).unwrap();
@@ -741,11 +745,6 @@ fn closing_and_cut_fill_at_extreme_scales_are_the_unit_results_scaled() {
     // normals overflowed), and cut and fill at 2^-300 built its curtains down to a floor
     // a fixed 1 unit below (walls 2^300 times longer than the surfaces were wide) and ran
     // out of memory.
-    let scaled = |m: &Mesh, k: i32| {
-        let mut m = m.clone();
-        super::scale_points(&mut m.positions, k);
-        m
-    };
     let cube = Mesh::cuboid([0.0; 3], [1.0; 3]);
     let open = Mesh::new(cube.positions.clone(), cube.triangles[..10].to_vec()).unwrap();
     let design = crate::shapes::heightfield([0.0, 0.0], [1.0, 1.0], 8, 8, |x, _| 0.3 * x);
@@ -805,11 +804,6 @@ fn broken_cube() -> Mesh {
 
 #[test]
 fn repair_at_extreme_scales_is_the_unit_repair_scaled() {
-    let scaled = |m: &Mesh, k: i32| {
-        let mut m = m.clone();
-        super::scale_points(&mut m.positions, k);
-        m
-    };
     let config = |k: i32| crate::repair::RepairConfig {
         weld: Some(super::scaled(1e-3, k)),
         remove_duplicates: true,
@@ -861,16 +855,6 @@ fn prepared_operands_and_many_inputs_at_extreme_scales_are_the_unit_results_scal
     let a = crate::shapes::sphere([0.0; 3], 1.0, 16, 8).unwrap();
     let b = crate::shapes::sphere([0.3, 0.2, 0.1], 1.0, 16, 8).unwrap();
     let c = crate::shapes::sphere([-0.2, 0.4, 0.3], 0.8, 12, 6).unwrap();
-    let scaled = |m: &Mesh, k: i32| {
-        let mut m = m.clone();
-        super::scale_points(&mut m.positions, k);
-        m
-    };
-    let sorted = |m: &Mesh| {
-        let mut s = m.to_soup();
-        s.sort_by(|x, y| x.partial_cmp(y).unwrap());
-        s
-    };
     // A and C given as one self-overlapping mesh: resolved at the door.
     let mut ac = a.clone();
     ac.append(&c).unwrap();
