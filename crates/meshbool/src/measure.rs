@@ -187,9 +187,9 @@ impl MeshStats {
     /// The measures of a mesh measured at unit size, for the mesh scaled by `2^e`:
     /// the box times `2^e`, areas `2^2e`, the volume `2^3e`.
     pub(crate) fn scale_back(&mut self, e: i32) {
-        use crate::ops::scaled;
-        let area = |x: f64| scaled(scaled(x, e), e);
-        self.volume = scaled(area(self.volume), e);
+        use crate::ops::scaled_measure;
+        let area = |x: f64| scaled_measure(x, e, 2);
+        self.volume = scaled_measure(self.volume, e, 3);
         self.area = area(self.area);
         let p = &mut self.projected_area;
         (p.xy, p.yz, p.xz) = (area(p.xy), area(p.yz), area(p.xz));

@@ -114,13 +114,7 @@ pub struct BooleanReport {
 impl BooleanOutput {
     /// Multiplies the output's coordinates by `2^e` (for a computation done at unit size).
     fn scale_back(&mut self, e: i32) {
-        super::scale_points(&mut self.mesh.positions, e);
-        for o in &mut self.operands {
-            o.scale_back(e);
-        }
-        if let Some(s) = &mut self.snap {
-            s.scale_back(e);
-        }
+        scale_back(&mut self.mesh, &mut self.operands, &mut self.snap, e);
     }
 
     /// What the result assumes, one line each (see [`BooleanReport::assumed`]).
@@ -160,6 +154,24 @@ impl BooleanOutput {
             snap: self.snap.clone(),
             seconds: self.seconds,
         }
+    }
+}
+
+/// Multiplies the coordinates of a boolean's output computed at unit size by `2^e`: the
+/// mesh, the operands' reports and the snap report ([`BooleanOutput`] and
+/// [`BooleanManyOutput`] alike).
+fn scale_back(
+    mesh: &mut Mesh,
+    operands: &mut [OperandReport],
+    snap: &mut Option<SnapReport>,
+    e: i32,
+) {
+    super::scale_points(&mut mesh.positions, e);
+    for o in operands {
+        o.scale_back(e);
+    }
+    if let Some(s) = snap {
+        s.scale_back(e);
     }
 }
 
@@ -318,13 +330,7 @@ pub fn boolean_many<'a>(
             ..opts.clone()
         };
         let mut out = boolean_many(&unit, op, &unit_opts)?;
-        super::scale_points(&mut out.mesh.positions, -e);
-        for o in &mut out.operands {
-            o.scale_back(-e);
-        }
-        if let Some(s) = &mut out.snap {
-            s.scale_back(-e);
-        }
+        scale_back(&mut out.mesh, &mut out.operands, &mut out.snap, -e);
         return Ok(out);
     }
     with_threads(opts.run.threads, || {

@@ -87,15 +87,15 @@ impl CutFillOutput {
     /// The output of surfaces computed at unit size, for the surfaces scaled by `2^e`:
     /// lengths times `2^e`, areas `2^2e`, volumes `2^3e`.
     fn scale_back(&mut self, e: i32) {
-        use super::scaled;
-        let cube = |v: f64| scaled(scaled(scaled(v, e), e), e);
+        use super::scaled_measure;
+        let cube = |v: f64| scaled_measure(v, e, 3);
         (self.cut, self.fill) = (cube(self.cut), cube(self.fill));
         for a in [
             &mut self.design_area,
             &mut self.topo_area,
             &mut self.common_area,
         ] {
-            *a = scaled(scaled(*a, e), e);
+            *a = scaled_measure(*a, e, 2);
         }
         for l in &mut self.lines {
             super::scale_points(&mut l.points, e);

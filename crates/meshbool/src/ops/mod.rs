@@ -219,6 +219,12 @@ pub(crate) fn scaled(x: f64, e: i32) -> f64 {
     x * 2f64.powi(half) * 2f64.powi(rest)
 }
 
+/// `x · 2^(n·e)`: a measure of dimension `n` (1 a length, 2 an area, 3 a volume) of a
+/// mesh scaled by `2^e`, one [`scaled`] per dimension so that no step leaves `f64`'s range.
+pub(crate) fn scaled_measure(x: f64, e: i32, n: u32) -> f64 {
+    (0..n).fold(x, |x, _| scaled(x, e))
+}
+
 /// Multiplies every coordinate by `2^e`, in two steps where `2^e` alone is not a normal
 /// `f64`.
 pub(crate) fn scale_points(points: &mut [[f64; 3]], e: i32) {

@@ -304,9 +304,7 @@ impl RepairReport {
     /// times `2^e`, areas `2^2e`, volumes `2^3e`.
     pub(crate) fn scale_back(&mut self, e: i32) {
         let length = |x: &mut f64| *x = crate::ops::scaled(*x, e);
-        let volume = |x: &mut f64| {
-            *x = crate::ops::scaled(crate::ops::scaled(crate::ops::scaled(*x, e), e), e)
-        };
+        let volume = |x: &mut f64| *x = crate::ops::scaled_measure(*x, e, 3);
         self.before.scale_back(e);
         self.after.scale_back(e);
         if let Some(d) = &mut self.duplicates {
