@@ -552,6 +552,66 @@ fn separating_axis_filter_only_answers_apart_when_apart() {
     );
 }
 
+/// The early test of crossing pairs (each triangle with one corner alone on its side of
+/// the other's plane, no corner on it) is exact: in that configuration it calls a pair
+/// apart exactly when the full test finds nothing (touching at one point is not apart),
+/// and it leaves every other configuration to the full test. Corners on a 0..=3 grid
+/// (corners on planes, touching, shared corners), random in the unit cube, and both moved
+/// to UTM-like coordinates or rotated (near-contacts rounded differently).
+#[test]
+fn line_test_calls_crossing_pairs_apart_exactly_when_apart() {
+    use crate::kernel::orient3d_sides;
+    use tritri::{apart_on_line, intersect_filtered};
+    let mut rng = Rng(0x5eed_0f11_7e57);
+    let (mut general, mut apart, mut touching) = (0, 0, 0);
+    for round in 0..40_000 {
+        let grid = round % 2 == 0;
+        let mut next = || {
+            if grid {
+                (rng.next() % 4) as f64
+            } else {
+                rng.unit()
+            }
+        };
+        let pa: [[f64; 3]; 3] = std::array::from_fn(|_| std::array::from_fn(|_| next()));
+        let pb: [[f64; 3]; 3] = std::array::from_fn(|_| std::array::from_fn(|_| next()));
+        let moved = |t: [[f64; 3]; 3]| match (round / 2) % 3 {
+            0 => t,
+            1 => t.map(|p| p.map(|x| x + 4.5e6)),
+            _ => {
+                let m = rigid_motion(
+                    &Mesh::new_unchecked(t.to_vec(), vec![]),
+                    [1.0, 2.0, 3.0],
+                    0.3,
+                    [1e3; 3],
+                );
+                [m.positions[0], m.positions[1], m.positions[2]]
+            }
+        };
+        let (pa, pb) = (moved(pa), moved(pb));
+        let (Some(a), Some(b)) = (Tri::new(0, [0, 1, 2], pa), Tri::new(0, [10, 11, 12], pb)) else {
+            continue;
+        };
+        let full = intersect_filtered(&a, &b, false);
+        assert_eq!(tt(&a, &b), full, "{pa:?} {pb:?}");
+        let (sa, sb) = (orient3d_sides(&pb, &pa), orient3d_sides(&pa, &pb));
+        let says = apart_on_line(&pa, sa, &pb, sb);
+        let crossing = |s: [Sign; 3]| !s.contains(&Sign::Zero) && s.iter().any(|&x| x != s[0]);
+        if crossing(sa) && crossing(sb) {
+            general += 1;
+            assert_eq!(says, full == TriTri::None, "{pa:?} {pb:?}");
+            apart += usize::from(says);
+            touching += usize::from(matches!(full, TriTri::Point(_)));
+        } else {
+            assert!(!says, "{pa:?} {pb:?}");
+        }
+    }
+    assert!(
+        general > 10_000 && apart > 4000 && touching > 300,
+        "{general} {apart} {touching}"
+    );
+}
+
 /// Coplanar triangles: the filter's axes in each triangle's plane call most coplanar
 /// pairs that are apart apart (its edge-cross-edge axes all lie along the normal and
 /// called none), and never a pair that touches (corners on a 0..=5 grid in one plane:

@@ -10,8 +10,9 @@
 use std::cmp::Ordering;
 
 use crate::kernel::{
-    cmp_coord_prepared, longest_axis, orient2d, orient2d_prepared, orient2d_safe, orient3d_sides,
-    planes_line_axis, same_point_prepared, Point, Prepared, Sign, Triangle,
+    cmp_coord_prepared, longest_axis, orient2d, orient2d_prepared, orient2d_safe,
+    orient3d_explicit, orient3d_sides, planes_line_axis, same_point_prepared, Point, Prepared,
+    Sign, Triangle,
 };
 
 /// A vertex, edge or face of one mesh, by its vertex / triangle ids (edges sorted).
@@ -103,10 +104,27 @@ impl Tri {
         }))
     }
 
+    /// [`Tri::locate`] of the point where segment `p q` crosses this triangle's plane,
+    /// `p` strictly on side `side` of it and `q` strictly on the other, from input points
+    /// alone: the point lies on the inner side of edge `k` exactly when the tetrahedron
+    /// `k, k + 1, q, p` is oriented as `side` says (three `orient3d`, no construction).
+    fn locate_crossing(&self, p: &[f64; 3], q: &[f64; 3], side: Sign) -> Option<Feature> {
+        let c = self.corners();
+        self.locate_inside(std::array::from_fn(|k| {
+            orient3d_explicit(&c[k], &c[(k + 1) % 3], q, p).times(side)
+        }))
+    }
+
     /// [`Tri::locate`] from the orientations of the point against the edges (edge `k`
     /// from corner `k` to `k + 1`, projected along [`Tri::axis`]).
     fn locate_by(&self, o: [Sign; 3]) -> Option<Feature> {
-        let o = o.map(|s| s.times(self.sign()));
+        self.locate_inside(o.map(|s| s.times(self.sign())))
+    }
+
+    /// [`Tri::locate`] from the side of each edge the point lies on, seen from the side
+    /// the triangle's normal points to: positive on the inner side of edge `k` (from corner
+    /// `k` to `k + 1`), zero on its line.
+    fn locate_inside(&self, o: [Sign; 3]) -> Option<Feature> {
         if o.contains(&Sign::Negative) {
             return None;
         }
@@ -148,6 +166,20 @@ pub enum TriTri {
 struct OnPlane {
     point: Prepared,
     own: Feature,
+    /// For a crossing of an edge, the edge's ends and the side of the plane the first
+    /// lies on: the point is located in the other triangle from these.
+    crossing: Option<([f64; 3], [f64; 3], Sign)>,
+}
+
+impl OnPlane {
+    /// The smallest feature of `t` (the triangle whose plane the point lies on) that
+    /// contains the point.
+    fn locate_in(&self, t: &Tri) -> Option<Feature> {
+        match &self.crossing {
+            Some((p, q, side)) => t.locate_crossing(p, q, *side),
+            None => t.locate_prepared(&self.point),
+        }
+    }
 }
 
 /// The points of `t` on the plane of `o`, given the sides `s` of `t`'s corners: corners on
@@ -159,6 +191,7 @@ fn on_plane(t: &Tri, s: [Sign; 3], o: &Tri) -> Vec<OnPlane> {
             out.push(OnPlane {
                 point: Prepared::new(t.corner(i)),
                 own: Feature::Vertex(t.v[i]),
+                crossing: None,
             });
         }
     }
@@ -174,6 +207,7 @@ fn on_plane(t: &Tri, s: [Sign; 3], o: &Tri) -> Vec<OnPlane> {
                     c: o.corners()[2],
                 }),
                 own: edge(t.v[i], t.v[j]),
+                crossing: Some((t.corners()[i], t.corners()[j], s[i])),
             });
         }
     }
@@ -182,6 +216,12 @@ fn on_plane(t: &Tri, s: [Sign; 3], o: &Tri) -> Vec<OnPlane> {
 
 /// Intersects triangles `a` (mesh A) and `b` (mesh B) exactly.
 pub fn intersect(a: &Tri, b: &Tri) -> TriTri {
+    intersect_filtered(a, b, true)
+}
+
+/// [`intersect`], with the early test of crossing pairs ([`apart_on_line`]) on or off
+/// (off only in the tests that check that test against the full one).
+pub(super) fn intersect_filtered(a: &Tri, b: &Tri, line_test: bool) -> TriTri {
     let sa = orient3d_sides(b.corners(), a.corners());
     if sa[0] != Sign::Zero && sa[0] == sa[1] && sa[1] == sa[2] {
         return TriTri::None;
@@ -191,6 +231,9 @@ pub fn intersect(a: &Tri, b: &Tri) -> TriTri {
     }
     let sb = orient3d_sides(a.corners(), b.corners());
     if sb[0] != Sign::Zero && sb[0] == sb[1] && sb[1] == sb[2] {
+        return TriTri::None;
+    }
+    if line_test && apart_on_line(a.corners(), sa, b.corners(), sb) {
         return TriTri::None;
     }
     // Both triangles meet the line L where the planes cross; order points along an axis
@@ -220,32 +263,80 @@ pub fn intersect(a: &Tri, b: &Tri) -> TriTri {
         Some(if from_a {
             Label {
                 a: x.own,
-                b: b.locate_prepared(&x.point)?,
+                b: x.locate_in(b)?,
             }
         } else {
             Label {
-                a: a.locate_prepared(&x.point)?,
+                a: x.locate_in(a)?,
                 b: x.own,
             }
         })
     };
+    // Non-finite corners come only from a public caller's unvalidated mesh.
+    let finite = || {
+        a.corners()
+            .iter()
+            .chain(b.corners())
+            .flatten()
+            .all(|x| x.is_finite())
+    };
     let (Some(l0), Some(l1)) = (label(lo, lo_from_a), label(hi, hi_from_a)) else {
-        // Only non-finite corners (a public caller's unvalidated mesh) get here.
-        debug_assert!(
-            !a.corners()
-                .iter()
-                .chain(b.corners())
-                .flatten()
-                .all(|x| x.is_finite()),
-            "an overlap end lies outside a triangle"
-        );
+        debug_assert!(!finite(), "an overlap end lies outside a triangle");
         return TriTri::None;
     };
-    if l0 == l1 || same_point_prepared(&lo.point, &hi.point) {
+    // Labels are exact and canonical (the smallest feature of each closed triangle that
+    // holds the point), so distinct labels name distinct points.
+    debug_assert!(
+        !finite() || (l0 == l1) == same_point_prepared(&lo.point, &hi.point),
+        "distinct labels name one point"
+    );
+    if l0 == l1 {
         TriTri::Point(l0)
     } else {
         TriTri::Segment([l0, l1])
     }
+}
+
+/// True when triangles `t` and `u`, each with one corner strictly on one side of the
+/// other's plane and two strictly on the other side (`st`, `su`: the sides, none zero),
+/// are certainly apart: their segments on the line where the planes meet do not overlap.
+/// Decided from input corners alone (two `orient3d`, the test of Devillers and Guigue,
+/// "Faster triangle-triangle intersection tests", 2002), so that the intersection points,
+/// implicit and costly, are only built for pairs that may meet. `false` in every other
+/// configuration (a corner on a plane, touching, crossing): then the full test decides.
+pub(super) fn apart_on_line(
+    t: &[[f64; 3]; 3],
+    st: [Sign; 3],
+    u: &[[f64; 3]; 3],
+    su: [Sign; 3],
+) -> bool {
+    /// The corner alone on its side, first, the others in cyclic order, and its side.
+    fn lone(s: [Sign; 3]) -> Option<(usize, Sign)> {
+        if s.contains(&Sign::Zero) {
+            return None;
+        }
+        (0..3)
+            .find(|&i| s[i] != s[(i + 1) % 3] && s[i] != s[(i + 2) % 3])
+            .map(|i| (i, s[i]))
+    }
+    let (Some((i, si)), Some((j, sj))) = (lone(st), lone(su)) else {
+        return false;
+    };
+    let (p1, mut q1, mut r1) = (t[i], t[(i + 1) % 3], t[(i + 2) % 3]);
+    let (p2, mut q2, mut r2) = (u[j], u[(j + 1) % 3], u[(j + 2) % 3]);
+    // Orient each plane so that the other triangle's lone corner lies on its positive
+    // side (swapping two corners reverses a plane and leaves the other's sides alone).
+    if si == Sign::Negative {
+        std::mem::swap(&mut q2, &mut r2);
+    }
+    if sj == Sign::Negative {
+        std::mem::swap(&mut q1, &mut r1);
+    }
+    // Each segment runs from the edge p q to the edge p r of its triangle; the two tests
+    // compare their ends along the line. Positive: one segment ends before the other
+    // starts.
+    orient3d_explicit(&q1, &p2, &p1, &q2) == Sign::Positive
+        || orient3d_explicit(&p1, &p2, &r1, &r2) == Sign::Positive
 }
 
 /// Coplanar triangles: each edge clipped to the other triangle.

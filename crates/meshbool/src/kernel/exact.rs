@@ -67,6 +67,14 @@ impl Num for Dyadic {
         } else {
             (frac | (1 << 52), exp - 1075)
         };
+        // Trailing zero bits moved into the exponent: short binary fractions (grids, CAD
+        // data) then have short mantissas, and their products stay in a machine word or two.
+        let (m, e) = if m == 0 {
+            (0, 0)
+        } else {
+            let tz = m.trailing_zeros();
+            (m >> tz, e + i64::from(tz))
+        };
         let m = if bits >> 63 == 1 { -m } else { m };
         Dyadic {
             m: IBig::from(m),

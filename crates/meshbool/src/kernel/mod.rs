@@ -776,7 +776,29 @@ fn normals_cross_component<T: Num>(t: &[[f64; 3]; 3], u: &[[f64; 3]; 3], axis: u
 /// Exact sign of component `axis` of `n_t × n_u`, the direction of the line where the
 /// planes of triangles `t` and `u` meet.
 pub fn normals_cross_sign(t: &[[f64; 3]; 3], u: &[[f64; 3]; 3], axis: usize) -> Sign {
+    // A floating-point filter first, as in `normals_dot_sign`: the rounded component is
+    // within some 30ε·S_t·S_u of the exact one (a difference of two products of normal
+    // components, each within 4ε·S of its exact value and at most S).
+    let ((n, sn), (m, sm)) = (normal_and_size(t), normal_and_size(u));
+    let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+    let d = n[i] * m[j] - n[j] * m[i];
+    let bound = 1e-12 * sn * sm;
+    if bound.is_finite() && bound > 1e-250 && d.abs() > bound {
+        return Sign::of_f64(d);
+    }
     decide!(normals_cross_component(t, u, axis))
+}
+
+/// A triangle's normal `(b − a) × (c − a)` in `f64`, and the product of the L1 norms of
+/// its two edge vectors: a bound on the normal's components that its rounding errors are
+/// measured against (each within about 4ε of it, ε = 2⁻⁵³).
+fn normal_and_size(p: &[[f64; 3]; 3]) -> ([f64; 3], f64) {
+    let (e1, e2) = (
+        [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]],
+        [p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]],
+    );
+    let l1 = |e: &[f64; 3]| e[0].abs() + e[1].abs() + e[2].abs();
+    (crate::vec3::cross(&e1, &e2), l1(&e1) * l1(&e2))
 }
 
 fn normals_dot_value<T: Num>(t: &[[f64; 3]; 3], u: &[[f64; 3]; 3]) -> T {
@@ -798,15 +820,7 @@ pub fn normals_dot_sign(t: &[[f64; 3]; 3], u: &[[f64; 3]; 3]) -> Sign {
     // that product of a triangle's edge norms (ε = 2⁻⁵³; 30ε ≈ 3.4e-15). The answer
     // needs the value beyond 1e-12·S_t·S_u, some 300 times that; anything closer (and any
     // bound that overflows or underflows) goes to the exact evaluation.
-    let edges = |p: &[[f64; 3]; 3]| {
-        let (e1, e2) = (
-            [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]],
-            [p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]],
-        );
-        let l1 = |e: &[f64; 3]| e[0].abs() + e[1].abs() + e[2].abs();
-        (crate::vec3::cross(&e1, &e2), l1(&e1) * l1(&e2))
-    };
-    let ((n, sn), (m, sm)) = (edges(t), edges(u));
+    let ((n, sn), (m, sm)) = (normal_and_size(t), normal_and_size(u));
     let d = crate::vec3::dot(&n, &m);
     let bound = 1e-12 * sn * sm;
     if bound.is_finite() && bound > 1e-250 && d.abs() > bound {

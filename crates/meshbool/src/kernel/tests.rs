@@ -699,3 +699,53 @@ fn close_points_on_a_huge_plane_agree_with_the_oracle() {
         }
     }
 }
+
+/// The signs of the components of `n_t × n_u` and of `n_t · n_u` (the planes' line and
+/// whether two triangles face alike) against rationals: random triangles, nearly parallel
+/// ones (a copy with one corner moved an ulp or a little more), exactly parallel and
+/// exactly perpendicular ones on a grid (exact zeros), at unit size, UTM-like offsets and
+/// extreme scales (where the floating-point filters must stand aside).
+#[test]
+fn normal_predicates_agree_with_rationals() {
+    let mut rng = Rng(0x0a11_6e55_1234_4321);
+    let normal = |t: &[[f64; 3]; 3]| {
+        let [a, b, c] = t.map(|p| qv(&p));
+        crs(&sub(&b, &a), &sub(&c, &a))
+    };
+    let check = |t: &[[f64; 3]; 3], u: &[[f64; 3]; 3]| -> usize {
+        let (n, m) = (normal(t), normal(u));
+        let d = crs(&n, &m);
+        for (k, dk) in d.iter().enumerate() {
+            assert_eq!(normals_cross_sign(t, u, k), sign_q(dk), "{t:?} {u:?} {k}");
+        }
+        assert_eq!(normals_dot_sign(t, u), sign_q(&dt(&n, &m)), "{t:?} {u:?}");
+        d.iter().filter(|x| x.is_zero()).count()
+    };
+    let mut zeros = 0;
+    for offset in [[0.0; 3], UTM] {
+        for scale in [1e-3, 1.0, 1e3, 1e-150, 1e150] {
+            for _ in 0..300 {
+                let t = [0, 1, 2].map(|_| rng.point(offset, scale));
+                let u = [0, 1, 2].map(|_| rng.point(offset, scale));
+                check(&t, &u);
+                // Nearly parallel: one corner moved by an ulp, or by a relative 1e-13.
+                let mut v = t;
+                let k = (rng.next() % 3) as usize;
+                v[k][0] = v[k][0].next_up();
+                check(&t, &v);
+                v[k][1] *= 1.0 + 1e-13;
+                check(&t, &v);
+            }
+        }
+    }
+    // Grid triangles: parallel and perpendicular planes are common, and exact.
+    for _ in 0..3000 {
+        let mut grid = || std::array::from_fn(|_| (rng.next() % 3) as f64);
+        let (t, u): ([[f64; 3]; 3], [[f64; 3]; 3]) = (
+            std::array::from_fn(|_| grid()),
+            std::array::from_fn(|_| grid()),
+        );
+        zeros += check(&t, &u);
+    }
+    assert!(zeros > 1000, "{zeros}");
+}
