@@ -418,12 +418,14 @@ enum Clip {
     Segment([Label; 2]),
 }
 
-/// A point where a clipped edge may start or end: an input corner, or where the edge
-/// crosses edge `m` of the other triangle.
-#[derive(Clone, Copy)]
+/// A point where a clipped edge may start or end: corner `k` of the clipped triangle, corner
+/// `m` of the other one, or where the edge crosses edge `m` of the other triangle. Small (a
+/// tag and an index): the coordinates and the label are looked up when needed.
+#[derive(Clone, Copy, PartialEq, Eq)]
 enum Cand {
-    Corner([f64; 3]),
-    Crossing(usize),
+    Own(u8),
+    Other(u8),
+    Crossing(u8),
 }
 
 /// The part of edge `i` of `own` inside the coplanar triangle `other`: the first and the
@@ -436,52 +438,34 @@ fn clip_edge(own: &Tri, i: usize, other: &Tri, own_is_a: bool, o: &Orients) -> C
     // Along the edge, order by its longest coordinate (non-zero: the corners differ there).
     let along = Along {
         axis: longest_axis(&own.corners()[i], &own.corners()[j]),
+        own,
+        other,
         crossing: &crossing,
     };
     let mut ends = Ends::default();
-    edge_candidates(own, i, other, own_is_a, o, &along, |c, l| {
-        ends.add(&along, c, l)
-    });
-    ends.clip(&along)
-}
-
-/// Where edge `i` of `own` crosses edge `m` of the coplanar triangle `other` (each strictly
-/// crossing the other's line), for each `m`: prepared once for the comparisons, boxed (a
-/// prepared point is some 200 bytes, and most edges cross nothing).
-fn edge_crossings(own: &Tri, i: usize, other: &Tri, o: &Orients) -> [Option<Box<Prepared>>; 3] {
-    let j = (i + 1) % 3;
-    let crosses = |s: Sign, t: Sign| s.times(t) == Sign::Negative;
-    std::array::from_fn(|m| {
-        let n = (m + 1) % 3;
-        (crosses(o.other_edges[m][i], o.other_edges[m][j])
-            && crosses(o.own_edges[i][m], o.own_edges[i][n]))
-        .then(|| {
-            Box::new(Prepared::new(Point::Ssi {
-                p: own.corners()[i],
-                q: own.corners()[j],
-                r: other.corners()[m],
-                s: other.corners()[n],
-                axis: other.axis() as u8,
-            }))
-        })
-    })
-}
-
-/// Calls `add` with every candidate end of the part of edge `i` of `own` inside `other`,
-/// with its label: `own`'s two corners where they lie in `other`, `other`'s corners
-/// strictly inside the edge, then the edge's crossings with `other`'s edges.
-fn edge_candidates(
-    own: &Tri,
-    i: usize,
-    other: &Tri,
-    own_is_a: bool,
-    o: &Orients,
-    along: &Along,
-    mut add: impl FnMut(Cand, Label),
-) {
-    let j = (i + 1) % 3;
-    let own_edge = edge(own.v[i], own.v[j]);
-    let mk = |own_f: Feature, other_f: Feature| {
+    edge_candidates(own, i, other, o, &along, |c| ends.add(&along, c));
+    let label = |c: Cand| -> Label {
+        let (own_f, other_f) = match c {
+            Cand::Own(k) => {
+                let k = usize::from(k);
+                let at = other.locate_by(std::array::from_fn(|m| o.other_edges[m][k]));
+                (
+                    Feature::Vertex(own.v[k]),
+                    at.expect("a candidate corner lies in the other triangle"),
+                )
+            }
+            Cand::Other(m) => (
+                edge(own.v[i], own.v[j]),
+                Feature::Vertex(other.v[usize::from(m)]),
+            ),
+            Cand::Crossing(m) => {
+                let m = usize::from(m);
+                (
+                    edge(own.v[i], own.v[j]),
+                    edge(other.v[m], other.v[(m + 1) % 3]),
+                )
+            }
+        };
         if own_is_a {
             Label {
                 a: own_f,
@@ -494,13 +478,58 @@ fn edge_candidates(
             }
         }
     };
+    match ends.clip(&along) {
+        Ends1::None => Clip::None,
+        Ends1::Point(c) => Clip::Point(label(c)),
+        Ends1::Segment(c, d) => Clip::Segment([label(c), label(d)]),
+    }
+}
+
+/// Where edge `i` of `own` crosses edge `m` of the coplanar triangle `other` (each strictly
+/// crossing the other's line), for each `m`: prepared once for the comparisons, boxed (a
+/// prepared point is some 200 bytes, and most edges cross nothing).
+fn edge_crossings(own: &Tri, i: usize, other: &Tri, o: &Orients) -> [Option<Box<Prepared>>; 3] {
+    let j = (i + 1) % 3;
+    let crosses = |s: Sign, t: Sign| s.times(t) == Sign::Negative;
+    let at = |m: usize| {
+        let n = (m + 1) % 3;
+        crosses(o.other_edges[m][i], o.other_edges[m][j])
+            && crosses(o.own_edges[i][m], o.own_edges[i][n])
+    };
+    let found = [at(0), at(1), at(2)];
+    if found == [false; 3] {
+        return [None, None, None];
+    }
+    std::array::from_fn(|m| {
+        let n = (m + 1) % 3;
+        found[m].then(|| {
+            Box::new(Prepared::new(Point::Ssi {
+                p: own.corners()[i],
+                q: own.corners()[j],
+                r: other.corners()[m],
+                s: other.corners()[n],
+                axis: other.axis() as u8,
+            }))
+        })
+    })
+}
+
+/// Calls `add` with every candidate end of the part of edge `i` of `own` inside `other`:
+/// `own`'s two corners where they lie in `other`, `other`'s corners strictly inside the
+/// edge, then the edge's crossings with `other`'s edges.
+fn edge_candidates(
+    own: &Tri,
+    i: usize,
+    other: &Tri,
+    o: &Orients,
+    along: &Along,
+    mut add: impl FnMut(Cand),
+) {
+    let j = (i + 1) % 3;
     for k in [i, j] {
         let at = other.locate_by(std::array::from_fn(|m| o.other_edges[m][k]));
-        if let Some(f) = at {
-            add(
-                Cand::Corner(own.corners()[k]),
-                mk(Feature::Vertex(own.v[k]), f),
-            );
+        if at.is_some() {
+            add(Cand::Own(k as u8));
         }
     }
     let axis = along.axis;
@@ -509,19 +538,12 @@ fn edge_candidates(
         // On the edge's line and strictly between its ends.
         let w = other.corners()[m][axis];
         if o.own_edges[i][m] == Sign::Zero && ((pa < w && w < qa) || (qa < w && w < pa)) {
-            add(
-                Cand::Corner(other.corners()[m]),
-                mk(own_edge, Feature::Vertex(other.v[m])),
-            );
+            add(Cand::Other(m as u8));
         }
     }
     for (m, x) in along.crossing.iter().enumerate() {
         if x.is_some() {
-            let n = (m + 1) % 3;
-            add(
-                Cand::Crossing(m),
-                mk(own_edge, edge(other.v[m], other.v[n])),
-            );
+            add(Cand::Crossing(m as u8));
         }
     }
 }
@@ -529,41 +551,52 @@ fn edge_candidates(
 /// The order of candidates along one edge: by coordinate `axis`, exactly.
 struct Along<'a> {
     axis: usize,
+    own: &'a Tri,
+    other: &'a Tri,
     /// The edge's crossings, for [`Cand::Crossing`].
     crossing: &'a [Option<Box<Prepared>>; 3],
 }
 
 impl Along<'_> {
-    fn prepared(&self, c: Cand) -> Prepared {
+    /// The input coordinates of a corner candidate.
+    fn corner(&self, c: Cand) -> Option<&[f64; 3]> {
         match c {
-            Cand::Corner(p) => Prepared::new(Point::Explicit(p)),
-            Cand::Crossing(m) => *self.crossing[m]
-                .clone()
-                .expect("a candidate crossing exists"),
+            Cand::Own(k) => Some(&self.own.corners()[usize::from(k)]),
+            Cand::Other(m) => Some(&self.other.corners()[usize::from(m)]),
+            Cand::Crossing(_) => None,
+        }
+    }
+
+    fn crossing(&self, m: u8) -> &Prepared {
+        self.crossing[usize::from(m)]
+            .as_deref()
+            .expect("a candidate crossing exists")
+    }
+
+    fn prepared(&self, c: Cand) -> Prepared {
+        match (self.corner(c), c) {
+            (Some(p), _) => Prepared::new(Point::Explicit(*p)),
+            (None, Cand::Crossing(m)) => self.crossing(m).clone(),
+            (None, _) => unreachable!("corners have coordinates"),
         }
     }
 
     fn cmp(&self, x: Cand, y: Cand) -> Ordering {
         let axis = self.axis;
-        match (x, y) {
+        match (self.corner(x), self.corner(y), x, y) {
             // Input coordinates are finite (validated meshes): the order is total.
-            (Cand::Corner(p), Cand::Corner(q)) => {
-                p[axis].partial_cmp(&q[axis]).unwrap_or(Ordering::Equal)
-            }
-            (Cand::Crossing(m), Cand::Crossing(n)) => {
-                match (&self.crossing[m], &self.crossing[n]) {
-                    (Some(a), Some(b)) => cmp_coord_prepared(a, b, axis),
-                    _ => unreachable!("candidate crossings exist"),
-                }
+            (Some(p), Some(q), _, _) => p[axis].partial_cmp(&q[axis]).unwrap_or(Ordering::Equal),
+            (None, None, Cand::Crossing(m), Cand::Crossing(n)) => {
+                cmp_coord_prepared(self.crossing(m), self.crossing(n), axis)
             }
             _ => cmp_coord_prepared(&self.prepared(x), &self.prepared(y), axis),
         }
     }
 
     fn same(&self, x: Cand, y: Cand) -> bool {
-        match (x, y) {
-            (Cand::Corner(p), Cand::Corner(q)) => p == q,
-            (x, y) => same_point_prepared(&self.prepared(x), &self.prepared(y)),
+        match (self.corner(x), self.corner(y)) {
+            (Some(p), Some(q)) => p == q,
+            _ => same_point_prepared(&self.prepared(x), &self.prepared(y)),
         }
     }
 }
@@ -571,23 +604,30 @@ impl Along<'_> {
 /// The first and the last candidate seen along an edge, and how many there were.
 #[derive(Default)]
 struct Ends {
-    ends: Option<((Cand, Label), (Cand, Label))>,
+    ends: Option<(Cand, Cand)>,
     count: usize,
+}
+
+/// What [`Ends`] found: nothing, one point, or a segment between two distinct points.
+enum Ends1 {
+    None,
+    Point(Cand),
+    Segment(Cand, Cand),
 }
 
 impl Ends {
     /// Takes candidate `c`: the new first when strictly before the first, the new last
     /// when not before the last.
-    fn add(&mut self, along: &Along, c: Cand, l: Label) {
+    fn add(&mut self, along: &Along, c: Cand) {
         self.count += 1;
         match &mut self.ends {
-            None => self.ends = Some(((c, l), (c, l))),
+            None => self.ends = Some((c, c)),
             Some((first, last)) => {
-                if along.cmp(c, first.0) == Ordering::Less {
-                    *first = (c, l);
+                if along.cmp(c, *first) == Ordering::Less {
+                    *first = c;
                 }
-                if along.cmp(c, last.0) != Ordering::Less {
-                    *last = (c, l);
+                if along.cmp(c, *last) != Ordering::Less {
+                    *last = c;
                 }
             }
         }
@@ -595,15 +635,15 @@ impl Ends {
 
     /// The clipped edge: nothing, a point (one candidate, or first and last the same
     /// point), or the segment from the first to the last.
-    fn clip(self, along: &Along) -> Clip {
+    fn clip(self, along: &Along) -> Ends1 {
         match (self.count, self.ends) {
-            (_, None) => Clip::None,
-            (1, Some((only, _))) => Clip::Point(only.1),
+            (_, None) => Ends1::None,
+            (1, Some((only, _))) => Ends1::Point(only),
             (_, Some((first, last))) => {
-                if along.same(first.0, last.0) {
-                    Clip::Point(first.1)
+                if along.same(first, last) {
+                    Ends1::Point(first)
                 } else {
-                    Clip::Segment([first.1, last.1])
+                    Ends1::Segment(first, last)
                 }
             }
         }

@@ -539,6 +539,11 @@ fn orient3d_fixed_many(t: &[[f64; 3]; 3], ds: &[[f64; 3]]) -> Option<[Sign; 3]> 
 /// another, `t`: the same exact signs, with the work the three share done once (the
 /// filter's products of the plane's edges; one common scale for the integer path).
 pub fn orient3d_sides(t: &[[f64; 3]; 3], ds: &[[f64; 3]; 3]) -> [Sign; 3] {
+    // Faces in one axis plane (boxes, CAD parts): six equal coordinates make the points
+    // coplanar, exactly, where the filter below could only fail and fall back.
+    if (0..3).any(|k| t.iter().chain(ds).all(|p| p[k] == t[0][k])) {
+        return [Sign::Zero; 3];
+    }
     let [a, b, c] = t;
     if !robust_safe(&[a, b, c, &ds[0], &ds[1], &ds[2]]) {
         return ds.map(|d| orient3d_explicit(a, b, c, &d));

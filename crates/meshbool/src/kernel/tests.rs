@@ -589,8 +589,8 @@ fn sides_of_three_points_agree_with_single_tests() {
         std::array::from_fn(|_| offset + ((rng.next() % 33) as f64 - 16.0) / 8.0)
     };
     let mut zeros = 0;
-    for i in 0..3000 {
-        let (t, ds): ([[f64; 3]; 3], [[f64; 3]; 3]) = match i % 4 {
+    for i in 0..4000 {
+        let (t, ds): ([[f64; 3]; 3], [[f64; 3]; 3]) = match i % 5 {
             0 => (
                 std::array::from_fn(|_| grid(&mut rng, 0.0)),
                 std::array::from_fn(|_| grid(&mut rng, 0.0)),
@@ -610,6 +610,20 @@ fn sides_of_three_points_agree_with_single_tests() {
                 std::array::from_fn(|_| rng.point(UTM, 10.0)),
                 std::array::from_fn(|_| rng.point(UTM, 10.0)),
             ),
+            3 => {
+                // A face in an axis plane (UTM-sized coordinates), the points in it or an
+                // eighth off it (on the axis plane's shortcut: all in it).
+                let k = (rng.next() % 3) as usize;
+                let at = |rng: &mut Rng, off: bool| {
+                    let mut p = grid(rng, UTM[k]);
+                    p[k] = UTM[k] + if off { 0.125 } else { 0.0 };
+                    p
+                };
+                let some_off = rng.next() % 2 == 0;
+                let t = std::array::from_fn(|_| at(&mut rng, false));
+                let ds = std::array::from_fn(|j| at(&mut rng, some_off && j == 1));
+                (t, ds)
+            }
             _ => (
                 std::array::from_fn(|_| rng.point([0.0; 3], 1e-210)),
                 std::array::from_fn(|k| {
@@ -632,7 +646,7 @@ fn sides_of_three_points_agree_with_single_tests() {
         assert_eq!(orient3d_sides(&t, &ds), want, "{t:?} {ds:?}");
         zeros += want.iter().filter(|s| **s == Sign::Zero).count();
     }
-    assert!(zeros > 2000, "{zeros}");
+    assert!(zeros > 3500, "{zeros}");
 }
 
 /// Seam points of a fine mesh crossing one huge triangle: close edge-plane points whose
