@@ -548,9 +548,25 @@ impl Query<'_> {
         let rb = nb.start as usize..(nb.start + nb.count) as usize;
         let (ta, ba) = (&self.a.order[ra.clone()], &self.a.boxes[ra]);
         let (tb, bb) = (&self.b.order[rb.clone()], &self.b.boxes[rb]);
+        // Only the triangles that reach into the other leaf's box can meet any of its
+        // triangles: of two leaves that overlap at a corner, a few on each side.
+        let mut near_b = [0usize; LEAF];
+        let mut nb_count = 0;
+        for (k, bj) in bb.iter().enumerate() {
+            near_b[nb_count] = k;
+            nb_count += usize::from(overlaps_f(bj, &na.bbox));
+        }
+        if nb_count == 0 {
+            return;
+        }
+        let near_b = &near_b[..nb_count];
         for (&i, bi) in ta.iter().zip(ba) {
+            if !overlaps_f(bi, &nb.bbox) {
+                continue;
+            }
             let mut exact_i = None;
-            for (&j, bj) in tb.iter().zip(bb) {
+            for &k in near_b {
+                let (j, bj) = (tb[k], &bb[k]);
                 if !overlaps_f(bi, bj) {
                     continue;
                 }
