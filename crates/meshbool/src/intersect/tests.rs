@@ -508,6 +508,26 @@ fn certified_fans_skip_only_pairs_that_do_not_meet() {
     assert!(certified > 500, "{certified}");
 }
 
+/// Triangle `t` moved by motion `how`: 0 none, 1 shifted to UTM-like coordinates, 2 scaled
+/// by 2^-30 (exactly), 3 rotated and shifted (contacts become near-contacts, rounded
+/// differently in each triangle).
+fn moved(t: [[f64; 3]; 3], how: usize) -> [[f64; 3]; 3] {
+    match how {
+        0 => t,
+        1 => t.map(|p| p.map(|x| x + 4.5e6)),
+        2 => t.map(|p| p.map(|x| x * 2f64.powi(-30))),
+        _ => {
+            let m = rigid_motion(
+                &Mesh::new_unchecked(t.to_vec(), vec![]),
+                [1.0, 2.0, 3.0],
+                0.3,
+                [1e3; 3],
+            );
+            [m.positions[0], m.positions[1], m.positions[2]]
+        }
+    }
+}
+
 /// The separating-axis filter never calls meeting triangles apart: integer corners in
 /// 0..=3 (touching at vertices, along edges, coplanar overlaps: every exact contact),
 /// at the origin, shifted to UTM-like coordinates and scaled far down; and it does find
@@ -522,21 +542,7 @@ fn separating_axis_filter_only_answers_apart_when_apart() {
         let pb: [[f64; 3]; 3] = std::array::from_fn(|_| std::array::from_fn(|_| next()));
         // The same pair moved: shifted, scaled by a power of two (exactly), or rotated
         // (contacts become near-contacts, rounded differently in each triangle).
-        let moved = |t: [[f64; 3]; 3]| match round % 4 {
-            0 => t,
-            1 => t.map(|p| p.map(|x| x + 4.5e6)),
-            2 => t.map(|p| p.map(|x| x * 2f64.powi(-30))),
-            _ => {
-                let m = rigid_motion(
-                    &Mesh::new_unchecked(t.to_vec(), vec![]),
-                    [1.0, 2.0, 3.0],
-                    0.3,
-                    [1e3; 3],
-                );
-                [m.positions[0], m.positions[1], m.positions[2]]
-            }
-        };
-        let (pa, pb) = (moved(pa), moved(pb));
+        let (pa, pb) = (moved(pa, round % 4), moved(pb, round % 4));
         let (Some(a), Some(b)) = (Tri::new(0, [0, 1, 2], pa), Tri::new(0, [10, 11, 12], pb)) else {
             continue;
         };
@@ -575,20 +581,9 @@ fn line_test_calls_crossing_pairs_apart_exactly_when_apart() {
         };
         let pa: [[f64; 3]; 3] = std::array::from_fn(|_| std::array::from_fn(|_| next()));
         let pb: [[f64; 3]; 3] = std::array::from_fn(|_| std::array::from_fn(|_| next()));
-        let moved = |t: [[f64; 3]; 3]| match (round / 2) % 3 {
-            0 => t,
-            1 => t.map(|p| p.map(|x| x + 4.5e6)),
-            _ => {
-                let m = rigid_motion(
-                    &Mesh::new_unchecked(t.to_vec(), vec![]),
-                    [1.0, 2.0, 3.0],
-                    0.3,
-                    [1e3; 3],
-                );
-                [m.positions[0], m.positions[1], m.positions[2]]
-            }
-        };
-        let (pa, pb) = (moved(pa), moved(pb));
+        // As given, shifted, or rotated.
+        let how = [0, 1, 3][(round / 2) % 3];
+        let (pa, pb) = (moved(pa, how), moved(pb, how));
         let (Some(a), Some(b)) = (Tri::new(0, [0, 1, 2], pa), Tri::new(0, [10, 11, 12], pb)) else {
             continue;
         };
