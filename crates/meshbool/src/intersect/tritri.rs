@@ -412,16 +412,29 @@ struct Orients {
     own_edges: [[Sign; 3]; 3],
 }
 
-enum Clip {
+/// What a clipped edge keeps: nothing, one point, or a segment between two distinct
+/// points (named by labels, or by candidates while clipping).
+enum Clip<T> {
     None,
-    Point(Label),
-    Segment([Label; 2]),
+    Point(T),
+    Segment([T; 2]),
+}
+
+impl<T> Clip<T> {
+    /// The same clip with each point named by `f`.
+    fn map<U>(self, mut f: impl FnMut(T) -> U) -> Clip<U> {
+        match self {
+            Clip::None => Clip::None,
+            Clip::Point(p) => Clip::Point(f(p)),
+            Clip::Segment([p, q]) => Clip::Segment([f(p), f(q)]),
+        }
+    }
 }
 
 /// A point where a clipped edge may start or end: corner `k` of the clipped triangle, corner
 /// `m` of the other one, or where the edge crosses edge `m` of the other triangle. Small (a
 /// tag and an index): the coordinates and the label are looked up when needed.
-#[derive(Clone, Copy, PartialEq, Eq)]
+#[derive(Clone, Copy)]
 enum Cand {
     Own(u8),
     Other(u8),
@@ -432,7 +445,7 @@ enum Cand {
 /// last of the candidate points along the edge (the corners of `own` inside `other`,
 /// corners of `other` on the edge, crossings with `other`'s edges), ties going to the
 /// earlier candidate for the first and the later for the last.
-fn clip_edge(own: &Tri, i: usize, other: &Tri, own_is_a: bool, o: &Orients) -> Clip {
+fn clip_edge(own: &Tri, i: usize, other: &Tri, own_is_a: bool, o: &Orients) -> Clip<Label> {
     let j = (i + 1) % 3;
     let crossing = edge_crossings(own, i, other, o);
     // Along the edge, order by its longest coordinate (non-zero: the corners differ there).
@@ -478,11 +491,7 @@ fn clip_edge(own: &Tri, i: usize, other: &Tri, own_is_a: bool, o: &Orients) -> C
             }
         }
     };
-    match ends.clip(&along) {
-        Ends1::None => Clip::None,
-        Ends1::Point(c) => Clip::Point(label(c)),
-        Ends1::Segment(c, d) => Clip::Segment([label(c), label(d)]),
-    }
+    ends.clip(&along).map(label)
 }
 
 /// Where edge `i` of `own` crosses edge `m` of the coplanar triangle `other` (each strictly
@@ -608,13 +617,6 @@ struct Ends {
     count: usize,
 }
 
-/// What [`Ends`] found: nothing, one point, or a segment between two distinct points.
-enum Ends1 {
-    None,
-    Point(Cand),
-    Segment(Cand, Cand),
-}
-
 impl Ends {
     /// Takes candidate `c`: the new first when strictly before the first, the new last
     /// when not before the last.
@@ -635,15 +637,15 @@ impl Ends {
 
     /// The clipped edge: nothing, a point (one candidate, or first and last the same
     /// point), or the segment from the first to the last.
-    fn clip(self, along: &Along) -> Ends1 {
+    fn clip(self, along: &Along) -> Clip<Cand> {
         match (self.count, self.ends) {
-            (_, None) => Ends1::None,
-            (1, Some((only, _))) => Ends1::Point(only),
+            (_, None) => Clip::None,
+            (1, Some((only, _))) => Clip::Point(only),
             (_, Some((first, last))) => {
                 if along.same(first, last) {
-                    Ends1::Point(first)
+                    Clip::Point(first)
                 } else {
-                    Ends1::Segment(first, last)
+                    Clip::Segment([first, last])
                 }
             }
         }
