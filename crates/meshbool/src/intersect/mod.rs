@@ -455,7 +455,10 @@ pub(crate) fn corners_meet_beyond_shared(
     [(i, vi, pi), (j, vj, pj)]: [(u32, [u32; 3], [[f64; 3]; 3]); 2],
     shared: usize,
 ) -> bool {
-    use crate::kernel::{certainly_separated, certainly_unfolded, orient2d, FloatPlane};
+    use crate::kernel::{
+        certainly_apart_beyond_corner, certainly_separated, certainly_unfolded, orient2d,
+        FloatPlane,
+    };
     // The corners of `q` that `p` does not share, all strictly on one side of `p`'s plane
     // (and at least one of them): then the two meet at most in what they share. Decided
     // exactly, or (`exact` false) by the floating-point filter alone, which answers only
@@ -506,7 +509,20 @@ pub(crate) fn corners_meet_beyond_shared(
     let separated = |exact| {
         apart(&pi, &vi, &pj, &vj, exact) || (shared < 2 && apart(&pj, &vj, &pi, &vi, exact))
     };
-    if separated(false) || (shared == 0 && certainly_separated(&pi, &pj)) || separated(true) {
+    // Sharing one corner: a separating axis through it.
+    let beyond_corner = || {
+        let Some((kj, ki)) =
+            (0..3).find_map(|kj| vi.iter().position(|&v| v == vj[kj]).map(|ki| (kj, ki)))
+        else {
+            return false;
+        };
+        pi[ki] == pj[kj] && certainly_apart_beyond_corner(&pi, ki, &pj, kj)
+    };
+    if separated(false)
+        || (shared == 0 && certainly_separated(&pi, &pj))
+        || (shared == 1 && beyond_corner())
+        || separated(true)
+    {
         return false;
     }
     let (Some(x), Some(y)) = (tritri::Tri::new(i, vi, pi), tritri::Tri::new(j, vj, pj)) else {

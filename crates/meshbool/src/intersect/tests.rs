@@ -558,6 +558,65 @@ fn separating_axis_filter_only_answers_apart_when_apart() {
     );
 }
 
+/// The separating-axis filter through a shared corner never calls a pair apart that
+/// meets beyond that corner (corners on a 0..=3 grid: shared edges' points, touching,
+/// overlapping, coplanar fans; as given, shifted to UTM-like coordinates, scaled, or
+/// rotated, the shared corner moved alike in both), and it calls most pairs that meet only
+/// there apart (touching ones excepted: a corner or edge in the other's plane), among them
+/// many whose corners each lean over the other's plane.
+#[test]
+fn shared_corner_filter_only_answers_apart_when_apart() {
+    use crate::kernel::{certainly_apart_beyond_corner, FloatPlane};
+    let mut rng = Rng(0x5aa_c0a_4e4);
+    let (mut apart, mut said_apart, mut leaning) = (0, 0, 0);
+    for round in 0..40_000 {
+        let mut next = || (rng.next() % 4) as f64;
+        let mut pa: [[f64; 3]; 3] = std::array::from_fn(|_| std::array::from_fn(|_| next()));
+        let mut pb: [[f64; 3]; 3] = std::array::from_fn(|_| std::array::from_fn(|_| next()));
+        let (ka, kb) = (round % 3, (round / 3) % 3);
+        pb[kb] = pa[ka];
+        let how = round % 4;
+        (pa, pb) = (moved(pa, how), moved(pb, how));
+        let mut vb = [10, 11, 12];
+        vb[kb] = ka as u32;
+        let (Some(a), Some(b)) = (Tri::new(0, [0, 1, 2], pa), Tri::new(1, vb, pb)) else {
+            continue;
+        };
+        if pa.iter().filter(|p| pb.contains(p)).count() != 1 {
+            continue;
+        }
+        let labels: Vec<Label> = match tt(&a, &b) {
+            TriTri::None => vec![],
+            TriTri::Point(l) => vec![l],
+            TriTri::Segment(s) => s.to_vec(),
+            TriTri::Coplanar { segments, points } => {
+                segments.into_iter().flatten().chain(points).collect()
+            }
+        };
+        let beyond = labels.iter().any(|l| l.a != l.b);
+        let says = certainly_apart_beyond_corner(&pa, ka, &pb, kb);
+        assert!(!(beyond && says), "{pa:?} {pb:?}");
+        if !beyond {
+            apart += 1;
+            said_apart += usize::from(says);
+            // Neither plane separates: some corner of each on the other's plane or
+            // across it.
+            let one_side = |p: &[[f64; 3]; 3], q: &[[f64; 3]; 3], l: usize| {
+                let plane = FloatPlane::new(p);
+                let s = [(l + 1) % 3, (l + 2) % 3].map(|j| plane.side(&q[j]));
+                s[0].is_some() && s[0] == s[1]
+            };
+            if says && !one_side(&pa, &pb, kb) && !one_side(&pb, &pa, ka) {
+                leaning += 1;
+            }
+        }
+    }
+    assert!(
+        apart > 20_000 && said_apart > apart / 5 && leaning > 500,
+        "{apart} {said_apart} {leaning}"
+    );
+}
+
 /// The early test of crossing pairs (each triangle with one corner alone on its side of
 /// the other's plane, no corner on it) is exact: in that configuration it calls a pair
 /// apart exactly when the full test finds nothing (touching at one point is not apart),

@@ -78,6 +78,58 @@ pub fn certainly_unfolded(a: &[f64; 3], b: &[f64; 3], u: &[f64; 3], v: &[f64; 3]
     margin.is_finite() && margin > 1e-250 && d < -margin
 }
 
+/// Whether triangles `p` and `q`, whose corners `p[kp]` and `q[kq]` are one point (the
+/// same coordinates: a shared vertex), certainly meet in that point alone: some
+/// edge-cross-edge axis, or an axis in one triangle's plane square to one of its edges,
+/// has `p`'s two other corners strictly on one side of the plane through the shared
+/// point square to it and `q`'s two strictly on the other. Then each triangle meets that
+/// plane in the shared point only. The separating-axis test of [`certainly_separated`]
+/// with the shared point as origin (it projects to exactly zero) and the same margin.
+/// For the pairs a vertex's planes do not settle: neighbours in a fan on either side of
+/// a crease, where each leans over the other's plane.
+#[inline]
+pub fn certainly_apart_beyond_corner(
+    p: &[[f64; 3]; 3],
+    kp: usize,
+    q: &[[f64; 3]; 3],
+    kq: usize,
+) -> bool {
+    let o = p[kp];
+    debug_assert_eq!(o, q[kq]);
+    // The other corners, in order, relative to the shared one.
+    let others = |t: &[[f64; 3]; 3], k: usize| [sub(&t[(k + 1) % 3], &o), sub(&t[(k + 2) % 3], &o)];
+    let (p, q) = (others(p, kp), others(q, kq));
+    let scale = p
+        .iter()
+        .chain(&q)
+        .flat_map(|x| x.iter())
+        .fold(0.0f64, |s, x| s.max(x.abs()));
+    let edges = |t: &[[f64; 3]; 2]| [t[0], t[1], sub(&t[1], &t[0])];
+    let (ep, eq) = (edges(&p), edges(&q));
+    let (np, nq) = (cross(&p[0], &p[1]), cross(&q[0], &q[1]));
+    let in_plane = ep
+        .iter()
+        .map(move |e| cross(&np, e))
+        .chain(eq.iter().map(move |e| cross(&nq, e)));
+    let axes = ep
+        .iter()
+        .flat_map(|u| eq.iter().map(move |v| cross(u, v)))
+        .chain(in_plane);
+    for a in axes {
+        let margin = 1e-13 * (a[0].abs() + a[1].abs() + a[2].abs()) * scale;
+        if !(margin.is_finite() && margin > 1e-250) {
+            continue;
+        }
+        let (sp, sq) = (p.map(|x| dot(&a, &x)), q.map(|x| dot(&a, &x)));
+        let above = |s: [f64; 2]| s[0] > margin && s[1] > margin;
+        let below = |s: [f64; 2]| s[0] < -margin && s[1] < -margin;
+        if (above(sp) && below(sq)) || (below(sp) && above(sq)) {
+            return true;
+        }
+    }
+    false
+}
+
 /// Whether an edge-cross-edge axis, or an axis in one triangle's plane square to one of
 /// its edges, certainly separates triangles `p` and `q`: the separating-axis test in
 /// floating point, answering only "certainly apart". Any vector

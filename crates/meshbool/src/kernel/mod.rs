@@ -23,7 +23,9 @@ mod tests;
 mod triangle;
 
 use exact::Dyadic;
-pub use filter::{certainly_separated, certainly_unfolded, FloatPlane};
+pub use filter::{
+    certainly_apart_beyond_corner, certainly_separated, certainly_unfolded, FloatPlane,
+};
 use interval::Interval;
 pub use triangle::{planes_line_axis, Triangle};
 

@@ -49,7 +49,7 @@ use rayon::prelude::*;
 use rustc_hash::{FxHashMap, FxHashSet};
 use serde::{Deserialize, Serialize};
 
-use crate::bvh::{overlaps as overlap, Box3, Bvh};
+use crate::bvh::{overlaps as overlap, Box3};
 use crate::intersect::corners_meet_beyond_shared;
 use crate::kernel::{normals_dot_sign, orient3d_explicit, FloatPlane, Sign};
 use crate::vec3::{cross, dot, norm, sub};
@@ -272,24 +272,8 @@ pub(crate) fn snap_unchecked(mesh: &mut Mesh, opts: &SnapOptions) -> (SnapReport
         return (report, Removed::default());
     }
     let grid = Grid::new(mesh, d);
-    // Where only the seam's bad triangles are taken, the work stays near the seam: the
-    // cells a few cells around its points are the halo whose triangles the scan keeps as
-    // the first gathering's candidates (no pass over all triangles unless the work
-    // leaves it).
-    let mut halo = grid.empty();
-    let seam = opts.seam_only.then(|| {
-        let mut at = vec![false; mesh.positions.len()];
-        let margin = (Work::HALO + 1.0) * grid.size() + 4.0 * d;
-        for &v in opts.seam {
-            if let Some(a) = at.get_mut(v as usize) {
-                *a = true;
-                let p = mesh.positions[v as usize];
-                halo.mark(&grown(&[p, p], margin));
-            }
-        }
-        at
-    });
-    let scan = Scan::of(mesh, d, &grid, seam.as_deref(), &halo);
+    let (seam, [halo, next_to_halo]) = seam_and_halo(mesh, opts, &grid);
+    let scan = Scan::of(mesh, d, &grid, seam.as_deref(), [&halo, &next_to_halo]);
     report.found = scan.bad.len();
     if scan.bad.is_empty() {
         return (report, Removed::default());
@@ -309,6 +293,45 @@ pub(crate) fn snap_unchecked(mesh: &mut Mesh, opts: &SnapOptions) -> (SnapReport
         ..report
     };
     (report, removed)
+}
+
+/// Where only the seam's bad triangles are taken (`seam_only`), the work stays near the
+/// seam: which vertices are seam points, and the halo (the cells a few cells around the
+/// seam's points, whose triangles the scan keeps as the first gathering's candidates: no
+/// pass over all triangles unless the work leaves it) with the cells next to it (a
+/// triangle spanning at most two cells along each axis and touching the halo has all its
+/// corners there). Otherwise no seam and no halo.
+fn seam_and_halo(mesh: &Mesh, opts: &SnapOptions, grid: &Grid) -> (Option<Vec<bool>>, [Grid; 2]) {
+    let (mut halo, mut next_to_halo) = (grid.empty(), grid.empty());
+    if !opts.seam_only {
+        return (None, [halo, next_to_halo]);
+    }
+    let mut at = vec![false; mesh.positions.len()];
+    let mut cells = Vec::with_capacity(opts.seam.len());
+    for &v in opts.seam {
+        if let Some(a) = at.get_mut(v as usize) {
+            *a = true;
+            cells.push(grid.packed(&mesh.positions[v as usize]));
+        }
+    }
+    // Every seam point's box grown by the margin, as the cells around its cell (one more
+    // for rounding: a little more than the boxes, once per cell).
+    cells.sort_unstable();
+    cells.dedup();
+    let margin = (Work::HALO + 1.0) * grid.size() + 4.0 * opts.tolerance;
+    let r = (margin * grid.inv).ceil().min(Grid::AXIS as f64) as usize + 1;
+    for c in cells {
+        let c = Grid::coordinates(c);
+        let around = |r: usize| {
+            [
+                c.map(|x| x.saturating_sub(r)),
+                std::array::from_fn(|k| (c[k] + r).min(grid.n[k] - 1)),
+            ]
+        };
+        halo.mark_range(&around(r));
+        next_to_halo.mark_range(&around(r + 1));
+    }
+    (Some(at), [halo, next_to_halo])
 }
 
 /// [`snap_unchecked`] carrying what is kept per triangle (`per_triangle`, one per
@@ -461,14 +484,22 @@ struct Scan {
 }
 
 impl Scan {
-    fn of(mesh: &Mesh, d: f64, grid: &Grid, seam: Option<&[bool]>, halo: &Grid) -> Scan {
+    /// `halos`: the halo, and the cells in it or next to it.
+    fn of(mesh: &Mesh, d: f64, grid: &Grid, seam: Option<&[bool]>, halos: [&Grid; 2]) -> Scan {
         const PIECE: usize = 1 << 13;
+        let [halo, next_to_halo] = halos;
         let d2 = d * d;
+        // Each vertex's cell, with [`Grid::NEAR`] set where the cell is in or next to the
+        // halo: a triangle spanning at most two cells along each axis with no corner
+        // there does not touch the halo.
         let cells: Vec<u64> = mesh
             .positions
             .par_iter()
             .with_min_len(PIECE)
-            .map(|p| grid.packed(p))
+            .map(|p| {
+                let c = grid.packed(p);
+                c | u64::from(next_to_halo.get(grid.unpacked(c))) << Grid::NEAR_BIT
+            })
             .collect();
         let pieces: Vec<ScanPiece> = mesh
             .triangles
@@ -479,7 +510,9 @@ impl Scan {
                 let pos = &mesh.positions;
                 for (i, tri) in tris.iter().enumerate() {
                     let t = (k * PIECE + i) as u32;
-                    let key = grid.key(tri.map(|v| cells[v as usize]));
+                    let c = tri.map(|v| cells[v as usize]);
+                    let near_halo = (c[0] | c[1] | c[2]) >> Grid::NEAR_BIT != 0;
+                    let key = grid.key(c);
                     let p = || {
                         [
                             pos[tri[0] as usize],
@@ -490,7 +523,7 @@ impl Scan {
                     let in_halo = if key == Grid::WIDE {
                         halo.touches(&tri_box(&p()))
                     } else {
-                        halo.key_touches(key)
+                        near_halo && halo.key_touches(key)
                     };
                     if in_halo {
                         near.push((t, key));
@@ -612,6 +645,12 @@ impl Grid {
     const AXIS: usize = 1 << 21;
     /// [`Grid::key`] of a box spanning more than two cells along an axis.
     const WIDE: u32 = u32::MAX;
+    /// A bit of a [`Grid::packed`] cell that the packing leaves free (63: above the three
+    /// 21-bit axes), which [`Grid::key`] and [`Grid::unpacked`] ignore: the scan's mark
+    /// of a vertex near the halo.
+    const NEAR_BIT: u32 = 63;
+    /// What a row's search costs in [`Grid::keyed_near`], in entries looked at.
+    const ROW_COST: usize = 32;
 
     /// A grid over the mesh's vertices, with cells about the size of its triangles (so
     /// that most span one or two along each axis) and at most [`Grid::CELLS`].
@@ -763,8 +802,14 @@ impl Grid {
     /// The index of a [`Grid::packed`] cell.
     #[inline]
     fn unpacked(&self, c: u64) -> usize {
+        self.index(Self::coordinates(c))
+    }
+
+    /// The coordinates of a [`Grid::packed`] cell.
+    #[inline]
+    fn coordinates(c: u64) -> [usize; 3] {
         const MASK: u64 = (1 << 21) - 1;
-        self.index([0, 1, 2].map(|k| (c >> (21 * k) & MASK) as usize))
+        [0, 1, 2].map(|k| (c >> (21 * k) & MASK) as usize)
     }
 
     #[inline]
@@ -791,6 +836,34 @@ impl Grid {
             }
         }
         false
+    }
+
+    /// Calls `f` with the id of every entry of `keyed` ((key, id) sorted, no
+    /// [`Grid::WIDE`] key) whose cells meet those of box `b`, and perhaps a few more: a
+    /// superset of the triangles whose boxes meet `b`. Each once.
+    fn keyed_near(&self, keyed: &[(u32, u32)], b: &Box3, mut f: impl FnMut(u32)) {
+        let r = self.range(b);
+        // A triangle's cells along an axis are its key's lowest cell and perhaps the next:
+        // those meeting the range have their lowest cell in it or just below it. Row by
+        // row (along x, one run of keys each), or all of them where the rows would cost
+        // more.
+        let [x0, y0, z0] = r[0].map(|c| c.saturating_sub(1));
+        let rows = (r[1][1] - y0 + 1) * (r[1][2] - z0 + 1);
+        if rows.saturating_mul(Self::ROW_COST) > keyed.len() {
+            keyed.iter().for_each(|&(_, t)| f(t));
+            return;
+        }
+        for z in z0..=r[1][2] {
+            for y in y0..=r[1][1] {
+                let lo = (self.index([x0, y, z]) as u32) << 3;
+                let hi = (self.index([r[1][0], y, z]) as u32) << 3 | 7;
+                let first = keyed.partition_point(|&(k, _)| k < lo);
+                keyed[first..]
+                    .iter()
+                    .take_while(|&&(k, _)| k <= hi)
+                    .for_each(|&(_, t)| f(t));
+            }
+        }
     }
 
     /// The number of cells in a range.
@@ -833,9 +906,13 @@ impl Grid {
 
     /// Marks the cells of `b`; whether any was new.
     fn mark(&mut self, b: &Box3) -> bool {
-        let r = self.range(b);
+        self.mark_range(&self.range(b))
+    }
+
+    /// Marks the cells of the range `r`; whether any was new.
+    fn mark_range(&mut self, r: &[[usize; 3]; 2]) -> bool {
         let mut words = Vec::new();
-        self.rows(&r, |w, mask| {
+        self.rows(r, |w, mask| {
             if self.bits[w] & mask != mask {
                 words.push((w, mask));
             }
@@ -859,16 +936,20 @@ impl Grid {
 }
 
 /// What is known of the mesh near the work: the live triangles touching the marked
-/// cells, gathered at the start of a round, with a tree over them and the triangles
-/// around each of their vertices; the triangles made since by grid cell.
+/// cells, gathered at the start of a round, sorted by their [`Grid::key`]s (the grid is
+/// their spatial index: a box's triangles are found row by row of its cells), and the
+/// triangles around each of their vertices; the triangles made since by grid cell.
 #[derive(Default)]
 struct Near {
-    /// Triangle ids of the tree's triangles.
-    ids: Vec<u32>,
-    sub: Mesh,
-    tree: Bvh,
-    /// Each vertex's id in `sub` (`u32::MAX`: none).
+    /// The gathered triangles spanning at most two cells along each axis, as ([`Grid::key`],
+    /// id), sorted.
+    keyed: Vec<(u32, u32)>,
+    /// The gathered triangles spanning more ([`Grid::WIDE`]).
+    wide_in: Vec<u32>,
+    /// Each vertex's id among the gathered triangles' vertices (`u32::MAX`: none), and
+    /// those vertices (to clear `local` for the next gathering without a new buffer).
     local: Vec<u32>,
+    verts: Vec<u32>,
     /// The triangles (ids) around local vertex `l`: `around[start[l]..start[l + 1]]`.
     start: Vec<u32>,
     around: Vec<u32>,
@@ -876,7 +957,7 @@ struct Near {
     /// cells in `wide`.
     cells: FxHashMap<u32, Vec<u32>>,
     wide: Vec<u32>,
-    /// The first triangle made after the tree was built.
+    /// The first triangle made after the gathering.
     first_made: u32,
 }
 
@@ -1171,8 +1252,8 @@ impl<'a> Work<'a> {
     fn pass(&mut self, full: bool) {
         const PIECE: usize = 1 << 13;
         let w = &*self;
-        let mut ids: Vec<u32> = if full {
-            let pieces: Vec<(Vec<u32>, Keyed)> = self
+        let mut keyed: Vec<(u32, u32)> = if full {
+            let pieces: Vec<(Keyed, Keyed)> = self
                 .mesh
                 .triangles
                 .par_chunks(PIECE)
@@ -1186,14 +1267,14 @@ impl<'a> Work<'a> {
                         if w.halo.touches_key(key, &p) && w.alive(t) {
                             halo.push((t, key));
                             if w.grid.touches_key(key, &p) {
-                                ids.push(t);
+                                ids.push((t, key));
                             }
                         }
                     }
                     (ids, halo)
                 })
                 .collect();
-            let (ids, halo): (Vec<Vec<u32>>, Vec<Keyed>) = pieces.into_iter().unzip();
+            let (ids, halo): (Vec<Keyed>, Vec<Keyed>) = pieces.into_iter().unzip();
             self.candidates = halo.concat();
             ids.concat()
         } else {
@@ -1205,39 +1286,48 @@ impl<'a> Work<'a> {
                         && w.grid
                             .touches_key(key, &w.corners(&w.mesh.triangles[t as usize]))
                 })
-                .map(|&(t, _)| t)
+                .copied()
                 .collect()
         };
         for i in 0..self.made.len() {
             let t = self.base + i as u32;
-            if self.made_alive[i] && self.grid.touches(&tri_box(&self.corners(&self.made[i]))) {
-                ids.push(t);
+            let tri = self.made[i];
+            if self.made_alive[i] && self.grid.touches(&tri_box(&self.corners(&tri))) {
+                keyed.push((t, self.grid.key(tri.map(|v| self.cells[v as usize]))));
             }
         }
-        self.index(ids);
+        self.index(keyed);
     }
 
-    /// The index over the triangles `ids`: a tree, each vertex's triangles; the made
-    /// triangles' cells and the changed stars start anew.
-    fn index(&mut self, ids: Vec<u32>) {
-        let pos = &self.mesh.positions;
-        let mut local = vec![u32::MAX; pos.len()];
-        let mut positions = Vec::new();
-        let triangles: Vec<[u32; 3]> = ids
+    /// The index over the triangles `keyed` ((id, [`Grid::key`])): sorted by key, each
+    /// vertex's triangles; the made triangles' cells and the changed stars start anew.
+    fn index(&mut self, keyed: Keyed) {
+        let old = std::mem::take(&mut self.near);
+        let mut local = old.local;
+        if local.len() == self.mesh.positions.len() {
+            for &v in &old.verts {
+                local[v as usize] = u32::MAX;
+            }
+        } else {
+            local = vec![u32::MAX; self.mesh.positions.len()];
+        }
+        let mut verts = old.verts;
+        verts.clear();
+        let triangles: Vec<[u32; 3]> = keyed
             .iter()
-            .map(|&t| {
+            .map(|&(t, _)| {
                 self.tri(t).map(|v| {
                     let l = &mut local[v as usize];
                     if *l == u32::MAX {
-                        *l = positions.len() as u32;
-                        positions.push(pos[v as usize]);
+                        *l = verts.len() as u32;
+                        verts.push(v);
                     }
                     *l
                 })
             })
             .collect();
         // The triangles around each local vertex (a counting sort).
-        let mut start = vec![0u32; positions.len() + 1];
+        let mut start = vec![0u32; verts.len() + 1];
         for tri in &triangles {
             for (j, &l) in tri.iter().enumerate() {
                 if !tri[..j].contains(&l) {
@@ -1245,12 +1335,12 @@ impl<'a> Work<'a> {
                 }
             }
         }
-        for i in 0..positions.len() {
+        for i in 0..verts.len() {
             start[i + 1] += start[i];
         }
         let mut fill = start.clone();
-        let mut around = vec![0u32; start[positions.len()] as usize];
-        for (tri, &t) in triangles.iter().zip(&ids) {
+        let mut around = vec![0u32; start[verts.len()] as usize];
+        for (tri, &(t, _)) in triangles.iter().zip(&keyed) {
             for (j, &l) in tri.iter().enumerate() {
                 if !tri[..j].contains(&l) {
                     around[fill[l as usize] as usize] = t;
@@ -1258,12 +1348,22 @@ impl<'a> Work<'a> {
                 }
             }
         }
-        let sub = Mesh::new_unchecked(positions, triangles);
+        let wide_in = keyed
+            .iter()
+            .filter(|&&(_, key)| key == Grid::WIDE)
+            .map(|&(t, _)| t)
+            .collect();
+        let mut keyed: Vec<(u32, u32)> = keyed
+            .into_iter()
+            .filter(|&(_, key)| key != Grid::WIDE)
+            .map(|(t, key)| (key, t))
+            .collect();
+        keyed.par_sort_unstable();
         self.near = Near {
-            tree: Bvh::new(&sub),
-            ids,
-            sub,
+            keyed,
+            wide_in,
             local,
+            verts,
             start,
             around,
             cells: FxHashMap::default(),
@@ -1275,14 +1375,14 @@ impl<'a> Work<'a> {
 
     /// The live triangles whose boxes meet `b`, which the grid must cover.
     fn near_triangles(&self, b: &Box3) -> Vec<u32> {
-        let mut out: Vec<u32> = self
-            .near
-            .tree
-            .in_box(&self.near.sub, b)
-            .into_iter()
-            .map(|i| self.near.ids[i as usize])
-            .filter(|&t| self.alive(t))
-            .collect();
+        let meets = |t: u32| self.alive(t) && overlap(&tri_box(&self.corners(&self.tri(t))), b);
+        let mut out: Vec<u32> = Vec::new();
+        self.grid.keyed_near(&self.near.keyed, b, |t| {
+            if meets(t) {
+                out.push(t);
+            }
+        });
+        out.extend(self.near.wide_in.iter().copied().filter(|&t| meets(t)));
         let r = self.grid.range(b);
         let mut made: Vec<u32> = self.near.wide.clone();
         if Grid::cells(&r) <= Self::FEW_CELLS {
@@ -1297,10 +1397,7 @@ impl<'a> Work<'a> {
         } else {
             made = (self.near.first_made..self.base + self.made.len() as u32).collect();
         }
-        out.extend(
-            made.into_iter()
-                .filter(|&t| self.alive(t) && overlap(&tri_box(&self.corners(&self.tri(t))), b)),
-        );
+        out.extend(made.into_iter().filter(|&t| meets(t)));
         out
     }
 

@@ -189,3 +189,140 @@ fn a_collapse_that_would_cross_another_sheet_is_refused() {
     assert_eq!(m, poked);
     assert!(crate::intersect::self_intersections(&m).is_empty());
 }
+
+/// A sphere of 4,032 triangles and three long triangles across it (each spanning many
+/// cells: [`Grid::WIDE`]), as one mesh.
+fn sphere_and_long_triangles() -> Mesh {
+    let s = crate::shapes::uv_sphere([0.0; 3], 1.0, 64, 32);
+    let (mut p, mut t) = (s.positions.clone(), s.triangles.clone());
+    for (a, b, c) in [
+        ([-1.2, -0.1, 0.0], [1.2, 0.1, 0.05], [0.0, 0.0, 0.3]),
+        ([0.0, -1.3, -0.5], [0.1, 1.3, 0.5], [0.3, 0.0, 0.0]),
+        ([-0.9, 0.9, -0.9], [0.9, -0.9, 0.9], [0.0, 0.2, 0.0]),
+    ] {
+        let n = p.len() as u32;
+        p.extend([a, b, c]);
+        t.push([n, n + 1, n + 2]);
+    }
+    Mesh::new(p, t).unwrap()
+}
+
+/// The row-by-row search of the gathered triangles by grid key finds every triangle
+/// whose box meets the query box, once, on both of its paths (rows of small boxes, all
+/// entries for large ones): boxes from a point to the whole sphere, at random places.
+#[test]
+fn keyed_rows_find_every_triangle_whose_box_meets_a_box() {
+    let m = sphere_and_long_triangles();
+    let grid = Grid::new(&m, 1e-3);
+    let cell = |t: &[u32; 3]| t.map(|v| grid.packed(&m.positions[v as usize]));
+    let mut keyed: Vec<(u32, u32)> = m
+        .triangles
+        .iter()
+        .enumerate()
+        .map(|(t, tri)| (grid.key(cell(tri)), t as u32))
+        .filter(|&(k, _)| k != Grid::WIDE)
+        .collect();
+    let n = m.triangles.len();
+    assert!(keyed.len() > n * 9 / 10 && keyed.iter().all(|&(_, t)| (t as usize) < n - 3));
+    keyed.sort_unstable();
+    let mut state = 0x5eed_u64;
+    let mut unit = || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let (mut by_rows, mut whole) = (0, 0);
+    for round in 0..2000 {
+        let c: [f64; 3] = std::array::from_fn(|_| 2.4 * unit() - 1.2);
+        let h = [0.0, 0.01, 0.05, 0.2, 1.5][round % 5] * unit();
+        let b: Box3 = [c.map(|x| x - h), c.map(|x| x + h)];
+        let mut found = Vec::new();
+        grid.keyed_near(&keyed, &b, |t| found.push(t));
+        let r = grid.range(&b);
+        let rows =
+            (r[1][1] - r[0][1].saturating_sub(1) + 1) * (r[1][2] - r[0][2].saturating_sub(1) + 1);
+        if rows * Grid::ROW_COST > keyed.len() {
+            whole += 1;
+        } else {
+            by_rows += 1;
+        }
+        let n = found.len();
+        found.sort_unstable();
+        found.dedup();
+        assert_eq!(found.len(), n, "each once");
+        for &(_, t) in &keyed {
+            if overlap(&tri_box(&m.corners(t as usize)), &b) {
+                assert!(found.binary_search(&t).is_ok(), "round {round}: {t} missed");
+            }
+        }
+    }
+    assert!(by_rows > 1000 && whole > 100, "{by_rows} {whole}");
+}
+
+/// The scan keeps as candidates exactly the triangles touching the halo (a box test of
+/// each against the marked cells): those with a corner near the seam, the long ones
+/// crossing it with no corner near it, and among 20,000 small ones scattered at random
+/// those reaching into it from the cells next to it.
+#[test]
+fn the_scan_keeps_every_triangle_touching_the_halo() {
+    let base = sphere_and_long_triangles();
+    let (mut p, mut t) = (base.positions.clone(), base.triangles.clone());
+    let mut state = 0xca11_u64;
+    let mut unit = || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for _ in 0..20_000 {
+        let c: [f64; 3] = std::array::from_fn(|_| 2.2 * unit() - 1.1);
+        let n = p.len() as u32;
+        for _ in 0..3 {
+            p.push(std::array::from_fn(|k| c[k] + 0.1 * unit() - 0.05));
+        }
+        t.push([n, n + 1, n + 2]);
+    }
+    let m = Mesh::new_unchecked(p, t);
+    // The seam: the equator's points.
+    let seam: Vec<u32> = (0..m.positions.len() as u32)
+        .filter(|&v| m.positions[v as usize][2].abs() < 1e-9 && v < base.positions.len() as u32 - 9)
+        .collect();
+    assert_eq!(seam.len(), 64);
+    let opts = SnapOptions {
+        tolerance: 1e-3,
+        seam: &seam,
+        seam_only: true,
+        ..SnapOptions::default()
+    };
+    let grid = Grid::new(&m, opts.tolerance);
+    let (at, [halo, next_to_halo]) = seam_and_halo(&m, &opts, &grid);
+    let scan = Scan::of(
+        &m,
+        opts.tolerance,
+        &grid,
+        at.as_deref(),
+        [&halo, &next_to_halo],
+    );
+    let mut kept: Vec<u32> = scan.candidates.iter().map(|&(t, _)| t).collect();
+    kept.sort_unstable();
+    let touching: Vec<u32> = (0..m.triangles.len() as u32)
+        .filter(|&t| halo.touches(&tri_box(&m.corners(t as usize))))
+        .collect();
+    let missed = touching
+        .iter()
+        .filter(|t| kept.binary_search(t).is_err())
+        .count();
+    assert!(
+        kept == touching,
+        "{} kept, {} touching the halo, {missed} of those missed",
+        kept.len(),
+        touching.len()
+    );
+    let n = base.triangles.len() as u32;
+    assert!(kept.len() > 2000 && kept.len() < 15_000, "{}", kept.len());
+    assert!(
+        (n - 3..n).all(|t| kept.contains(&t)),
+        "the long triangles cross the halo"
+    );
+}
