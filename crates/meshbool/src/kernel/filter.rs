@@ -78,6 +78,29 @@ pub fn certainly_unfolded(a: &[f64; 3], b: &[f64; 3], u: &[f64; 3], v: &[f64; 3]
     margin.is_finite() && margin > 1e-250 && d < -margin
 }
 
+/// The axes of the separating-axis test of two triangles with edges `ep` and `eq` (each
+/// triangle's normal is its first two edges' cross product), with the margin their
+/// projections must clear, `1e-13 · |axis|₁ · scale` (axes whose margin overflows or
+/// underflows left out): every edge of one crossed with every edge of the other, then
+/// each normal crossed with its own edges, in its plane, square to an edge (what
+/// separates coplanar triangles, whose edge-cross-edge axes all lie along the normal).
+#[inline]
+fn separating_axes(
+    ep: [[f64; 3]; 3],
+    eq: [[f64; 3]; 3],
+    scale: f64,
+) -> impl Iterator<Item = ([f64; 3], f64)> {
+    let (np, nq) = (cross(&ep[0], &ep[1]), cross(&eq[0], &eq[1]));
+    let across = (0..9).map(move |k| cross(&ep[k / 3], &eq[k % 3]));
+    let in_plane = (0..3)
+        .map(move |k| cross(&np, &ep[k]))
+        .chain((0..3).map(move |k| cross(&nq, &eq[k])));
+    across.chain(in_plane).filter_map(move |a| {
+        let margin = 1e-13 * (a[0].abs() + a[1].abs() + a[2].abs()) * scale;
+        (margin.is_finite() && margin > 1e-250).then_some((a, margin))
+    })
+}
+
 /// Whether triangles `p` and `q`, whose corners `p[kp]` and `q[kq]` are one point (the
 /// same coordinates: a shared vertex), certainly meet in that point alone: some
 /// edge-cross-edge axis, or an axis in one triangle's plane square to one of its edges,
@@ -105,21 +128,7 @@ pub fn certainly_apart_beyond_corner(
         .flat_map(|x| x.iter())
         .fold(0.0f64, |s, x| s.max(x.abs()));
     let edges = |t: &[[f64; 3]; 2]| [t[0], t[1], sub(&t[1], &t[0])];
-    let (ep, eq) = (edges(&p), edges(&q));
-    let (np, nq) = (cross(&p[0], &p[1]), cross(&q[0], &q[1]));
-    let in_plane = ep
-        .iter()
-        .map(move |e| cross(&np, e))
-        .chain(eq.iter().map(move |e| cross(&nq, e)));
-    let axes = ep
-        .iter()
-        .flat_map(|u| eq.iter().map(move |v| cross(u, v)))
-        .chain(in_plane);
-    for a in axes {
-        let margin = 1e-13 * (a[0].abs() + a[1].abs() + a[2].abs()) * scale;
-        if !(margin.is_finite() && margin > 1e-250) {
-            continue;
-        }
+    for (a, margin) in separating_axes(edges(&p), edges(&q), scale) {
         let (sp, sq) = (p.map(|x| dot(&a, &x)), q.map(|x| dot(&a, &x)));
         let above = |s: [f64; 2]| s[0] > margin && s[1] > margin;
         let below = |s: [f64; 2]| s[0] < -margin && s[1] < -margin;
@@ -151,24 +160,7 @@ pub fn certainly_separated(p: &[[f64; 3]; 3], q: &[[f64; 3]; 3]) -> bool {
         .flat_map(|x| x.iter())
         .fold(0.0f64, |s, x| s.max(x.abs()));
     let edges = |t: &[[f64; 3]; 3]| [sub(&t[1], &t[0]), sub(&t[2], &t[1]), sub(&t[0], &t[2])];
-    let (ep, eq) = (edges(&p), edges(&q));
-    // Then each triangle's normal crossed with its edges: in its plane, square to an edge
-    // (what separates coplanar triangles, whose edge-cross-edge axes all lie along the
-    // normal).
-    let (np, nq) = (cross(&ep[0], &ep[1]), cross(&eq[0], &eq[1]));
-    let in_plane = ep
-        .iter()
-        .map(move |e| cross(&np, e))
-        .chain(eq.iter().map(move |e| cross(&nq, e)));
-    let axes = ep
-        .iter()
-        .flat_map(|u| eq.iter().map(move |v| cross(u, v)))
-        .chain(in_plane);
-    for a in axes {
-        let margin = 1e-13 * (a[0].abs() + a[1].abs() + a[2].abs()) * scale;
-        if !(margin.is_finite() && margin > 1e-250) {
-            continue;
-        }
+    for (a, margin) in separating_axes(edges(&p), edges(&q), scale) {
         let range = |t: &[[f64; 3]; 3]| {
             let s = t.map(|x| dot(&a, &x));
             (s[0].min(s[1]).min(s[2]), s[0].max(s[1]).max(s[2]))

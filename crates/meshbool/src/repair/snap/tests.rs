@@ -225,13 +225,8 @@ fn keyed_rows_find_every_triangle_whose_box_meets_a_box() {
     let n = m.triangles.len();
     assert!(keyed.len() > n * 9 / 10 && keyed.iter().all(|&(_, t)| (t as usize) < n - 3));
     keyed.sort_unstable();
-    let mut state = 0x5eed_u64;
-    let mut unit = || {
-        state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = crate::test_util::Rng(0x5eed);
+    let mut unit = || rng.unit();
     let (mut by_rows, mut whole) = (0, 0);
     for round in 0..2000 {
         let c: [f64; 3] = std::array::from_fn(|_| 2.4 * unit() - 1.2);
@@ -268,13 +263,8 @@ fn keyed_rows_find_every_triangle_whose_box_meets_a_box() {
 fn the_scan_keeps_every_triangle_touching_the_halo() {
     let base = sphere_and_long_triangles();
     let (mut p, mut t) = (base.positions.clone(), base.triangles.clone());
-    let mut state = 0xca11_u64;
-    let mut unit = || {
-        state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = crate::test_util::Rng(0xca11);
+    let mut unit = || rng.unit();
     for _ in 0..20_000 {
         let c: [f64; 3] = std::array::from_fn(|_| 2.2 * unit() - 1.1);
         let n = p.len() as u32;
