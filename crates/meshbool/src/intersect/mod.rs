@@ -543,7 +543,14 @@ pub(crate) fn corners_meet_beyond_shared(
         let sx = orient2d(&e0, &e1, &Point::Explicit(x.corners()[far_x]), x.axis());
         return sx == orient2d(&e0, &e1, &Point::Explicit(y.corners()[far_y]), x.axis());
     }
-    let labels: Vec<Label> = match tritri::intersect(&x, &y) {
+    meet_beyond_shared_points(&x, &y)
+}
+
+/// Whether triangles `x` and `y` meet in a point that is not a vertex of both (their
+/// exact intersection, every point of it labelled: a label naming the same vertex on
+/// both sides is a shared corner).
+fn meet_beyond_shared_points(x: &tritri::Tri, y: &tritri::Tri) -> bool {
+    let labels: Vec<Label> = match tritri::intersect(x, y) {
         TriTri::None => vec![],
         TriTri::Point(l) => vec![l],
         TriTri::Segment(s) => s.to_vec(),

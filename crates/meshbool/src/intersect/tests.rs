@@ -585,15 +585,7 @@ fn shared_corner_filter_only_answers_apart_when_apart() {
         if pa.iter().filter(|p| pb.contains(p)).count() != 1 {
             continue;
         }
-        let labels: Vec<Label> = match tt(&a, &b) {
-            TriTri::None => vec![],
-            TriTri::Point(l) => vec![l],
-            TriTri::Segment(s) => s.to_vec(),
-            TriTri::Coplanar { segments, points } => {
-                segments.into_iter().flatten().chain(points).collect()
-            }
-        };
-        let beyond = labels.iter().any(|l| l.a != l.b);
+        let beyond = meet_beyond_shared_points(&a, &b);
         let says = certainly_apart_beyond_corner(&pa, ka, &pb, kb);
         assert!(!(beyond && says), "{pa:?} {pb:?}");
         if !beyond {

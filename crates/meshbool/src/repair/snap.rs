@@ -489,7 +489,7 @@ impl Scan {
         const PIECE: usize = 1 << 13;
         let [halo, next_to_halo] = halos;
         let d2 = d * d;
-        // Each vertex's cell, with [`Grid::NEAR`] set where the cell is in or next to the
+        // Each vertex's cell, with bit [`Grid::NEAR_BIT`] set where the cell is in or next to the
         // halo: a triangle spanning at most two cells along each axis with no corner
         // there does not touch the halo.
         let cells: Vec<u64> = mesh
