@@ -286,6 +286,11 @@ fn cut_triangle(
         }
     }
     let cons_t = cons.get(&t).map(Vec::as_slice).unwrap_or(&[]);
+    // Nothing inside and only its own edges as seam edges (a face the other mesh shares):
+    // the triangle is its own only piece, as the triangulation below would leave it.
+    if mine.is_empty() && cons_t.iter().all(|c| c.iter().all(|v| tri.contains(v))) {
+        return Ok((vec![tri], vec![false]));
+    }
     chain_order(&mut mine, cons_t);
     for (g, on_edge) in mine {
         // An input vertex here is one of the mesh's own lying on this triangle (the

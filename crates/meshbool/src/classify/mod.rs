@@ -8,6 +8,8 @@
 //! Patches touching no seam, or whose seam edges disagree (an open surface whose seam
 //! stops inside the patch), use the generalized winding number of the other mesh.
 
+use std::cell::OnceCell;
+
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
@@ -56,6 +58,26 @@ struct FanFace {
     far: Point,
     /// Whether its triangle runs from the edge's first end to its second.
     forward: bool,
+    /// `Triangle::new(plane)`, made when first needed (a point in the face's plane) and
+    /// kept for the edge's other uses.
+    triangle: OnceCell<Option<Triangle>>,
+}
+
+impl FanFace {
+    /// The face's input triangle with its projection; `None` when degenerate.
+    fn triangle(&self) -> Option<&Triangle> {
+        self.triangle
+            .get_or_init(|| Triangle::new(self.plane))
+            .as_ref()
+    }
+}
+
+/// The other mesh's fan around a seam edge, and whether the wedge of a two-face fan is
+/// convex (the sign of the second face's far vertex against the first face's plane),
+/// found when first needed and kept for the edge's other uses.
+struct Fan {
+    faces: Vec<FanFace>,
+    convex: OnceCell<Sign>,
 }
 
 /// The class of a triangle with far vertex `w` at seam edge `e0 e1` against the fan.
@@ -67,10 +89,10 @@ fn local_class(
     w: &Point,
     e: [&Point; 2],
     near: [f64; 3],
-    fan: &[FanFace],
+    fan: &Fan,
 ) -> Option<Class> {
-    let [f0, f1] = fan else {
-        return glued_class(own, w, e, near, fan);
+    let [f0, f1] = &fan.faces[..] else {
+        return glued_class(own, w, e, near, &fan.faces);
     };
     let s = [f0, f1].map(|f| orient3d_plane(&f.plane[0], &f.plane[1], &f.plane[2], w));
     for (k, f) in [f0, f1].iter().enumerate() {
@@ -78,12 +100,13 @@ fn local_class(
             continue;
         }
         // In the plane of this face: overlapping it when on the same side of the edge.
-        Triangle::new(f.plane)?;
-        if let Some(c) = on_face(own, w, e, f) {
+        if let Some(c) = on_face(own, w, e, f, f.triangle()?) {
             return Some(c);
         }
     }
-    let convex = orient3d_plane(&f0.plane[0], &f0.plane[1], &f0.plane[2], &f1.far);
+    let convex = *fan
+        .convex
+        .get_or_init(|| orient3d_plane(&f0.plane[0], &f0.plane[1], &f0.plane[2], &f1.far));
     let behind = |x: Sign| x == Sign::Negative;
     let inside = match convex {
         Sign::Negative => behind(s[0]) && behind(s[1]),
@@ -99,9 +122,14 @@ fn local_class(
 
 /// Whether `w`, seen from edge `e`, lies on face `f` (in its plane, on its side of the
 /// edge); then the class by the facing of `own` (the classified triangle's input
-/// triangle) against it.
-fn on_face(own: &[[f64; 3]; 3], w: &Point, e: [&Point; 2], f: &FanFace) -> Option<Class> {
-    let plane = Triangle::new(f.plane)?;
+/// triangle) against it. `plane`: `f.triangle()`.
+fn on_face(
+    own: &[[f64; 3]; 3],
+    w: &Point,
+    e: [&Point; 2],
+    f: &FanFace,
+    plane: &Triangle,
+) -> Option<Class> {
     let axis = plane.axis();
     let (ow, of) = (
         orient2d(e[0], e[1], w, axis),
@@ -146,7 +174,10 @@ fn glued_class(
         if orient3d_plane(&f.plane[0], &f.plane[1], &f.plane[2], w) != Sign::Zero {
             continue;
         }
-        if let Some(c) = on_face(own, w, e, f) {
+        let Some(plane) = f.triangle() else {
+            continue;
+        };
+        if let Some(c) = on_face(own, w, e, f, plane) {
             if found.is_some_and(|d| d != c) {
                 return None;
             }
@@ -251,7 +282,7 @@ fn seam_votes(x: &CutMesh, y: &CutMesh) -> Vec<Vote> {
             let [u, v] = topo.edges[e];
             let (su, sv) = (seam_of_vertex[&u], seam_of_vertex[&v]);
             let (yu, yv) = (y.seam_vertex[su as usize], y.seam_vertex[sv as usize]);
-            let fan: Vec<FanFace> = ytopo
+            let faces: Vec<FanFace> = ytopo
                 .edges
                 .binary_search(&[yu.min(yv), yu.max(yv)])
                 .map(|ye| {
@@ -264,11 +295,16 @@ fn seam_votes(x: &CutMesh, y: &CutMesh) -> Vec<Vote> {
                                 plane: y_in.corners(y.parent[use_.triangle as usize] as usize),
                                 far: y.point(tri[(use_.corner as usize + 2) % 3]),
                                 forward: tri[use_.corner as usize] == yu,
+                                triangle: OnceCell::new(),
                             }
                         })
                         .collect()
                 })
                 .unwrap_or_default();
+            let fan = Fan {
+                faces,
+                convex: OnceCell::new(),
+            };
             let (pu, pv) = (x.point(u), x.point(v));
             let ends = [&pu, &pv];
             topo.uses_of(e)

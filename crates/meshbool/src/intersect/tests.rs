@@ -876,3 +876,44 @@ fn only_meshes_whose_large_triangles_matter_are_covered() {
         .collect();
     assert_eq!(found, brute);
 }
+
+/// Coplanar triangles on either side of an edge's line: the shortcut gives exactly what
+/// the clipping of every edge gives, and it is taken for most such pairs. Corners on a
+/// 0..=4 grid of one plane (shared corners, corners on edges and on edge lines, collinear
+/// edges that overlap or only touch end to end) of the plane z = 0 and of two sloped
+/// planes, shifted to UTM-like coordinates or scaled by 2^-30.
+#[test]
+fn coplanar_shortcut_gives_what_the_clipping_gives() {
+    use super::tritri::coplanar_filtered;
+    let mut rng = Rng(0x00c0_91a4_b35d);
+    let (mut pairs, mut beside) = (0, 0);
+    for round in 0..40_000 {
+        let mut next = || (rng.next() % 5) as f64;
+        let plane = |x: f64, y: f64| -> [f64; 3] {
+            match round % 3 {
+                0 => [x, y, 0.0],
+                1 => [x, y, x + 2.0 * y],
+                _ => [3.0 * x - y, y, 0.5 * x],
+            }
+        };
+        let mut tri = || -> [[f64; 3]; 3] { std::array::from_fn(|_| plane(next(), next())) };
+        let (pa, pb) = (tri(), tri());
+        let how = [0, 1, 2][(round / 3) % 3];
+        let (pa, pb) = (moved(pa, how), moved(pb, how));
+        let (Some(a), Some(b)) = (Tri::new(0, [0, 1, 2], pa), Tri::new(0, [10, 11, 12], pb)) else {
+            continue;
+        };
+        if crate::kernel::orient3d_sides(&pb, &pa) != [crate::kernel::Sign::Zero; 3] {
+            continue; // rounding in the sloped planes' coordinates
+        }
+        pairs += 1;
+        let ((fast, taken), (full, _)) = (
+            coplanar_filtered(&a, &b, true),
+            coplanar_filtered(&a, &b, false),
+        );
+        assert_eq!(fast, full, "{pa:?} {pb:?}");
+        assert_eq!(tt(&a, &b), full, "{pa:?} {pb:?}");
+        beside += usize::from(taken);
+    }
+    assert!(pairs > 20_000 && beside > pairs / 4, "{pairs} {beside}");
+}

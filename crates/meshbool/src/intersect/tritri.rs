@@ -341,47 +341,65 @@ pub(super) fn apart_on_line(
 
 /// Coplanar triangles: each edge clipped to the other triangle.
 fn coplanar(a: &Tri, b: &Tri) -> TriTri {
+    coplanar_filtered(a, b, true).0
+}
+
+/// [`coplanar`], with the shortcut for triangles on either side of the line of one of
+/// their edges ([`beside`]) on or off (off only in the tests that check it against the
+/// clipping); also whether the shortcut gave the answer.
+pub(super) fn coplanar_filtered(a: &Tri, b: &Tri, shortcut: bool) -> (TriTri, bool) {
+    // Every orientation the clipping needs, once: `a`'s edges against `b`'s corners and
+    // `b`'s edges against `a`'s corners, in the projection along `b`'s axis (for clipping
+    // `a`'s edges) and along `a`'s (for `b`'s). When both triangles project along the
+    // same axis, the second set asks the first one's questions with the roles swapped.
+    // An edge's three orientations at a time: where they put the other triangle on or
+    // beyond its line, the shortcut answers without the rest.
+    let side = orientation(a, b);
+    let mut for_a = Orients {
+        other_edges: [[Sign::Zero; 3]; 3],
+        own_edges: [[Sign::Zero; 3]; 3],
+    };
+    for m in 0..3 {
+        for_a.other_edges[m] = std::array::from_fn(|k| side(b, m, a, k));
+        if shortcut && beyond(for_a.other_edges[m], b.sign()) {
+            return (beside(b, m, a, for_a.other_edges[m], false), true);
+        }
+    }
+    let mut sign_a = None;
+    for i in 0..3 {
+        for_a.own_edges[i] = std::array::from_fn(|m| side(a, i, b, m));
+        if shortcut {
+            // a's own orientation in the projection along b's axis.
+            let inward = *sign_a.get_or_insert_with(|| {
+                if a.axis() == b.axis() {
+                    a.sign()
+                } else {
+                    let c = a.corners().map(Point::Explicit);
+                    orient2d(&c[0], &c[1], &c[2], b.axis())
+                }
+            });
+            if beyond(for_a.own_edges[i], inward) {
+                return (beside(a, i, b, for_a.own_edges[i], true), true);
+            }
+        }
+    }
+    let for_b = if a.axis() == b.axis() {
+        Orients {
+            other_edges: for_a.own_edges,
+            own_edges: for_a.other_edges,
+        }
+    } else {
+        let side = orientation(b, a);
+        Orients {
+            other_edges: std::array::from_fn(|m| std::array::from_fn(|k| side(a, m, b, k))),
+            own_edges: std::array::from_fn(|i| std::array::from_fn(|m| side(b, i, a, m))),
+        }
+    };
     let mut segments: Vec<[Label; 2]> = Vec::new();
     let mut points: Vec<Label> = Vec::new();
-    let mut previous: Option<Orients> = None;
-    for (own, other, own_is_a) in [(a, b, true), (b, a, false)] {
-        // Every orientation the clipping needs, once (projected along `other`'s axis):
-        // `other`'s edges against `own`'s corners, `own`'s edges against `other`'s corners.
-        // When both triangles project along the same axis, the second direction asks the
-        // first one's questions with the roles swapped.
-        let proj = other.axis();
-        let orients = match previous {
-            Some(o) if a.axis() == b.axis() => Orients {
-                other_edges: o.own_edges,
-                own_edges: o.other_edges,
-            },
-            _ => {
-                let safe = own.tri.robust_safe() && other.tri.robust_safe();
-                let side = |e: &Tri, m: usize, x: &Tri, k: usize| {
-                    if safe {
-                        orient2d_safe(
-                            &e.corners()[m],
-                            &e.corners()[(m + 1) % 3],
-                            &x.corners()[k],
-                            proj,
-                        )
-                    } else {
-                        orient2d(&e.corner(m), &e.corner((m + 1) % 3), &x.corner(k), proj)
-                    }
-                };
-                Orients {
-                    other_edges: std::array::from_fn(|m| {
-                        std::array::from_fn(|k| side(other, m, own, k))
-                    }),
-                    own_edges: std::array::from_fn(|i| {
-                        std::array::from_fn(|m| side(own, i, other, m))
-                    }),
-                }
-            }
-        };
-        previous = Some(orients);
+    for (own, other, own_is_a, o) in [(a, b, true, &for_a), (b, a, false, &for_b)] {
         for i in 0..3 {
-            match clip_edge(own, i, other, own_is_a, &orients) {
+            match clip_edge(own, i, other, own_is_a, o) {
                 Clip::None => {}
                 Clip::Point(l) => points.push(l),
                 Clip::Segment(mut s) => {
@@ -396,10 +414,103 @@ fn coplanar(a: &Tri, b: &Tri) -> TriTri {
     points.sort();
     points.dedup();
     points.retain(|p| !segments.iter().any(|s| s.contains(p)));
-    if segments.is_empty() && points.is_empty() {
+    let r = if segments.is_empty() && points.is_empty() {
         TriTri::None
     } else {
         TriTri::Coplanar { segments, points }
+    };
+    (r, false)
+}
+
+/// Whether the corners of a triangle, with orientations `sides` against an edge of a
+/// coplanar triangle whose inner side is `inward`, all lie on the edge's line or beyond.
+fn beyond(sides: [Sign; 3], inward: Sign) -> bool {
+    sides.iter().all(|s| s.times(inward) != Sign::Positive)
+}
+
+/// Coplanar triangles on either side of the line of edge `e` of `s` (`other`'s corners,
+/// with orientations `sides` against it, all on the line or beyond: neighbours of one
+/// surface, most coplanar candidate pairs of meshes that share faces) meet only on that
+/// line, where the edge overlaps `other`'s corners or edge there. That overlap, from input
+/// coordinates along the line, is the whole answer. `s_is_a`: `s` is the triangle of A.
+fn beside(s: &Tri, e: usize, other: &Tri, sides: [Sign; 3], s_is_a: bool) -> TriTri {
+    // Positions along the line by the coordinate in which the edge is longest (exact:
+    // every point here is an input point on the line, where that coordinate is monotone).
+    let (e0, e1) = (e, (e + 1) % 3);
+    let axis = longest_axis(&s.corners()[e0], &s.corners()[e1]);
+    let at = |t: &Tri, k: usize| t.corners()[k][axis];
+    let (s_lo, s_hi) = (at(s, e0).min(at(s, e1)), at(s, e0).max(at(s, e1)));
+    // `other`'s corners on the line: none, one, or the two ends of an edge.
+    let mut z = [0usize; 2];
+    let mut n = 0;
+    for (k, side) in sides.iter().enumerate() {
+        // (Three would be a degenerate triangle.)
+        if *side == Sign::Zero && n < 2 {
+            z[n] = k;
+            n += 1;
+        }
+    }
+    let z = &z[..n];
+    let (z_lo, z_hi) = match *z {
+        [k] => (at(other, k), at(other, k)),
+        [k, l] => (
+            at(other, k).min(at(other, l)),
+            at(other, k).max(at(other, l)),
+        ),
+        _ => return TriTri::None,
+    };
+    let (lo, hi) = (s_lo.max(z_lo), s_hi.min(z_hi));
+    if lo > hi {
+        return TriTri::None;
+    }
+    // The point at `x` on the overlap: a corner of each triangle there, else its edge
+    // on the line.
+    let label = |x: f64| -> Label {
+        let own = [e0, e1]
+            .into_iter()
+            .find(|&k| at(s, k) == x)
+            .map_or(edge(s.v[e0], s.v[e1]), |k| Feature::Vertex(s.v[k]));
+        let there = z.iter().find(|&&k| at(other, k) == x).map_or_else(
+            || edge(other.v[z[0]], other.v[z[z.len() - 1]]),
+            |&k| Feature::Vertex(other.v[k]),
+        );
+        if s_is_a {
+            Label { a: own, b: there }
+        } else {
+            Label { a: there, b: own }
+        }
+    };
+    if lo == hi {
+        TriTri::Coplanar {
+            segments: Vec::new(),
+            points: vec![label(lo)],
+        }
+    } else {
+        let (x, y) = (label(lo), label(hi));
+        TriTri::Coplanar {
+            segments: vec![[x.min(y), x.max(y)]],
+            points: Vec::new(),
+        }
+    }
+}
+
+/// The orientation, projected along `other`'s axis, of corner `k` of triangle `x`
+/// against edge `m` (from corner `m` to `m + 1`) of triangle `e`, for `e` and `x` the two
+/// coplanar triangles `own` and `other` in either role.
+fn orientation<'t>(own: &Tri, other: &Tri) -> impl Fn(&Tri, usize, &Tri, usize) -> Sign + 't {
+    let proj = other.axis();
+    let safe = own.tri.robust_safe() && other.tri.robust_safe();
+    move |e: &Tri, m: usize, x: &Tri, k: usize| {
+        if safe {
+            orient2d_safe(
+                &e.corners()[m],
+                &e.corners()[(m + 1) % 3],
+                &x.corners()[k],
+                proj,
+            )
+        } else {
+            orient2d(&e.corner(m), &e.corner((m + 1) % 3), &x.corner(k), proj)
+        }
     }
 }
 

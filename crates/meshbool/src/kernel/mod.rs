@@ -381,6 +381,11 @@ pub fn orient3d_explicit(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3])
     if let Some(s) = PlaneFilter::new(a, b, c).side(d) {
         return s;
     }
+    // Four points in one axis plane (faces of boxes and CAD parts), where the filter can
+    // only fail: coplanar, exactly.
+    if (0..3).any(|k| [b, c, d].iter().all(|p| p[k] == a[k])) {
+        return Sign::Zero;
+    }
     if let Some(s) = orient3d_fixed(a, b, c, d) {
         return s;
     }
