@@ -167,14 +167,14 @@ pub(crate) fn intersect_with(a: &Mesh, b: &Mesh, grid_from: usize) -> Seam {
         || prepare(a, pairs.iter().map(|p| p.0).collect()),
         || prepare(b, pairs.iter().map(|p| p.1).collect()),
     );
-    let find = |ids: &[u32], tris: &'_ [Option<tritri::Tri>], t: u32| -> Option<tritri::Tri> {
-        ids.binary_search(&t).ok().and_then(|k| tris[k])
-    };
+    fn find<'t>(ids: &[u32], tris: &'t [Option<tritri::Tri>], t: u32) -> Option<&'t tritri::Tri> {
+        ids.binary_search(&t).ok().and_then(|k| tris[k].as_ref())
+    }
     let results: Vec<(u32, u32, TriTri)> = pairs
         .par_iter()
         .filter_map(|&(i, j)| {
             let (x, y) = (find(&ids_a, &tris_a, i)?, find(&ids_b, &tris_b, j)?);
-            match tritri::intersect(&x, &y) {
+            match tritri::intersect(x, y) {
                 TriTri::None => None,
                 r => Some((i, j, r)),
             }

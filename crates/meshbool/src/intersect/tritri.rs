@@ -98,6 +98,13 @@ impl Tri {
     /// [`Tri::locate`] of a prepared point (its interval enclosure computed once for
     /// the three orientations).
     fn locate_prepared(&self, x: &Prepared) -> Option<Feature> {
+        if let Some(p) = x.explicit() {
+            // An input point (a corner on the other's plane): orientations of input points.
+            let (c, p) = (self.corners().map(Point::Explicit), Point::Explicit(p));
+            return self.locate_by(std::array::from_fn(|k| {
+                orient2d(&c[k], &c[(k + 1) % 3], &p, self.axis())
+            }));
+        }
         let c = self.corners().map(|p| Prepared::new(Point::Explicit(p)));
         self.locate_by(std::array::from_fn(|k| {
             orient2d_prepared(&c[k], &c[(k + 1) % 3], x, self.axis())

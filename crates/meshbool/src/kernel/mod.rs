@@ -630,6 +630,11 @@ impl Prepared {
         }
     }
 
+    /// The input coordinates if the point is explicit.
+    pub(crate) fn explicit(&self) -> Option<[f64; 3]> {
+        self.point.explicit()
+    }
+
     /// The exact homogeneous coordinates (computed once).
     fn exact(&self) -> &[Dyadic; 4] {
         self.exact
