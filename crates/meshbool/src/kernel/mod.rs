@@ -4,6 +4,7 @@
 //! Nothing outside this module compares floats to decide topology. Every point has exact
 //! homogeneous coordinates `(X, Y, Z, W)`, polynomials in input `f64` coordinates without
 //! division. A predicate is the sign of a polynomial in those; it is evaluated first in
+//! `f64` with a bound on its rounding error (`bounded`), where that cannot decide in
 //! interval arithmetic (`interval`), and only where the interval contains zero again with
 //! exact dyadic numbers (`exact`). The answer is always the exact sign.
 //!
@@ -15,6 +16,7 @@
 
 use std::cmp::Ordering;
 
+mod bounded;
 mod exact;
 mod filter;
 mod interval;
@@ -22,6 +24,7 @@ mod interval;
 mod tests;
 mod triangle;
 
+use bounded::Bounded;
 use exact::Dyadic;
 pub use filter::{
     certainly_apart_beyond_corner, certainly_separated, certainly_unfolded, FloatPlane,
@@ -267,12 +270,18 @@ impl Num for F64 {
     }
 }
 
-/// Sign of a polynomial given as a generic function: intervals first, exact if undecided.
+/// Sign of a polynomial given as a generic function: `f64` with an error bound first,
+/// then intervals, exact if both are undecided.
 macro_rules! decide {
     ($f:ident ( $($arg:expr),* )) => {{
-        match $f::<Interval>($($arg),*).sign() {
+        match $f::<Bounded>($($arg),*).sign() {
             Some(s) => s,
-            None => $f::<Dyadic>($($arg),*).sign().expect("exact signs are always decided"),
+            None => match $f::<Interval>($($arg),*).sign() {
+                Some(s) => s,
+                None => $f::<Dyadic>($($arg),*)
+                    .sign()
+                    .expect("exact signs are always decided"),
+            },
         }
     }};
 }
