@@ -614,7 +614,8 @@ pub(crate) struct Prepared {
     /// The exact homogeneous coordinates, computed on the first exact evaluation that
     /// needs them and kept: in a triangulation the same points meet the exact fallback
     /// again and again, and building an implicit point's coordinates is most of its cost.
-    exact: std::cell::OnceCell<[Dyadic; 4]>,
+    /// Boxed: most points never need them, and every prepared point is moved around.
+    exact: std::cell::OnceCell<Box<[Dyadic; 4]>>,
 }
 
 impl Prepared {
@@ -647,7 +648,7 @@ impl Prepared {
     /// The exact homogeneous coordinates (computed once).
     fn exact(&self) -> &[Dyadic; 4] {
         self.exact
-            .get_or_init(|| self.point.homogeneous::<Dyadic>())
+            .get_or_init(|| Box::new(self.point.homogeneous::<Dyadic>()))
     }
 
     /// The sign of `W` (positive for explicit points).

@@ -848,3 +848,55 @@ fn bounded_filter_never_contradicts_the_exact_sign() {
     // decides those.
     assert!(asked > 200_000 && decided > 50_000, "{asked} {decided}");
 }
+
+/// Exact dyadic arithmetic gives the rational value's sign, and exact zeros, on random
+/// sums and products of short and full-length binary fractions of many magnitudes, on
+/// both sides of the move from `i128` mantissas to big integers (both are reached often).
+#[test]
+fn dyadic_arithmetic_agrees_with_rationals_across_the_small_mantissa_limit() {
+    let mut rng = Rng(0x00d1_ad1c_0b16);
+    let (mut small, mut big) = (0, 0);
+    for _ in 0..20_000 {
+        let mut value = || -> f64 {
+            let x = match rng.next() % 4 {
+                0 => (rng.next() % 9) as f64 - 4.0,
+                1 => ((rng.next() % 64) as f64 - 32.0) / 8.0,
+                2 => rng.unit() - 0.5,
+                _ => (rng.unit() - 0.5) * 2f64.powi((rng.next() % 120) as i32 - 60),
+            };
+            if rng.next() % 3 == 0 {
+                x + UTM[0]
+            } else {
+                x
+            }
+        };
+        let v: Vec<f64> = (0..8).map(|_| value()).collect();
+        // ((v0·v1 − v2·v3) · (v4 + v5) − v6) · v7, and the same regrouped: equal exactly.
+        let d = |x: f64| Dyadic::from_f64(x);
+        let dy = d(v[0])
+            .mul(&d(v[1]))
+            .sub(&d(v[2]).mul(&d(v[3])))
+            .mul(&d(v[4]).add(&d(v[5])))
+            .sub(&d(v[6]))
+            .mul(&d(v[7]));
+        let again = d(v[7])
+            .mul(&d(v[4]).add(&d(v[5])))
+            .mul(&d(v[1]).mul(&d(v[0])))
+            .sub(
+                &d(v[7])
+                    .mul(&d(v[5]).add(&d(v[4])))
+                    .mul(&d(v[3]).mul(&d(v[2]))),
+            )
+            .sub(&d(v[6]).mul(&d(v[7])));
+        let r = (q(v[0]) * q(v[1]) - q(v[2]) * q(v[3])) * (q(v[4]) + q(v[5])) - q(v[6]);
+        let r = r * q(v[7]);
+        assert_eq!(dy.sign(), Some(sign_q(&r)), "{v:?}");
+        assert_eq!(dy.sub(&again).sign(), Some(Sign::Zero), "{v:?}");
+        if dy.is_small() {
+            small += 1;
+        } else {
+            big += 1;
+        }
+    }
+    assert!(small > 1000 && big > 3000, "{small} {big}");
+}
