@@ -93,6 +93,30 @@ fn union_crossing_terrains() -> usize {
         .triangle_count()
 }
 
+/// A flat 200 × 200 grid and one of bumps that touches it only at 10,201 isolated
+/// vertices (80k triangles each): a seam of touching points and no segment.
+static TOUCHING: std::sync::LazyLock<(meshbool::Mesh, meshbool::Mesh)> =
+    std::sync::LazyLock::new(|| {
+        use meshbool::shapes::heightfield;
+        let flat = heightfield([0.0, 0.0], [200.0, 200.0], 200, 200, |_, _| 0.0);
+        let bumps = heightfield([0.0, 0.0], [200.0, 200.0], 200, 200, |x, y| {
+            if x % 2.0 == 0.0 && y % 2.0 == 0.0 {
+                0.0
+            } else {
+                1.0
+            }
+        });
+        (flat, bumps)
+    });
+
+#[divan::bench(sample_count = 10)]
+fn union_grids_touching_at_points() -> usize {
+    let (a, b) = &*TOUCHING;
+    boolean(a, b, Op::Union, &Default::default())
+        .mesh
+        .triangle_count()
+}
+
 /// Ten overlapping 20k-triangle spheres (a ring of centres, each crossing its neighbours
 /// and the middle one).
 static TEN: std::sync::LazyLock<Vec<meshbool::Mesh>> = std::sync::LazyLock::new(|| {

@@ -7,7 +7,7 @@
 //! curves are also useful on their own (`meshbool curves`).
 
 use rayon::prelude::*;
-use rustc_hash::FxHashMap;
+use rustc_hash::{FxHashMap, FxHashSet};
 
 use crate::bvh::Bvh;
 use crate::kernel::{cross_sign, Point, Sign};
@@ -285,9 +285,10 @@ fn assemble(results: &[(u32, u32, TriTri)], name: impl Fn(Label) -> Label) -> Se
         on_segment[s.ends[0] as usize] = true;
         on_segment[s.ends[1] as usize] = true;
     }
+    let mut listed = FxHashSet::default();
     for l in touching {
         let id = id_of(l, &mut seam);
-        if on_segment.get(id as usize) != Some(&true) && !seam.touching.contains(&id) {
+        if on_segment.get(id as usize) != Some(&true) && listed.insert(id) {
             seam.touching.push(id);
         }
     }

@@ -917,3 +917,28 @@ fn coplanar_shortcut_gives_what_the_clipping_gives() {
     }
     assert!(pairs > 20_000 && beside > pairs / 4, "{pairs} {beside}");
 }
+
+/// A flat grid and a bumpy one that touches it only at isolated vertices (every other
+/// vertex of every other row): no segment, and each touching point listed exactly once.
+#[test]
+fn grids_touching_at_isolated_vertices_list_each_point_once() {
+    let n = 20;
+    let flat = heightfield([0.0, 0.0], [20.0, 20.0], n, n, |_, _| 0.0);
+    let bumps = heightfield([0.0, 0.0], [20.0, 20.0], n, n, |x, y| {
+        if x % 2.0 == 0.0 && y % 2.0 == 0.0 {
+            0.0
+        } else {
+            1.0
+        }
+    });
+    let seam = intersect(&flat, &bumps);
+    assert!(seam.segments.is_empty());
+    assert_eq!(seam.touching.len(), 11 * 11);
+    let mut ids = seam.touching.clone();
+    ids.sort_unstable();
+    ids.dedup();
+    assert_eq!(ids.len(), 11 * 11);
+    for &p in &seam.touching {
+        assert_eq!(seam.positions[p as usize][2], 0.0);
+    }
+}
