@@ -432,6 +432,9 @@ pub(super) fn coplanar_filtered(a: &Tri, b: &Tri, shortcut: bool) -> (TriTri, bo
 /// Whether the corners of a triangle, with orientations `sides` against an edge of a
 /// coplanar triangle whose inner side is `inward`, all lie on the edge's line or beyond.
 fn beyond(sides: [Sign; 3], inward: Sign) -> bool {
+    // Never zero: both triangles are non-degenerate in the projection, being exactly
+    // coplanar with a triangle that is.
+    debug_assert_ne!(inward, Sign::Zero);
     sides.iter().all(|s| s.times(inward) != Sign::Positive)
 }
 
