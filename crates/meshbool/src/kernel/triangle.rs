@@ -2,7 +2,7 @@
 //! axis to drop, chosen so that the triangle is not degenerate in that projection, and
 //! its orientation there.
 
-use super::{normals_cross_sign, orient2d, robust_safe, Point, Sign};
+use super::{normals_cross_sign, orient2d, orient2d_safe, robust_safe, Point, Sign};
 use crate::vec3::{cross, sub};
 
 /// A non-degenerate triangle of input points, with a projection in which it is not
@@ -29,14 +29,20 @@ impl Triangle {
         let n = approx_normal(&corners);
         let mut axes = [0, 1, 2];
         axes.sort_by(|&i, &j| n[j].abs().total_cmp(&n[i].abs()));
-        let e = corners.map(Point::Explicit);
+        let safe = robust_safe(&[&corners[0], &corners[1], &corners[2]]);
+        let [a, b, c] = &corners;
         axes.into_iter().find_map(|axis| {
-            let sign = orient2d(&e[0], &e[1], &e[2], axis);
-            (sign != Sign::Zero).then(|| Triangle {
+            let sign = if safe {
+                orient2d_safe(a, b, c, axis)
+            } else {
+                let e = corners.map(Point::Explicit);
+                orient2d(&e[0], &e[1], &e[2], axis)
+            };
+            (sign != Sign::Zero).then_some(Triangle {
                 corners,
                 axis,
                 sign,
-                safe: robust_safe(&[&corners[0], &corners[1], &corners[2]]),
+                safe,
             })
         })
     }
