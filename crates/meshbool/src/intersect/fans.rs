@@ -21,7 +21,7 @@ use std::sync::atomic::Ordering::Relaxed;
 
 use rayon::prelude::*;
 
-use crate::kernel::{orient2d, orient2d_safe, robust_safe, Point, Sign};
+use crate::kernel::{orient2d_inputs, robust_safe, Sign};
 use crate::vec3::{cross, sub};
 use crate::Mesh;
 
@@ -199,15 +199,8 @@ impl Scratch {
         // Shewchuk's predicate directly where its range holds for the whole fan (almost
         // always), the kernel's general one otherwise.
         let safe = robust_safe(&[&p]) && pts.iter().all(|q| robust_safe(&[q]));
-        let orient = |i: usize, j: usize| {
-            if safe {
-                orient2d_safe(&p, &pts[i], &pts[j], axis)
-            } else {
-                let e = |q: &[f64; 3]| Point::Explicit(*q);
-                orient2d(&e(&p), &e(&pts[i]), &e(&pts[j]), axis)
-            }
-            .times(flip)
-        };
+        let orient =
+            |i: usize, j: usize| orient2d_inputs(&p, &pts[i], &pts[j], axis, safe).times(flip);
         let n = self.rim.len();
         // One wedge per fan triangle (see `certify`).
         if (0..self.sorted.len()).any(|i| orient(i, (i + 1) % n) != Sign::Positive) {

@@ -10,9 +10,9 @@
 use std::cmp::Ordering;
 
 use crate::kernel::{
-    cmp_coord_prepared, longest_axis, orient2d, orient2d_prepared, orient2d_safe,
-    orient3d_explicit, orient3d_sides, planes_line_axis, same_point_prepared, Point, Prepared,
-    Sign, Triangle,
+    cmp_coord_prepared, longest_axis, orient2d_inputs, orient2d_prepared, orient3d_explicit,
+    orient3d_sides, planes_line_axis, robust_safe, same_point_prepared, Point, Prepared, Sign,
+    Triangle,
 };
 
 /// A vertex, edge or face of one mesh, by its vertex / triangle ids (edges sorted).
@@ -100,9 +100,9 @@ impl Tri {
     fn locate_prepared(&self, x: &Prepared) -> Option<Feature> {
         if let Some(p) = x.explicit() {
             // An input point (a corner on the other's plane): orientations of input points.
-            let (c, p) = (self.corners().map(Point::Explicit), Point::Explicit(p));
+            let (c, safe) = (self.corners(), self.tri.robust_safe() && robust_safe(&[&p]));
             return self.locate_by(std::array::from_fn(|k| {
-                orient2d(&c[k], &c[(k + 1) % 3], &p, self.axis())
+                orient2d_inputs(&c[k], &c[(k + 1) % 3], &p, self.axis(), safe)
             }));
         }
         let c = self.corners().map(|p| Prepared::new(Point::Explicit(p)));
@@ -381,8 +381,8 @@ pub(super) fn coplanar_filtered(a: &Tri, b: &Tri, shortcut: bool) -> (TriTri, bo
                 if a.axis() == b.axis() {
                     a.sign()
                 } else {
-                    let c = a.corners().map(Point::Explicit);
-                    orient2d(&c[0], &c[1], &c[2], b.axis())
+                    let [p, q, r] = a.corners();
+                    orient2d_inputs(p, q, r, b.axis(), a.tri.robust_safe())
                 }
             });
             if beyond(for_a.own_edges[i], inward) {
@@ -511,16 +511,13 @@ fn orientation<'t>(own: &Tri, other: &Tri) -> impl Fn(&Tri, usize, &Tri, usize) 
     let proj = other.axis();
     let safe = own.tri.robust_safe() && other.tri.robust_safe();
     move |e: &Tri, m: usize, x: &Tri, k: usize| {
-        if safe {
-            orient2d_safe(
-                &e.corners()[m],
-                &e.corners()[(m + 1) % 3],
-                &x.corners()[k],
-                proj,
-            )
-        } else {
-            orient2d(&e.corner(m), &e.corner((m + 1) % 3), &x.corner(k), proj)
-        }
+        orient2d_inputs(
+            &e.corners()[m],
+            &e.corners()[(m + 1) % 3],
+            &x.corners()[k],
+            proj,
+            safe,
+        )
     }
 }
 

@@ -50,7 +50,8 @@ impl Mantissa {
             Mantissa::Small(m) if k < 127 && u64::from(m.unsigned_abs().leading_zeros()) > k => {
                 Mantissa::Small(m << k)
             }
-            _ => Mantissa::Big(self.big() << k as usize),
+            Mantissa::Small(m) => Mantissa::Big(IBig::from(*m) << k as usize),
+            Mantissa::Big(m) => Mantissa::Big(m << k as usize),
         }
     }
 }

@@ -390,9 +390,7 @@ pub fn orient3d_explicit(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3])
     if let Some(s) = PlaneFilter::new(a, b, c).side(d) {
         return s;
     }
-    // Four points in one axis plane (faces of boxes and CAD parts), where the filter can
-    // only fail: coplanar, exactly.
-    if (0..3).any(|k| [b, c, d].iter().all(|p| p[k] == a[k])) {
+    if in_one_axis_plane(&[a, b, c, d]) {
         return Sign::Zero;
     }
     if let Some(s) = orient3d_fixed(a, b, c, d) {
@@ -555,12 +553,12 @@ fn orient3d_fixed_many(t: &[[f64; 3]; 3], ds: &[[f64; 3]]) -> Option<[Sign; 3]> 
 /// another, `t`: the same exact signs, with the work the three share done once (the
 /// filter's products of the plane's edges; one common scale for the integer path).
 pub fn orient3d_sides(t: &[[f64; 3]; 3], ds: &[[f64; 3]; 3]) -> [Sign; 3] {
-    // Faces in one axis plane (boxes, CAD parts): six equal coordinates make the points
-    // coplanar, exactly, where the filter below could only fail and fall back.
-    if (0..3).any(|k| t.iter().chain(ds).all(|p| p[k] == t[0][k])) {
+    let [a, b, c] = t;
+    // Checked before the filter here: for a triangle against another, one such test
+    // spares the three filters' failures.
+    if in_one_axis_plane(&[a, b, c, &ds[0], &ds[1], &ds[2]]) {
         return [Sign::Zero; 3];
     }
-    let [a, b, c] = t;
     if !robust_safe(&[a, b, c, &ds[0], &ds[1], &ds[2]]) {
         return ds.map(|d| orient3d_explicit(a, b, c, &d));
     }
@@ -742,6 +740,31 @@ pub(crate) fn orient2d_safe(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], axis: usiz
     let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
     let c2 = |p: &[f64; 3]| robust::Coord { x: p[i], y: p[j] };
     Sign::of_f64(robust::orient2d(c2(a), c2(b), c2(c)))
+}
+
+/// [`orient2d`] of three input points, with [`orient2d_safe`] where the caller has found
+/// them to meet [`robust_safe`] (`safe`: checked once for points asked about many times).
+#[inline]
+pub(crate) fn orient2d_inputs(
+    a: &[f64; 3],
+    b: &[f64; 3],
+    c: &[f64; 3],
+    axis: usize,
+    safe: bool,
+) -> Sign {
+    if safe {
+        orient2d_safe(a, b, c, axis)
+    } else {
+        let e = |p: &[f64; 3]| Point::Explicit(*p);
+        orient2d(&e(a), &e(b), &e(c), axis)
+    }
+}
+
+/// Whether the points all lie in one plane square to a coordinate axis: then they are
+/// exactly coplanar (faces of boxes and CAD parts), where floating-point filters can only
+/// fail.
+fn in_one_axis_plane(points: &[&[f64; 3]]) -> bool {
+    (0..3).any(|k| points.iter().all(|p| p[k] == points[0][k]))
 }
 
 /// Exact comparison of coordinate `axis` of two points.

@@ -2,7 +2,7 @@
 //! axis to drop, chosen so that the triangle is not degenerate in that projection, and
 //! its orientation there.
 
-use super::{normals_cross_sign, orient2d, orient2d_safe, robust_safe, Point, Sign};
+use super::{normals_cross_sign, orient2d_inputs, robust_safe, Sign};
 use crate::vec3::{cross, sub};
 
 /// A non-degenerate triangle of input points, with a projection in which it is not
@@ -32,12 +32,7 @@ impl Triangle {
         let safe = robust_safe(&[&corners[0], &corners[1], &corners[2]]);
         let [a, b, c] = &corners;
         axes.into_iter().find_map(|axis| {
-            let sign = if safe {
-                orient2d_safe(a, b, c, axis)
-            } else {
-                let e = corners.map(Point::Explicit);
-                orient2d(&e[0], &e[1], &e[2], axis)
-            };
+            let sign = orient2d_inputs(a, b, c, axis, safe);
             (sign != Sign::Zero).then_some(Triangle {
                 corners,
                 axis,
