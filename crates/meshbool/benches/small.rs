@@ -1,13 +1,14 @@
 //! Booleans of small inputs, where fixed costs and the exact kernel's slow paths (points
 //! exactly on planes and edges) weigh most: the cube pairs of `../shared/bench/
 //! gen_meshes.py` (faces split into g × g quads; the second cube shifted by half its size
-//! along x, so that four face pairs are coplanar, or the same cube) and its 5k sphere pair.
+//! along x, so that four face pairs are coplanar, or the same cube), its 5k sphere pair,
+//! and its terrain pierced by a cylinder (a large mesh, a short seam).
 //! Run: `cargo bench -p meshbool --bench small`.
 
 use std::sync::LazyLock;
 
 use meshbool::boolean::{boolean, Op};
-use meshbool::shapes::{rigid_motion, uv_sphere};
+use meshbool::shapes::{cylinder, heightfield, rigid_motion, uv_sphere};
 use meshbool::Mesh;
 
 fn main() {
@@ -70,6 +71,16 @@ static SPHERES_5K: LazyLock<(Mesh, Mesh)> = LazyLock::new(|| {
     (a, b)
 });
 
+/// `gen_meshes.py`'s `terrain_cylinder`: an open 200 × 200 height field over 10 × 10
+/// (80,000 triangles) and a closed 64-segment cylinder of radius 1 standing through it.
+static TERRAIN_CYLINDER: LazyLock<(Mesh, Mesh)> = LazyLock::new(|| {
+    let terrain = heightfield([0.0; 2], [10.0; 2], 200, 200, |x, y| {
+        0.6 * (0.9 * x).sin() * (0.7 * y).cos() + 0.25 * (2.3 * x + 1.1 * y + 0.4).sin()
+    });
+    let cylinder = cylinder([5.0, 5.0, -3.0], 1.0, 7.0, 64).expect("a valid cylinder");
+    (terrain, cylinder)
+});
+
 #[divan::bench(sample_count = 200)]
 fn union_coplanar_cubes_g1() -> usize {
     let (a, b) = &*SINGLE;
@@ -97,6 +108,14 @@ fn union_identical_cubes_g16() -> usize {
 #[divan::bench(sample_count = 50)]
 fn union_spheres_5k() -> usize {
     let (a, b) = &*SPHERES_5K;
+    boolean(a, b, Op::Union, &Default::default())
+        .mesh
+        .triangle_count()
+}
+
+#[divan::bench(sample_count = 50)]
+fn union_terrain_cylinder() -> usize {
+    let (a, b) = &*TERRAIN_CYLINDER;
     boolean(a, b, Op::Union, &Default::default())
         .mesh
         .triangle_count()

@@ -2,7 +2,9 @@
 //! `cargo run --release -p meshbool --example stages -- A B [union|intersection|difference] [reps]`.
 //! Prints, per repetition, the time from each stage's start to the next one's and the
 //! whole call, with the inputs read and checked beforehand (the self-intersection check
-//! only with the environment variable `CHECKED` set).
+//! only with the environment variable `CHECKED` set). Over 10 repetitions (small inputs),
+//! one line of mean times per stage in microseconds instead. Calls run on a pool of
+//! `POOL` threads (environment; default: one per core).
 
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
@@ -33,6 +35,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         if checks.self_intersections { "" } else { "no " },
         start.elapsed().as_secs_f64() * 1e3
     );
+    // With many repetitions (small inputs), the mean per stage in microseconds instead.
+    let mut sums: Vec<(String, f64)> = Vec::new();
+    let mut total = 0.0;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(
+            std::env::var("POOL")
+                .ok()
+                .and_then(|v| v.parse().ok())
+                .unwrap_or(0),
+        )
+        .build()?;
     for _ in 0..reps {
         let marks: Arc<Mutex<Vec<(String, Instant)>>> = Arc::default();
         let m = marks.clone();
@@ -41,9 +54,20 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             m.lock().unwrap().push((format!("{s:?}"), Instant::now()))
         }));
         let start = Instant::now();
-        let out = boolean(&a, &b, op, &opts)?;
+        let out = pool.install(|| boolean(&a, &b, op, &opts))?;
         let end = Instant::now();
         let marks = marks.lock().unwrap();
+        if reps > 10 {
+            for (k, (name, t)) in marks.iter().enumerate() {
+                let next = marks.get(k + 1).map_or(end, |x| x.1);
+                if sums.len() <= k {
+                    sums.push((name.clone(), 0.0));
+                }
+                sums[k].1 += (next - *t).as_secs_f64();
+            }
+            total += (end - start).as_secs_f64();
+            continue;
+        }
         let mut line = String::new();
         for (k, (name, t)) in marks.iter().enumerate() {
             let next = marks.get(k + 1).map_or(end, |x| x.1);
@@ -54,6 +78,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             (end - start).as_secs_f64() * 1e3,
             out.mesh.triangles().len()
         );
+    }
+    if reps > 10 {
+        let mut line = String::new();
+        for (name, s) in &sums {
+            line += &format!("{name} {:.1} µs  ", s / reps as f64 * 1e6);
+        }
+        println!("{line}| mean total {:.1} µs", total / reps as f64 * 1e6);
     }
     Ok(())
 }

@@ -128,9 +128,16 @@ pub(crate) fn morton_order(mesh: &Mesh) -> Vec<u32> {
 
 /// [`morton_order`] of the triangles whose box meets the closed box `within` (all of
 /// them for `None`). Exact `f64` comparisons, so no triangle touching `within` is left out.
+/// The Morton grid spans the box of the triangles ordered.
 fn morton_order_within(mesh: &Mesh, within: Option<&Aabb>) -> Vec<u32> {
-    let n = mesh.triangles.len();
-    let Some(all) = mesh.bounds() else {
+    let (ids, frame) = match within {
+        None => (None, mesh.bounds()),
+        Some(w) => {
+            let (ids, frame) = meeting_box(mesh, w);
+            (Some(ids), frame)
+        }
+    };
+    let Some(all) = frame else {
         return Vec::new();
     };
     let scale: [f64; 3] = std::array::from_fn(|k| {
@@ -141,29 +148,90 @@ fn morton_order_within(mesh: &Mesh, within: Option<&Aabb>) -> Vec<u32> {
             0.0
         }
     });
-    let meets = |t: u32| {
-        within.is_none_or(|w| {
-            let [lo, hi] = tri_box(mesh, t);
-            (0..3).all(|k| lo[k] <= w.max[k] && hi[k] >= w.min[k])
-        })
+    let keyed_of = |t: u32| {
+        let [a, b, c] = mesh.corners(t as usize);
+        let cell = |k: usize| {
+            let centre = (a[k] + b[k] + c[k]) / 3.0 - all.min[k];
+            ((centre * scale[k]).max(0.0) as u64).min((1 << 21) - 1)
+        };
+        (
+            spread(cell(0)) | spread(cell(1)) << 1 | spread(cell(2)) << 2,
+            t,
+        )
     };
-    let mut keyed: Vec<(u64, u32)> = (0..n as u32)
-        .into_par_iter()
-        .filter(|&t| meets(t))
-        .map(|t| {
-            let [a, b, c] = mesh.corners(t as usize);
-            let cell = |k: usize| {
-                let centre = (a[k] + b[k] + c[k]) / 3.0 - all.min[k];
-                ((centre * scale[k]).max(0.0) as u64).min((1 << 21) - 1)
-            };
-            (
-                spread(cell(0)) | spread(cell(1)) << 1 | spread(cell(2)) << 2,
-                t,
-            )
-        })
-        .collect();
+    let mut keyed: Vec<(u64, u32)> = match &ids {
+        None => (0..mesh.triangles.len() as u32)
+            .into_par_iter()
+            .map(keyed_of)
+            .collect(),
+        Some(ids) => ids.par_iter().map(|&t| keyed_of(t)).collect(),
+    };
     sort_keyed(&mut keyed);
     keyed.into_par_iter().map(|(_, t)| t).collect()
+}
+
+/// The triangles of `mesh` whose boxes meet the closed box `w`, in order, and the box of
+/// their corners (`None` when there are none). A triangle's box misses `w` exactly when
+/// all three corners lie beyond one of its six sides, so each vertex is placed once (a bit
+/// per side it lies beyond, as in Cohen–Sutherland clipping) and a triangle is kept when
+/// its corners' bits have none in common: the same exact comparisons as the boxes', made
+/// per vertex rather than per triangle corner.
+fn meeting_box(mesh: &Mesh, w: &Aabb) -> (Vec<u32>, Option<Aabb>) {
+    const CHUNK: usize = 1 << 14;
+    let beyond = |p: &[f64; 3]| -> u8 {
+        (0..3).fold(0, |c, k| {
+            c | u8::from(p[k] < w.min[k]) << (2 * k) | u8::from(p[k] > w.max[k]) << (2 * k + 1)
+        })
+    };
+    let codes: Vec<u8> = mesh
+        .positions
+        .par_iter()
+        .with_min_len(CHUNK)
+        .map(beyond)
+        .collect();
+    let part = |first: usize| {
+        let tris = &mesh.triangles[first..(first + CHUNK).min(mesh.triangles.len())];
+        let mut ids = Vec::new();
+        let mut frame: Option<Aabb> = None;
+        for (t, tri) in (first..).zip(tris) {
+            if codes[tri[0] as usize] & codes[tri[1] as usize] & codes[tri[2] as usize] != 0 {
+                continue;
+            }
+            ids.push(t as u32);
+            for &v in tri {
+                let p = &mesh.positions[v as usize];
+                frame = Some(match frame {
+                    None => Aabb { min: *p, max: *p },
+                    Some(b) => Aabb {
+                        min: std::array::from_fn(|k| b.min[k].min(p[k])),
+                        max: std::array::from_fn(|k| b.max[k].max(p[k])),
+                    },
+                });
+            }
+        }
+        (ids, frame)
+    };
+    if mesh.triangles.len() <= CHUNK {
+        return part(0);
+    }
+    let parts: Vec<(Vec<u32>, Option<Aabb>)> = (0..mesh.triangles.len())
+        .into_par_iter()
+        .step_by(CHUNK)
+        .map(part)
+        .collect();
+    let mut ids = Vec::with_capacity(parts.iter().map(|p| p.0.len()).sum());
+    let mut frame: Option<Aabb> = None;
+    for (i, f) in parts {
+        ids.extend(i);
+        frame = match (frame, f) {
+            (Some(x), Some(y)) => Some(Aabb {
+                min: std::array::from_fn(|k| x.min[k].min(y.min[k])),
+                max: std::array::from_fn(|k| x.max[k].max(y.max[k])),
+            }),
+            (x, y) => x.or(y),
+        };
+    }
+    (ids, frame)
 }
 
 /// Sorts `(Morton code, triangle)` pairs: one counting-sort pass by the top bits of the
@@ -319,6 +387,16 @@ impl Bvh {
             }
         }
         out
+    }
+
+    /// A box that holds every indexed triangle (the root's box, rounded outward to
+    /// `f32`); `None` for an empty tree.
+    pub fn bounds(&self) -> Option<Aabb> {
+        let root = self.nodes.first()?;
+        Some(Aabb {
+            min: root.bbox[0].map(f64::from),
+            max: root.bbox[1].map(f64::from),
+        })
     }
 
     /// Number of triangles indexed.
@@ -762,6 +840,64 @@ mod tests {
             "{}",
             small.len()
         );
+    }
+
+    #[test]
+    fn meeting_a_box_keeps_exactly_the_triangles_whose_boxes_meet_it() {
+        // A terrain of 20,000 triangles (split into parts between threads) and a sphere
+        // of 480 (one part); random boxes, boxes whose sides pass exactly through
+        // vertices (touching counts), a box that is one vertex, and one beside the mesh.
+        let mut rng = crate::test_util::Rng(0xb0c5);
+        let terrain = crate::shapes::heightfield([-5.0, -5.0], [5.0, 5.0], 100, 100, |x, y| {
+            0.3 * (x + 0.5 * y).sin()
+        });
+        let ball = uv_sphere([0.3, -0.2, 0.0], 0.7, 20, 13);
+        for m in [&terrain, &ball] {
+            let mut boxes = Vec::new();
+            for _ in 0..40 {
+                let (c, r): ([f64; 3], [f64; 3]) = (
+                    std::array::from_fn(|_| 10.0 * rng.unit() - 5.0),
+                    std::array::from_fn(|_| 3.0 * rng.unit()),
+                );
+                boxes.push(Aabb {
+                    min: std::array::from_fn(|k| c[k] - r[k]),
+                    max: std::array::from_fn(|k| c[k] + r[k]),
+                });
+            }
+            for _ in 0..40 {
+                let n = m.positions.len() as u64;
+                let (p, q) = (
+                    m.positions[(rng.next() % n) as usize],
+                    m.positions[(rng.next() % n) as usize],
+                );
+                boxes.push(Aabb {
+                    min: std::array::from_fn(|k| p[k].min(q[k])),
+                    max: std::array::from_fn(|k| p[k].max(q[k])),
+                });
+                boxes.push(Aabb { min: p, max: p });
+            }
+            boxes.push(Aabb {
+                min: [6.0, 0.0, 0.0],
+                max: [7.0, 1.0, 1.0],
+            });
+            for w in &boxes {
+                let wb = [w.min, w.max];
+                let want: Vec<u32> = (0..m.triangles.len() as u32)
+                    .filter(|&t| overlaps(&tri_box(m, t), &wb))
+                    .collect();
+                let frame = want.iter().fold(None::<Aabb>, |b, &t| {
+                    let [lo, hi] = tri_box(m, t);
+                    Some(match b {
+                        None => Aabb { min: lo, max: hi },
+                        Some(b) => Aabb {
+                            min: std::array::from_fn(|k| b.min[k].min(lo[k])),
+                            max: std::array::from_fn(|k| b.max[k].max(hi[k])),
+                        },
+                    })
+                });
+                assert_eq!(meeting_box(m, w), (want, frame), "{w:?}");
+            }
+        }
     }
 
     #[test]

@@ -172,10 +172,31 @@ impl Roots {
     /// Puts the triangles of all `uses` into one component.
     fn join_all(&mut self, uses: &[EdgeUse]) {
         for w in uses.windows(2) {
-            let (a, b) = (self.find(w[0].triangle), self.find(w[1].triangle));
-            if a != b {
-                self.parent[a.max(b) as usize] = a.min(b);
+            self.join(w[0].triangle, w[1].triangle);
+        }
+    }
+
+    /// Puts `a` and `b` into one component: Rem's algorithm with splicing (the two paths
+    /// to the roots climbed together, the higher parent always spliced onto the lower),
+    /// which stops as soon as the paths meet and shortens them as it goes; every parent
+    /// stays below its child, so each root is its set's lowest triangle.
+    fn join(&mut self, mut a: u32, mut b: u32) {
+        let parent = &mut self.parent;
+        loop {
+            let (pa, pb) = (parent[a as usize], parent[b as usize]);
+            if pa == pb {
+                return;
             }
+            if pa < pb {
+                (a, b) = (b, a);
+                continue;
+            }
+            // parent(a) > parent(b): splice `a` onto `b`'s parent.
+            parent[a as usize] = pb;
+            if pa == a {
+                return; // `a` was a root: now linked
+            }
+            a = pa;
         }
     }
 
@@ -580,6 +601,52 @@ mod tests {
         }
         assert_eq!(got.is_closed(), full.is_closed());
         got
+    }
+
+    #[test]
+    fn union_find_gives_the_connected_components() {
+        // Random joins (chains, stars, repeats, self-joins) against labels spread to a
+        // fixed point: the same sets, numbered in order of their first element.
+        let mut rng = crate::test_util::Rng(0x5e75);
+        for (n, joins) in [(1usize, 3usize), (50, 30), (2000, 1500), (2000, 5000)] {
+            let pairs: Vec<(u32, u32)> = (0..joins)
+                .map(|_| {
+                    let a = (rng.next() % n as u64) as u32;
+                    (a, (rng.next() % n as u64) as u32)
+                })
+                .collect();
+            let mut roots = Roots::new(n);
+            for &(a, b) in &pairs {
+                roots.join(a, b);
+            }
+            let mut least: Vec<u32> = (0..n as u32).collect();
+            let mut changed = true;
+            while changed {
+                changed = false;
+                for &(a, b) in &pairs {
+                    let m = least[a as usize].min(least[b as usize]);
+                    for x in [a, b] {
+                        if least[x as usize] != m {
+                            least[x as usize] = m;
+                            changed = true;
+                        }
+                    }
+                }
+            }
+            let mut number = vec![u32::MAX; n];
+            let mut count = 0;
+            let want: Vec<u32> = least
+                .iter()
+                .map(|&r| {
+                    if number[r as usize] == u32::MAX {
+                        number[r as usize] = count;
+                        count += 1;
+                    }
+                    number[r as usize]
+                })
+                .collect();
+            assert_eq!(roots.labels(), (count as usize, want), "{n} {joins}");
+        }
     }
 
     #[test]

@@ -205,12 +205,32 @@ fn candidate_pairs(a: &Mesh, b: &Mesh, from_grid: bool) -> Vec<(u32, u32)> {
         if from_grid {
             crate::broad::overlapping_pairs(a, b)
         } else {
-            // Each tree holds only the triangles that can meet the other mesh at all.
-            let (Some(box_a), Some(box_b)) = (a.bounds(), b.bounds()) else {
-                return Vec::new();
+            // Each tree holds only the triangles that can meet the other mesh at all. Of
+            // meshes of unlike sizes (a terrain and a pit shell), the larger is indexed
+            // within the smaller's box first, and the smaller within what that kept:
+            // the larger mesh's own box is never needed.
+            let (na, nb) = (a.triangles.len(), b.triangles.len());
+            let (ba, bb) = if na >= 4 * nb || nb >= 4 * na {
+                let (small, large) = if na < nb { (a, b) } else { (b, a) };
+                let Some(box_small) = small.bounds() else {
+                    return Vec::new();
+                };
+                let tree_large = Bvh::new_within(large, &box_small);
+                let Some(box_kept) = tree_large.bounds() else {
+                    return Vec::new();
+                };
+                let tree_small = Bvh::new_within(small, &box_kept);
+                if na < nb {
+                    (tree_small, tree_large)
+                } else {
+                    (tree_large, tree_small)
+                }
+            } else {
+                let (Some(box_a), Some(box_b)) = (a.bounds(), b.bounds()) else {
+                    return Vec::new();
+                };
+                rayon::join(|| Bvh::new_within(a, &box_b), || Bvh::new_within(b, &box_a))
             };
-            let (ba, bb) =
-                rayon::join(|| Bvh::new_within(a, &box_b), || Bvh::new_within(b, &box_a));
             ba.overlapping_pairs(a, &bb, b)
         }
     };

@@ -942,3 +942,38 @@ fn grids_touching_at_isolated_vertices_list_each_point_once() {
         assert_eq!(seam.positions[p as usize][2], 0.0);
     }
 }
+
+/// Meshes of unlike sizes (a terrain and a small solid over it, in both orders; a box
+/// resting exactly on the terrain's highest point): the larger is indexed within the
+/// smaller's box and the smaller within what that kept, and the candidate pairs are
+/// still every pair of overlapping boxes.
+#[test]
+fn meshes_of_unlike_sizes_give_every_overlapping_pair() {
+    let terrain =
+        crate::shapes::heightfield([-5.0, -5.0], [5.0, 5.0], 40, 40, |x, y| 0.2 * (x * y).sin());
+    let ball = uv_sphere([0.3, -0.2, 0.0], 0.7, 12, 7);
+    let top = terrain
+        .positions
+        .iter()
+        .copied()
+        .max_by(|p, q| p[2].total_cmp(&q[2]))
+        .unwrap();
+    let resting = Mesh::cuboid(
+        [top[0] - 0.5, top[1] - 0.5, top[2]],
+        [top[0] + 0.5, top[1] + 0.5, top[2] + 1.0],
+    );
+    for (a, b) in [
+        (&terrain, &ball),
+        (&ball, &terrain),
+        (&terrain, &resting),
+        (&resting, &terrain),
+    ] {
+        assert!(
+            a.triangles.len() >= 4 * b.triangles.len()
+                || b.triangles.len() >= 4 * a.triangles.len()
+        );
+        let want = Bvh::new(a).overlapping_pairs(a, &Bvh::new(b), b);
+        assert!(!want.is_empty());
+        assert_eq!(candidate_pairs(a, b, false), want);
+    }
+}
