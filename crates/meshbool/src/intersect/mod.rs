@@ -93,23 +93,11 @@ pub fn label_point(l: &Label, a: &Mesh, b: &Mesh) -> Point {
         (_, Feature::Vertex(v)) => Point::Explicit(pb(v)),
         (Feature::Edge(u, v), Feature::Face(t)) => {
             let [x, y, z] = b.corners(t as usize);
-            Point::Lpi {
-                p: pa(u),
-                q: pa(v),
-                a: x,
-                b: y,
-                c: z,
-            }
+            Point::lpi(pa(u), pa(v), x, y, z)
         }
         (Feature::Face(t), Feature::Edge(u, v)) => {
             let [x, y, z] = a.corners(t as usize);
-            Point::Lpi {
-                p: pb(u),
-                q: pb(v),
-                a: x,
-                b: y,
-                c: z,
-            }
+            Point::lpi(pb(u), pb(v), x, y, z)
         }
         (Feature::Edge(u, v), Feature::Edge(r, s)) => {
             let (p, q, r, s) = (pa(u), pa(v), pb(r), pb(s));
@@ -117,13 +105,7 @@ pub fn label_point(l: &Label, a: &Mesh, b: &Mesh) -> Point {
             let axis = (0..3)
                 .find(|&k| cross_sign(&p, &q, &r, &s, k) != Sign::Zero)
                 .unwrap_or(2);
-            Point::Ssi {
-                p,
-                q,
-                r,
-                s,
-                axis: axis as u8,
-            }
+            Point::ssi(p, q, r, s, axis as u8)
         }
         (Feature::Face(_), Feature::Face(_)) => {
             unreachable!("two faces do not meet in a single point")

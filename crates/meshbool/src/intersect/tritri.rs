@@ -206,13 +206,13 @@ fn on_plane(t: &Tri, s: [Sign; 3], o: &Tri) -> Vec<OnPlane> {
         let j = (i + 1) % 3;
         if s[i].times(s[j]) == Sign::Negative {
             out.push(OnPlane {
-                point: Prepared::new(Point::Lpi {
-                    p: t.corners()[i],
-                    q: t.corners()[j],
-                    a: o.corners()[0],
-                    b: o.corners()[1],
-                    c: o.corners()[2],
-                }),
+                point: Prepared::new(Point::lpi(
+                    t.corners()[i],
+                    t.corners()[j],
+                    o.corners()[0],
+                    o.corners()[1],
+                    o.corners()[2],
+                )),
                 own: edge(t.v[i], t.v[j]),
                 crossing: Some((t.corners()[i], t.corners()[j], s[i])),
             });
@@ -630,13 +630,13 @@ fn edge_crossings(own: &Tri, i: usize, other: &Tri, o: &Orients) -> [Option<Box<
     std::array::from_fn(|m| {
         let n = (m + 1) % 3;
         found[m].then(|| {
-            Box::new(Prepared::new(Point::Ssi {
-                p: own.corners()[i],
-                q: own.corners()[j],
-                r: other.corners()[m],
-                s: other.corners()[n],
-                axis: other.axis() as u8,
-            }))
+            Box::new(Prepared::new(Point::ssi(
+                own.corners()[i],
+                own.corners()[j],
+                other.corners()[m],
+                other.corners()[n],
+                other.axis() as u8,
+            )))
         })
     })
 }

@@ -239,6 +239,47 @@ impl Point {
         }
     }
 
+    /// Where segment `p q` crosses the plane of `a b c` ([`Point::Lpi`], same
+    /// precondition), as an explicit point when its coordinates are `f64` numbers known
+    /// exactly: a coordinate in which the segment is constant, or the plane square to an
+    /// axis, and the rest found along the segment in exact `f64` steps
+    /// ([`on_segment_exact`]). The faces and edges of boxes and CAD parts meet in such
+    /// points, and every later predicate on an explicit point is the cheap one.
+    pub fn lpi(p: [f64; 3], q: [f64; 3], a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> Point {
+        let known = std::array::from_fn(|k| {
+            if p[k] == q[k] {
+                Some(p[k])
+            } else if a[k] == b[k] && b[k] == c[k] {
+                Some(a[k])
+            } else {
+                None
+            }
+        });
+        match on_segment_exact(&p, &q, known) {
+            Some(x) => Point::Explicit(x),
+            None => Point::Lpi { p, q, a, b, c },
+        }
+    }
+
+    /// Where segments `p q` and `r s` cross ([`Point::Ssi`], same precondition), as an
+    /// explicit point when its coordinates are known exactly: a coordinate in which either
+    /// segment is constant, the rest found along one of them ([`Point::lpi`]).
+    pub fn ssi(p: [f64; 3], q: [f64; 3], r: [f64; 3], s: [f64; 3], axis: u8) -> Point {
+        let known = std::array::from_fn(|k| {
+            if p[k] == q[k] {
+                Some(p[k])
+            } else if r[k] == s[k] {
+                Some(r[k])
+            } else {
+                None
+            }
+        });
+        match on_segment_exact(&p, &q, known).or_else(|| on_segment_exact(&r, &s, known)) {
+            Some(x) => Point::Explicit(x),
+            None => Point::Ssi { p, q, r, s, axis },
+        }
+    }
+
     /// The input coordinates if the point is explicit.
     pub fn explicit(&self) -> Option<[f64; 3]> {
         match self {
@@ -246,6 +287,66 @@ impl Point {
             _ => None,
         }
     }
+}
+
+/// The point of the line through `p` and `q` (distinct) whose coordinates `known` are
+/// given, when all three are `f64` numbers found exactly: each unknown coordinate `i` is
+/// `p[i] + (x[j] − p[j]) (q[i] − p[i]) / (q[j] − p[j])` for a known `x[j]` in which the
+/// line is not constant, every step checked exact (error-free transformations: a sum's
+/// rounding error, a product's and a quotient's residual by a fused multiply-add, all
+/// zero, and no underflow). `None` when a step rounds, or nothing fixes the point.
+pub(crate) fn on_segment_exact(
+    p: &[f64; 3],
+    q: &[f64; 3],
+    known: [Option<f64>; 3],
+) -> Option<[f64; 3]> {
+    if let [Some(x), Some(y), Some(z)] = known {
+        return Some([x, y, z]);
+    }
+    let j = (0..3).find(|&j| known[j].is_some() && p[j] != q[j])?;
+    let (run, from) = (sub_exact(q[j], p[j])?, sub_exact(known[j]?, p[j])?);
+    let mut out = [0.0; 3];
+    for i in 0..3 {
+        out[i] = match known[i] {
+            Some(x) => x,
+            None => {
+                let step = div_exact(mul_exact(from, sub_exact(q[i], p[i])?)?, run)?;
+                sub_exact(p[i], -step)?
+            }
+        };
+    }
+    Some(out)
+}
+
+/// `a − b` when it is exact in `f64`: Knuth's two-sum error is zero (exact for any
+/// finite operands) and there is no overflow.
+fn sub_exact(a: f64, b: f64) -> Option<f64> {
+    let nb = -b;
+    let s = a + nb;
+    let bb = s - a;
+    let err = (a - (s - bb)) + (nb - bb);
+    (s.is_finite() && err == 0.0).then_some(s)
+}
+
+/// Whether `x` is zero or of magnitude in `[2^-200, 2^200]` ([`robust_safe`]'s range):
+/// products of two such numbers are multiples of `2^-504`, so a fused residual that is
+/// not exactly zero cannot round to zero.
+fn in_safe_range(x: f64) -> bool {
+    robust_safe(&[&[x, 0.0, 0.0]])
+}
+
+/// `a · b` when it is exact in `f64`: operands and product in [`in_safe_range`] and the
+/// fused residual `a · b − m` zero.
+fn mul_exact(a: f64, b: f64) -> Option<f64> {
+    let m = a * b;
+    ([a, b, m].into_iter().all(in_safe_range) && a.mul_add(b, -m) == 0.0).then_some(m)
+}
+
+/// `a / b` (`b ≠ 0`) when it is exact in `f64`: operands and quotient in
+/// [`in_safe_range`] and the fused residual `m · b − a` zero.
+fn div_exact(a: f64, b: f64) -> Option<f64> {
+    let m = a / b;
+    ([a, b, m].into_iter().all(in_safe_range) && b != 0.0 && m.mul_add(b, -a) == 0.0).then_some(m)
 }
 
 /// Plain `f64` evaluation, used only for approximate coordinates.

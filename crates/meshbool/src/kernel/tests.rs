@@ -900,3 +900,132 @@ fn dyadic_arithmetic_agrees_with_rationals_across_the_small_mantissa_limit() {
     }
     assert!(small > 1000 && big > 3000, "{small} {big}");
 }
+
+/// Seam points of boxes and grids (segments constant in a coordinate, planes square to an
+/// axis, coordinates on a grid of quarters; at unit size, UTM-shifted and scaled by
+/// 2^-30) and of random data: where the constructors give an explicit point it is the
+/// implicit point exactly (rational coordinates), and on the grids many are explicit.
+#[test]
+fn seam_points_with_exact_coordinates_are_made_explicit() {
+    let mut rng = Rng(0xe4ac7);
+    let mut explicit = [0usize; 2];
+    let grid = |rng: &mut Rng, offset: [f64; 3], scale: f64| -> [f64; 3] {
+        std::array::from_fn(|k| offset[k] + scale * ((rng.next() % 17) as f64 - 8.0) / 4.0)
+    };
+    for (offset, scale) in [([0.0; 3], 1.0), (UTM, 1.0), ([0.0; 3], 2f64.powi(-30))] {
+        let mut lpis = 0;
+        while lpis < 400 {
+            let [p, mut q, mut a, mut b, mut c] = [0; 5].map(|_| grid(&mut rng, offset, scale));
+            // A plane square to an axis, and a segment constant in one or two coordinates.
+            let (k, m) = ((rng.next() % 3) as usize, (rng.next() % 3) as usize);
+            if rng.next() % 2 == 0 {
+                (b[k], c[k]) = (a[k], a[k]);
+            }
+            match rng.next() % 3 {
+                0 => q[m] = p[m],
+                1 => (q[m], q[(m + 1) % 3]) = (p[m], p[(m + 1) % 3]),
+                _ => {}
+            }
+            if rng.next() % 4 == 0 {
+                a = rng.point(offset, scale);
+            }
+            let (sp, sq) = (
+                orient3d_explicit(&a, &b, &c, &p),
+                orient3d_explicit(&a, &b, &c, &q),
+            );
+            if sp == Sign::Zero || sq != sp.reversed() {
+                continue;
+            }
+            lpis += 1;
+            let implicit = Point::Lpi { p, q, a, b, c };
+            if let Point::Explicit(x) = Point::lpi(p, q, a, b, c) {
+                assert_eq!(qv(&x), oracle_point(&implicit), "{implicit:?}");
+                explicit[0] += 1;
+            }
+        }
+        let mut ssis = 0;
+        while ssis < 400 {
+            // Four points of one plane: square to an axis, or spanned by grid vectors.
+            let k = (rng.next() % 3) as usize;
+            let [p, q, r, s] = if rng.next() % 2 == 0 {
+                let level = grid(&mut rng, offset, scale)[k];
+                [0; 4].map(|_| {
+                    let mut x = grid(&mut rng, offset, scale);
+                    x[k] = level;
+                    x
+                })
+            } else {
+                let (o, u, v) = (
+                    grid(&mut rng, offset, scale),
+                    grid(&mut rng, [0.0; 3], scale),
+                    grid(&mut rng, [0.0; 3], scale),
+                );
+                [0; 4].map(|_| {
+                    let (i, j) = ((rng.next() % 3) as f64, (rng.next() % 3) as f64);
+                    std::array::from_fn(|x| o[x] + i * u[x] + j * v[x])
+                })
+            };
+            let Some(axis) = (0..3).find(|&ax| cross_sign(&p, &q, &r, &s, ax) != Sign::Zero) else {
+                continue;
+            };
+            if orient3d_explicit(&p, &q, &r, &s) != Sign::Zero {
+                continue; // the spanned points rounded off their plane
+            }
+            ssis += 1;
+            let implicit = Point::Ssi {
+                p,
+                q,
+                r,
+                s,
+                axis: axis as u8,
+            };
+            if let Point::Explicit(x) = Point::ssi(p, q, r, s, axis as u8) {
+                assert_eq!(qv(&x), oracle_point(&implicit), "{implicit:?}");
+                explicit[1] += 1;
+            }
+        }
+    }
+    assert!(explicit[0] > 100 && explicit[1] > 100, "{explicit:?}");
+    // Random data: the same, wherever a step happens to be exact.
+    for _ in 0..2000 {
+        let implicit = random_lpi(&mut rng, [0.0; 3], 1.0);
+        let Point::Lpi { p, q, a, b, c } = implicit.clone() else {
+            unreachable!()
+        };
+        if let Point::Explicit(x) = Point::lpi(p, q, a, b, c) {
+            assert_eq!(qv(&x), oracle_point(&implicit));
+        }
+    }
+}
+
+/// The exact steps of [`on_segment_exact`] answer exactly when the rounded result is the
+/// exact one (rationals), for operands from grids, UTM coordinates and random doubles of
+/// many sizes.
+#[test]
+fn exact_steps_are_taken_only_when_exact() {
+    let mut rng = Rng(0x57e9);
+    let value = |rng: &mut Rng| -> f64 {
+        match rng.next() % 4 {
+            0 => ((rng.next() % 33) as f64 - 16.0) / 8.0,
+            1 => UTM[(rng.next() % 3) as usize] + ((rng.next() % 9) as f64 - 4.0) / 4.0,
+            2 => (rng.unit() - 0.5) * 2f64.powi((rng.next() % 60) as i32 - 30),
+            _ => 3.0 * ((rng.next() % 11) as f64 - 5.0),
+        }
+    };
+    let mut taken = [0usize; 3];
+    for _ in 0..20_000 {
+        let (a, b) = (value(&mut rng), value(&mut rng));
+        let want = q(a) - q(b);
+        assert_eq!(sub_exact(a, b).is_some(), q(a - b) == want, "{a} - {b}");
+        taken[0] += usize::from(sub_exact(a, b).is_some());
+        let want = q(a) * q(b);
+        assert_eq!(mul_exact(a, b).is_some(), q(a * b) == want, "{a} * {b}");
+        taken[1] += usize::from(mul_exact(a, b).is_some());
+        if b != 0.0 {
+            let want = q(a) / q(b);
+            assert_eq!(div_exact(a, b).is_some(), q(a / b) == want, "{a} / {b}");
+            taken[2] += usize::from(div_exact(a, b).is_some());
+        }
+    }
+    assert!(taken.iter().all(|&t| t > 2000 && t < 19_000), "{taken:?}");
+}
