@@ -140,8 +140,16 @@ fn morton_order_within(mesh: &Mesh, within: Option<&Aabb>) -> Vec<u32> {
     let Some(all) = frame else {
         return Vec::new();
     };
+    // Cells of one size on every axis over the box of what a boolean's tree keeps (often
+    // flat, next to the other mesh); per axis over a whole mesh's box, as the winding
+    // numbers' clusters of open surfaces have always had them.
+    let longest = (0..3).map(|k| all.max[k] - all.min[k]).fold(0.0, f64::max);
     let scale: [f64; 3] = std::array::from_fn(|k| {
-        let ext = all.max[k] - all.min[k];
+        let ext = if ids.is_some() {
+            longest
+        } else {
+            all.max[k] - all.min[k]
+        };
         if ext > 0.0 {
             ((1u64 << 21) - 1) as f64 / ext
         } else {

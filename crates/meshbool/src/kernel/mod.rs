@@ -839,6 +839,11 @@ fn orient2d_shewchuk(a: &Point, b: &Point, c: &Point, axis: usize) -> Option<Sig
 pub(crate) fn orient2d_safe(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], axis: usize) -> Sign {
     debug_assert!(robust_safe(&[a, b, c]));
     let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+    // On one line square to an axis of the projection (edges of boxes and grids):
+    // collinear, where the adaptive predicate would take its slowest path to zero.
+    if (a[i] == b[i] && b[i] == c[i]) || (a[j] == b[j] && b[j] == c[j]) {
+        return Sign::Zero;
+    }
     let c2 = |p: &[f64; 3]| robust::Coord { x: p[i], y: p[j] };
     Sign::of_f64(robust::orient2d(c2(a), c2(b), c2(c)))
 }

@@ -1029,3 +1029,30 @@ fn exact_steps_are_taken_only_when_exact() {
     }
     assert!(taken.iter().all(|&t| t > 2000 && t < 19_000), "{taken:?}");
 }
+
+/// Orientations of input points on a small grid (many on lines square to an axis, where
+/// `orient2d_safe` answers zero before Shewchuk's predicate), UTM-shifted too: the
+/// rational orientation in every projection.
+#[test]
+fn grid_orientations_agree_with_rationals() {
+    let mut rng = Rng(0x0219);
+    let mut zeros = 0;
+    for offset in [[0.0; 3], UTM] {
+        for _ in 0..3000 {
+            let [a, b, c] = [0; 3].map(|_| -> [f64; 3] {
+                std::array::from_fn(|k| offset[k] + (rng.next() % 3) as f64 * 0.5)
+            });
+            for axis in 0..3 {
+                let (pa, pb, pc) = (Point::Explicit(a), Point::Explicit(b), Point::Explicit(c));
+                let want = oracle_orient2d(&pa, &pb, &pc, axis);
+                assert_eq!(
+                    orient2d_safe(&a, &b, &c, axis),
+                    want,
+                    "{a:?} {b:?} {c:?} {axis}"
+                );
+                zeros += usize::from(want == Sign::Zero);
+            }
+        }
+    }
+    assert!(zeros > 2000 && zeros < 17_000, "{zeros}");
+}
