@@ -525,6 +525,16 @@ impl Query<'_> {
     /// once at the end. No allocation per node pair.
     fn run(&self, root: Task) -> Vec<(u32, u32)> {
         let mut out = Vec::new();
+        // Tasks are queued only for boxes that overlap (a pair of nodes is tested before
+        // it is queued, not after).
+        if let Task::Below(x, y) = root {
+            if !overlaps_f(
+                &self.a.nodes[x as usize].bbox,
+                &self.b.nodes[y as usize].bbox,
+            ) {
+                return out;
+            }
+        }
         let mut frontier = vec![root];
         while frontier.len() < TASKS && !frontier.is_empty() {
             let mut next = Vec::with_capacity(2 * frontier.len());
@@ -571,14 +581,16 @@ impl Query<'_> {
                     self.leaf_within(n, out);
                 } else {
                     let (l, r) = (x + 1, n.start);
-                    next.extend([Task::Within(l), Task::Within(r), Task::Below(l, r)]);
+                    next.extend([Task::Within(l), Task::Within(r)]);
+                    let nodes = &self.a.nodes;
+                    if overlaps_f(&nodes[l as usize].bbox, &nodes[r as usize].bbox) {
+                        next.push(Task::Below(l, r));
+                    }
                 }
             }
             Task::Below(x, y) => {
                 let (na, nb) = (&self.a.nodes[x as usize], &self.b.nodes[y as usize]);
-                if !overlaps_f(&na.bbox, &nb.bbox) {
-                    return;
-                }
+                debug_assert!(overlaps_f(&na.bbox, &nb.bbox));
                 let split_a = match (na.count > 0, nb.count > 0) {
                     (true, true) => {
                         self.leaves(na, nb, out);
@@ -593,9 +605,17 @@ impl Query<'_> {
                     }
                 };
                 if split_a {
-                    next.extend([Task::Below(x + 1, y), Task::Below(na.start, y)]);
+                    for c in [x + 1, na.start] {
+                        if overlaps_f(&self.a.nodes[c as usize].bbox, &nb.bbox) {
+                            next.push(Task::Below(c, y));
+                        }
+                    }
                 } else {
-                    next.extend([Task::Below(x, y + 1), Task::Below(x, nb.start)]);
+                    for c in [y + 1, nb.start] {
+                        if overlaps_f(&na.bbox, &self.b.nodes[c as usize].bbox) {
+                            next.push(Task::Below(x, c));
+                        }
+                    }
                 }
             }
         }
