@@ -131,12 +131,11 @@ impl Local {
     /// is known to lie on the outer triangle's edge `k` (from corner `k` to `k + 1`).
     pub(crate) fn insert(
         &mut self,
-        x: Point,
+        x: Prepared,
         approx: [f64; 3],
         on_edge: Option<usize>,
     ) -> Result<u32, Failed> {
         let x_on = on_edge.map_or(0, |k| 1u8 << k);
-        let x = Prepared::new(x);
         let mut t = self.last.min(self.tris.len() as u32 - 1);
         let mut steps = 0usize;
         let mut turn = 0usize;

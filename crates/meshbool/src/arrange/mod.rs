@@ -10,7 +10,7 @@ use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
 use crate::intersect::{Feature, Seam, Source};
-use crate::kernel::{orient2d, Point, Triangle};
+use crate::kernel::{orient2d, Enclosure, Point, Prepared, Triangle};
 use crate::Mesh;
 
 mod local;
@@ -136,6 +136,8 @@ struct SeamPoints {
     input_vertices: usize,
     /// The exact point of every added vertex.
     added: Vec<Point>,
+    /// Its enclosures when the seam had them (same order).
+    enclosed: Vec<Option<Enclosure>>,
     /// Added vertices inside each input triangle's face.
     on_face: FxHashMap<u32, Vec<u32>>,
     /// Added vertices on each input edge `(lo, hi)`.
@@ -151,6 +153,7 @@ fn index_seam_points(mesh: &Mesh, seam: &Seam, side: Source) -> SeamPoints {
     let mut positions = mesh.positions.clone();
     let input_vertices = positions.len();
     let mut added: Vec<Point> = Vec::new();
+    let mut enclosed = Vec::new();
     let mut on_face: FxHashMap<u32, Vec<u32>> = FxHashMap::default();
     let mut on_edge: FxHashMap<(u32, u32), Vec<u32>> = FxHashMap::default();
     let seam_vertex: Vec<u32> = seam
@@ -163,6 +166,7 @@ fn index_seam_points(mesh: &Mesh, seam: &Seam, side: Source) -> SeamPoints {
                 let id = positions.len() as u32;
                 positions.push(seam.positions[s]);
                 added.push(seam.exact[s].clone());
+                enclosed.push(seam.enclosure(s));
                 match f {
                     Feature::Face(t) => on_face.entry(t).or_default().push(id),
                     Feature::Edge(u, v) => on_edge.entry((u, v)).or_default().push(id),
@@ -176,6 +180,7 @@ fn index_seam_points(mesh: &Mesh, seam: &Seam, side: Source) -> SeamPoints {
         positions,
         input_vertices,
         added,
+        enclosed,
         on_face,
         on_edge,
         seam_vertex,
@@ -296,8 +301,11 @@ fn cut_triangle(
         // An input vertex here is one of the mesh's own lying on this triangle (the
         // self-arrangement); the rest are constructed seam points.
         let exact = match (g as usize).checked_sub(points.input_vertices) {
-            Some(i) => points.added[i].clone(),
-            None => Point::Explicit(mesh.positions[g as usize]),
+            Some(i) => match &points.enclosed[i] {
+                Some(e) => Prepared::with(points.added[i].clone(), e.clone()),
+                None => Prepared::new(points.added[i].clone()),
+            },
+            None => Prepared::new(Point::Explicit(mesh.positions[g as usize])),
         };
         let l = lt.insert(exact, points.positions[g as usize], on_edge)?;
         if l as usize == ids.len() {

@@ -14,7 +14,7 @@ use rustc_hash::FxHashMap;
 
 use super::{cut_triangle, cut_triangles, reassemble, seam_edges, Arranged, SeamPoints};
 use crate::intersect::{Feature, Seam};
-use crate::kernel::{orient2d, Point, Sign, Triangle};
+use crate::kernel::{orient2d, Enclosure, Point, Sign, Triangle};
 use crate::Mesh;
 
 /// Per triangle: its constraints (seam edges), each with the triangle it comes from
@@ -60,6 +60,7 @@ fn index_own_points(mesh: &Mesh, seam: &Seam) -> SeamPoints {
         positions: mesh.positions.clone(),
         input_vertices: mesh.positions.len(),
         added: Vec::new(),
+        enclosed: Vec::new(),
         on_face: FxHashMap::default(),
         on_edge: FxHashMap::default(),
         seam_vertex: Vec::with_capacity(seam.points.len()),
@@ -72,6 +73,7 @@ fn index_own_points(mesh: &Mesh, seam: &Seam) -> SeamPoints {
         let id = points.positions.len() as u32;
         points.positions.push(seam.positions[s]);
         points.added.push(seam.exact[s].clone());
+        points.enclosed.push(seam.enclosure(s));
         for (k, f) in [l.a, l.b].into_iter().enumerate() {
             if k == 1 && f == l.a {
                 break;
@@ -143,8 +145,10 @@ fn add_crossings(mesh: &Mesh, points: &mut SeamPoints, cons: &Sourced) {
         let id = points.positions.len() as u32;
         let planes = tri.map(|t| mesh.corners(t as usize));
         let p = Point::Tpi(Box::new(planes));
-        points.positions.push(p.approx());
+        let e = Enclosure::of(&p);
+        points.positions.push(p.approx_within(&e));
         points.added.push(p);
+        points.enclosed.push(Some(e));
         for t in tri {
             points.on_face.entry(t).or_default().push(id);
         }

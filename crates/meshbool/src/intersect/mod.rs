@@ -10,7 +10,7 @@ use rayon::prelude::*;
 use rustc_hash::{FxHashMap, FxHashSet};
 
 use crate::bvh::Bvh;
-use crate::kernel::{cross_sign, Point, Sign};
+use crate::kernel::{cross_sign, Enclosure, Point, Sign};
 use crate::Mesh;
 
 mod curves;
@@ -61,6 +61,9 @@ pub struct Seam {
     pub exact: Vec<Point>,
     /// Approximate coordinates of the points (same order), for output only.
     pub positions: Vec<[f64; 3]>,
+    /// Interval enclosures of the points (same order, or empty), evaluated once for the
+    /// arrangements of both meshes.
+    pub(crate) enclosures: Vec<Enclosure>,
     /// Distinct seam segments.
     pub segments: Vec<SeamSegment>,
     /// Every triangle pair each segment was found in (a segment along an edge lies in
@@ -81,6 +84,28 @@ pub struct Seam {
     /// labels name such a point by the vertex alone; the arrangement inserts the vertex
     /// into those features. Empty for the seam of two meshes.
     pub vertex_on: Vec<(u32, Feature)>,
+}
+
+impl Seam {
+    /// The enclosure of point `s`, when the seam has one for every point.
+    pub(crate) fn enclosure(&self, s: usize) -> Option<Enclosure> {
+        if self.enclosures.len() == self.exact.len() {
+            self.enclosures.get(s).cloned()
+        } else {
+            None
+        }
+    }
+
+    /// The enclosures and approximate positions of the exact points.
+    fn locate(&mut self) {
+        self.enclosures = self.exact.par_iter().map(Enclosure::of).collect();
+        self.positions = self
+            .exact
+            .par_iter()
+            .zip(&self.enclosures)
+            .map(|(p, e)| p.approx_within(e))
+            .collect();
+    }
 }
 
 /// The canonical exact construction of a labelled seam point.
@@ -176,7 +201,7 @@ pub(crate) fn intersect_with(a: &Mesh, b: &Mesh, grid_from: usize) -> Seam {
         .par_iter()
         .map(|l| label_point(l, a, b))
         .collect();
-    seam.positions = seam.exact.par_iter().map(Point::approx).collect();
+    seam.locate();
     seam
 }
 
@@ -362,7 +387,7 @@ pub fn self_seam(m: &Mesh, pairs: &[(u32, u32)]) -> Seam {
         .par_iter()
         .map(|l| label_point(l, m, m))
         .collect();
-    seam.positions = seam.exact.par_iter().map(Point::approx).collect();
+    seam.locate();
     seam
 }
 

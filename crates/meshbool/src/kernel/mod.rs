@@ -208,34 +208,39 @@ impl Point {
     /// almost parallel to the plane it crosses, where `f64` can lose every digit and even
     /// divide zero by zero — from the exact homogeneous coordinates.
     pub fn approx(&self) -> [f64; 3] {
+        match self {
+            Point::Explicit(p) => *p,
+            _ => self.approx_within(&Enclosure::of(self)),
+        }
+    }
+
+    /// [`Point::approx`] given the point's enclosure (evaluated once for both).
+    pub(crate) fn approx_within(&self, e: &Enclosure) -> [f64; 3] {
         /// 2^-40: how close, relative to the point's size, the `f64` evaluation must be shown
         /// to be.
         const CLOSE: f64 = 1.0 / (1u64 << 40) as f64;
-        match self {
-            Point::Explicit(p) => *p,
-            _ => {
-                let [x, y, z, w] = self.homogeneous::<F64>();
-                let fast = [x.0 / w.0, y.0 / w.0, z.0 / w.0];
-                let [x, y, z, w] = self.homogeneous::<Interval>();
-                let close = match [x, y, z].map(|c| c.div(&w)) {
-                    [Some(x), Some(y), Some(z)] => {
-                        let size = [x, y, z]
-                            .iter()
-                            .fold(0.0f64, |m, c| m.max(c.lo().abs()).max(c.hi().abs()));
-                        [x, y, z].iter().all(|c| c.hi() - c.lo() <= size * CLOSE)
-                    }
-                    _ => false,
-                };
-                if close {
-                    return fast;
-                }
-                let [x, y, z, w] = self.homogeneous::<Dyadic>();
-                let exact = [x, y, z].map(|c| c.div_f64(&w));
-                match exact {
-                    [Some(x), Some(y), Some(z)] => [x, y, z],
-                    _ => fast,
-                }
+        if let Point::Explicit(p) = self {
+            return *p;
+        }
+        let [x, y, z, w] = self.homogeneous::<F64>();
+        let fast = [x.0 / w.0, y.0 / w.0, z.0 / w.0];
+        let close = match &e.coords {
+            Some(c) => {
+                let size = c
+                    .iter()
+                    .fold(0.0f64, |m, c| m.max(c.lo().abs()).max(c.hi().abs()));
+                c.iter().all(|c| c.hi() - c.lo() <= size * CLOSE)
             }
+            None => false,
+        };
+        if close {
+            return fast;
+        }
+        let [x, y, z, w] = self.homogeneous::<Dyadic>();
+        let exact = [x, y, z].map(|c| c.div_f64(&w));
+        match exact {
+            [Some(x), Some(y), Some(z)] => [x, y, z],
+            _ => fast,
         }
     }
 
@@ -717,11 +722,20 @@ pub(crate) struct Prepared {
     exact: std::cell::OnceCell<Box<[Dyadic; 4]>>,
 }
 
-impl Prepared {
-    /// Prepares `point`.
-    pub(crate) fn new(point: Point) -> Prepared {
+/// Interval enclosures of a point's homogeneous coordinates and of its coordinates (when
+/// `W`'s enclosure excludes zero): what [`Prepared`] keeps and [`Point::approx`] checks,
+/// evaluated once for a seam point that several triangles take in.
+#[derive(Clone, Debug)]
+pub(crate) struct Enclosure {
+    enclosure: [Interval; 4],
+    coords: Option<[Interval; 3]>,
+}
+
+impl Enclosure {
+    /// The enclosures of `point`.
+    pub(crate) fn of(point: &Point) -> Enclosure {
         let enclosure = point.homogeneous::<Interval>();
-        let coords = match &point {
+        let coords = match point {
             Point::Explicit(p) => Some(p.map(Interval::from_f64)),
             _ => {
                 let [x, y, z, w] = &enclosure;
@@ -731,10 +745,23 @@ impl Prepared {
                 }
             }
         };
+        Enclosure { enclosure, coords }
+    }
+}
+
+impl Prepared {
+    /// Prepares `point`.
+    pub(crate) fn new(point: Point) -> Prepared {
+        let e = Enclosure::of(&point);
+        Prepared::with(point, e)
+    }
+
+    /// Prepares `point` whose enclosure `e` ([`Enclosure::of`]) was evaluated before.
+    pub(crate) fn with(point: Point, e: Enclosure) -> Prepared {
         Prepared {
             point,
-            enclosure,
-            coords,
+            enclosure: e.enclosure,
+            coords: e.coords,
             exact: std::cell::OnceCell::new(),
         }
     }
