@@ -95,7 +95,26 @@ fn piece_width(m: &Mesh, t: u32, typical: f64) -> Option<f64> {
         crate::vec3::sub(&c, &a),
         crate::vec3::sub(&c, &b),
     );
-    let twice_area = crate::vec3::norm(&crate::vec3::cross(&u, &v));
+    let normal = crate::vec3::cross(&u, &v);
+    // The box is over LARGE widths long exactly when it is over LARGE · PIECE typical
+    // sizes long or over LARGE · SLIVER altitudes (altitude = twice the area over the
+    // longest edge). Most triangles are clearly neither: told from squares, without a
+    // root, with a margin far above their rounding (and only where the squares neither
+    // overflow nor underflow).
+    let squared = |x: &[f64; 3]| crate::vec3::dot(x, x);
+    let (edge2, area2) = (
+        squared(&u).max(squared(&v)).max(squared(&w)),
+        squared(&normal),
+    );
+    let (k, lhs) = (LARGE * SLIVER, long * long * edge2);
+    if long <= 0.999 * LARGE * PIECE * typical
+        && area2.is_normal()
+        && lhs.is_finite()
+        && lhs <= 0.998 * k * k * area2
+    {
+        return None;
+    }
+    let twice_area = crate::vec3::norm(&normal);
     let edge = crate::vec3::norm(&u)
         .max(crate::vec3::norm(&v))
         .max(crate::vec3::norm(&w));
@@ -662,6 +681,63 @@ mod tests {
             found += check(&ring, &moved);
         }
         assert!(found > 1000, "{found}");
+    }
+
+    /// [`piece_width`] as it was before its shortcut for triangles clearly not large.
+    fn piece_width_in_full(m: &Mesh, t: u32, typical: f64) -> Option<f64> {
+        let long = longest_side(&tri_box(m, t));
+        if !long.is_finite() {
+            return None;
+        }
+        let [a, b, c] = m.corners(t as usize);
+        let (u, v, w) = (
+            crate::vec3::sub(&b, &a),
+            crate::vec3::sub(&c, &a),
+            crate::vec3::sub(&c, &b),
+        );
+        let twice_area = crate::vec3::norm(&crate::vec3::cross(&u, &v));
+        let edge = crate::vec3::norm(&u)
+            .max(crate::vec3::norm(&v))
+            .max(crate::vec3::norm(&w));
+        let altitude = if edge > 0.0 { twice_area / edge } else { 0.0 };
+        let width = (PIECE * typical).min((SLIVER * altitude).max(long / MAX_PIECES as f64));
+        (width > 0.0 && long > LARGE * width).then_some(width)
+    }
+
+    #[test]
+    fn the_shortcut_for_small_triangles_keeps_every_piece_width() {
+        // Regular triangles, slivers and needles of every aspect, around the two limits
+        // (8 typical sizes long, 64 altitudes long), collinear and repeated corners, at
+        // unit size and at 2^±300 (squares that underflow or overflow).
+        let mut rng = crate::test_util::Rng(0x91ec);
+        let mut m = Mesh::default();
+        for _ in 0..20_000 {
+            let scale = [1.0, 2f64.powi(-300), 2f64.powi(300)][(rng.next() % 3) as usize];
+            let long = scale * 16.0 * rng.unit();
+            let thin = long
+                * [1.0, 1.0 / 64.0, 1.0 / 60.0, 1.0 / 70.0, 0.0][(rng.next() % 5) as usize]
+                * (0.9 + 0.2 * rng.unit());
+            let a = [scale * rng.unit(), scale * rng.unit(), scale * rng.unit()];
+            let b = [a[0] + long, a[1], a[2]];
+            let c = [
+                a[0] + long * rng.unit(),
+                a[1] + thin,
+                a[2] + thin * rng.unit(),
+            ];
+            let v = m.positions.len() as u32;
+            m.positions.extend([a, b, c]);
+            m.triangles
+                .push([v, v + 1, if rng.next() % 50 == 0 { v } else { v + 2 }]);
+        }
+        let mut large = 0;
+        for typical in [1.0, 2f64.powi(-300), 2f64.powi(300), 0.9, 2.1] {
+            for t in 0..m.triangles.len() as u32 {
+                let want = piece_width_in_full(&m, t, typical);
+                assert_eq!(piece_width(&m, t, typical), want, "{t} {typical}");
+                large += usize::from(want.is_some());
+            }
+        }
+        assert!(large > 10_000 && large < 90_000, "{large}");
     }
 
     #[test]
