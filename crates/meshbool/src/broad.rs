@@ -85,6 +85,40 @@ const MAX_PIECES: usize = 32;
 /// sliver about [`SLIVER`] times its own width; a triangle is cut when its box is over
 /// [`LARGE`] piece widths long.
 fn piece_width(m: &Mesh, t: u32, typical: f64) -> Option<f64> {
+    if clearly_whole(m, t, typical) {
+        return None;
+    }
+    piece_width_in_full(m, t, typical)
+}
+
+/// True when triangle `t` is certainly not cut into pieces ([`piece_width`] is `None`),
+/// told without roots. The box is over LARGE widths long exactly when it is over
+/// LARGE · PIECE typical sizes long or over LARGE · SLIVER altitudes (altitude = twice
+/// the area over the longest edge). Most triangles are clearly neither: told from
+/// squares, with a margin far above their rounding (and only where the squares neither
+/// overflow nor underflow); `false` leaves the answer to [`piece_width_in_full`].
+fn clearly_whole(m: &Mesh, t: u32, typical: f64) -> bool {
+    let long = longest_side(&tri_box(m, t));
+    let [a, b, c] = m.corners(t as usize);
+    let (u, v, w) = (
+        crate::vec3::sub(&b, &a),
+        crate::vec3::sub(&c, &a),
+        crate::vec3::sub(&c, &b),
+    );
+    let squared = |x: &[f64; 3]| crate::vec3::dot(x, x);
+    let (edge2, area2) = (
+        squared(&u).max(squared(&v)).max(squared(&w)),
+        squared(&crate::vec3::cross(&u, &v)),
+    );
+    let (k, lhs) = (LARGE * SLIVER, long * long * edge2);
+    long <= 0.999 * LARGE * PIECE * typical
+        && area2.is_normal()
+        && lhs.is_finite()
+        && lhs <= 0.998 * k * k * area2
+}
+
+/// [`piece_width`] by its definition, with roots.
+fn piece_width_in_full(m: &Mesh, t: u32, typical: f64) -> Option<f64> {
     let long = longest_side(&tri_box(m, t));
     if !long.is_finite() {
         return None;
@@ -95,26 +129,7 @@ fn piece_width(m: &Mesh, t: u32, typical: f64) -> Option<f64> {
         crate::vec3::sub(&c, &a),
         crate::vec3::sub(&c, &b),
     );
-    let normal = crate::vec3::cross(&u, &v);
-    // The box is over LARGE widths long exactly when it is over LARGE · PIECE typical
-    // sizes long or over LARGE · SLIVER altitudes (altitude = twice the area over the
-    // longest edge). Most triangles are clearly neither: told from squares, without a
-    // root, with a margin far above their rounding (and only where the squares neither
-    // overflow nor underflow).
-    let squared = |x: &[f64; 3]| crate::vec3::dot(x, x);
-    let (edge2, area2) = (
-        squared(&u).max(squared(&v)).max(squared(&w)),
-        squared(&normal),
-    );
-    let (k, lhs) = (LARGE * SLIVER, long * long * edge2);
-    if long <= 0.999 * LARGE * PIECE * typical
-        && area2.is_normal()
-        && lhs.is_finite()
-        && lhs <= 0.998 * k * k * area2
-    {
-        return None;
-    }
-    let twice_area = crate::vec3::norm(&normal);
+    let twice_area = crate::vec3::norm(&crate::vec3::cross(&u, &v));
     let edge = crate::vec3::norm(&u)
         .max(crate::vec3::norm(&v))
         .max(crate::vec3::norm(&w));
@@ -681,27 +696,6 @@ mod tests {
             found += check(&ring, &moved);
         }
         assert!(found > 1000, "{found}");
-    }
-
-    /// [`piece_width`] as it was before its shortcut for triangles clearly not large.
-    fn piece_width_in_full(m: &Mesh, t: u32, typical: f64) -> Option<f64> {
-        let long = longest_side(&tri_box(m, t));
-        if !long.is_finite() {
-            return None;
-        }
-        let [a, b, c] = m.corners(t as usize);
-        let (u, v, w) = (
-            crate::vec3::sub(&b, &a),
-            crate::vec3::sub(&c, &a),
-            crate::vec3::sub(&c, &b),
-        );
-        let twice_area = crate::vec3::norm(&crate::vec3::cross(&u, &v));
-        let edge = crate::vec3::norm(&u)
-            .max(crate::vec3::norm(&v))
-            .max(crate::vec3::norm(&w));
-        let altitude = if edge > 0.0 { twice_area / edge } else { 0.0 };
-        let width = (PIECE * typical).min((SLIVER * altitude).max(long / MAX_PIECES as f64));
-        (width > 0.0 && long > LARGE * width).then_some(width)
     }
 
     #[test]

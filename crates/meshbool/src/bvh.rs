@@ -208,13 +208,7 @@ fn meeting_box(mesh: &Mesh, w: &Aabb) -> (Vec<u32>, Option<Aabb>) {
             ids.push(t as u32);
             for &v in tri {
                 let p = &mesh.positions[v as usize];
-                frame = Some(match frame {
-                    None => Aabb { min: *p, max: *p },
-                    Some(b) => Aabb {
-                        min: std::array::from_fn(|k| b.min[k].min(p[k])),
-                        max: std::array::from_fn(|k| b.max[k].max(p[k])),
-                    },
-                });
+                frame = Some(frame.map_or(Aabb { min: *p, max: *p }, |b| b.grown(p)));
             }
         }
         (ids, frame)
@@ -232,10 +226,7 @@ fn meeting_box(mesh: &Mesh, w: &Aabb) -> (Vec<u32>, Option<Aabb>) {
     for (i, f) in parts {
         ids.extend(i);
         frame = match (frame, f) {
-            (Some(x), Some(y)) => Some(Aabb {
-                min: std::array::from_fn(|k| x.min[k].min(y.min[k])),
-                max: std::array::from_fn(|k| x.max[k].max(y.max[k])),
-            }),
+            (Some(x), Some(y)) => Some(x.grown(&y.min).grown(&y.max)),
             (x, y) => x.or(y),
         };
     }
@@ -915,13 +906,7 @@ mod tests {
                     .collect();
                 let frame = want.iter().fold(None::<Aabb>, |b, &t| {
                     let [lo, hi] = tri_box(m, t);
-                    Some(match b {
-                        None => Aabb { min: lo, max: hi },
-                        Some(b) => Aabb {
-                            min: std::array::from_fn(|k| b.min[k].min(lo[k])),
-                            max: std::array::from_fn(|k| b.max[k].max(hi[k])),
-                        },
-                    })
+                    Some(b.map_or(Aabb { min: lo, max: hi }, |b| b.grown(&lo).grown(&hi)))
                 });
                 assert_eq!(meeting_box(m, w), (want, frame), "{w:?}");
             }

@@ -45,7 +45,7 @@ impl Aabb {
     }
 
     /// The box grown to hold `p`.
-    fn grown(self, p: &[f64; 3]) -> Aabb {
+    pub(crate) fn grown(self, p: &[f64; 3]) -> Aabb {
         Aabb {
             min: std::array::from_fn(|k| self.min[k].min(p[k])),
             max: std::array::from_fn(|k| self.max[k].max(p[k])),

@@ -337,7 +337,9 @@ fn sub_exact(a: f64, b: f64) -> Option<f64> {
 /// products of two such numbers are multiples of `2^-504`, so a fused residual that is
 /// not exactly zero cannot round to zero.
 fn in_safe_range(x: f64) -> bool {
-    robust_safe(&[&[x, 0.0, 0.0]])
+    const LO: f64 = 6.223_015_277_861_142e-61; // 2^-200
+    const HI: f64 = 1.606_938_044_258_990_3e60; // 2^200
+    x == 0.0 || (LO..=HI).contains(&x.abs())
 }
 
 /// `a · b` when it is exact in `f64`: operands and product in [`in_safe_range`] and the
@@ -472,12 +474,10 @@ pub fn orient3d_plane(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &Point) -> Si
 /// `[2^-200, 2^200]`, all differences and their error terms are multiples of `2^-252` and
 /// below `2^201`, so products of three stay in the normal range.
 pub(crate) fn robust_safe(points: &[&[f64; 3]]) -> bool {
-    const LO: f64 = 6.223_015_277_861_142e-61; // 2^-200
-    const HI: f64 = 1.606_938_044_258_990_3e60; // 2^200
     points
         .iter()
         .flat_map(|p| p.iter())
-        .all(|&x| x == 0.0 || (LO..=HI).contains(&x.abs()))
+        .all(|&x| in_safe_range(x))
 }
 
 fn plane_side_explicit<T: Num>(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> T {
