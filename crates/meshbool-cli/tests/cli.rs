@@ -276,6 +276,57 @@ fn boolean_commands_give_exact_cube_volumes() {
 }
 
 #[test]
+fn timings_name_every_stage_and_add_up() {
+    let a = write_cube("ta.stl", [0.0; 3], [1.0; 3]);
+    let b = write_cube("tb.stl", [0.5, 0.25, 0.0], [1.5, 1.0, 1.0]);
+    let out = tmp("timed.stl");
+    let r = meshbool(&[
+        "union",
+        a.to_str().unwrap(),
+        b.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--timings",
+    ]);
+    assert!(r.status.success());
+    let err = String::from_utf8_lossy(&r.stderr);
+    // "   0.001 s  stage", one line per stage shown, then the whole.
+    let lines: Vec<(f64, &str)> = err
+        .lines()
+        .filter_map(|l| {
+            let (secs, stage) = l.trim_start().split_once(" s  ")?;
+            Some((secs.parse().ok()?, stage))
+        })
+        .collect();
+    let stages: Vec<&str> = lines.iter().map(|l| l.1).collect();
+    assert_eq!(
+        stages,
+        [
+            "reading the inputs, checking for self-intersections",
+            "intersecting",
+            "cutting along the seam",
+            "classifying inside/outside",
+            "merging the result",
+            "writing",
+            "in all"
+        ],
+        "{err}"
+    );
+    let parts: f64 = lines[..lines.len() - 1].iter().map(|l| l.0).sum();
+    let all = lines[lines.len() - 1].0;
+    assert!((parts - all).abs() <= 0.004 && all > 0.0, "{err}");
+    // Without the flag, no timings.
+    let plain = meshbool(&[
+        "union",
+        a.to_str().unwrap(),
+        b.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!String::from_utf8_lossy(&plain.stderr).contains(" s  in all"));
+}
+
+#[test]
 fn boolean_orients_inconsistent_input_or_refuses_it_with_no_orient() {
     let t = data("kirra_terrain.obj");
     let c = data("kirra_cylinder.obj");

@@ -220,6 +220,194 @@ impl Roots {
     }
 }
 
+/// A half-edge `a → b` with id `h` as [`SeamTopology::new`] buckets it: higher vertex and
+/// id in one sortable word.
+fn seam_word(a: u32, b: u32, h: u32) -> u64 {
+    (u64::from(a.max(b)) << 32) | u64::from(h)
+}
+
+/// The edges whose lower vertex lies in one range, as [`SeamTopology::new`] needs them.
+struct SeamPiece {
+    /// The seam edges in the range, in order, with the start of each one's uses.
+    edges: Vec<[u32; 2]>,
+    offsets: Vec<u32>,
+    uses: Vec<EdgeUse>,
+    /// Whether the range has an edge, and whether every one of its edges is closed.
+    any: bool,
+    closed: bool,
+}
+
+impl SeamPiece {
+    /// Scans the edges whose lower vertex is in `v0..v1`: those on the `seam` (sorted;
+    /// `on_seam` marks their lower vertices) are listed with their uses, and the triangles
+    /// around every other edge are handed to `join`.
+    fn scan(
+        mesh: &Mesh,
+        v0: u32,
+        v1: u32,
+        seam: &[[u32; 2]],
+        on_seam: &[bool],
+        join: impl FnMut(&[EdgeUse]),
+    ) -> SeamPiece {
+        let (start, half) = bucket_by_lower(mesh, v0, v1, seam_word);
+        SeamPiece::of_buckets(mesh, v0, &start, half, seam, on_seam, join)
+    }
+
+    /// [`SeamPiece::scan`] of the half-edges already bucketed by lower vertex from `v0`
+    /// on, as [`seam_word`]s.
+    fn of_buckets(
+        mesh: &Mesh,
+        v0: u32,
+        start: &[u32],
+        mut half: Vec<u64>,
+        seam: &[[u32; 2]],
+        on_seam: &[bool],
+        mut join: impl FnMut(&[EdgeUse]),
+    ) -> SeamPiece {
+        let mut out = SeamPiece {
+            edges: Vec::new(),
+            offsets: Vec::new(),
+            uses: Vec::new(),
+            any: !half.is_empty(),
+            closed: true,
+        };
+        let mut run: Vec<EdgeUse> = Vec::new();
+        for i in 0..start.len() - 1 {
+            let lo = v0 as usize + i;
+            let bucket = &mut half[start[i] as usize..start[i + 1] as usize];
+            bucket.sort_unstable();
+            let mut rest = &*bucket;
+            while let Some(&first) = rest.first() {
+                let hi = (first >> 32) as u32;
+                let n = rest.iter().take_while(|&&w| (w >> 32) as u32 == hi).count();
+                run.clear();
+                run.extend(rest[..n].iter().map(|&w| EdgeUse::of(mesh, lo, w as u32)));
+                // Two uses, or more in as many pairs of opposite directions (closed
+                // parts glued along the edge): the winding number is an integer.
+                out.closed &=
+                    n == 2 || (n > 2 && 2 * run.iter().filter(|u| u.forward).count() == n);
+                let edge = [lo as u32, hi];
+                if on_seam[lo] && seam.binary_search(&edge).is_ok() {
+                    out.edges.push(edge);
+                    out.offsets.push(out.uses.len() as u32);
+                    out.uses.extend_from_slice(&run);
+                } else {
+                    join(&run);
+                }
+                rest = &rest[n..];
+            }
+        }
+        out
+    }
+}
+
+/// Union-find over triangles (or any ids) that threads join into together: the
+/// concurrent form of [`Roots`]. A parent only ever moves to a lower id, and a root is linked, by
+/// compare-and-swap, only under a lower root; so each root is its set's lowest triangle
+/// whatever order the joins came in, and [`SharedRoots::labels`] equals [`Roots::labels`].
+pub(crate) struct SharedRoots {
+    parent: Vec<std::sync::atomic::AtomicU32>,
+}
+
+impl SharedRoots {
+    pub(crate) fn new(n: usize) -> Self {
+        use rayon::prelude::*;
+        SharedRoots {
+            parent: (0..n as u32)
+                .into_par_iter()
+                .map(std::sync::atomic::AtomicU32::new)
+                .collect(),
+        }
+    }
+
+    /// The root of `x`, halving the path on the way (a parent is replaced by its own
+    /// parent where no other thread changed it meanwhile).
+    pub(crate) fn find(&self, mut x: u32) -> u32 {
+        use std::sync::atomic::Ordering::Relaxed;
+        loop {
+            let p = self.parent[x as usize].load(Relaxed);
+            if p == x {
+                return x;
+            }
+            let g = self.parent[p as usize].load(Relaxed);
+            if g != p {
+                let _ = self.parent[x as usize].compare_exchange_weak(p, g, Relaxed, Relaxed);
+            }
+            x = g;
+        }
+    }
+
+    /// Puts the triangles of all `uses` into one component.
+    fn join_all(&self, uses: &[EdgeUse]) {
+        for w in uses.windows(2) {
+            self.join(w[0].triangle, w[1].triangle);
+        }
+    }
+
+    /// Puts `a` and `b` into one component: the higher root is linked under the lower,
+    /// again from the roots if another thread linked it first.
+    pub(crate) fn join(&self, a: u32, b: u32) {
+        use std::sync::atomic::Ordering::{AcqRel, Relaxed};
+        let (mut a, mut b) = (a, b);
+        loop {
+            (a, b) = (self.find(a), self.find(b));
+            if a == b {
+                return;
+            }
+            let (lo, hi) = (a.min(b), a.max(b));
+            if self.parent[hi as usize]
+                .compare_exchange(hi, lo, AcqRel, Relaxed)
+                .is_ok()
+            {
+                return;
+            }
+        }
+    }
+
+    /// [`Roots::labels`]: a triangle is the first of its component exactly when it is
+    /// its root, so a component's number is its root's rank among the roots.
+    fn labels(self) -> (usize, Vec<u32>) {
+        use rayon::prelude::*;
+        const CHUNK: usize = 1 << 16;
+        let roots: Vec<u32> = (0..self.parent.len() as u32)
+            .into_par_iter()
+            .map(|t| self.find(t))
+            .collect();
+        let firsts: Vec<u32> = roots
+            .par_chunks(CHUNK)
+            .enumerate()
+            .map(|(c, r)| {
+                let base = (c * CHUNK) as u32;
+                r.iter()
+                    .enumerate()
+                    .filter(|&(i, &x)| x == base + i as u32)
+                    .count() as u32
+            })
+            .collect();
+        let mut base = Vec::with_capacity(firsts.len());
+        let mut count = 0u32;
+        for f in firsts {
+            base.push(count);
+            count += f;
+        }
+        let mut rank = vec![0u32; roots.len()];
+        rank.par_chunks_mut(CHUNK)
+            .zip(roots.par_chunks(CHUNK))
+            .enumerate()
+            .for_each(|(c, (rank, r))| {
+                let (mut next, first) = (base[c], (c * CHUNK) as u32);
+                for (i, (k, &x)) in rank.iter_mut().zip(r).enumerate() {
+                    if x == first + i as u32 {
+                        *k = next;
+                        next += 1;
+                    }
+                }
+            });
+        let label = roots.par_iter().map(|&r| rank[r as usize]).collect();
+        (count as usize, label)
+    }
+}
+
 /// What the boolean's classification needs of an arranged mesh's edges, without the full
 /// adjacency of [`EdgeTopology`] (a fraction of its memory and time on large meshes): the
 /// patches (components joined across every edge but the seam edges), the uses of the seam
@@ -243,6 +431,7 @@ impl SeamTopology {
     /// The seam structure of `mesh` cut along `seam` (vertex
     /// pairs, in any order; pairs that are not edges of the mesh are ignored).
     pub fn new(mesh: &Mesh, seam: &[[u32; 2]]) -> Self {
+        use rayon::prelude::*;
         let nv = mesh.positions.len();
         let mut seam: Vec<[u32; 2]> = seam.iter().map(|&[u, v]| [u.min(v), u.max(v)]).collect();
         seam.sort_unstable();
@@ -251,42 +440,40 @@ impl SeamTopology {
         for &[u, _] in &seam {
             on_seam[u as usize] = true;
         }
-        // (higher vertex, half-edge id) per lower vertex, as one sortable word.
-        let (start, mut half) = bucket_by_lower(mesh, 0, nv as u32, |a, b, h| {
-            (u64::from(a.max(b)) << 32) | u64::from(h)
-        });
+        let threads = rayon::current_num_threads();
+        let (pieces, (patches, patch)) = if threads <= 2 || mesh.triangles.len() < 1 << 16 {
+            let mut roots = Roots::new(mesh.triangles.len());
+            let piece = SeamPiece::scan(mesh, 0, nv as u32, &seam, &on_seam, |run| {
+                roots.join_all(run)
+            });
+            (vec![piece], roots.labels())
+        } else {
+            // Vertex ranges side by side, joining into one shared union-find.
+            let roots = SharedRoots::new(mesh.triangles.len());
+            let step = nv.div_ceil(4 * threads.min(64)) as u32;
+            let pieces = bucket_ranges(mesh, step, seam_word)
+                .into_par_iter()
+                .map(|(v0, _, start, half)| {
+                    SeamPiece::of_buckets(mesh, v0, &start, half, &seam, &on_seam, |run| {
+                        roots.join_all(run)
+                    })
+                })
+                .collect();
+            (pieces, roots.labels())
+        };
         let mut out = SeamTopology {
-            closed: !half.is_empty(),
+            closed: pieces.iter().any(|p| p.any) && pieces.iter().all(|p| p.closed),
+            patches,
+            patch,
             ..SeamTopology::default()
         };
-        let mut roots = Roots::new(mesh.triangles.len());
-        let mut run: Vec<EdgeUse> = Vec::new();
-        for lo in 0..nv {
-            let bucket = &mut half[start[lo] as usize..start[lo + 1] as usize];
-            bucket.sort_unstable();
-            let mut rest = &*bucket;
-            while let Some(&first) = rest.first() {
-                let hi = (first >> 32) as u32;
-                let n = rest.iter().take_while(|&&w| (w >> 32) as u32 == hi).count();
-                run.clear();
-                run.extend(rest[..n].iter().map(|&w| EdgeUse::of(mesh, lo, w as u32)));
-                // Two uses, or more in as many pairs of opposite directions (closed
-                // parts glued along the edge): the winding number is an integer.
-                out.closed &=
-                    n == 2 || (n > 2 && 2 * run.iter().filter(|u| u.forward).count() == n);
-                let edge = [lo as u32, hi];
-                if on_seam[lo] && seam.binary_search(&edge).is_ok() {
-                    out.edges.push(edge);
-                    out.offsets.push(out.uses.len() as u32);
-                    out.uses.extend_from_slice(&run);
-                } else {
-                    roots.join_all(&run);
-                }
-                rest = &rest[n..];
-            }
+        for p in pieces {
+            let base = out.uses.len() as u32;
+            out.edges.extend(p.edges);
+            out.offsets.extend(p.offsets.iter().map(|&o| o + base));
+            out.uses.extend(p.uses);
         }
         out.offsets.push(out.uses.len() as u32);
-        (out.patches, out.patch) = roots.labels();
         out
     }
 
@@ -390,30 +577,37 @@ pub struct EdgeCounts {
 impl EdgeCounts {
     /// Counts the edges of `mesh` by kind, the same counts as
     /// [`EdgeTopology::kind_counts`] without building the adjacency: what the input checks
-    /// and result reports need, in a fraction of the memory. The vertex range is split
-    /// among the threads; each buckets the half-edges whose lower vertex is in its range
-    /// (a counting sort) and counts the runs of each small bucket sorted by higher vertex.
+    /// and result reports need, in a fraction of the memory. The half-edges are bucketed
+    /// by lower vertex (a counting sort, in vertex ranges side by side on several threads)
+    /// and the runs of each small bucket sorted by higher vertex are counted.
     pub fn of(mesh: &Mesh) -> EdgeCounts {
         use rayon::prelude::*;
         let nv = mesh.positions.len();
-        let parts = if mesh.triangles.len() < 1 << 16 {
-            1
-        } else {
-            rayon::current_num_threads().clamp(1, 64)
+        let threads = rayon::current_num_threads();
+        let add = |a: EdgeCounts, b: EdgeCounts| EdgeCounts {
+            boundary: a.boundary + b.boundary,
+            manifold: a.manifold + b.manifold,
+            inconsistent: a.inconsistent + b.inconsistent,
+            non_manifold: a.non_manifold + b.non_manifold,
         };
-        let step = nv.div_ceil(parts).max(1);
-        (0..parts)
+        if mesh.triangles.len() < 1 << 16 || threads == 1 {
+            return counts_in_range(mesh, 0, nv as u32);
+        }
+        if threads == 2 {
+            // Two ranges, each scanning every triangle: less memory traffic than listing
+            // the half-edges first, which pays from more threads on.
+            let half = (nv / 2) as u32;
+            let (a, b) = rayon::join(
+                || counts_in_range(mesh, 0, half),
+                || counts_in_range(mesh, half, nv as u32),
+            );
+            return add(a, b);
+        }
+        let step = nv.div_ceil(4 * threads.min(64)) as u32;
+        bucket_ranges(mesh, step, count_word)
             .into_par_iter()
-            .map(|p| {
-                let (v0, v1) = ((p * step).min(nv), ((p + 1) * step).min(nv));
-                counts_in_range(mesh, v0 as u32, v1 as u32)
-            })
-            .reduce(EdgeCounts::default, |a, b| EdgeCounts {
-                boundary: a.boundary + b.boundary,
-                manifold: a.manifold + b.manifold,
-                inconsistent: a.inconsistent + b.inconsistent,
-                non_manifold: a.non_manifold + b.non_manifold,
-            })
+            .map(|(v0, v1, start, mut half)| count_buckets(v1 - v0, &start, &mut half))
+            .reduce(EdgeCounts::default, add)
     }
 }
 
@@ -455,18 +649,91 @@ fn bucket_by_lower<T: Copy + Default>(
     (start, half)
 }
 
+/// The half-edges bucketed as [`bucket_by_lower`] buckets them, for every range of
+/// `step` vertices (`[p · step, (p + 1) · step)`, the last one clipped), on all threads:
+/// per chunk of triangles, each range's half-edges are listed in triangle order; then per
+/// range, its lists are bucketed in chunk order. Each range's `(v0, v1, start, half)` is
+/// what `bucket_by_lower(mesh, v0, v1, entry)` gives, every triangle read once.
+fn bucket_ranges<T: Copy + Default + Send + Sync>(
+    mesh: &Mesh,
+    step: u32,
+    entry: impl Fn(u32, u32, u32) -> T + Sync,
+) -> Vec<(u32, u32, Vec<u32>, Vec<T>)> {
+    use rayon::prelude::*;
+    const CHUNK: usize = 1 << 15;
+    let nv = mesh.positions.len() as u32;
+    let step = step.max(1);
+    let parts = nv.div_ceil(step).max(1) as usize;
+    let lists: Vec<Vec<(Vec<u32>, Vec<T>)>> = mesh
+        .triangles
+        .par_chunks(CHUNK)
+        .enumerate()
+        .map(|(c, tris)| {
+            let mut out: Vec<(Vec<u32>, Vec<T>)> =
+                (0..parts).map(|_| (Vec::new(), Vec::new())).collect();
+            for (i, tri) in tris.iter().enumerate() {
+                let t = (c * CHUNK + i) as u32;
+                for k in 0..3 {
+                    let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                    if a != b {
+                        let lo = a.min(b);
+                        let list = &mut out[(lo / step) as usize];
+                        list.0.push(lo);
+                        list.1.push(entry(a, b, 3 * t + k as u32));
+                    }
+                }
+            }
+            out
+        })
+        .collect();
+    (0..parts)
+        .into_par_iter()
+        .map(|p| {
+            let v0 = (p as u32).saturating_mul(step).min(nv);
+            let v1 = (p as u32 + 1).saturating_mul(step).min(nv);
+            let n = (v1 - v0) as usize;
+            let mut start = vec![0u32; n + 1];
+            for l in &lists {
+                for &lo in &l[p].0 {
+                    start[(lo - v0) as usize + 1] += 1;
+                }
+            }
+            for i in 0..n {
+                start[i + 1] += start[i];
+            }
+            let mut fill = start.clone();
+            let mut half = vec![T::default(); start[n] as usize];
+            for l in &lists {
+                for (&lo, &e) in l[p].0.iter().zip(&l[p].1) {
+                    let i = (lo - v0) as usize;
+                    half[fill[i] as usize] = e;
+                    fill[i] += 1;
+                }
+            }
+            (v0, v1, start, half)
+        })
+        .collect()
+}
+
 /// [`EdgeCounts::of`] for the edges whose lower vertex lies in `v0..v1`.
 fn counts_in_range(mesh: &Mesh, v0: u32, v1: u32) -> EdgeCounts {
-    let mut c = EdgeCounts::default();
     if v0 >= v1 {
-        return c;
+        return EdgeCounts::default();
     }
-    let n = (v1 - v0) as usize;
-    // Higher vertex and direction in one key, so that a bucket sorts by edge.
-    let (start, mut half) = bucket_by_lower(mesh, v0, v1, |a, b, _| {
-        (u64::from(a.max(b)) << 1) | u64::from(a < b)
-    });
-    for lo in 0..n {
+    let (start, mut half) = bucket_by_lower(mesh, v0, v1, count_word);
+    count_buckets(v1 - v0, &start, &mut half)
+}
+
+/// A half-edge `a → b` as [`EdgeCounts`] buckets it: higher vertex and direction in one
+/// key, so that a bucket sorts by edge.
+fn count_word(a: u32, b: u32, _: u32) -> u64 {
+    (u64::from(a.max(b)) << 1) | u64::from(a < b)
+}
+
+/// The edge counts of `n` buckets of [`count_word`]s, each bucket sorted here.
+fn count_buckets(n: u32, start: &[u32], half: &mut [u64]) -> EdgeCounts {
+    let mut c = EdgeCounts::default();
+    for lo in 0..n as usize {
         let bucket = &mut half[start[lo] as usize..start[lo + 1] as usize];
         bucket.sort_unstable();
         for run in bucket.chunk_by(|x, y| x >> 1 == y >> 1) {
@@ -645,7 +912,73 @@ mod tests {
                     number[r as usize]
                 })
                 .collect();
-            assert_eq!(roots.labels(), (count as usize, want), "{n} {joins}");
+            assert_eq!(
+                roots.labels(),
+                (count as usize, want.clone()),
+                "{n} {joins}"
+            );
+            // The shared union-find, joined from several threads at once.
+            use rayon::prelude::*;
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(4)
+                .build()
+                .unwrap();
+            let shared = SharedRoots::new(n);
+            pool.install(|| {
+                pairs
+                    .par_iter()
+                    .with_max_len(8)
+                    .for_each(|&(a, b)| shared.join(a, b))
+            });
+            assert_eq!(shared.labels(), (count as usize, want), "{n} {joins}");
+        }
+    }
+
+    /// The seam structure of a large mesh, cut into several patches, is the same from
+    /// vertex ranges side by side (many threads) as from one scan.
+    #[test]
+    fn seam_topology_is_the_same_on_many_threads() {
+        let sphere = |c: f64| crate::shapes::uv_sphere([c, 0.0, 0.0], 1.0, 160, 120);
+        // Two spheres, the second's vertices numbered first for some triangles.
+        let (a, b) = (sphere(0.0), sphere(5.0));
+        let mut m = a.clone();
+        let off = a.positions.len() as u32;
+        m.positions.extend(&b.positions);
+        m.triangles
+            .extend(b.triangles.iter().map(|t| t.map(|v| v + off)));
+        assert!(m.triangles.len() > 1 << 16);
+        let full = EdgeTopology::new(&m);
+        // Seam: three latitude rings of the first sphere, every 7th edge of the second.
+        let z = |v: u32| m.positions[v as usize][2];
+        let seam: Vec<[u32; 2]> = full
+            .edges
+            .iter()
+            .enumerate()
+            .filter(|&(e, &[u, v])| {
+                (u < off
+                    && z(u) == z(v)
+                    && [0.0, 0.5, -0.5].iter().any(|h| (z(u) - h).abs() < 0.02))
+                    || (u >= off && e % 7 == 0)
+            })
+            .map(|(_, &[u, v])| [v, u])
+            .collect();
+        let on = |threads| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| SeamTopology::new(&m, &seam))
+        };
+        let one = on(1);
+        assert!(one.patches > 4, "{}", one.patches);
+        assert!(one.is_closed());
+        for threads in [3, 8] {
+            let many = on(threads);
+            assert_eq!(many.edges, one.edges);
+            assert_eq!(many.offsets, one.offsets);
+            assert_eq!(many.uses, one.uses);
+            assert_eq!((many.patches, &many.patch), (one.patches, &one.patch));
+            assert_eq!(many.closed, one.closed);
         }
     }
 

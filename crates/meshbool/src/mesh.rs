@@ -2,7 +2,6 @@
 //! exact welding (on the crate's weld table) and bounds.
 
 use crate::error::{Error, Location, Result};
-use crate::Welder;
 
 /// A triangle mesh: vertex positions and triangles as triples of vertex indices
 /// (counter-clockwise seen from the side the normal points to).
@@ -214,11 +213,11 @@ impl Mesh {
     /// A mesh from a triangle soup (three corner positions per triangle), with corners at
     /// exactly equal positions welded into one vertex ([`weld_exact`]).
     pub fn from_soup(soup: &[[[f64; 3]; 3]]) -> Self {
-        let mut welder = Welder::with_capacity(soup.len() * 3);
-        let mut ids = Vec::with_capacity(soup.len() * 3);
-        welder.index_batch(soup.as_flattened(), &mut ids);
+        let corners = soup.as_flattened();
+        let (positions, ids) =
+            crate::welder::weld_all(corners.len(), |r, out| out.extend_from_slice(&corners[r]));
         Mesh {
-            positions: welder.into_positions(),
+            positions,
             triangles: ids.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
         }
     }
@@ -244,10 +243,12 @@ impl Mesh {
     /// names the first offending vertex.
     pub fn validate(&self) -> Result<()> {
         debug_assert!(self.check_indices().is_ok());
+        use rayon::prelude::*;
         if let Some(v) = self
             .positions
-            .iter()
-            .position(|p| p.iter().any(|c| !c.is_finite()))
+            .par_iter()
+            .with_min_len(1 << 14)
+            .position_first(|p| p.iter().any(|c| !c.is_finite()))
         {
             return Err(Error::invalid(
                 Location::Vertex(v),
@@ -358,17 +359,18 @@ impl Mesh {
 /// whose corners become equal stays, as a degenerate triangle), plus the old→new vertex map.
 /// Deterministic.
 pub fn weld_exact(mesh: &Mesh) -> Welded {
-    let mut welder = Welder::with_capacity(mesh.positions.len() * 6);
-    let mut vertex_map = Vec::with_capacity(mesh.positions.len());
-    welder.index_batch(&mesh.positions, &mut vertex_map);
+    use rayon::prelude::*;
+    let (positions, vertex_map) = crate::welder::weld_all(mesh.positions.len(), |r, out| {
+        out.extend_from_slice(&mesh.positions[r])
+    });
     let triangles = mesh
         .triangles
-        .iter()
+        .par_iter()
         .map(|t| t.map(|i| vertex_map[i as usize]))
         .collect();
     Welded {
         mesh: Mesh {
-            positions: welder.into_positions(),
+            positions,
             triangles,
         },
         vertex_map,

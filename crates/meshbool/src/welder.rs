@@ -22,7 +22,7 @@ fn position_key(p: &[f64; 3]) -> [u64; 3] {
 /// buckets holding full keys, so it stays in cache, and welding a 2M-triangle STL is about
 /// twice as fast. Equality is always confirmed on the stored position: exact, no false merges.
 ///
-/// Large inputs go through [`Welder::index_batch`], which first issues the table loads for a
+/// Positions go through [`Welder::index_hashed`] in blocks: it first issues the table loads for a
 /// whole batch of positions, independent of each other so that the processor overlaps their
 /// cache misses, and only then resolves them one by one.
 pub(crate) struct Welder {
@@ -56,7 +56,7 @@ impl Hashed {
     }
 }
 
-/// Positions per batch in [`Welder::index_batch`]: enough independent loads in flight to
+/// Positions per batch in [`Welder::index_hashed`]: enough independent loads in flight to
 /// hide memory latency, few enough to stay in L1.
 const BATCH: usize = 64;
 
@@ -93,6 +93,7 @@ impl Welder {
     }
 
     /// [`Welder::index`] of every position in `ps`, appended to `out` in order.
+    #[cfg(test)]
     pub(crate) fn index_batch(&mut self, ps: &[[f64; 3]], out: &mut Vec<u32>) {
         let mut hashed = Hashed::default();
         // Cache-sized pieces: the keys and hashes of a piece stay in L2 until used.
@@ -188,6 +189,219 @@ impl Welder {
     }
 }
 
+/// Corners per part of [`weld_all`]'s parallel path: the unit of its phases that run in
+/// corner order (a part's corner lists and ids stay in cache).
+const PART: usize = 1 << 16;
+
+/// One part's corners listed by shard ([`weld_all`], step 1), with their positions.
+struct Listed {
+    corners: Vec<Vec<u32>>,
+    positions: Vec<Vec<[f64; 3]>>,
+}
+
+/// One shard welded ([`weld_all`], step 2): its distinct positions, each of its corners'
+/// shard-local vertex id (in its corner order) and each of its vertices' first corner.
+struct Shard {
+    positions: Vec<[f64; 3]>,
+    local: Vec<u32>,
+    firsts: Vec<u32>,
+}
+
+/// The vertices first seen in one part ([`weld_all`], step 3): their positions in corner
+/// order and, per shard, the rank in that order of each of its vertices seen first here
+/// (in shard order).
+struct FirstSeen {
+    positions: Vec<[f64; 3]>,
+    rank: Vec<Vec<u32>>,
+}
+
+/// Welds `n` corners, `fill(range, out)` appending the positions of the corners in
+/// `range` to `out`: the distinct positions in order of first appearance and each
+/// corner's vertex id, exactly as one [`Welder`] fed the corners in order would give
+/// them, whatever the number of threads.
+///
+/// With fewer than eight threads, one welder takes the corners in blocks, the next block
+/// decoded and hashed on another thread meanwhile. With eight or more (measured on 16
+/// cores: at four threads, two files read side by side, the shards cost more than they
+/// save) and enough corners, the work is spread over shards (the top bits of a
+/// position's hash pick its shard, so equal positions share one):
+/// 1. in parallel over parts of the corners, each shard's corners are listed in order;
+/// 2. in parallel over shards, a [`Welder`] per shard numbers its vertices in order of
+///    first appearance within the shard;
+/// 3. in parallel over parts, the shard vertices first seen in the part are merged in
+///    corner order, which numbers them globally;
+/// 4. in parallel over parts, each corner's id is its shard vertex's global number.
+///
+/// No atomics and no locks; the same result as the serial welder because a vertex's
+/// global number is the rank of its first corner among all first corners.
+pub(crate) fn weld_all<F>(n: usize, fill: F) -> (Vec<[f64; 3]>, Vec<u32>)
+where
+    F: Fn(std::ops::Range<usize>, &mut Vec<[f64; 3]>) + Sync,
+{
+    use rayon::prelude::*;
+    let threads = rayon::current_num_threads();
+    if threads < 8 || n < 4 * PART {
+        // One welder; with two threads or more, the next block is decoded and hashed on
+        // one while the welder works on this one.
+        const BLOCK: usize = 3 << 12;
+        let mut welder = Welder::with_capacity(n);
+        let mut ids = Vec::with_capacity(n);
+        let decode = |start: usize, out: &mut Hashed| {
+            out.positions.clear();
+            fill(start..(start + BLOCK).min(n), &mut out.positions);
+            out.hash();
+        };
+        let (mut cur, mut next) = (Hashed::default(), Hashed::default());
+        decode(0, &mut cur);
+        for start in (0..n).step_by(BLOCK) {
+            if threads == 1 {
+                welder.index_hashed(&cur, &mut ids);
+                if start + BLOCK < n {
+                    decode(start + BLOCK, &mut next);
+                }
+            } else {
+                rayon::join(
+                    || {
+                        if start + BLOCK < n {
+                            decode(start + BLOCK, &mut next)
+                        }
+                    },
+                    || welder.index_hashed(&cur, &mut ids),
+                );
+            }
+            std::mem::swap(&mut cur, &mut next);
+        }
+        return (welder.into_positions(), ids);
+    }
+    // At least 8 shards (so `bits` > 0), at most 256 (a shard number fits a byte).
+    let shards = (4 * threads).next_power_of_two().clamp(8, 256);
+    let bits = shards.trailing_zeros();
+    let parts = n.div_ceil(PART);
+    let range = |k: usize| k * PART..((k + 1) * PART).min(n);
+    // 1. Per part, per shard: the part's corners in that shard, in order.
+    let lists: Vec<Listed> = (0..parts)
+        .into_par_iter()
+        .map(|k| {
+            let mut out = Listed {
+                corners: vec![Vec::with_capacity(PART / shards * 5 / 4); shards],
+                positions: vec![Vec::with_capacity(PART / shards * 5 / 4); shards],
+            };
+            let r = range(k);
+            let mut ps = Vec::with_capacity(r.len());
+            fill(r.clone(), &mut ps);
+            for (c, p) in r.zip(ps) {
+                let s = (key_hash(position_key(&p)) >> (64 - bits)) as usize;
+                out.corners[s].push(c as u32);
+                out.positions[s].push(p);
+            }
+            out
+        })
+        .collect();
+    // 2. Per shard: its vertices numbered in order of first appearance.
+    let welded: Vec<Shard> = (0..shards)
+        .into_par_iter()
+        .map(|s| {
+            let count: usize = lists.iter().map(|l| l.corners[s].len()).sum();
+            let mut welder = Welder::with_capacity(count);
+            let mut local = Vec::with_capacity(count);
+            let mut firsts = Vec::new();
+            let mut hashed = Hashed::default();
+            for (piece, ps) in lists
+                .iter()
+                .flat_map(|l| l.corners[s].chunks(4096).zip(l.positions[s].chunks(4096)))
+            {
+                hashed.fill(ps);
+                let before = local.len();
+                welder.index_hashed(&hashed, &mut local);
+                // Ids of new vertices come in order: a corner is its vertex's first
+                // exactly when its id is the next one.
+                for (&id, &c) in local[before..].iter().zip(piece) {
+                    if id as usize == firsts.len() {
+                        firsts.push(c);
+                    }
+                }
+            }
+            Shard {
+                positions: welder.into_positions(),
+                local,
+                firsts,
+            }
+        })
+        .collect();
+    // 3. Per part: the vertices first seen in it, in corner order.
+    let merged: Vec<FirstSeen> = (0..parts)
+        .into_par_iter()
+        .map(|k| {
+            let r = range(k);
+            let mut seen: Vec<u64> = Vec::new();
+            let mut from = vec![0usize; shards];
+            for (s, shard) in welded.iter().enumerate() {
+                let firsts = &shard.firsts;
+                let lo = firsts.partition_point(|&c| (c as usize) < r.start);
+                let hi = firsts.partition_point(|&c| (c as usize) < r.end);
+                from[s] = lo;
+                seen.extend(
+                    firsts[lo..hi]
+                        .iter()
+                        .map(|&c| (u64::from(c) << 8) | s as u64),
+                );
+            }
+            seen.sort_unstable();
+            let mut out = FirstSeen {
+                positions: Vec::with_capacity(seen.len()),
+                rank: vec![Vec::new(); shards],
+            };
+            for (i, &e) in seen.iter().enumerate() {
+                let s = (e & 0xff) as usize;
+                out.positions
+                    .push(welded[s].positions[from[s] + out.rank[s].len()]);
+                out.rank[s].push(i as u32);
+            }
+            out
+        })
+        .collect();
+    let mut base = Vec::with_capacity(parts);
+    let mut total = 0u32;
+    for m in &merged {
+        base.push(total);
+        total += m.positions.len() as u32;
+    }
+    let global: Vec<Vec<u32>> = (0..shards)
+        .into_par_iter()
+        .map(|s| {
+            merged
+                .iter()
+                .zip(&base)
+                .flat_map(|(m, &b)| m.rank[s].iter().map(move |&i| b + i))
+                .collect()
+        })
+        .collect();
+    // 4. Every corner's global vertex number, part by part.
+    // Where part k's corners of shard s start among the shard's corners.
+    let mut offset: Vec<Vec<usize>> = Vec::with_capacity(parts);
+    let mut next = vec![0usize; shards];
+    for l in &lists {
+        offset.push(next.clone());
+        for (n, c) in next.iter_mut().zip(&l.corners) {
+            *n += c.len();
+        }
+    }
+    let mut ids = vec![0u32; n];
+    ids.par_chunks_mut(PART).enumerate().for_each(|(k, out)| {
+        for (s, list) in lists[k].corners.iter().enumerate() {
+            let local = &welded[s].local[offset[k][s]..offset[k][s] + list.len()];
+            for (&c, &v) in list.iter().zip(local) {
+                out[c as usize - k * PART] = global[s][v as usize];
+            }
+        }
+    });
+    let mut positions = Vec::with_capacity(total as usize);
+    for m in merged {
+        positions.extend(m.positions);
+    }
+    (positions, ids)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -236,5 +450,62 @@ mod tests {
         assert!(positions.len() > 20_000, "{}", positions.len());
         let w = weld_exact(&Mesh::from_soup_unwelded(&soup));
         assert_eq!(w.mesh.triangles, triangles);
+    }
+
+    /// The sharded weld of many threads numbers vertices exactly as one welder does
+    /// (order of first appearance), on a soup large enough to take the sharded path,
+    /// where positions repeat across parts and shards, and some differ only in the last
+    /// bit or in the sign of zero.
+    #[test]
+    fn sharded_weld_numbers_vertices_as_one_welder_does() {
+        let mut rng = crate::test_util::Rng(0x9e37_79b9_7f4a_7c15);
+        let pool: Vec<[f64; 3]> = (0..60_000)
+            .map(|i| {
+                let j = i / 4;
+                let base = [0.25 + (j % 53) as f64, (j / 53) as f64, 1e6 + j as f64];
+                match i % 4 {
+                    0 => [-0.0, base[1], base[2]],
+                    1 => [0.0, base[1], base[2]],
+                    2 => [f64::from_bits(base[0].to_bits() + 1), base[1], base[2]],
+                    _ => base,
+                }
+            })
+            .collect();
+        let n = 6 * PART + 12_345;
+        let corners: Vec<[f64; 3]> = (0..n)
+            .map(|_| pool[(rng.next() % pool.len() as u64) as usize])
+            .collect();
+        let fill =
+            |r: std::ops::Range<usize>, out: &mut Vec<[f64; 3]>| out.extend_from_slice(&corners[r]);
+        let mut serial = Welder::with_capacity(n);
+        let mut expected = Vec::new();
+        serial.index_batch(&corners, &mut expected);
+        let expected_positions = serial.into_positions();
+        for threads in [1, 2, 4, 8, 13] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let (positions, ids) = pool.install(|| weld_all(n, fill));
+            assert_eq!(ids, expected, "{threads} threads");
+            let bits = |ps: &[[f64; 3]]| -> Vec<[u64; 3]> {
+                ps.iter().map(|p| p.map(f64::to_bits)).collect()
+            };
+            assert_eq!(
+                bits(&positions),
+                bits(&expected_positions),
+                "{threads} threads"
+            );
+        }
+        // -0.0 and 0.0 share a vertex; the last-bit neighbours do not.
+        let keys: std::collections::BTreeSet<[u64; 3]> = corners.iter().map(position_key).collect();
+        let raw: std::collections::BTreeSet<[u64; 3]> =
+            corners.iter().map(|p| p.map(f64::to_bits)).collect();
+        assert_eq!(expected_positions.len(), keys.len());
+        assert!(
+            keys.len() < raw.len() && keys.len() > 40_000,
+            "{}",
+            keys.len()
+        );
     }
 }

@@ -76,7 +76,7 @@ impl ManyArgs {
         }
         let flags = &self.flags;
         ops::with_threads(flags.threads, || {
-            let spinner = Spinner::new(flags.reading());
+            let spinner = flags.spinner();
             let operands: Vec<Operand> = self
                 .inputs
                 .par_iter()
@@ -128,7 +128,7 @@ impl DifferenceArgs {
 pub fn run(args: &Args, op: Op) -> Result<()> {
     let flags = &args.flags;
     ops::with_threads(flags.threads, || {
-        let spinner = Spinner::new(flags.reading());
+        let spinner = flags.spinner();
         let (a, b) = Operand::read_pair(&args.a, &args.b, &flags.checks())?;
         // The operands were checked as they were read.
         let opts = BooleanOptions {

@@ -47,6 +47,10 @@ pub struct OperandFlags {
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
+    /// Print on standard error how long each stage took (reading, each stage of the
+    /// boolean, writing), in seconds.
+    #[arg(long)]
+    pub timings: bool,
 }
 
 impl OperandFlags {
@@ -63,11 +67,17 @@ impl OperandFlags {
 
     /// Progress shown on `spinner` (the command runs in its thread pool as a whole).
     pub fn run(&self, spinner: &Spinner) -> RunOptions {
-        let bar = spinner.0.clone();
+        let marker = spinner.0.clone();
         RunOptions {
             threads: None,
-            progress: Some(Progress::new(move |s| bar.set_message(s.describe()))),
+            progress: Some(Progress::new(move |s| marker.set_message(s.describe()))),
         }
+    }
+
+    /// The spinner of a command taking these flags, first showing what reading does; it
+    /// prints the stages' timings when dropped if `--timings` asks for them.
+    pub fn spinner(&self) -> Spinner {
+        Spinner::with_timings(self.reading(), self.timings)
     }
 
     /// What reading the inputs does, for the spinner.
@@ -82,19 +92,51 @@ impl OperandFlags {
 
 /// A spinner with the elapsed time and the current stage on standard error; drawn only
 /// when standard error is a terminal (never into pipes, files or tests). Cleared when
-/// dropped, so an error message never lands after a stale spinner line.
-pub struct Spinner(indicatif::ProgressBar);
+/// dropped, so an error message never lands after a stale spinner line; with timings
+/// asked for, it then prints how long each stage it showed lasted.
+pub struct Spinner(Marker);
+
+/// What a spinner shows, shared with progress callbacks: the bar, and the stages with the
+/// time each began when timings are kept.
+#[derive(Clone)]
+struct Marker {
+    bar: indicatif::ProgressBar,
+    stages: Option<std::sync::Arc<std::sync::Mutex<Stages>>>,
+}
+
+/// Each stage a spinner showed, with the time it began.
+type Stages = Vec<(&'static str, std::time::Instant)>;
+
+impl Marker {
+    fn set_message(&self, msg: &'static str) {
+        if let Some(stages) = &self.stages {
+            if let Ok(mut s) = stages.lock() {
+                s.push((msg, std::time::Instant::now()));
+            }
+        }
+        self.bar.set_message(msg);
+    }
+}
 
 impl Spinner {
     /// A spinner showing `msg`.
     pub fn new(msg: &'static str) -> Self {
+        Spinner::with_timings(msg, false)
+    }
+
+    /// A spinner showing `msg`, keeping the stages' timings when `timings` is set.
+    pub fn with_timings(msg: &'static str, timings: bool) -> Self {
         let bar = indicatif::ProgressBar::new_spinner();
         if let Ok(style) = indicatif::ProgressStyle::with_template("{spinner} [{elapsed}] {msg}") {
             bar.set_style(style);
         }
         bar.enable_steady_tick(std::time::Duration::from_millis(120));
-        bar.set_message(msg);
-        Spinner(bar)
+        let marker = Marker {
+            bar,
+            stages: timings.then(Default::default),
+        };
+        marker.set_message(msg);
+        Spinner(marker)
     }
 
     /// Shows `msg`.
@@ -105,7 +147,17 @@ impl Spinner {
 
 impl Drop for Spinner {
     fn drop(&mut self) {
-        self.0.finish_and_clear();
+        self.0.bar.finish_and_clear();
+        let Some(stages) = &self.0.stages else { return };
+        let Ok(stages) = stages.lock() else { return };
+        let end = std::time::Instant::now();
+        for (k, (msg, start)) in stages.iter().enumerate() {
+            let next = stages.get(k + 1).map_or(end, |s| s.1);
+            eprintln!("{:9.3} s  {msg}", (next - *start).as_secs_f64());
+        }
+        if let Some((_, first)) = stages.first() {
+            eprintln!("{:9.3} s  in all", (end - *first).as_secs_f64());
+        }
     }
 }
 

@@ -7,7 +7,7 @@ use anyhow::Result;
 use meshbool::ops::{self, Operand, SplitOptions};
 use meshbool::Format;
 
-use super::{format_names, one_of, print_json, warn, OperandFlags, Spinner};
+use super::{format_names, one_of, print_json, warn, OperandFlags};
 
 /// Arguments of `split`.
 #[derive(clap::Args)]
@@ -37,7 +37,7 @@ pub struct Args {
 pub fn run(args: &Args) -> Result<()> {
     let flags = &args.flags;
     ops::with_threads(flags.threads, || {
-        let spinner = Spinner::new(flags.reading());
+        let spinner = flags.spinner();
         let (a, b) = Operand::read_pair(&args.a, &args.b, &flags.checks())?;
         warn(&[a.report().assumed(), b.report().assumed()].concat());
         spinner.set_message("splitting");

@@ -155,13 +155,36 @@ pub fn read_path(path: impl AsRef<Path>) -> Result<Mesh> {
     Ok(read_file(path, None)?.0)
 }
 
+/// The bytes of the file at `path`. A large file, with more than two threads, is read in
+/// pieces at their offsets on all of them (the copies out of the page cache, and the
+/// page faults of the new buffer, run side by side).
+fn read_all(path: &Path) -> std::io::Result<Vec<u8>> {
+    #[cfg(unix)]
+    {
+        use rayon::prelude::*;
+        use std::os::unix::fs::FileExt;
+        const PIECE: usize = 1 << 22;
+        let file = fs::File::open(path)?;
+        let len = file.metadata()?.len();
+        if rayon::current_num_threads() > 2 && len >= 4 * PIECE as u64 {
+            let mut bytes = vec![0u8; usize::try_from(len).map_err(std::io::Error::other)?];
+            bytes
+                .par_chunks_mut(PIECE)
+                .enumerate()
+                .try_for_each(|(i, piece)| file.read_exact_at(piece, (i * PIECE) as u64))?;
+            return Ok(bytes);
+        }
+    }
+    fs::read(path)
+}
+
 /// Reads a mesh file as `from`, or as the format its name and content say
 /// ([`detect_format`]); also gives the format it was read as. A Surpac DTM is read with
 /// the string file of the same name beside it (extension `str`): an error names that file
 /// when it cannot be read.
 pub fn read_file(path: impl AsRef<Path>, from: Option<Format>) -> Result<(Mesh, Format)> {
     let path = path.as_ref();
-    let bytes = fs::read(path)?;
+    let bytes = read_all(path)?;
     let format = detect_format(&bytes, from.or_else(|| Format::for_path(path)))
         .ok_or_else(|| Error::UnknownFormat(path.display().to_string()))?;
     #[cfg(feature = "mining-formats")]
@@ -218,7 +241,18 @@ pub fn write_path_as(path: impl AsRef<Path>, mesh: &Mesh, format: Format) -> Res
     if format == Format::SurpacDtm {
         return surpac::write_path(path.as_ref(), mesh);
     }
-    write_file(path.as_ref(), |out| write(out, mesh, format))
+    write_file(path.as_ref(), |out| {
+        // A large binary STL is written by all threads, each block at its offset.
+        #[cfg(unix)]
+        if format == Format::StlBinary
+            && rayon::current_num_threads() > 2
+            && mesh.triangles.len() >= 1 << 16
+        {
+            mesh.validate()?;
+            return stl::write_binary_at(out.get_ref(), mesh);
+        }
+        write(out, mesh, format)
+    })
 }
 
 /// Writes the file at `path` through `fill`, so that it is never seen half-written: the

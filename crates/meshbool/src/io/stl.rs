@@ -8,7 +8,6 @@ use std::io::Write;
 
 use super::{lines, parse_f64, tokens, Format, Out};
 use crate::error::{Error, Location, Result};
-use crate::welder::Hashed;
 use crate::{Mesh, Welder};
 
 const HEADER: usize = 80;
@@ -55,6 +54,7 @@ pub(super) fn read(bytes: &[u8]) -> Result<Mesh> {
 }
 
 fn read_binary(bytes: &[u8]) -> Result<Mesh> {
+    use rayon::prelude::*;
     let err =
         |at: usize, msg: String| Error::parse(Format::StlBinary, Location::Byte(at as u64), msg);
     let Some(n) = announced(bytes) else {
@@ -79,47 +79,54 @@ fn read_binary(bytes: &[u8]) -> Result<Mesh> {
         ));
     }
     let body = &bytes[HEADER + 4..];
-    // Decode and hash block b+1 on one core while the other welds block b.
-    const BLOCK: usize = 4096;
-    let blocks: Vec<&[u8]> = body.chunks(RECORD * BLOCK).collect();
-    let decode = |b: usize, out: &mut Hashed| -> Result<()> {
-        out.positions.clear();
-        for (r, rec) in blocks[b].chunks_exact(RECORD).enumerate() {
-            let f = |k: usize| f32::from_le_bytes([rec[k], rec[k + 1], rec[k + 2], rec[k + 3]]);
-            for o in [12, 24, 36] {
-                let p = [f(o), f(o + 4), f(o + 8)];
-                if let Some(k) = p.iter().position(|x| !x.is_finite()) {
-                    let t = b * BLOCK + r;
-                    return Err(err(
-                        HEADER + 4 + t * RECORD + o + 4 * k,
-                        format!("non-finite coordinate in triangle {t}"),
-                    ));
+    let coordinate =
+        |at: usize| f32::from_le_bytes([body[at], body[at + 1], body[at + 2], body[at + 3]]);
+    // Corners `3t + k` of triangle `t`, decoded record by record.
+    let (positions, ids) = crate::welder::weld_all(room * 3, |corners, out| {
+        out.reserve(corners.len());
+        for t in corners.start / 3..corners.end.div_ceil(3) {
+            let rec = &body[t * RECORD..t * RECORD + RECORD];
+            let f = |k: usize| {
+                f64::from(f32::from_le_bytes([
+                    rec[k],
+                    rec[k + 1],
+                    rec[k + 2],
+                    rec[k + 3],
+                ]))
+            };
+            for (k, o) in [12, 24, 36].into_iter().enumerate() {
+                if corners.contains(&(3 * t + k)) {
+                    out.push([f(o), f(o + 4), f(o + 8)]);
                 }
-                out.positions.push(p.map(f64::from));
             }
         }
-        out.hash();
-        Ok(())
+    });
+    // Every welded position is some corner's: the corners are searched for the first
+    // non-finite coordinate only when the (far fewer) positions hold one.
+    let non_finite = positions
+        .par_iter()
+        .any(|p| p.iter().any(|x| !x.is_finite()));
+    let first_bad = || {
+        (0..room)
+            .flat_map(|t| (12..48).step_by(4).map(move |o| (t, o)))
+            .find(|&(t, o)| !coordinate(t * RECORD + o).is_finite())
     };
-    let mut welder = Welder::with_capacity(room * 3);
-    let mut ids: Vec<u32> = Vec::with_capacity(room * 3);
-    let (mut cur, mut next) = (Hashed::default(), Hashed::default());
-    if !blocks.is_empty() {
-        decode(0, &mut cur)?;
+    if let Some((t, o)) = non_finite.then(first_bad).flatten() {
+        return Err(err(
+            HEADER + 4 + t * RECORD + o,
+            format!("non-finite coordinate in triangle {t}"),
+        ));
     }
-    for b in 0..blocks.len() {
-        let (decoded, ()) = rayon::join(
-            || match b + 1 < blocks.len() {
-                true => decode(b + 1, &mut next),
-                false => Ok(()),
-            },
-            || welder.index_hashed(&cur, &mut ids),
-        );
-        decoded?;
-        std::mem::swap(&mut cur, &mut next);
-    }
-    let triangles = ids.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
-    Ok(Mesh::new_unchecked(welder.into_positions(), triangles))
+    let mut triangles = vec![[0u32; 3]; room];
+    triangles
+        .par_chunks_mut(1 << 14)
+        .zip(ids.par_chunks(3 << 14))
+        .for_each(|(t, c)| {
+            for (t, c) in t.iter_mut().zip(c.chunks_exact(3)) {
+                *t = [c[0], c[1], c[2]];
+            }
+        });
+    Ok(Mesh::new_unchecked(positions, triangles))
 }
 
 fn read_ascii(bytes: &[u8]) -> Result<Mesh> {
@@ -194,8 +201,9 @@ fn read_ascii(bytes: &[u8]) -> Result<Mesh> {
     }
 }
 
-fn normal32(m: &Mesh, t: usize) -> [f32; 3] {
-    let [a, b, c] = m.corners(t);
+/// The unit normal of a triangle with corners `[a, b, c]`, as binary STL stores it (zero
+/// for a degenerate triangle).
+fn normal32([a, b, c]: [[f64; 3]; 3]) -> [f32; 3] {
     let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
     let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
     let n = [
@@ -211,69 +219,92 @@ fn normal32(m: &Mesh, t: usize) -> [f32; 3] {
     }
 }
 
-pub(super) fn write_binary(out: &mut impl Write, mesh: &Mesh) -> Result<()> {
+/// Why triangle `t` of `mesh` cannot be stored in binary STL, if it cannot.
+fn unwritable(mesh: &Mesh, t: usize) -> Option<Error> {
+    let tri = mesh.triangles[t];
+    let c64 = tri.map(|v| mesh.positions[v as usize]);
+    let c32 = c64.map(|p| p.map(|x| x as f32));
+    if let Some(k) = (0..3).find(|&k| c32[k].iter().any(|x| !x.is_finite())) {
+        return Some(Error::invalid(
+            Location::Vertex(tri[k] as usize),
+            format!(
+                "coordinates {:?} cannot be stored in binary STL's 32-bit floats (beyond \
+                 their range); write another format (PLY, OBJ and glb keep them)",
+                c64[k]
+            ),
+        ));
+    }
+    let collapses = (0..3).any(|k| {
+        let j = (k + 1) % 3;
+        c32[k] == c32[j] && c64[k] != c64[j]
+    });
+    collapses.then(|| {
+        Error::invalid(
+            Location::Triangle(t),
+            "its corners differ only below the resolution of binary STL's 32-bit floats \
+             (it would collapse); write another format (PLY, OBJ and glb keep them)",
+        )
+    })
+}
+
+/// Triangles per block of binary STL encoded at once.
+const WRITE_BLOCK: usize = 1 << 13;
+
+/// The header of a binary STL of `mesh`, once every triangle is known to be storable.
+/// Never write what cannot be read back: a coordinate beyond f32's range would become
+/// infinite, and a triangle whose corners differ only below f32's resolution would
+/// collapse (tiny coordinates rounded to zero are kept where nothing collapses). Checked
+/// on all threads before anything is written; the first such triangle is named.
+fn binary_header(mesh: &Mesh) -> Result<[u8; HEADER + 4]> {
     use rayon::prelude::*;
     let n = u32::try_from(mesh.triangles.len()).map_err(|_| {
         Error::invalid(Location::Whole, "binary STL holds at most 2^32-1 triangles")
     })?;
-    // Never write what cannot be read back: a coordinate beyond f32's range would become
-    // infinite, and a triangle whose corners differ only below f32's resolution would
-    // collapse (tiny coordinates rounded to zero are kept where nothing collapses).
-    for (t, tri) in mesh.triangles.iter().enumerate() {
-        let c64 = tri.map(|v| mesh.positions[v as usize]);
-        let c32 = c64.map(|p| p.map(|x| x as f32));
-        if let Some(k) = (0..3).find(|&k| c32[k].iter().any(|x| !x.is_finite())) {
-            return Err(Error::invalid(
-                Location::Vertex(tri[k] as usize),
-                format!(
-                    "coordinates {:?} cannot be stored in binary STL's 32-bit floats (beyond \
-                     their range); write another format (PLY, OBJ and glb keep them)",
-                    c64[k]
-                ),
-            ));
-        }
-        let collapses = (0..3).any(|k| {
-            let j = (k + 1) % 3;
-            c32[k] == c32[j] && c64[k] != c64[j]
-        });
-        if collapses {
-            return Err(Error::invalid(
-                Location::Triangle(t),
-                "its corners differ only below the resolution of binary STL's 32-bit floats \
-                 (it would collapse); write another format (PLY, OBJ and glb keep them)",
-            ));
-        }
+    if let Some(e) = (0..mesh.triangles.len())
+        .into_par_iter()
+        .with_min_len(1 << 12)
+        .find_map_first(|t| unwritable(mesh, t))
+    {
+        return Err(e);
     }
     let mut head = [b' '; HEADER + 4];
     let label = b"meshbool binary STL";
     head[..label.len()].copy_from_slice(label);
     head[HEADER..].copy_from_slice(&n.to_le_bytes());
-    out.write_all(&head)?;
+    Ok(head)
+}
+
+/// The records of triangles `first..` (a block of [`WRITE_BLOCK`] at most).
+fn encode_block(mesh: &Mesh, first: usize) -> Vec<u8> {
+    let end = (first + WRITE_BLOCK).min(mesh.triangles.len());
+    let mut buf = vec![0u8; (end - first) * RECORD];
+    for (t, rec) in (first..end).zip(buf.chunks_exact_mut(RECORD)) {
+        let corners = mesh.corners(t);
+        let normal = normal32(corners);
+        let values = normal
+            .into_iter()
+            .chain(corners.into_iter().flatten().map(|x| x as f32));
+        // Twelve floats, then the two attribute bytes left zero.
+        for (at, x) in rec.chunks_exact_mut(4).zip(values) {
+            at.copy_from_slice(&x.to_le_bytes());
+        }
+    }
+    buf
+}
+
+pub(super) fn write_binary(out: &mut impl Write, mesh: &Mesh) -> Result<()> {
+    use rayon::prelude::*;
+    out.write_all(&binary_header(mesh)?)?;
     // Records are independent: blocks are encoded side by side, a batch of them at a
     // time (memory stays bounded), and written in order.
-    const BLOCK: usize = 1 << 13;
-    let encode = |first: usize| -> Vec<u8> {
-        let end = (first + BLOCK).min(mesh.triangles.len());
-        let mut buf = Vec::with_capacity((end - first) * RECORD);
-        for t in first..end {
-            for x in normal32(mesh, t) {
-                buf.extend_from_slice(&x.to_le_bytes());
-            }
-            for x in mesh.corners(t).into_iter().flatten() {
-                buf.extend_from_slice(&(x as f32).to_le_bytes());
-            }
-            buf.extend_from_slice(&[0, 0]);
-        }
-        buf
-    };
-    let batch = BLOCK * 4 * rayon::current_num_threads().max(1);
+    let batch = WRITE_BLOCK * 4 * rayon::current_num_threads().max(1);
     for start in (0..mesh.triangles.len()).step_by(batch) {
         let end = (start + batch).min(mesh.triangles.len());
         let blocks: Vec<Vec<u8>> = (start..end)
-            .step_by(BLOCK)
+            .step_by(WRITE_BLOCK)
             .collect::<Vec<_>>()
             .into_par_iter()
-            .map(encode)
+            .map(|first| encode_block(mesh, first))
             .collect();
         for b in blocks {
             out.write_all(&b)?;
@@ -282,12 +313,28 @@ pub(super) fn write_binary(out: &mut impl Write, mesh: &Mesh) -> Result<()> {
     Ok(())
 }
 
+/// [`write_binary`] into a file, each block written at its offset by the thread that
+/// encoded it (the copies into the page cache run side by side).
+#[cfg(unix)]
+pub(super) fn write_binary_at(file: &std::fs::File, mesh: &Mesh) -> Result<()> {
+    use rayon::prelude::*;
+    use std::os::unix::fs::FileExt;
+    file.write_all_at(&binary_header(mesh)?, 0)?;
+    (0..mesh.triangles.len().div_ceil(WRITE_BLOCK))
+        .into_par_iter()
+        .try_for_each(|b| {
+            let at = (HEADER + 4 + b * WRITE_BLOCK * RECORD) as u64;
+            file.write_all_at(&encode_block(mesh, b * WRITE_BLOCK), at)
+        })?;
+    Ok(())
+}
+
 pub(super) fn write_ascii(out: &mut impl Write, mesh: &Mesh) -> Result<()> {
     let mut o = Out::new(out);
     o.bytes(b"solid meshbool\n");
     for t in 0..mesh.triangles.len() {
         o.bytes(b"facet normal");
-        for x in normal32(mesh, t) {
+        for x in normal32(mesh.corners(t)) {
             o.bytes(b" ").f64(f64::from(x));
         }
         o.bytes(b"\n outer loop\n");

@@ -856,3 +856,59 @@ fn binary_stl_with_solid_header_and_wrong_count_is_reported_as_binary() {
     let (loc, _) = parse_err(&ascii.as_bytes()[..70], Format::StlBinary);
     assert_eq!(loc, Location::Line(6));
 }
+
+/// A large binary STL written and read on many threads (blocks written at their offsets,
+/// the file read in pieces, the corners welded in shards) is byte for byte the file one
+/// thread writes, and reads back to the same mesh, vertex numbering included; a mesh
+/// that cannot be stored is refused on that path too, leaving nothing behind.
+#[test]
+fn large_binary_stl_on_many_threads_is_the_file_of_one() {
+    let dir = std::env::temp_dir().join(format!("meshbool-parallel-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("big.stl");
+    let mut m = crate::shapes::uv_sphere([1_000.5, -2_000.25, 12.5], 40.0, 360, 200);
+    // Negative zeros and far coordinates among the corners.
+    m.positions[7][0] = -0.0;
+    m.positions[8] = [1e30, -2.5e-30, 0.0];
+    assert!(m.triangles.len() > 4 * (1 << 14) && m.triangles.len() % (1 << 13) != 0);
+    let one = write_to_vec(&m, Format::StlBinary);
+    let on = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+    };
+    let serial = on(1).install(|| read_bytes(&one, Format::StlBinary).unwrap());
+    for threads in [3, 8] {
+        let pool = on(threads);
+        pool.install(|| write_path(&path, &m)).unwrap();
+        assert_eq!(std::fs::read(&path).unwrap(), one, "{threads} threads");
+        let back = pool.install(|| read_path(&path)).unwrap();
+        assert_eq!(back.triangles, serial.triangles, "{threads} threads");
+        assert_eq!(soup_bits(&back), soup_bits(&serial), "{threads} threads");
+    }
+    assert_eq!(serial.triangle_count(), m.triangle_count());
+    // Non-finite coordinates far into the file: the first is named, on any thread count.
+    let mut nan = one.clone();
+    for (t, o) in [(70_000, 40), (50_000, 28)] {
+        let at = 84 + 50 * t + o;
+        nan[at..at + 4].copy_from_slice(&f32::INFINITY.to_le_bytes());
+    }
+    for threads in [1, 8] {
+        let e = on(threads).install(|| read_bytes(&nan, Format::StlBinary));
+        assert!(
+            matches!(&e, Err(Error::Parse { location: Location::Byte(b), .. }) if *b == 84 + 50 * 50_000 + 28),
+            "{e:?}"
+        );
+    }
+    let mut bad = m.clone();
+    bad.positions[12_345][2] = 1e300;
+    let e = on(8).install(|| write_path(dir.join("bad.stl"), &bad));
+    assert!(matches!(e, Err(Error::InvalidMesh { .. })), "{e:?}");
+    let left: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(left, [std::ffi::OsString::from("big.stl")]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -18,36 +18,68 @@ use crate::Mesh;
 /// around. Sorted triangle ids, and the number of such components.
 pub fn inside_out(mesh: &Mesh) -> (Vec<u32>, usize) {
     let n = mesh.positions.len();
-    let mut root: Vec<u32> = (0..n as u32).collect();
-    fn find(root: &mut [u32], mut x: u32) -> u32 {
-        while root[x as usize] != x {
-            let up = root[root[x as usize] as usize];
-            root[x as usize] = up;
-            x = up;
-        }
-        x
-    }
-    for &[a, b, c] in &mesh.triangles {
-        for (x, y) in [(a, b), (a, c)] {
-            let (rx, ry) = (find(&mut root, x), find(&mut root, y));
-            if rx != ry {
-                root[rx.max(ry) as usize] = rx.min(ry);
-            }
-        }
-    }
-    let comp: Vec<u32> = mesh
-        .triangles
-        .iter()
-        .map(|t| find(&mut root, t[0]))
-        .collect();
     // Six times the signed volume per component, relative to one of its vertices (a
-    // component far from the origin keeps its precision).
-    let mut volume = vec![0.0f64; n];
-    for (t, &c) in mesh.triangles.iter().zip(&comp) {
+    // component far from the origin keeps its precision), summed in triangle order.
+    let term = |t: &[u32; 3], c: u32| {
         let o = mesh.positions[c as usize];
         let [a, b, p] = t.map(|v| sub(&mesh.positions[v as usize], &o));
-        volume[c as usize] += dot(&a, &cross(&b, &p));
-    }
+        dot(&a, &cross(&b, &p))
+    };
+    let mut volume = vec![0.0f64; n];
+    let comp: Vec<u32> = if rayon::current_num_threads() > 2 && mesh.triangles.len() >= 1 << 16 {
+        // Joined on all threads (roots are the lowest vertices either way), the terms
+        // computed side by side.
+        let roots = crate::edges::SharedRoots::new(n);
+        mesh.triangles
+            .par_iter()
+            .with_min_len(1 << 10)
+            .for_each(|&[a, b, c]| {
+                roots.join(a, b);
+                roots.join(a, c);
+            });
+        let comp: Vec<u32> = mesh
+            .triangles
+            .par_iter()
+            .map(|t| roots.find(t[0]))
+            .collect();
+        let terms: Vec<f64> = mesh
+            .triangles
+            .par_iter()
+            .zip(&comp)
+            .map(|(t, &c)| term(t, c))
+            .collect();
+        for (&c, &v) in comp.iter().zip(&terms) {
+            volume[c as usize] += v;
+        }
+        comp
+    } else {
+        let mut root: Vec<u32> = (0..n as u32).collect();
+        fn find(root: &mut [u32], mut x: u32) -> u32 {
+            while root[x as usize] != x {
+                let up = root[root[x as usize] as usize];
+                root[x as usize] = up;
+                x = up;
+            }
+            x
+        }
+        for &[a, b, c] in &mesh.triangles {
+            for (x, y) in [(a, b), (a, c)] {
+                let (rx, ry) = (find(&mut root, x), find(&mut root, y));
+                if rx != ry {
+                    root[rx.max(ry) as usize] = rx.min(ry);
+                }
+            }
+        }
+        let comp: Vec<u32> = mesh
+            .triangles
+            .iter()
+            .map(|t| find(&mut root, t[0]))
+            .collect();
+        for (t, &c) in mesh.triangles.iter().zip(&comp) {
+            volume[c as usize] += term(t, c);
+        }
+        comp
+    };
     let inward: Vec<u32> = (0..n as u32)
         .filter(|&c| volume[c as usize] < 0.0)
         .collect();
@@ -105,5 +137,34 @@ mod tests {
         // that faces outward; only the box is reported.
         let m = joined(&[outer.flipped(), inner.clone()]);
         assert_eq!(inside_out(&m), ((0..12).collect(), 1));
+    }
+
+    /// A large mesh takes the path joined on all threads: the same parts are found.
+    #[test]
+    fn large_meshes_give_the_same_parts_on_many_threads() {
+        let sphere = |c: f64, r: f64| crate::shapes::uv_sphere([c, 0.0, 0.0], r, 128, 96);
+        // An inside-out sphere, a good one with a cavity, a far inside-out small one.
+        let m = joined(&[
+            sphere(0.0, 1.0).flipped(),
+            sphere(5.0, 2.0),
+            sphere(5.0, 1.0).flipped(),
+            sphere(1.0e4, 0.5).flipped(),
+        ]);
+        assert!(m.triangles.len() >= 1 << 16);
+        let per = m.triangles.len() / 4;
+        let want: Vec<u32> = (0..per as u32)
+            .chain(3 * per as u32..4 * per as u32)
+            .collect();
+        for threads in [1, 4] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            assert_eq!(
+                pool.install(|| inside_out(&m)),
+                (want.clone(), 2),
+                "{threads}"
+            );
+        }
     }
 }
