@@ -150,7 +150,10 @@ struct SeamPoints {
 /// vertex is that vertex; every other one becomes a new vertex after the input's, noted
 /// with the face or edge of the input it lies on.
 fn index_seam_points(mesh: &Mesh, seam: &Seam, side: Source) -> SeamPoints {
-    let mut positions = mesh.positions.clone();
+    // Copied side by side: on large meshes a serial copy into fresh memory is this
+    // step's serial part.
+    let mut positions = Vec::with_capacity(mesh.positions.len() + seam.points.len());
+    positions.par_extend(mesh.positions.par_iter().copied());
     let input_vertices = positions.len();
     let mut added: Vec<Point> = Vec::new();
     let mut enclosed = Vec::new();

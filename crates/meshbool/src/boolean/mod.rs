@@ -510,8 +510,13 @@ pub fn merge(
         triangle: 0,
         flipped: false,
     };
-    let mut provenance = vec![none; total];
-    let used: Vec<AtomicBool> = (0..na + nb).map(|_| AtomicBool::new(false)).collect();
+    // Filled side by side (a serial fill of fresh memory is this stage's serial part).
+    let mut provenance = Vec::with_capacity(total);
+    provenance.par_extend(rayon::iter::repeat_n(none, total));
+    let used: Vec<AtomicBool> = (0..na + nb)
+        .into_par_iter()
+        .map(|_| AtomicBool::new(false))
+        .collect();
     split_by(&mut triangles, &counts)
         .into_par_iter()
         .zip(split_by(&mut provenance, &counts))
@@ -563,7 +568,7 @@ pub fn merge(
             first - n as u32
         })
         .collect();
-    let mut new_id = vec![u32::MAX; na + nb];
+    let mut new_id = vec![0u32; na + nb];
     new_id
         .par_chunks_mut(CHUNK)
         .zip(split_by(&mut positions, &used_in))
@@ -572,11 +577,13 @@ pub fn merge(
             let mut next = 0;
             for (j, id) in ids.iter_mut().enumerate() {
                 let v = c * CHUNK + j;
-                if used[v].load(Relaxed) {
-                    *id = starts[c] + next as u32;
+                *id = if used[v].load(Relaxed) {
                     pos[next] = position(v);
                     next += 1;
-                }
+                    starts[c] + next as u32 - 1
+                } else {
+                    u32::MAX
+                };
             }
         });
     triangles
