@@ -214,8 +214,9 @@ impl Mesh {
     /// exactly equal positions welded into one vertex ([`weld_exact`]).
     pub fn from_soup(soup: &[[[f64; 3]; 3]]) -> Self {
         let corners = soup.as_flattened();
-        let (positions, ids) =
-            crate::welder::weld_all(corners.len(), |r, out| out.extend_from_slice(&corners[r]));
+        let (positions, ids) = crate::welder::weld_all(corners.len(), soup.len() / 2, |r, out| {
+            out.extend_from_slice(&corners[r])
+        });
         Mesh {
             positions,
             triangles: ids.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
@@ -360,9 +361,10 @@ impl Mesh {
 /// Deterministic.
 pub fn weld_exact(mesh: &Mesh) -> Welded {
     use rayon::prelude::*;
-    let (positions, vertex_map) = crate::welder::weld_all(mesh.positions.len(), |r, out| {
-        out.extend_from_slice(&mesh.positions[r])
-    });
+    // Mostly distinct positions: as many vertices expected as there are.
+    let n = mesh.positions.len();
+    let (positions, vertex_map) =
+        crate::welder::weld_all(n, n, |r, out| out.extend_from_slice(&mesh.positions[r]));
     let triangles = mesh
         .triangles
         .par_iter()

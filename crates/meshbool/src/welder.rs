@@ -77,7 +77,12 @@ impl Welder {
     /// A welder expecting about `corners` positions.
     pub(crate) fn with_capacity(corners: usize) -> Self {
         // Typical closed meshes have about one vertex per two triangles (six corners).
-        let expected = (corners / 6).max(16);
+        Welder::for_vertices(corners / 6)
+    }
+
+    /// A welder expecting about `vertices` distinct positions.
+    pub(crate) fn for_vertices(vertices: usize) -> Self {
+        let expected = vertices.max(16);
         Welder {
             slots: vec![0; (2 * expected).next_power_of_two()],
             positions: Vec::with_capacity(expected),
@@ -103,7 +108,8 @@ impl Welder {
         }
     }
 
-    /// [`Welder::index_batch`] of positions already hashed (possibly on another thread).
+    /// [`Welder::index`] of every position of `h` (hashed beforehand, possibly on another
+    /// thread), appended to `out` in order.
     pub(crate) fn index_hashed(&mut self, h: &Hashed, out: &mut Vec<u32>) {
         let mut first = [0u64; BATCH];
         for ((chunk, keys), hashes) in h
@@ -218,7 +224,8 @@ struct FirstSeen {
 /// Welds `n` corners, `fill(range, out)` appending the positions of the corners in
 /// `range` to `out`: the distinct positions in order of first appearance and each
 /// corner's vertex id, exactly as one [`Welder`] fed the corners in order would give
-/// them, whatever the number of threads.
+/// them, whatever the number of threads. `vertices` is the number of distinct positions
+/// expected (the tables' size; they grow when it is exceeded).
 ///
 /// With fewer than eight threads, one welder takes the corners in blocks, the next block
 /// decoded and hashed on another thread meanwhile. With eight or more (measured on 16
@@ -234,17 +241,18 @@ struct FirstSeen {
 ///
 /// No atomics and no locks; the same result as the serial welder because a vertex's
 /// global number is the rank of its first corner among all first corners.
-pub(crate) fn weld_all<F>(n: usize, fill: F) -> (Vec<[f64; 3]>, Vec<u32>)
+pub(crate) fn weld_all<F>(n: usize, vertices: usize, fill: F) -> (Vec<[f64; 3]>, Vec<u32>)
 where
     F: Fn(std::ops::Range<usize>, &mut Vec<[f64; 3]>) + Sync,
 {
     use rayon::prelude::*;
     let threads = rayon::current_num_threads();
-    if threads < 8 || n < 4 * PART {
+    // Corner ids are 32-bit in the shards' lists: more corners go the serial way.
+    if threads < 8 || n < 4 * PART || n > u32::MAX as usize {
         // One welder; with two threads or more, the next block is decoded and hashed on
         // one while the welder works on this one.
         const BLOCK: usize = 3 << 12;
-        let mut welder = Welder::with_capacity(n);
+        let mut welder = Welder::for_vertices(vertices);
         let mut ids = Vec::with_capacity(n);
         let decode = |start: usize, out: &mut Hashed| {
             out.positions.clear();
@@ -302,7 +310,7 @@ where
         .into_par_iter()
         .map(|s| {
             let count: usize = lists.iter().map(|l| l.corners[s].len()).sum();
-            let mut welder = Welder::with_capacity(count);
+            let mut welder = Welder::for_vertices(vertices / shards * 9 / 8);
             let mut local = Vec::with_capacity(count);
             let mut firsts = Vec::new();
             let mut hashed = Hashed::default();
@@ -486,7 +494,7 @@ mod tests {
                 .num_threads(threads)
                 .build()
                 .unwrap();
-            let (positions, ids) = pool.install(|| weld_all(n, fill));
+            let (positions, ids) = pool.install(|| weld_all(n, 1000, fill));
             assert_eq!(ids, expected, "{threads} threads");
             let bits = |ps: &[[f64; 3]]| -> Vec<[u64; 3]> {
                 ps.iter().map(|p| p.map(f64::to_bits)).collect()

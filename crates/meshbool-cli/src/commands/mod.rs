@@ -48,7 +48,8 @@ pub struct OperandFlags {
     #[arg(long)]
     pub threads: Option<usize>,
     /// Print on standard error how long each stage took (reading, each stage of the
-    /// boolean, writing), in seconds.
+    /// boolean, writing while the result is measured), in seconds; for the commands that
+    /// show progress (booleans, split).
     #[arg(long)]
     pub timings: bool,
 }

@@ -384,42 +384,100 @@ struct Reassembled {
 /// The output in input order: runs of uncut triangles copied as they are, each cut one
 /// replaced by its pieces (`results` in increasing triangle order), or kept whole where
 /// it failed; each output triangle's parent, and the failures and pieces turned by
-/// rounding by their ids.
+/// rounding by their ids. Large meshes are filled in spans side by side: each span of
+/// input triangles (from one cut triangle to the next span's first) knows its place in
+/// the output from the sizes of the spans before it.
 fn reassemble(mesh: &Mesh, results: Vec<(u32, CutResult)>) -> Reassembled {
-    let mut failed = Vec::new();
-    let mut rounding_flips = Vec::new();
-    let pieces: usize = results
+    let n = mesh.triangles.len();
+    let size = |r: &CutResult| r.as_ref().map_or(1, |(p, _)| p.len());
+    let total = n - results.len() + results.iter().map(|(_, r)| size(r)).sum::<usize>();
+    // Spans of cut triangles; span k covers input triangles from its first cut one (0 for
+    // the first span) to the next span's first cut one (n for the last).
+    let spans = if n < 1 << 16 {
+        1
+    } else {
+        (4 * rayon::current_num_threads()).min(results.len()).max(1)
+    };
+    let per = results.len().div_ceil(spans).max(1);
+    let groups: Vec<&[(u32, CutResult)]> = results.chunks(per).collect();
+    let bounds: Vec<(usize, usize)> = (0..groups.len().max(1))
+        .map(|k| {
+            let start = if k == 0 { 0 } else { groups[k][0].0 as usize };
+            let end = groups.get(k + 1).map_or(n, |g| g[0].0 as usize);
+            (start, end)
+        })
+        .collect();
+    let sizes: Vec<usize> = bounds
         .iter()
-        .map(|(_, r)| r.as_ref().map_or(1, |(p, _)| p.len()))
-        .sum();
-    let total = mesh.triangles.len() - results.len() + pieces;
-    let mut triangles = Vec::with_capacity(total);
-    let mut parent = Vec::with_capacity(total);
-    let mut next = 0usize;
-    for (t, r) in results {
-        let t = t as usize;
-        triangles.extend_from_slice(&mesh.triangles[next..t]);
-        parent.extend(next as u32..t as u32);
-        match r {
-            Ok((sub, flipped)) => {
-                for (k, f) in flipped.into_iter().enumerate() {
-                    if f {
-                        rounding_flips.push((triangles.len() + k) as u32);
+        .enumerate()
+        .map(|(k, &(start, end))| {
+            let g = groups.get(k).copied().unwrap_or(&[]);
+            end - start - g.len() + g.iter().map(|(_, r)| size(r)).sum::<usize>()
+        })
+        .collect();
+    let mut triangles = vec![[0u32; 3]; total];
+    let mut parent = vec![0u32; total];
+    let mut first = 0usize;
+    let firsts: Vec<usize> = sizes
+        .iter()
+        .map(|&s| {
+            first += s;
+            first - s
+        })
+        .collect();
+    // Per span: its failures and its pieces turned by rounding.
+    type Found = (Vec<(u32, FailReason)>, Vec<u32>);
+    let lists: Vec<Found> = crate::boolean::split_by(&mut triangles, &sizes)
+        .into_par_iter()
+        .zip(crate::boolean::split_by(&mut parent, &sizes))
+        .enumerate()
+        .map(|(k, (tris, par))| {
+            let (start, end) = bounds[k];
+            let g = groups.get(k).copied().unwrap_or(&[]);
+            let (mut failed, mut flips) = (Vec::new(), Vec::new());
+            let mut at = 0usize;
+            // The uncut triangles `from..to`, copied at `at`.
+            let copy =
+                |tris: &mut [[u32; 3]], par: &mut [u32], from: usize, to: usize, at: usize| {
+                    tris[at..at + to - from].copy_from_slice(&mesh.triangles[from..to]);
+                    for (p, t) in par[at..at + to - from].iter_mut().zip(from as u32..) {
+                        *p = t;
+                    }
+                    to - from
+                };
+            let mut next = start;
+            for (t, r) in g {
+                let t = *t as usize;
+                at += copy(tris, par, next, t, at);
+                match r {
+                    Ok((sub, flipped)) => {
+                        for (i, &f) in flipped.iter().enumerate() {
+                            if f {
+                                flips.push((firsts[k] + at + i) as u32);
+                            }
+                        }
+                        tris[at..at + sub.len()].copy_from_slice(sub);
+                        par[at..at + sub.len()].fill(t as u32);
+                        at += sub.len();
+                    }
+                    Err(local::Failed(why)) => {
+                        failed.push((t as u32, *why));
+                        tris[at] = mesh.triangles[t];
+                        par[at] = t as u32;
+                        at += 1;
                     }
                 }
-                parent.extend(std::iter::repeat_n(t as u32, sub.len()));
-                triangles.extend(sub);
+                next = t + 1;
             }
-            Err(local::Failed(why)) => {
-                failed.push((t as u32, why));
-                triangles.push(mesh.triangles[t]);
-                parent.push(t as u32);
-            }
-        }
-        next = t + 1;
+            copy(tris, par, next, end, at);
+            (failed, flips)
+        })
+        .collect();
+    let (mut failed, mut rounding_flips) = (Vec::new(), Vec::new());
+    for (f, r) in lists {
+        failed.extend(f);
+        rounding_flips.extend(r);
     }
-    triangles.extend_from_slice(&mesh.triangles[next..]);
-    parent.extend(next as u32..mesh.triangles.len() as u32);
     Reassembled {
         triangles,
         parent,

@@ -609,7 +609,7 @@ pub fn merge(
 
 /// `v` cut into consecutive slices of the given lengths (which must add up to at most its
 /// length).
-fn split_by<'v, T>(mut v: &'v mut [T], lengths: &[usize]) -> Vec<&'v mut [T]> {
+pub(crate) fn split_by<'v, T>(mut v: &'v mut [T], lengths: &[usize]) -> Vec<&'v mut [T]> {
     lengths
         .iter()
         .map(|&n| {

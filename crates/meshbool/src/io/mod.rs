@@ -155,19 +155,26 @@ pub fn read_path(path: impl AsRef<Path>) -> Result<Mesh> {
     Ok(read_file(path, None)?.0)
 }
 
-/// The bytes of the file at `path`. A large file, with more than two threads, is read in
-/// pieces at their offsets on all of them (the copies out of the page cache, and the
-/// page faults of the new buffer, run side by side).
+/// The bytes of the file at `path`, opened once. A large regular file, with more than two
+/// threads, is read in pieces at their offsets on all of them (the copies out of the page
+/// cache, and the page faults of the new buffer, run side by side); anything else (small
+/// files, pipes, devices) is read to its end from the handle.
 fn read_all(path: &Path) -> std::io::Result<Vec<u8>> {
+    use std::io::Read;
+    let mut file = fs::File::open(path)?;
+    let meta = file.metadata()?;
     #[cfg(unix)]
     {
         use rayon::prelude::*;
         use std::os::unix::fs::FileExt;
         const PIECE: usize = 1 << 22;
-        let file = fs::File::open(path)?;
-        let len = file.metadata()?.len();
-        if rayon::current_num_threads() > 2 && len >= 4 * PIECE as u64 {
-            let mut bytes = vec![0u8; usize::try_from(len).map_err(std::io::Error::other)?];
+        if meta.is_file() && rayon::current_num_threads() > 2 && meta.len() >= 4 * PIECE as u64 {
+            let len = usize::try_from(meta.len()).map_err(std::io::Error::other)?;
+            let mut bytes = Vec::new();
+            bytes
+                .try_reserve_exact(len)
+                .map_err(std::io::Error::other)?;
+            bytes.resize(len, 0);
             bytes
                 .par_chunks_mut(PIECE)
                 .enumerate()
@@ -175,7 +182,15 @@ fn read_all(path: &Path) -> std::io::Result<Vec<u8>> {
             return Ok(bytes);
         }
     }
-    fs::read(path)
+    let mut bytes = Vec::new();
+    if meta.is_file() {
+        let len = usize::try_from(meta.len()).unwrap_or(0);
+        bytes
+            .try_reserve_exact(len)
+            .map_err(std::io::Error::other)?;
+    }
+    file.read_to_end(&mut bytes)?;
+    Ok(bytes)
 }
 
 /// Reads a mesh file as `from`, or as the format its name and content say

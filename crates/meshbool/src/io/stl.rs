@@ -82,7 +82,7 @@ fn read_binary(bytes: &[u8]) -> Result<Mesh> {
     let coordinate =
         |at: usize| f32::from_le_bytes([body[at], body[at + 1], body[at + 2], body[at + 3]]);
     // Corners `3t + k` of triangle `t`, decoded record by record.
-    let (positions, ids) = crate::welder::weld_all(room * 3, |corners, out| {
+    let (positions, ids) = crate::welder::weld_all(room * 3, room / 2, |corners, out| {
         out.reserve(corners.len());
         for t in corners.start / 3..corners.end.div_ceil(3) {
             let rec = &body[t * RECORD..t * RECORD + RECORD];

@@ -912,3 +912,32 @@ fn large_binary_stl_on_many_threads_is_the_file_of_one() {
     assert_eq!(left, [std::ffi::OsString::from("big.stl")]);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A named pipe is read to its end from one opening (a second opening would wait for a
+/// writer that has gone); its format is told from its content.
+#[cfg(unix)]
+#[test]
+fn a_named_pipe_is_read_once_to_its_end() {
+    let dir = std::env::temp_dir().join(format!("meshbool-fifo-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let fifo = dir.join("pipe.stl");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    if !made.is_ok_and(|s| s.success()) {
+        std::fs::remove_dir_all(&dir).unwrap();
+        return; // no mkfifo here: nothing to test
+    }
+    let bytes = write_to_vec(&Mesh::unit_cube(), Format::StlBinary);
+    let writer = {
+        let (fifo, bytes) = (fifo.clone(), bytes.clone());
+        std::thread::spawn(move || std::fs::write(fifo, bytes).unwrap())
+    };
+    let (tx, rx) = std::sync::mpsc::channel();
+    let reader = fifo.clone();
+    std::thread::spawn(move || tx.send(read_file(&reader, None).map(|(m, _)| m)));
+    let got = rx
+        .recv_timeout(std::time::Duration::from_secs(20))
+        .expect("reading the pipe finished");
+    writer.join().unwrap();
+    assert_eq!(got.unwrap().triangle_count(), 12);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
