@@ -1,18 +1,41 @@
 //! Times the stages of a boolean of two mesh files, in process (a profiling aid):
 //! `cargo run --release -p meshbool --example stages -- A B [union|intersection|difference] [reps]`.
-//! Prints, per repetition, the time from each stage's start to the next one's and the
-//! whole call, with the inputs read and checked beforehand (the self-intersection check
-//! only with the environment variable `CHECKED` set). Over 10 repetitions (small inputs),
-//! one line of mean times per stage in microseconds instead. Calls run on a pool of
-//! `POOL` threads (environment; default: one per core).
+//! First, per file, how long reading its bytes, parsing and welding them, counting its
+//! edges and finding inside-out parts take; then, per repetition, the time from each
+//! stage's start to the next one's and the whole call, with the inputs read and checked
+//! beforehand (the self-intersection check only with the environment variable `CHECKED`
+//! set). Over 10 repetitions (small inputs), one line of mean times per stage in
+//! microseconds instead. Everything runs on a pool of `POOL` threads (environment;
+//! default: one per core).
 
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
+use meshbool::io::{detect_format, read_bytes};
 use meshbool::ops::{boolean, BooleanOptions, Checks, Operand, Progress};
 use meshbool::Op;
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
+fn ms(since: Instant) -> f64 {
+    since.elapsed().as_secs_f64() * 1e3
+}
+
+/// How long the steps of reading and checking the file at `path` take, in one line.
+fn read_steps(path: &str) -> Result<String, Box<dyn std::error::Error + Send + Sync>> {
+    let t = Instant::now();
+    let bytes = std::fs::read(path)?;
+    let mut line = format!("{path}: bytes {:.1}", ms(t));
+    let t = Instant::now();
+    let mesh = read_bytes(&bytes, detect_format(&bytes, None).ok_or("unknown format")?)?;
+    line += &format!(", parse and weld {:.1}", ms(t));
+    let t = Instant::now();
+    meshbool::edges::EdgeCounts::of(&mesh);
+    line += &format!(", edge counts {:.1}", ms(t));
+    let t = Instant::now();
+    meshbool::repair::inside_out(&mesh);
+    Ok(line + &format!(", inside-out parts {:.1} ms", ms(t)))
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     if args.len() < 2 {
         return Err("usage: stages A B [union|intersection|difference] [reps]".into());
@@ -27,17 +50,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         self_intersections: std::env::var_os("CHECKED").is_some(),
         ..Checks::default()
     };
-    let start = Instant::now();
-    let a = Operand::read(&args[0], &checks)?;
-    let b = Operand::read(&args[1], &checks)?;
-    println!(
-        "read and check ({}self-intersections): {:.1} ms",
-        if checks.self_intersections { "" } else { "no " },
-        start.elapsed().as_secs_f64() * 1e3
-    );
-    // With many repetitions (small inputs), the mean per stage in microseconds instead.
-    let mut sums: Vec<(String, f64)> = Vec::new();
-    let mut total = 0.0;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(
             std::env::var("POOL")
@@ -46,6 +58,19 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 .unwrap_or(0),
         )
         .build()?;
+    for path in &args[..2] {
+        println!("{}", pool.install(|| read_steps(path))?);
+    }
+    let start = Instant::now();
+    let (a, b) = pool.install(|| Operand::read_pair(&args[0], &args[1], &checks))?;
+    println!(
+        "read and check both ({}self-intersections): {:.1} ms",
+        if checks.self_intersections { "" } else { "no " },
+        ms(start)
+    );
+    // With many repetitions (small inputs), the mean per stage in microseconds instead.
+    let mut sums: Vec<(String, f64)> = Vec::new();
+    let mut total = 0.0;
     for _ in 0..reps {
         let marks: Arc<Mutex<Vec<(String, Instant)>>> = Arc::default();
         let m = marks.clone();

@@ -146,20 +146,20 @@ impl EdgeTopology {
     }
 }
 
-/// Union-find over triangles (path halving; the lower id stays the root, so that labels
-/// can follow triangle order).
-struct Roots {
+/// Union-find over triangles, or any ids (path halving; the lower id stays the root, so
+/// that labels can follow triangle order).
+pub(crate) struct Roots {
     parent: Vec<u32>,
 }
 
 impl Roots {
-    fn new(n: usize) -> Self {
+    pub(crate) fn new(n: usize) -> Self {
         Roots {
             parent: (0..n as u32).collect(),
         }
     }
 
-    fn find(&mut self, mut x: u32) -> u32 {
+    pub(crate) fn find(&mut self, mut x: u32) -> u32 {
         let parent = &mut self.parent;
         while parent[x as usize] != x {
             let up = parent[parent[x as usize] as usize];
@@ -180,7 +180,7 @@ impl Roots {
     /// to the roots climbed together, the higher parent always spliced onto the lower),
     /// which stops as soon as the paths meet and shortens them as it goes; every parent
     /// stays below its child, so each root is its set's lowest triangle.
-    fn join(&mut self, mut a: u32, mut b: u32) {
+    pub(crate) fn join(&mut self, mut a: u32, mut b: u32) {
         let parent = &mut self.parent;
         loop {
             let (pa, pb) = (parent[a as usize], parent[b as usize]);

@@ -219,7 +219,7 @@ impl Mesh {
         });
         Mesh {
             positions,
-            triangles: ids.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
+            triangles: crate::welder::triangles_of(&ids),
         }
     }
 

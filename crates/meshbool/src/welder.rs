@@ -262,21 +262,14 @@ where
         let (mut cur, mut next) = (Hashed::default(), Hashed::default());
         decode(0, &mut cur);
         for start in (0..n).step_by(BLOCK) {
-            if threads == 1 {
-                welder.index_hashed(&cur, &mut ids);
-                if start + BLOCK < n {
-                    decode(start + BLOCK, &mut next);
-                }
-            } else {
-                rayon::join(
-                    || {
-                        if start + BLOCK < n {
-                            decode(start + BLOCK, &mut next)
-                        }
-                    },
-                    || welder.index_hashed(&cur, &mut ids),
-                );
-            }
+            rayon::join(
+                || {
+                    if start + BLOCK < n {
+                        decode(start + BLOCK, &mut next)
+                    }
+                },
+                || welder.index_hashed(&cur, &mut ids),
+            );
             std::mem::swap(&mut cur, &mut next);
         }
         return (welder.into_positions(), ids);
@@ -408,6 +401,21 @@ where
         positions.extend(m.positions);
     }
     (positions, ids)
+}
+
+/// Corner ids three by three: the triangles of a welded soup (on all threads).
+pub(crate) fn triangles_of(ids: &[u32]) -> Vec<[u32; 3]> {
+    use rayon::prelude::*;
+    let mut triangles = vec![[0u32; 3]; ids.len() / 3];
+    triangles
+        .par_chunks_mut(1 << 14)
+        .zip(ids.par_chunks(3 << 14))
+        .for_each(|(t, c)| {
+            for (t, c) in t.iter_mut().zip(c.chunks_exact(3)) {
+                *t = [c[0], c[1], c[2]];
+            }
+        });
+    triangles
 }
 
 #[cfg(test)]

@@ -390,7 +390,6 @@ struct Reassembled {
 fn reassemble(mesh: &Mesh, results: Vec<(u32, CutResult)>) -> Reassembled {
     let n = mesh.triangles.len();
     let size = |r: &CutResult| r.as_ref().map_or(1, |(p, _)| p.len());
-    let total = n - results.len() + results.iter().map(|(_, r)| size(r)).sum::<usize>();
     // Spans of cut triangles; span k covers input triangles from its first cut one (0 for
     // the first span) to the next span's first cut one (n for the last).
     let spans = if n < 1 << 16 {
@@ -415,6 +414,7 @@ fn reassemble(mesh: &Mesh, results: Vec<(u32, CutResult)>) -> Reassembled {
             end - start - g.len() + g.iter().map(|(_, r)| size(r)).sum::<usize>()
         })
         .collect();
+    let total = sizes.iter().sum();
     let mut triangles = vec![[0u32; 3]; total];
     let mut parent = vec![0u32; total];
     let mut first = 0usize;

@@ -163,17 +163,17 @@ fn read_all(path: &Path) -> std::io::Result<Vec<u8>> {
     use std::io::Read;
     let mut file = fs::File::open(path)?;
     let meta = file.metadata()?;
-    #[cfg(unix)]
-    {
-        use rayon::prelude::*;
-        use std::os::unix::fs::FileExt;
-        const PIECE: usize = 1 << 22;
-        if meta.is_file() && rayon::current_num_threads() > 2 && meta.len() >= 4 * PIECE as u64 {
-            let len = usize::try_from(meta.len()).map_err(std::io::Error::other)?;
-            let mut bytes = Vec::new();
-            bytes
-                .try_reserve_exact(len)
-                .map_err(std::io::Error::other)?;
+    let mut bytes = Vec::new();
+    if meta.is_file() {
+        let len = usize::try_from(meta.len()).map_err(std::io::Error::other)?;
+        bytes
+            .try_reserve_exact(len)
+            .map_err(std::io::Error::other)?;
+        #[cfg(unix)]
+        if rayon::current_num_threads() > 2 && len >= 1 << 24 {
+            use rayon::prelude::*;
+            use std::os::unix::fs::FileExt;
+            const PIECE: usize = 1 << 22;
             // Zeroed side by side too (the first touch of fresh pages is what costs).
             bytes.par_extend(rayon::iter::repeat_n(0u8, len));
             bytes
@@ -182,13 +182,6 @@ fn read_all(path: &Path) -> std::io::Result<Vec<u8>> {
                 .try_for_each(|(i, piece)| file.read_exact_at(piece, (i * PIECE) as u64))?;
             return Ok(bytes);
         }
-    }
-    let mut bytes = Vec::new();
-    if meta.is_file() {
-        let len = usize::try_from(meta.len()).unwrap_or(0);
-        bytes
-            .try_reserve_exact(len)
-            .map_err(std::io::Error::other)?;
     }
     file.read_to_end(&mut bytes)?;
     Ok(bytes)

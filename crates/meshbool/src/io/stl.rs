@@ -53,6 +53,11 @@ pub(super) fn read(bytes: &[u8]) -> Result<Mesh> {
     }
 }
 
+/// The little-endian `f32` at byte `at` of `bytes`.
+fn f32_at(bytes: &[u8], at: usize) -> f32 {
+    f32::from_le_bytes([bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]])
+}
+
 fn read_binary(bytes: &[u8]) -> Result<Mesh> {
     use rayon::prelude::*;
     let err =
@@ -79,21 +84,12 @@ fn read_binary(bytes: &[u8]) -> Result<Mesh> {
         ));
     }
     let body = &bytes[HEADER + 4..];
-    let coordinate =
-        |at: usize| f32::from_le_bytes([body[at], body[at + 1], body[at + 2], body[at + 3]]);
     // Corners `3t + k` of triangle `t`, decoded record by record.
     let (positions, ids) = crate::welder::weld_all(room * 3, room / 2, |corners, out| {
         out.reserve(corners.len());
         for t in corners.start / 3..corners.end.div_ceil(3) {
             let rec = &body[t * RECORD..t * RECORD + RECORD];
-            let f = |k: usize| {
-                f64::from(f32::from_le_bytes([
-                    rec[k],
-                    rec[k + 1],
-                    rec[k + 2],
-                    rec[k + 3],
-                ]))
-            };
+            let f = |k: usize| f64::from(f32_at(rec, k));
             for (k, o) in [12, 24, 36].into_iter().enumerate() {
                 if corners.contains(&(3 * t + k)) {
                     out.push([f(o), f(o + 4), f(o + 8)]);
@@ -109,7 +105,7 @@ fn read_binary(bytes: &[u8]) -> Result<Mesh> {
     let first_bad = || {
         (0..room)
             .flat_map(|t| (12..48).step_by(4).map(move |o| (t, o)))
-            .find(|&(t, o)| !coordinate(t * RECORD + o).is_finite())
+            .find(|&(t, o)| !f32_at(body, t * RECORD + o).is_finite())
     };
     if let Some((t, o)) = non_finite.then(first_bad).flatten() {
         return Err(err(
@@ -117,16 +113,10 @@ fn read_binary(bytes: &[u8]) -> Result<Mesh> {
             format!("non-finite coordinate in triangle {t}"),
         ));
     }
-    let mut triangles = vec![[0u32; 3]; room];
-    triangles
-        .par_chunks_mut(1 << 14)
-        .zip(ids.par_chunks(3 << 14))
-        .for_each(|(t, c)| {
-            for (t, c) in t.iter_mut().zip(c.chunks_exact(3)) {
-                *t = [c[0], c[1], c[2]];
-            }
-        });
-    Ok(Mesh::new_unchecked(positions, triangles))
+    Ok(Mesh::new_unchecked(
+        positions,
+        crate::welder::triangles_of(&ids),
+    ))
 }
 
 fn read_ascii(bytes: &[u8]) -> Result<Mesh> {

@@ -27,7 +27,7 @@ pub fn inside_out(mesh: &Mesh) -> (Vec<u32>, usize) {
     };
     let mut volume = vec![0.0f64; n];
     let comp: Vec<u32> = if rayon::current_num_threads() > 2 && mesh.triangles.len() >= 1 << 16 {
-        // Joined on all threads (roots are the lowest vertices either way), the terms
+        // Joined on all threads (roots are the lowest vertices on both paths), the terms
         // computed side by side.
         let roots = crate::edges::SharedRoots::new(n);
         mesh.triangles
@@ -53,28 +53,12 @@ pub fn inside_out(mesh: &Mesh) -> (Vec<u32>, usize) {
         }
         comp
     } else {
-        let mut root: Vec<u32> = (0..n as u32).collect();
-        fn find(root: &mut [u32], mut x: u32) -> u32 {
-            while root[x as usize] != x {
-                let up = root[root[x as usize] as usize];
-                root[x as usize] = up;
-                x = up;
-            }
-            x
-        }
+        let mut roots = crate::edges::Roots::new(n);
         for &[a, b, c] in &mesh.triangles {
-            for (x, y) in [(a, b), (a, c)] {
-                let (rx, ry) = (find(&mut root, x), find(&mut root, y));
-                if rx != ry {
-                    root[rx.max(ry) as usize] = rx.min(ry);
-                }
-            }
+            roots.join(a, b);
+            roots.join(a, c);
         }
-        let comp: Vec<u32> = mesh
-            .triangles
-            .iter()
-            .map(|t| find(&mut root, t[0]))
-            .collect();
+        let comp: Vec<u32> = mesh.triangles.iter().map(|t| roots.find(t[0])).collect();
         for (t, &c) in mesh.triangles.iter().zip(&comp) {
             volume[c as usize] += term(t, c);
         }
