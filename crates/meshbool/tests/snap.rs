@@ -548,3 +548,87 @@ fn a_pick_snaps_where_its_pieces_meet() {
     let bad = ops::PickOptions { snap: -1.0, ..opts };
     assert!(exact.pick_op(Op::Union, &bad).is_err());
 }
+
+/// `boolean::snap_result` fills the slots it empties from the end (few moves) but makes
+/// the same mesh as the order-keeping `repair::snap_with` with the same options: the same
+/// triangles at the same corners, with the same provenance, and the seam vertices at the
+/// same points.
+#[test]
+fn snapping_a_result_out_of_order_makes_the_ordered_mesh() {
+    use meshbool::boolean::{PipelineOptions, Provenance, Source};
+    use meshbool::repair::{snap_with, SnapOptions};
+    let (a, b) = cube_and_cutter();
+    for op in [Op::Difference, Op::Union, Op::Intersection] {
+        let raw = PipelineOptions {
+            cleanup: false,
+            ..Default::default()
+        };
+        let r = meshbool::boolean::boolean(&a, &b, op, &raw);
+        let labels: Vec<u32> = r
+            .provenance
+            .iter()
+            .map(|p| u32::from(p.source == Source::B))
+            .collect();
+        let opts = SnapOptions {
+            tolerance: D,
+            seam: &r.seam_vertices,
+            labels: Some(&labels),
+            seam_only: true,
+            sheets: None,
+        };
+        let ordered = snap_with(&r.mesh, &opts).unwrap();
+        let mut filled = r.clone();
+        let report = meshbool::boolean::snap_result(&mut filled, D).unwrap();
+        assert_eq!(report, ordered.report, "{op:?}");
+        assert!(
+            report.collapsed > 0,
+            "{op:?}: the case must change something"
+        );
+        // Triangles as (corners from the lowest, provenance), sorted.
+        type Key = ([[u64; 3]; 3], (bool, u32, bool));
+        let keys = |m: &Mesh, prov: &mut dyn Iterator<Item = Provenance>| -> Vec<Key> {
+            let mut k: Vec<Key> = m
+                .triangles()
+                .iter()
+                .zip(prov)
+                .map(|(t, p)| {
+                    let c = t.map(|v| m.positions()[v as usize].map(f64::to_bits));
+                    let low = (0..3).min_by_key(|&i| c[i]).unwrap();
+                    let c = [c[low], c[(low + 1) % 3], c[(low + 2) % 3]];
+                    (c, (p.source == Source::B, p.triangle, p.flipped))
+                })
+                .collect();
+            k.sort_unstable();
+            k
+        };
+        let parent_prov = ordered.parent.iter().map(|&t| r.provenance[t as usize]);
+        assert_eq!(
+            keys(&filled.mesh, &mut filled.provenance.iter().copied()),
+            keys(&ordered.mesh, &mut parent_prov.into_iter()),
+            "{op:?}"
+        );
+        assert_eq!(filled.mesh.vertex_count(), ordered.mesh.vertex_count());
+        let points = |m: &Mesh, vs: &[u32]| {
+            let mut p: Vec<[u64; 3]> = vs
+                .iter()
+                .map(|&v| m.positions()[v as usize].map(f64::to_bits))
+                .collect();
+            p.sort_unstable();
+            p
+        };
+        let seam_left: Vec<u32> = (0..ordered.mesh.vertex_count() as u32)
+            .filter(|&v| {
+                let p = ordered.mesh.positions()[v as usize];
+                r.seam_vertices
+                    .iter()
+                    .any(|&s| r.mesh.positions()[s as usize] == p)
+            })
+            .collect();
+        assert_eq!(
+            points(&filled.mesh, &filled.seam_vertices),
+            points(&ordered.mesh, &seam_left),
+            "{op:?}"
+        );
+        assert!(filled.seam_vertices.windows(2).all(|w| w[0] < w[1]));
+    }
+}

@@ -26,7 +26,7 @@ use serde::Serialize;
 use super::{Provenance, Source};
 use crate::kernel::{normals_cross_sign, normals_dot_sign, orient3d_explicit, Sign};
 use crate::measure::is_degenerate;
-use crate::repair::{common, neighbours};
+use crate::repair::{common, filled_from_end, neighbours};
 use crate::Mesh;
 
 /// What the exact clean-up of a boolean's result did ([`super::PipelineOptions::cleanup`]).
@@ -474,27 +474,16 @@ pub(crate) fn clean_up(
     // Compact without moving what stays in place (few go): each dead triangle's and
     // dead vertex's slot below the new count takes the live one from the end (dead
     // vertices were collapsed, so they are unreferenced); ids follow.
-    // (k dead among len, ids sorted: the new count and the (from, to) moves.)
-    let fill = |dead: &[u32], is_dead: &dyn Fn(usize) -> bool, len: usize| {
-        let n = len - dead.len();
-        let holes = dead.iter().copied().filter(|&k| (k as usize) < n);
-        let moves: Vec<(u32, u32)> = (n..len)
-            .filter(|&k| !is_dead(k))
-            .map(|k| k as u32)
-            .zip(holes)
-            .collect();
-        (n, moves)
-    };
     dead_triangles.sort_unstable();
     dead_vertices.sort_unstable();
-    let (nt, tmoves) = fill(&dead_triangles, &|t| !alive[t], alive.len());
+    let (nt, tmoves) = filled_from_end(&dead_triangles, alive.len());
     for &(from, to) in &tmoves {
         triangles[to as usize] = triangles[from as usize];
         provenance_in[to as usize] = provenance_in[from as usize];
     }
     triangles.truncate(nt);
     provenance_in.truncate(nt);
-    let (n, moves) = fill(&dead_vertices, &|v| dead_vertex[v], nv);
+    let (n, moves) = filled_from_end(&dead_vertices, nv);
     for &(from, to) in &moves {
         mesh.positions[to as usize] = mesh.positions[from as usize];
     }

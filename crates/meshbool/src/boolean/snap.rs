@@ -6,14 +6,15 @@ use rayon::prelude::*;
 
 use super::{merge, BooleanResult, Group, Keep, Provenance, Source, Split};
 use crate::repair::{
-    check_tolerance, remove_sorted, snap_carrying, snap_unchecked, SnapOptions, SnapReport,
+    check_tolerance, remove_sorted, snap_filling, snap_unchecked, SnapOptions, SnapReport,
 };
 use crate::{Mesh, Result};
 
 /// Snaps `r` at `tolerance` in place where the boolean cut (the bad triangles with a
 /// corner at a seam point; the inputs' own short edges and needles elsewhere stay): seam
 /// points move before input vertices, no edge between A's part and B's is flipped,
-/// provenance and `seam_vertices` follow.
+/// provenance and `seam_vertices` follow. The order is kept but for the last triangles
+/// and vertices, moved into the slots of those removed (as the clean-up does).
 ///
 /// Errors: a tolerance that is negative, NaN or infinite (then `r` is unchanged). `r`'s
 /// mesh has finite coordinates, as every boolean's result of valid meshes does.
@@ -27,16 +28,14 @@ pub fn snap_result(r: &mut BooleanResult, tolerance: f64) -> Result<SnapReport> 
         seam_only: true,
         sheets: None,
     };
-    let (report, dead) = snap_carrying(&mut r.mesh, &opts, &mut r.provenance);
-    if !dead.is_empty() {
-        // A seam vertex keeps its place among the vertices left: its id less the dead
-        // vertices before it.
+    let (report, filled) = snap_filling(&mut r.mesh, &opts, &mut r.provenance);
+    if report.vertices_removed > 0 {
         r.seam_vertices = r
             .seam_vertices
             .iter()
-            .filter(|v| dead.binary_search(v).is_err())
-            .map(|&v| v - dead.partition_point(|&x| x < v) as u32)
+            .filter_map(|&v| filled.renamed(v))
             .collect();
+        r.seam_vertices.sort_unstable();
     }
     Ok(report)
 }

@@ -36,7 +36,8 @@ pub use pipeline::{
     RepairReport,
 };
 pub(crate) use snap::{
-    check_tolerance, common, neighbours, remove_sorted, snap_carrying, snap_unchecked,
+    check_tolerance, common, filled_from_end, neighbours, remove_sorted, snap_carrying,
+    snap_filling, snap_unchecked,
 };
 pub use snap::{snap, snap_in_place, snap_with, SnapOptions, SnapReport, Snapped};
 pub use stitch::{stitch, zipper, StitchReport};

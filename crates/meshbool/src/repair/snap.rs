@@ -263,20 +263,108 @@ pub(crate) struct Removed {
 
 /// [`snap_in_place`] of options known to be valid.
 pub(crate) fn snap_unchecked(mesh: &mut Mesh, opts: &SnapOptions) -> (SnapReport, Removed) {
+    let (report, edit) = snap_edit(mesh, opts);
+    let Some(edit) = edit else {
+        return (report, Removed::default());
+    };
+    let removed = edit.apply(mesh);
+    let report = SnapReport {
+        triangles_removed: removed.triangles.len(),
+        vertices_removed: removed.vertices.len(),
+        ..report
+    };
+    (report, removed)
+}
+
+/// [`snap_unchecked`] without keeping the order (for a boolean's result, whose order the
+/// clean-up does not keep either): the slots of removed triangles and vertices below the
+/// new counts take the last ones, so nothing else moves; `per_triangle` (provenance)
+/// follows. Returns the report and what became of the vertices.
+pub(crate) fn snap_filling<T: Copy>(
+    mesh: &mut Mesh,
+    opts: &SnapOptions,
+    per_triangle: &mut Vec<T>,
+) -> (SnapReport, Filled) {
+    let (report, edit) = snap_edit(mesh, opts);
+    let Some(edit) = edit else {
+        return (report, Filled::default());
+    };
+    let triangles_removed = edit.removed.len();
+    let filled = edit.fill(mesh, per_triangle);
+    let report = SnapReport {
+        triangles_removed,
+        vertices_removed: filled.dead.len(),
+        ..report
+    };
+    (report, filled)
+}
+
+/// What [`snap_filling`] did to the vertices: the dead ones, and the last ones moved
+/// into their slots.
+#[derive(Default)]
+pub(crate) struct Filled {
+    /// Vertices collapsed away (sorted ids in the mesh as it was).
+    dead: Vec<u32>,
+    /// The vertex count after.
+    count: usize,
+    /// (from, to) of the vertices moved into dead slots, sorted.
+    moves: Vec<(u32, u32)>,
+}
+
+impl Filled {
+    /// The new id of vertex `v` of the mesh as it was; `None` when it was collapsed away.
+    pub(crate) fn renamed(&self, v: u32) -> Option<u32> {
+        if self.dead.binary_search(&v).is_ok() {
+            None
+        } else if (v as usize) < self.count || self.moves.is_empty() {
+            Some(v)
+        } else {
+            Some(moved(&self.moves, v))
+        }
+    }
+}
+
+/// Where vertex `v` (one of the moved ones) went: `moves` sorted by source.
+#[inline]
+fn moved(moves: &[(u32, u32)], v: u32) -> u32 {
+    moves[moves.partition_point(|&(f, _)| f < v)].1
+}
+
+/// Compaction that moves few: of `len` slots, `dead` (sorted, distinct) go, and each dead
+/// slot below the new count takes a live one from the end. Returns the new count and the
+/// moves (from, to), sorted by source.
+pub(crate) fn filled_from_end(dead: &[u32], len: usize) -> (usize, Vec<(u32, u32)>) {
+    let n = len - dead.len();
+    let split = dead.partition_point(|&k| (k as usize) < n);
+    let (holes, tail) = dead.split_at(split);
+    let mut tail = tail.iter().peekable();
+    let live_tail = (n as u32..len as u32).filter(|&k| {
+        if tail.peek() == Some(&&k) {
+            tail.next();
+            false
+        } else {
+            true
+        }
+    });
+    (n, live_tail.zip(holes.iter().copied()).collect())
+}
+
+/// The work of a snap: the report (without the removal counts) and the changes, if any.
+fn snap_edit(mesh: &Mesh, opts: &SnapOptions) -> (SnapReport, Option<Edit>) {
     let d = opts.tolerance;
     let mut report = SnapReport {
         tolerance: d,
         ..SnapReport::default()
     };
     if d == 0.0 || mesh.triangles.is_empty() {
-        return (report, Removed::default());
+        return (report, None);
     }
     let grid = Grid::new(mesh, d);
     let (seam, [halo, next_to_halo]) = seam_and_halo(mesh, opts, &grid);
     let scan = Scan::of(mesh, d, &grid, seam.as_deref(), [&halo, &next_to_halo]);
     report.found = scan.bad.len();
     if scan.bad.is_empty() {
-        return (report, Removed::default());
+        return (report, None);
     }
     let seeds = scan.bad.iter().map(|&(_, t)| t).collect();
     let mut w = Work::new(mesh, opts, scan, grid, halo);
@@ -284,15 +372,9 @@ pub(crate) fn snap_unchecked(mesh: &mut Mesh, opts: &SnapOptions) -> (SnapReport
     w.run(seeds);
     let report = w.finish_report();
     if report.collapsed + report.flipped == 0 {
-        return (report, Removed::default());
+        return (report, None);
     }
-    let removed = w.edit().apply(mesh);
-    let report = SnapReport {
-        triangles_removed: removed.triangles.len(),
-        vertices_removed: removed.vertices.len(),
-        ..report
-    };
-    (report, removed)
+    (report, Some(w.edit()))
 }
 
 /// Where only the seam's bad triangles are taken (`seam_only`), the work stays near the
@@ -321,7 +403,7 @@ fn seam_and_halo(mesh: &Mesh, opts: &SnapOptions, grid: &Grid) -> (Option<Vec<bo
     let margin = (Work::HALO + 1.0) * grid.size() + 4.0 * opts.tolerance;
     let r = (margin * grid.inv).ceil().min(Grid::AXIS as f64) as usize + 1;
     for c in cells {
-        let c = Grid::coordinates(c);
+        let c = grid.coordinates(c);
         let around = |r: usize| {
             [
                 c.map(|x| x.saturating_sub(r)),
@@ -403,6 +485,44 @@ impl Edit {
             vertices: self.dead,
         }
     }
+
+    /// Applies the changes to `mesh` as [`Edit::apply`] does, but each removed triangle's
+    /// and dead vertex's slot below the new count takes the last live one (and
+    /// `per_triangle` follows): a few moves and one pass renaming the moved vertices,
+    /// instead of shifting and renumbering everything.
+    fn fill<T: Copy>(self, mesh: &mut Mesh, per_triangle: &mut Vec<T>) -> Filled {
+        for &(t, tri) in &self.replaced {
+            mesh.triangles[t as usize] = tri;
+        }
+        let (n, moves) = filled_from_end(&self.removed, mesh.triangles.len());
+        for &(from, to) in &moves {
+            mesh.triangles[to as usize] = mesh.triangles[from as usize];
+            per_triangle[to as usize] = per_triangle[from as usize];
+        }
+        mesh.triangles.truncate(n);
+        per_triangle.truncate(n);
+        let (count, moves) = filled_from_end(&self.dead, mesh.positions.len());
+        for &(from, to) in &moves {
+            mesh.positions[to as usize] = mesh.positions[from as usize];
+        }
+        mesh.positions.truncate(count);
+        if !moves.is_empty() {
+            let last = count as u32;
+            mesh.triangles
+                .par_iter_mut()
+                .with_min_len(1 << 12)
+                .for_each(|t| {
+                    if t.iter().any(|&v| v >= last) {
+                        *t = t.map(|v| if v < last { v } else { moved(&moves, v) });
+                    }
+                });
+        }
+        Filled {
+            dead: self.dead,
+            count,
+            moves,
+        }
+    }
 }
 
 /// The smallest edge length and the smallest altitude (twice the area over the longest
@@ -480,7 +600,7 @@ struct Scan {
     area: f64,
     candidates: Vec<(u32, u32)>,
     /// Each vertex's cell ([`Grid::packed`]).
-    cells: Vec<u64>,
+    cells: Vec<u32>,
 }
 
 impl Scan {
@@ -492,13 +612,13 @@ impl Scan {
         // Each vertex's cell, with bit [`Grid::NEAR_BIT`] set where the cell is in or next to the
         // halo: a triangle spanning at most two cells along each axis with no corner
         // there does not touch the halo.
-        let cells: Vec<u64> = mesh
+        let cells: Vec<u32> = mesh
             .positions
             .par_iter()
             .with_min_len(PIECE)
             .map(|p| {
-                let c = grid.packed(p);
-                c | u64::from(next_to_halo.get(grid.unpacked(c))) << Grid::NEAR_BIT
+                let c = [0, 1, 2].map(|k| grid.cell(p[k], k));
+                grid.pack(c) | u32::from(next_to_halo.get(grid.index(c))) << Grid::NEAR_BIT
             })
             .collect();
         let pieces: Vec<ScanPiece> = mesh
@@ -635,20 +755,23 @@ struct Grid {
     /// `1 / cell size` (0 for a mesh in one point).
     inv: f64,
     n: [usize; 3],
+    /// Where each axis's cell sits in a [`Grid::packed`] cell, and its bits there.
+    shift: [u32; 3],
+    mask: [u32; 3],
     bits: Vec<u64>,
 }
 
 impl Grid {
     /// At most this many cells.
     const CELLS: usize = 1 << 24;
-    /// At most this many cells along an axis (a vertex's cell packs in 64 bits).
+    /// At most this many cells along an axis.
     const AXIS: usize = 1 << 21;
     /// [`Grid::key`] of a box spanning more than two cells along an axis.
     const WIDE: u32 = u32::MAX;
-    /// A bit of a [`Grid::packed`] cell that the packing leaves free (63: above the three
-    /// 21-bit axes), which [`Grid::key`] and [`Grid::unpacked`] ignore: the scan's mark
-    /// of a vertex near the halo.
-    const NEAR_BIT: u32 = 63;
+    /// A bit of a [`Grid::packed`] cell that the packing leaves free (31: the three axes
+    /// take at most 27 bits, as there are at most 2^24 cells), which [`Grid::key`] and
+    /// [`Grid::unpacked`] ignore: the scan's mark of a vertex near the halo.
+    const NEAR_BIT: u32 = 31;
     /// What a row's search costs in [`Grid::keyed_near`], in entries looked at.
     const ROW_COST: usize = 32;
 
@@ -712,10 +835,15 @@ impl Grid {
             h *= 1.25;
         }
         let n = count(h);
+        // Each axis packs in the bits its largest cell needs.
+        let width = n.map(|c| usize::BITS - (c - 1).leading_zeros());
+        debug_assert!(width.iter().sum::<u32>() <= Self::NEAR_BIT);
         Grid {
             lo,
             inv: if h > 0.0 { 1.0 / h } else { 0.0 },
             n,
+            shift: [0, width[0], width[0] + width[1]],
+            mask: width.map(|w| (1u32 << w) - 1),
             bits: vec![0; (n[0] * n[1] * n[2]).div_ceil(64)],
         }
     }
@@ -770,24 +898,27 @@ impl Grid {
         (c[2] * self.n[1] + c[1]) * self.n[0] + c[0]
     }
 
-    /// A point's cell, packed: 21 bits per axis.
+    /// A point's cell, packed: each axis in its [`Grid::shift`] and [`Grid::mask`].
     #[inline]
-    fn packed(&self, p: &[f64; 3]) -> u64 {
-        self.cell(p[0], 0) as u64
-            | (self.cell(p[1], 1) as u64) << 21
-            | (self.cell(p[2], 2) as u64) << 42
+    fn packed(&self, p: &[f64; 3]) -> u32 {
+        self.pack([0, 1, 2].map(|k| self.cell(p[k], k)))
+    }
+
+    /// A cell's coordinates, packed as in [`Grid::packed`].
+    #[inline]
+    fn pack(&self, c: [usize; 3]) -> u32 {
+        c[0] as u32 | (c[1] as u32) << self.shift[1] | (c[2] as u32) << self.shift[2]
     }
 
     /// A triangle's cells in 32 bits, from its corners' [`Grid::packed`] cells (the range
     /// of its box: cells are monotone): its lowest cell's index times 8, plus a bit per
     /// axis along which it spans two cells; [`Grid::WIDE`] when it spans more.
     #[inline]
-    fn key(&self, c: [u64; 3]) -> u32 {
-        const MASK: u64 = (1 << 21) - 1;
+    fn key(&self, c: [u32; 3]) -> u32 {
         let mut low = [0usize; 3];
         let mut span = 0;
         for (k, low) in low.iter_mut().enumerate() {
-            let [a, b, d] = c.map(|x| x >> (21 * k) & MASK);
+            let [a, b, d] = c.map(|x| x >> self.shift[k] & self.mask[k]);
             let (lo, hi) = (a.min(b).min(d), a.max(b).max(d));
             match hi - lo {
                 0 => {}
@@ -801,15 +932,14 @@ impl Grid {
 
     /// The index of a [`Grid::packed`] cell.
     #[inline]
-    fn unpacked(&self, c: u64) -> usize {
-        self.index(Self::coordinates(c))
+    fn unpacked(&self, c: u32) -> usize {
+        self.index(self.coordinates(c))
     }
 
     /// The coordinates of a [`Grid::packed`] cell.
     #[inline]
-    fn coordinates(c: u64) -> [usize; 3] {
-        const MASK: u64 = (1 << 21) - 1;
-        [0, 1, 2].map(|k| (c >> (21 * k) & MASK) as usize)
+    fn coordinates(&self, c: u32) -> [usize; 3] {
+        [0, 1, 2].map(|k| (c >> self.shift[k] & self.mask[k]) as usize)
     }
 
     #[inline]
@@ -1001,7 +1131,7 @@ struct Work<'a> {
     halo: Grid,
     candidates: Vec<(u32, u32)>,
     /// Each vertex's cell ([`Grid::packed`]).
-    cells: Vec<u64>,
+    cells: Vec<u32>,
     near: Near,
     budget: f64,
     /// Whether `budget` is `D` times the whole area (else times a part of it).

@@ -316,3 +316,36 @@ fn the_scan_keeps_every_triangle_touching_the_halo() {
         "the long triangles cross the halo"
     );
 }
+
+/// Compaction from the end: the dead go, the last live ones fill the holes below the new
+/// count, and every survivor is accounted for exactly once.
+#[test]
+fn filling_from_the_end_moves_only_the_last_ones() {
+    assert_eq!(filled_from_end(&[], 5), (5, vec![]));
+    // Dead at the end: nothing moves.
+    assert_eq!(filled_from_end(&[3, 4], 5), (3, vec![]));
+    // Holes 0 and 2 take 5 and 6 (4 is dead too).
+    assert_eq!(filled_from_end(&[0, 2, 4], 7), (4, vec![(5, 0), (6, 2)]));
+    assert_eq!(filled_from_end(&[0, 1, 2], 3), (0, vec![]));
+    let mut rng = crate::test_util::Rng(7);
+    for _ in 0..200 {
+        let len = 1 + (rng.next() % 40) as usize;
+        let dead: Vec<u32> = (0..len as u32).filter(|_| rng.next() % 3 == 0).collect();
+        let (n, moves) = filled_from_end(&dead, len);
+        assert_eq!(n, len - dead.len());
+        let mut slot: Vec<Option<u32>> = (0..len as u32).map(Some).collect();
+        for &d in &dead {
+            slot[d as usize] = None;
+        }
+        for &(from, to) in &moves {
+            assert!(from as usize >= n && (to as usize) < n && slot[to as usize].is_none());
+            slot[to as usize] = slot[from as usize].take();
+        }
+        assert!(slot[n..].iter().all(Option::is_none));
+        let mut kept: Vec<u32> = slot[..n].iter().map(|s| s.expect("filled")).collect();
+        kept.sort_unstable();
+        let live: Vec<u32> = (0..len as u32).filter(|v| !dead.contains(v)).collect();
+        assert_eq!(kept, live);
+        assert!(moves.windows(2).all(|w| w[0].0 < w[1].0));
+    }
+}
