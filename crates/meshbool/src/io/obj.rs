@@ -5,6 +5,8 @@
 
 use std::io::Write;
 
+use rayon::prelude::*;
+
 use super::{lines, parse_f64, tokens, Format, Out};
 use crate::error::{Error, Location, Result};
 use crate::Mesh;
@@ -43,102 +45,261 @@ pub(super) fn looks_like(bytes: &[u8]) -> bool {
     starts(b"v ") && (starts(b"f ") || head.len() == bytes.len() || obj_lines())
 }
 
+/// Files of at least this many bytes per thread are parsed in pieces side by side.
+const PIECE: usize = 1 << 20;
+
 pub(super) fn read(bytes: &[u8]) -> Result<Mesh> {
+    let pieces = if rayon::current_num_threads() > 1 {
+        (bytes.len() / PIECE).min(8 * rayon::current_num_threads())
+    } else {
+        1
+    };
+    read_in(bytes, pieces)
+}
+
+/// [`read`] in about `pieces` pieces of whole lines, parsed side by side: vertices and
+/// faces in file order, the same mesh and the same first error as one pass. A negative
+/// (relative) reference needs the count of vertices before it: a piece that meets one is
+/// parsed again once the pieces before it are counted.
+pub(super) fn read_in(bytes: &[u8], pieces: usize) -> Result<Mesh> {
     let fmt = Format::Obj;
-    let mut positions: Vec<[f64; 3]> = Vec::new();
-    let mut triangles = Vec::new();
-    // Face corners as (absolute 0-based index, line) for the range check at the end, because
-    // some writers reference vertices defined later in the file.
-    let mut lines_of_tris: Vec<usize> = Vec::new();
-    let mut poly: Vec<u32> = Vec::new();
-    for (ln, line) in lines(bytes) {
-        let mut tok = tokens(line);
-        match tok.next() {
-            Some(b"v") => {
-                let mut p = [0.0; 3];
-                for c in &mut p {
-                    let t = tok.next().ok_or_else(|| {
-                        Error::parse(fmt, Location::Line(ln), "vertex needs three coordinates")
-                    })?;
-                    *c = parse_f64(t, fmt, ln)?;
-                }
-                // A weight `w` or a colour `r g b` may follow (numbers too), then a comment.
-                let mut extra = 0;
-                for t in tok.by_ref().take_while(|t| !t.starts_with(b"#")) {
-                    parse_f64(t, fmt, ln)?;
-                    extra += 1;
-                }
-                if !matches!(extra, 0 | 1 | 3) {
-                    return Err(Error::parse(
-                        fmt,
-                        Location::Line(ln),
-                        format!(
-                            "vertex has {} numbers: expected x y z, x y z w (a weight) or \
-                             x y z r g b (a colour)",
-                            3 + extra
-                        ),
-                    ));
-                }
-                positions.push(p);
+    let chunks = whole_lines(bytes, pieces.max(1));
+    let mut parsed: Vec<std::result::Result<Piece, Stop>> = chunks
+        .par_iter()
+        .enumerate()
+        .map(|(k, c)| Piece::parse(c, (k == 0).then_some(0)))
+        .collect();
+    if parsed.iter().any(|p| matches!(p, Err(Stop::Relative))) {
+        let counts: Vec<usize> = chunks
+            .par_iter()
+            .zip(&parsed)
+            .map(|(c, p)| match p {
+                Ok(p) => p.positions.len(),
+                Err(_) => vertex_lines(c),
+            })
+            .collect();
+        let offsets = exclusive_sums(&counts);
+        parsed
+            .par_iter_mut()
+            .zip(chunks.par_iter().zip(&offsets))
+            .filter(|(p, _)| matches!(p, Err(Stop::Relative)))
+            .for_each(|(p, (c, &o))| *p = Piece::parse(c, Some(o as u64)));
+    }
+    let mut ok = Vec::with_capacity(parsed.len());
+    for (k, p) in parsed.into_iter().enumerate() {
+        match p {
+            Ok(p) => ok.push(p),
+            Err(Stop::Error(line, message)) => {
+                let line = line + lines_before(bytes, &chunks, k);
+                return Err(Error::parse(fmt, Location::Line(line), message));
             }
-            Some(b"f") => {
-                poly.clear();
-                for t in tok {
-                    let idx = t.split(|&b| b == b'/').next().unwrap_or(t);
-                    let bad = || {
-                        Error::parse(
-                            fmt,
-                            Location::Line(ln),
-                            format!("bad vertex reference {:?}", String::from_utf8_lossy(t)),
-                        )
-                    };
-                    let i: i64 = std::str::from_utf8(idx)
-                        .ok()
-                        .and_then(|s| s.parse().ok())
-                        .ok_or_else(bad)?;
-                    let abs = match i {
-                        0 => return Err(bad()),
-                        i if i > 0 => i - 1,
-                        i => positions.len() as i64 + i,
-                    };
-                    if abs < 0 || abs > i64::from(u32::MAX - 1) {
-                        return Err(Error::parse(
-                            fmt,
-                            Location::Line(ln),
-                            format!(
-                                "vertex reference {i} is out of range ({} vertices so far)",
-                                positions.len()
-                            ),
-                        ));
-                    }
-                    poly.push(abs as u32);
-                }
-                if poly.len() < 3 {
-                    return Err(Error::parse(
-                        fmt,
-                        Location::Line(ln),
-                        format!("face has {} vertices, needs at least 3", poly.len()),
-                    ));
-                }
-                let before = triangles.len();
-                super::push_fan(&poly, &mut triangles);
-                lines_of_tris.resize(lines_of_tris.len() + triangles.len() - before, ln);
-            }
-            _ => {}
+            Err(Stop::Relative) => unreachable!("pieces with relative references are parsed again"),
         }
     }
-    let n = positions.len() as u64;
-    if let Some(t) = triangles
-        .iter()
-        .position(|tri: &[u32; 3]| tri.iter().any(|&i| u64::from(i) >= n))
+    let n = ok.iter().map(|p| p.positions.len()).sum::<usize>() as u64;
+    let beyond = ok.par_iter().map(|p| {
+        p.triangles
+            .iter()
+            .position(|tri: &[u32; 3]| tri.iter().any(|&i| u64::from(i) >= n))
+    });
+    if let Some((k, t)) = beyond
+        .collect::<Vec<_>>()
+        .into_iter()
+        .enumerate()
+        .find_map(|(k, t)| Some((k, t?)))
     {
+        let line = face_line(chunks[k], t) + lines_before(bytes, &chunks, k);
         return Err(Error::parse(
             fmt,
-            Location::Line(lines_of_tris[t]),
+            Location::Line(line),
             format!("face references a vertex beyond the {n} defined"),
         ));
     }
+    let (positions, triangles): (Vec<_>, Vec<_>) =
+        ok.into_iter().map(|p| (p.positions, p.triangles)).unzip();
+    let (positions, triangles) = rayon::join(|| concat(positions), || concat(triangles));
     Ok(Mesh::new_unchecked(positions, triangles))
+}
+
+/// `bytes` cut into about `pieces` pieces, each ending just after a line's end (the last
+/// at the end).
+fn whole_lines(bytes: &[u8], pieces: usize) -> Vec<&[u8]> {
+    let mut out = Vec::with_capacity(pieces);
+    let mut rest = bytes;
+    for k in (1..pieces).rev() {
+        let target = rest.len() / (k + 1);
+        match rest[target..].iter().position(|&b| b == b'\n') {
+            Some(i) => {
+                let (head, tail) = rest.split_at(target + i + 1);
+                out.push(head);
+                rest = tail;
+            }
+            None => break,
+        }
+    }
+    out.push(rest);
+    out
+}
+
+/// The lines before piece `k` of `chunks` (cut from `bytes` by [`whole_lines`]).
+fn lines_before(bytes: &[u8], chunks: &[&[u8]], k: usize) -> usize {
+    let start: usize = chunks[..k].iter().map(|c| c.len()).sum();
+    bytes[..start].iter().filter(|&&b| b == b'\n').count()
+}
+
+/// Each element's sum of the elements before it.
+fn exclusive_sums(counts: &[usize]) -> Vec<usize> {
+    let mut sum = 0;
+    counts
+        .iter()
+        .map(|&c| {
+            sum += c;
+            sum - c
+        })
+        .collect()
+}
+
+/// The vectors one after another (copied side by side; one is taken as it is).
+fn concat<T: Copy + Default + Send + Sync>(mut parts: Vec<Vec<T>>) -> Vec<T> {
+    if parts.len() == 1 {
+        return parts.pop().unwrap_or_default();
+    }
+    let lengths: Vec<usize> = parts.iter().map(|p| p.len()).collect();
+    let mut out = vec![T::default(); lengths.iter().sum()];
+    crate::boolean::split_by(&mut out, &lengths)
+        .into_par_iter()
+        .zip(parts)
+        .for_each(|(to, from)| to.copy_from_slice(&from));
+    out
+}
+
+/// The lines that are vertices (`v` statements) in a piece, as [`Piece::parse`] reads them.
+fn vertex_lines(chunk: &[u8]) -> usize {
+    lines(chunk)
+        .filter(|(_, l)| tokens(l).next() == Some(b"v"))
+        .count()
+}
+
+/// The line (in `chunk`) of its face that made triangle `t` (counted in `chunk`).
+fn face_line(chunk: &[u8], t: usize) -> usize {
+    let mut made = 0;
+    for (ln, line) in lines(chunk) {
+        let mut tok = tokens(line);
+        if tok.next() == Some(b"f") {
+            made += tok.count().saturating_sub(2);
+            if made > t {
+                return ln;
+            }
+        }
+    }
+    0
+}
+
+/// What a piece of an OBJ file holds.
+struct Piece {
+    positions: Vec<[f64; 3]>,
+    /// Faces as fans of triangles, with absolute 0-based references (range checked at
+    /// the end: some writers reference vertices defined later in the file).
+    triangles: Vec<[u32; 3]>,
+}
+
+/// Why a piece was not read.
+enum Stop {
+    /// A parse error: the line (in the piece) and the message.
+    Error(usize, String),
+    /// A relative reference, before the count of vertices ahead of the piece is known.
+    Relative,
+}
+
+impl Piece {
+    /// Parses `chunk` (whole lines) with `before` vertices ahead of it, where known.
+    fn parse(chunk: &[u8], before: Option<u64>) -> std::result::Result<Piece, Stop> {
+        let mut positions: Vec<[f64; 3]> = Vec::new();
+        let mut triangles = Vec::new();
+        let mut poly: Vec<u32> = Vec::new();
+        let number = |t: &[u8], ln: usize| {
+            parse_f64(t, Format::Obj, ln).map_err(|e| match e {
+                Error::Parse { message, .. } => Stop::Error(ln, message),
+                e => Stop::Error(ln, e.to_string()),
+            })
+        };
+        for (ln, line) in lines(chunk) {
+            let mut tok = tokens(line);
+            match tok.next() {
+                Some(b"v") => {
+                    let mut p = [0.0; 3];
+                    for c in &mut p {
+                        let t = tok.next().ok_or_else(|| {
+                            Stop::Error(ln, "vertex needs three coordinates".into())
+                        })?;
+                        *c = number(t, ln)?;
+                    }
+                    // A weight `w` or a colour `r g b` may follow (numbers too), then a
+                    // comment.
+                    let mut extra = 0;
+                    for t in tok.by_ref().take_while(|t| !t.starts_with(b"#")) {
+                        number(t, ln)?;
+                        extra += 1;
+                    }
+                    if !matches!(extra, 0 | 1 | 3) {
+                        return Err(Stop::Error(
+                            ln,
+                            format!(
+                                "vertex has {} numbers: expected x y z, x y z w (a weight) or \
+                                 x y z r g b (a colour)",
+                                3 + extra
+                            ),
+                        ));
+                    }
+                    positions.push(p);
+                }
+                Some(b"f") => {
+                    poly.clear();
+                    for t in tok {
+                        let idx = t.split(|&b| b == b'/').next().unwrap_or(t);
+                        let bad = || {
+                            Stop::Error(
+                                ln,
+                                format!("bad vertex reference {:?}", String::from_utf8_lossy(t)),
+                            )
+                        };
+                        let i: i64 = std::str::from_utf8(idx)
+                            .ok()
+                            .and_then(|s| s.parse().ok())
+                            .ok_or_else(bad)?;
+                        let so_far = || before.map(|b| b as i64 + positions.len() as i64);
+                        let abs = match i {
+                            0 => return Err(bad()),
+                            i if i > 0 => i - 1,
+                            i => so_far().ok_or(Stop::Relative)? + i,
+                        };
+                        if abs < 0 || abs > i64::from(u32::MAX - 1) {
+                            return Err(Stop::Error(
+                                ln,
+                                format!(
+                                    "vertex reference {i} is out of range ({} vertices so far)",
+                                    so_far().ok_or(Stop::Relative)?
+                                ),
+                            ));
+                        }
+                        poly.push(abs as u32);
+                    }
+                    if poly.len() < 3 {
+                        return Err(Stop::Error(
+                            ln,
+                            format!("face has {} vertices, needs at least 3", poly.len()),
+                        ));
+                    }
+                    super::push_fan(&poly, &mut triangles);
+                }
+                _ => {}
+            }
+        }
+        Ok(Piece {
+            positions,
+            triangles,
+        })
+    }
 }
 
 pub(super) fn write(out: &mut impl Write, mesh: &Mesh) -> Result<()> {

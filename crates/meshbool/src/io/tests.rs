@@ -941,3 +941,62 @@ fn a_named_pipe_is_read_once_to_its_end() {
     assert_eq!(got.unwrap().triangle_count(), 12);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// An OBJ file read in pieces side by side is the file read in one pass: the same mesh,
+/// or the same first error (message and line), for relative and forward references,
+/// polygons, statements that are skipped, CRLF lines, and an error anywhere.
+#[test]
+fn obj_in_pieces_reads_as_in_one_pass() {
+    let mut rng = crate::test_util::Rng(11);
+    for case in 0..300 {
+        let (mut text, mut defined) = (String::new(), 0i64);
+        let lines = 5 + rng.next() % 60;
+        let error_at = (case % 3 != 0).then(|| rng.next() % lines);
+        for l in 0..lines {
+            let end = if rng.next() % 4 == 0 { "\r\n" } else { "\n" };
+            if error_at == Some(l) {
+                let bad = [
+                    "v 0 x 0",
+                    "v 1 2",
+                    "f 1 2 0",
+                    "f 1 2",
+                    "f -999 1 2",
+                    "f 1 2 99999",
+                    "v 0 0 0 1 2",
+                    "f 1 2 a/b",
+                ];
+                text += bad[(rng.next() % bad.len() as u64) as usize];
+                text += end;
+                continue;
+            }
+            match rng.next() % 6 {
+                0..=2 => {
+                    let c = [0, 1, 2].map(|_| (rng.next() % 1000) as f64 / 7.0);
+                    text += &format!("v {} {} {}", c[0], c[1], c[2]);
+                    defined += 1;
+                }
+                3 | 4 if defined >= 3 => {
+                    let n = 3 + rng.next() % 3;
+                    text += "f";
+                    for _ in 0..n {
+                        let v = 1 + (rng.next() % defined as u64) as i64;
+                        // Relative, absolute, or with texture and normal references.
+                        match rng.next() % 3 {
+                            0 => text += &format!(" {}", v - defined - 1),
+                            1 => text += &format!(" {v}"),
+                            _ => text += &format!(" {v}/1/1"),
+                        }
+                    }
+                }
+                _ => text += ["# c", "vt 0 0", "vn 0 0 1", "g x", ""][(rng.next() % 5) as usize],
+            }
+            text += end;
+        }
+        let bytes = text.as_bytes();
+        let whole = obj::read_in(bytes, 1).map_err(|e| e.to_string());
+        for pieces in [2, 3, 5, 8, 40] {
+            let split = obj::read_in(bytes, pieces).map_err(|e| e.to_string());
+            assert_eq!(split, whole, "case {case}, {pieces} pieces:\n{text}");
+        }
+    }
+}
