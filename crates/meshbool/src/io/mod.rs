@@ -417,6 +417,56 @@ fn tokens(line: &[u8]) -> impl Iterator<Item = &[u8]> {
         .filter(|t| !t.is_empty())
 }
 
+/// Text files of at least this many bytes per thread are parsed in pieces side by side.
+const PIECE: usize = 1 << 20;
+
+/// `bytes` cut into about `pieces` pieces, each ending just after a line's end (the last
+/// at the end).
+fn whole_lines(bytes: &[u8], pieces: usize) -> Vec<&[u8]> {
+    let mut out = Vec::with_capacity(pieces);
+    let mut rest = bytes;
+    for k in (1..pieces).rev() {
+        let target = rest.len() / (k + 1);
+        match rest[target..].iter().position(|&b| b == b'\n') {
+            Some(i) => {
+                let (head, tail) = rest.split_at(target + i + 1);
+                out.push(head);
+                rest = tail;
+            }
+            None => break,
+        }
+    }
+    out.push(rest);
+    out
+}
+
+/// Each element's sum of the elements before it.
+fn exclusive_sums(counts: &[usize]) -> Vec<usize> {
+    let mut sum = 0;
+    counts
+        .iter()
+        .map(|&c| {
+            sum += c;
+            sum - c
+        })
+        .collect()
+}
+
+/// The vectors one after another (copied side by side; one is taken as it is).
+fn concat<T: Copy + Default + Send + Sync>(mut parts: Vec<Vec<T>>) -> Vec<T> {
+    if parts.len() == 1 {
+        return parts.pop().unwrap_or_default();
+    }
+    use rayon::prelude::*;
+    let lengths: Vec<usize> = parts.iter().map(|p| p.len()).collect();
+    let mut out = vec![T::default(); lengths.iter().sum()];
+    crate::boolean::split_by(&mut out, &lengths)
+        .into_par_iter()
+        .zip(parts)
+        .for_each(|(to, from)| to.copy_from_slice(&from));
+    out
+}
+
 /// Splits polygon `poly` (vertex indices, in order) into a fan of triangles.
 fn push_fan(poly: &[u32], out: &mut Vec<[u32; 3]>) {
     for k in 1..poly.len().saturating_sub(1) {

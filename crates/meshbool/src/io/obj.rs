@@ -7,7 +7,7 @@ use std::io::Write;
 
 use rayon::prelude::*;
 
-use super::{lines, parse_f64, tokens, Format, Out};
+use super::{concat, exclusive_sums, lines, parse_f64, tokens, whole_lines, Format, Out, PIECE};
 use crate::error::{Error, Location, Result};
 use crate::Mesh;
 
@@ -44,9 +44,6 @@ pub(super) fn looks_like(bytes: &[u8]) -> bool {
     };
     starts(b"v ") && (starts(b"f ") || head.len() == bytes.len() || obj_lines())
 }
-
-/// Files of at least this many bytes per thread are parsed in pieces side by side.
-const PIECE: usize = 1 << 20;
 
 pub(super) fn read(bytes: &[u8]) -> Result<Mesh> {
     let pieces = if rayon::current_num_threads() > 1 {
@@ -121,56 +118,10 @@ pub(super) fn read_in(bytes: &[u8], pieces: usize) -> Result<Mesh> {
     Ok(Mesh::new_unchecked(positions, triangles))
 }
 
-/// `bytes` cut into about `pieces` pieces, each ending just after a line's end (the last
-/// at the end).
-fn whole_lines(bytes: &[u8], pieces: usize) -> Vec<&[u8]> {
-    let mut out = Vec::with_capacity(pieces);
-    let mut rest = bytes;
-    for k in (1..pieces).rev() {
-        let target = rest.len() / (k + 1);
-        match rest[target..].iter().position(|&b| b == b'\n') {
-            Some(i) => {
-                let (head, tail) = rest.split_at(target + i + 1);
-                out.push(head);
-                rest = tail;
-            }
-            None => break,
-        }
-    }
-    out.push(rest);
-    out
-}
-
 /// The lines before piece `k` of `chunks` (cut from `bytes` by [`whole_lines`]).
 fn lines_before(bytes: &[u8], chunks: &[&[u8]], k: usize) -> usize {
     let start: usize = chunks[..k].iter().map(|c| c.len()).sum();
     bytes[..start].iter().filter(|&&b| b == b'\n').count()
-}
-
-/// Each element's sum of the elements before it.
-fn exclusive_sums(counts: &[usize]) -> Vec<usize> {
-    let mut sum = 0;
-    counts
-        .iter()
-        .map(|&c| {
-            sum += c;
-            sum - c
-        })
-        .collect()
-}
-
-/// The vectors one after another (copied side by side; one is taken as it is).
-fn concat<T: Copy + Default + Send + Sync>(mut parts: Vec<Vec<T>>) -> Vec<T> {
-    if parts.len() == 1 {
-        return parts.pop().unwrap_or_default();
-    }
-    let lengths: Vec<usize> = parts.iter().map(|p| p.len()).collect();
-    let mut out = vec![T::default(); lengths.iter().sum()];
-    crate::boolean::split_by(&mut out, &lengths)
-        .into_par_iter()
-        .zip(parts)
-        .for_each(|(to, from)| to.copy_from_slice(&from));
-    out
 }
 
 /// The lines that are vertices (`v` statements) in a piece, as [`Piece::parse`] reads them.

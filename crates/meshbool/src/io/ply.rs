@@ -7,7 +7,9 @@
 
 use std::io::Write;
 
-use super::{parse_f64, tokens, Format, Out};
+use rayon::prelude::*;
+
+use super::{concat, exclusive_sums, lines, parse_f64, tokens, whole_lines, Format, Out, PIECE};
 use crate::error::{Error, Location, Result};
 use crate::Mesh;
 
@@ -215,30 +217,291 @@ impl Body<'_> {
                 let Some(raw) = self.bytes.get(self.pos..self.pos + n) else {
                     return Err(self.err("file ends before all elements are read: truncated?"));
                 };
-                let mut b = [0u8; 8];
-                b[..n].copy_from_slice(raw);
-                if self.format == Format::PlyBinaryBe {
-                    b[..n].reverse();
-                }
                 self.pos += n;
-                let b4 = [b[0], b[1], b[2], b[3]];
-                Ok(match ty {
-                    Scalar::I8 => f64::from(b[0] as i8),
-                    Scalar::U8 => f64::from(b[0]),
-                    Scalar::I16 => f64::from(i16::from_le_bytes([b[0], b[1]])),
-                    Scalar::U16 => f64::from(u16::from_le_bytes([b[0], b[1]])),
-                    Scalar::I32 => f64::from(i32::from_le_bytes(b4)),
-                    Scalar::U32 => f64::from(u32::from_le_bytes(b4)),
-                    Scalar::F32 => f64::from(f32::from_le_bytes(b4)),
-                    Scalar::F64 => f64::from_le_bytes(b),
-                })
+                Ok(value(raw, ty, self.format == Format::PlyBinaryBe))
             }
         }
     }
 }
 
+/// A binary value of type `ty` from the first bytes of `raw` (at least its size), big
+/// endian where `be`.
+#[inline]
+fn value(raw: &[u8], ty: Scalar, be: bool) -> f64 {
+    let n = ty.size();
+    let mut b = [0u8; 8];
+    b[..n].copy_from_slice(&raw[..n]);
+    if be {
+        b[..n].reverse();
+    }
+    let b4 = [b[0], b[1], b[2], b[3]];
+    match ty {
+        Scalar::I8 => f64::from(b[0] as i8),
+        Scalar::U8 => f64::from(b[0]),
+        Scalar::I16 => f64::from(i16::from_le_bytes([b[0], b[1]])),
+        Scalar::U16 => f64::from(u16::from_le_bytes([b[0], b[1]])),
+        Scalar::I32 => f64::from(i32::from_le_bytes(b4)),
+        Scalar::U32 => f64::from(u32::from_le_bytes(b4)),
+        Scalar::F32 => f64::from(f32::from_le_bytes(b4)),
+        Scalar::F64 => f64::from_le_bytes(b),
+    }
+}
+
+/// The usual shape of a mesh file, which [`triangles_side_by_side`] reads: a `vertex`
+/// element of scalar properties only (`x`, `y` and `z` among them: their offsets in a
+/// record and types, the last of a name as the general reader takes it), then a `face`
+/// element whose one property is its index list (its length and index types).
+struct Usual {
+    vertices: usize,
+    props: Vec<Scalar>,
+    xyz: [(usize, Scalar); 3],
+    /// The same properties' places in the record.
+    xyz_index: [usize; 3],
+    faces: usize,
+    list: (Scalar, Scalar),
+}
+
+impl Usual {
+    fn of(elements: &[Element]) -> Option<Usual> {
+        let [v, f] = elements else { return None };
+        if v.name != b"vertex" || f.name != b"face" {
+            return None;
+        }
+        let mut props = Vec::new();
+        let mut xyz = [None; 3];
+        let mut xyz_index = [0; 3];
+        let mut offset = 0;
+        for (j, p) in v.props.iter().enumerate() {
+            let Prop::Scalar(ty, name) = p else {
+                return None;
+            };
+            if let Some(k) = [&b"x"[..], b"y", b"z"].iter().position(|a| a == name) {
+                xyz[k] = Some((offset, *ty));
+                xyz_index[k] = j;
+            }
+            props.push(*ty);
+            offset += ty.size();
+        }
+        let [Prop::List(ct, it, name)] = f.props.as_slice() else {
+            return None;
+        };
+        let integer = |t: &Scalar| !matches!(t, Scalar::F32 | Scalar::F64);
+        if !(name == b"vertex_indices" || name == b"vertex_index") || !integer(ct) || !integer(it) {
+            return None;
+        }
+        Some(Usual {
+            vertices: usize::try_from(v.count)
+                .ok()
+                .filter(|&n| n as u64 <= u64::from(u32::MAX))?,
+            props,
+            xyz: [xyz[0]?, xyz[1]?, xyz[2]?],
+            xyz_index,
+            faces: usize::try_from(f.count).ok()?,
+            list: (*ct, *it),
+        })
+    }
+
+    /// A triangle's corners from its list's length and three indices, if it is one
+    /// (length 3, whole indices of vertices that exist).
+    #[inline]
+    fn triangle(&self, n: f64, idx: [f64; 3]) -> Option<[u32; 3]> {
+        let nv = self.vertices as f64;
+        (n == 3.0 && idx.iter().all(|&i| i >= 0.0 && i.fract() == 0.0 && i < nv))
+            .then(|| idx.map(|i| i as u32))
+    }
+}
+
+/// Vertex records (or face records) per piece of work.
+const RECORDS: usize = 1 << 12;
+
+/// The body of a file of the [`Usual`] shape with every face a triangle, decoded side by
+/// side: `None` where anything is out of the ordinary (a polygon, an index out of range, a
+/// non-finite coordinate, a body longer or shorter than declared, blank lines in ASCII),
+/// for the general reader to read or to name the error.
+fn triangles_side_by_side(
+    bytes: &[u8],
+    format: Format,
+    elements: &[Element],
+    start: usize,
+) -> Option<Mesh> {
+    let threads = rayon::current_num_threads();
+    let pieces = if threads > 1 {
+        (bytes.len() / PIECE).min(8 * threads)
+    } else {
+        1
+    };
+    triangles_in_pieces(bytes, format, elements, start, pieces)
+}
+
+/// [`triangles_side_by_side`], an ASCII body in about `pieces` pieces of whole lines.
+fn triangles_in_pieces(
+    bytes: &[u8],
+    format: Format,
+    elements: &[Element],
+    start: usize,
+    pieces: usize,
+) -> Option<Mesh> {
+    let u = Usual::of(elements)?;
+    let body = &bytes[start..];
+    let (positions, triangles) = if format == Format::PlyAscii {
+        ascii_body(body, &u, pieces)?
+    } else {
+        binary_body(body, &u, format == Format::PlyBinaryBe)?
+    };
+    Some(Mesh::new_unchecked(positions, triangles))
+}
+
+type Decoded = (Vec<[f64; 3]>, Vec<[u32; 3]>);
+
+fn binary_body(body: &[u8], u: &Usual, be: bool) -> Option<Decoded> {
+    let vsize: usize = u.props.iter().map(|t| t.size()).sum();
+    let (ct, it) = u.list;
+    let fsize = ct.size() + 3 * it.size();
+    let split = u.vertices.checked_mul(vsize)?;
+    if body.len() != split.checked_add(u.faces.checked_mul(fsize)?)? {
+        return None;
+    }
+    let (vb, fb) = body.split_at(split);
+    let mut positions = vec![[0.0; 3]; u.vertices];
+    let mut triangles = vec![[0u32; 3]; u.faces];
+    let nv = u.vertices as i64;
+    let (finite, in_range) = rayon::join(
+        || {
+            decode(&mut positions, vb, vsize, |r| {
+                let p = u.xyz.map(|(o, ty)| value(&r[o..], ty, be));
+                p.iter().all(|x| x.is_finite()).then_some(p)
+            })
+        },
+        || {
+            decode(&mut triangles, fb, fsize, |r| {
+                let at = |k: usize| integer(&r[ct.size() + k * it.size()..], it, be);
+                let tri = [at(0), at(1), at(2)];
+                (integer(r, ct, be) == 3 && tri.iter().all(|i| (0..nv).contains(i)))
+                    .then(|| tri.map(|i| i as u32))
+            })
+        },
+    );
+    (finite && in_range).then_some((positions, triangles))
+}
+
+/// Fills `out` side by side from the records of `size` bytes of `raw` by `f`; whether
+/// every record gave a value.
+fn decode<T: Send>(
+    out: &mut [T],
+    raw: &[u8],
+    size: usize,
+    f: impl Fn(&[u8]) -> Option<T> + Sync,
+) -> bool {
+    out.par_chunks_mut(RECORDS)
+        .zip(raw.par_chunks(RECORDS * size))
+        .all(|(out, raw)| {
+            out.iter_mut()
+                .zip(raw.chunks_exact(size))
+                .all(|(o, r)| f(r).map(|v| *o = v).is_some())
+        })
+}
+
+/// A binary value of the integer type `ty` (as [`value`], without going through `f64`).
+#[inline]
+fn integer(raw: &[u8], ty: Scalar, be: bool) -> i64 {
+    let n = ty.size();
+    let mut b = [0u8; 4];
+    b[..n].copy_from_slice(&raw[..n]);
+    if be {
+        b[..n].reverse();
+    }
+    match ty {
+        Scalar::I8 => i64::from(b[0] as i8),
+        Scalar::U8 => i64::from(b[0]),
+        Scalar::I16 => i64::from(i16::from_le_bytes([b[0], b[1]])),
+        Scalar::U16 => i64::from(u16::from_le_bytes([b[0], b[1]])),
+        Scalar::I32 => i64::from(i32::from_le_bytes(b)),
+        Scalar::U32 => i64::from(u32::from_le_bytes(b)),
+        // Not an integer type: never a length or an index of the usual shape.
+        Scalar::F32 | Scalar::F64 => -1,
+    }
+}
+
+fn ascii_body(body: &[u8], u: &Usual, pieces: usize) -> Option<Decoded> {
+    let records = u.vertices.checked_add(u.faces)?;
+    let pieces = whole_lines(body, pieces);
+    let last = pieces.len() - 1;
+    // A piece's lines: those its newlines end, and the last piece's tail too.
+    let text = |k: usize| match pieces[k] {
+        [head @ .., b'\n'] if k < last => head,
+        p => p,
+    };
+    // Each piece's first record: the lines before it (nothing to count for one piece).
+    let firsts = if pieces.len() == 1 {
+        vec![0]
+    } else {
+        let counts: Vec<usize> = (0..pieces.len())
+            .into_par_iter()
+            .map(|k| text(k).iter().filter(|&&b| b == b'\n').count() + 1)
+            .collect();
+        exclusive_sums(&counts)
+    };
+    let number = |t: &[u8]| {
+        std::str::from_utf8(t)
+            .ok()?
+            .parse::<f64>()
+            .ok()
+            .filter(|x| x.is_finite())
+    };
+    let parts = (0..pieces.len())
+        .into_par_iter()
+        .zip(firsts)
+        .map(|(k, first)| {
+            let (mut positions, mut triangles) = (Vec::new(), Vec::new());
+            for (i, (_, line)) in lines(text(k)).enumerate() {
+                let r = first + i;
+                let mut tok = tokens(line);
+                if r < u.vertices {
+                    let mut p = [0.0; 3];
+                    for j in 0..u.props.len() {
+                        let v = number(tok.next()?)?;
+                        for (x, &at) in p.iter_mut().zip(&u.xyz_index) {
+                            if at == j {
+                                *x = v;
+                            }
+                        }
+                    }
+                    positions.push(p);
+                } else if r < records {
+                    let n = number(tok.next()?)?;
+                    let idx = [(); 3].map(|_| tok.next().and_then(number));
+                    triangles.push(u.triangle(n, [idx[0]?, idx[1]?, idx[2]?])?);
+                }
+                // Past the records only blank lines.
+                if tok.next().is_some() {
+                    return None;
+                }
+            }
+            Some((positions, triangles))
+        })
+        .collect::<Option<Vec<Decoded>>>()?;
+    let (positions, triangles): (Vec<_>, Vec<_>) = parts.into_iter().unzip();
+    let (positions, triangles) = rayon::join(|| concat(positions), || concat(triangles));
+    // Fewer lines than records: truncated.
+    (positions.len() == u.vertices && triangles.len() == u.faces).then_some((positions, triangles))
+}
+
 pub(super) fn read(bytes: &[u8]) -> Result<Mesh> {
     let (format, elements, start, header_lines) = header(bytes)?;
+    if let Some(mesh) = triangles_side_by_side(bytes, format, &elements, start) {
+        return Ok(mesh);
+    }
+    read_general(bytes, format, &elements, start, header_lines)
+}
+
+/// Reads the body value by value, whatever its shape, and names the first problem.
+fn read_general(
+    bytes: &[u8],
+    format: Format,
+    elements: &[Element],
+    start: usize,
+    header_lines: usize,
+) -> Result<Mesh> {
     let mut body = Body {
         bytes,
         pos: start,
@@ -255,7 +518,7 @@ pub(super) fn read(bytes: &[u8]) -> Result<Mesh> {
     let mut positions = Vec::new();
     let mut triangles = Vec::new();
     let mut poly: Vec<u32> = Vec::new();
-    for e in &elements {
+    for e in elements {
         let is_vertex = e.name == b"vertex";
         let is_face = e.name == b"face";
         if is_vertex {
@@ -331,8 +594,21 @@ pub(super) fn read(bytes: &[u8]) -> Result<Mesh> {
             }
         }
     }
-    body.finish(&elements)?;
+    body.finish(elements)?;
     Ok(Mesh::new_unchecked(positions, triangles))
+}
+
+/// The mesh of a PLY file as the reader side by side makes it (in `pieces` pieces where
+/// ASCII), if the file is of its shape, and as the general reader makes it (for tests).
+#[cfg(test)]
+pub(super) fn both_readers(bytes: &[u8], pieces: usize) -> (Option<Mesh>, Result<Mesh>) {
+    match header(bytes) {
+        Ok((format, elements, start, lines)) => (
+            triangles_in_pieces(bytes, format, &elements, start, pieces),
+            read_general(bytes, format, &elements, start, lines),
+        ),
+        Err(e) => (None, Err(e)),
+    }
 }
 
 pub(super) fn write(out: &mut impl Write, mesh: &Mesh, format: Format) -> Result<()> {

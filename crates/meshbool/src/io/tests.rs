@@ -1000,3 +1000,148 @@ fn obj_in_pieces_reads_as_in_one_pass() {
         }
     }
 }
+
+/// PLY files of the usual shape (a vertex element of scalars, a face element of one index
+/// list) are read side by side; the result is the general reader's, and whatever is out
+/// of the ordinary (a polygon, an index out of range, a non-finite coordinate, a body
+/// longer or shorter than declared, blank lines or extra values in ASCII) goes to the
+/// general reader, which names the problem. Every encoding, coordinate, length and index
+/// type, extra properties around `x y z`, CRLF lines, ASCII bodies in many pieces.
+#[test]
+fn ply_triangles_side_by_side_read_as_the_general_reader() {
+    let mut rng = crate::test_util::Rng(5);
+    let types: [(&str, usize); 8] = [
+        ("char", 1),
+        ("uchar", 1),
+        ("short", 2),
+        ("ushort", 2),
+        ("int", 4),
+        ("uint", 4),
+        ("float", 4),
+        ("double", 8),
+    ];
+    let mut fast = 0;
+    for case in 0..400 {
+        let enc = ["ascii", "binary_little_endian", "binary_big_endian"][case % 3];
+        let be = enc == "binary_big_endian";
+        let nl = if enc == "ascii" && rng.next() % 3 == 0 {
+            "\r\n"
+        } else {
+            "\n"
+        };
+        let nv = 3 + (rng.next() % 30) as usize;
+        let nf = (rng.next() % 40) as usize;
+        // Vertex properties: x, y, z (signed or floating types) among extras.
+        let mut props: Vec<(String, usize)> = ["x", "y", "z"]
+            .iter()
+            .map(|a| (a.to_string(), [0, 2, 4, 6, 7][(rng.next() % 5) as usize]))
+            .collect();
+        for e in 0..rng.next() % 3 {
+            let at = (rng.next() % (props.len() as u64 + 1)) as usize;
+            props.insert(at, (format!("extra{e}"), (rng.next() % 8) as usize));
+        }
+        let ct = [1, 3, 4, 5][(rng.next() % 4) as usize];
+        let it = [1, 2, 3, 4, 5][(rng.next() % 5) as usize];
+        let mut head = format!("ply{nl}format {enc} 1.0{nl}element vertex {nv}{nl}");
+        for (name, t) in &props {
+            head += &format!("property {} {name}{nl}", types[*t].0);
+        }
+        head += &format!(
+            "element face {nf}{nl}property list {} {} vertex_indices{nl}end_header{nl}",
+            types[ct].0, types[it].0
+        );
+        let flaw = rng.next() % 12;
+        let mut body: Vec<u8> = Vec::new();
+        let value = |body: &mut Vec<u8>, t: usize, x: f64| {
+            if enc == "ascii" {
+                body.extend(format!("{x} ").as_bytes());
+                return;
+            }
+            let mut b: Vec<u8> = match t {
+                0 => vec![x as i8 as u8],
+                1 => vec![x as u8],
+                2 => (x as i16).to_le_bytes().to_vec(),
+                3 => (x as u16).to_le_bytes().to_vec(),
+                4 => (x as i32).to_le_bytes().to_vec(),
+                5 => (x as u32).to_le_bytes().to_vec(),
+                6 => (x as f32).to_le_bytes().to_vec(),
+                _ => x.to_le_bytes().to_vec(),
+            };
+            if be {
+                b.reverse();
+            }
+            body.extend(b);
+        };
+        let end = |body: &mut Vec<u8>| {
+            if enc == "ascii" {
+                body.pop();
+                body.extend(nl.as_bytes());
+            }
+        };
+        for v in 0..nv {
+            for (name, t) in &props {
+                let mut x = (rng.next() % 100) as f64
+                    - if *t == 1 || *t == 3 || *t == 5 {
+                        0.0
+                    } else {
+                        50.0
+                    };
+                if *t >= 6 {
+                    x += 0.25;
+                }
+                if flaw == 0 && v == nv / 2 && name == "y" && *t >= 6 {
+                    x = f64::NAN;
+                }
+                value(&mut body, *t, x);
+            }
+            end(&mut body);
+        }
+        for f in 0..nf {
+            let n = if flaw == 1 && f == nf / 2 { 4 } else { 3 };
+            // A count that says 4 before three indices (ASCII: the next line's first
+            // value would be the fourth).
+            let said = if flaw == 7 && enc == "ascii" && f == 0 {
+                4
+            } else {
+                n
+            };
+            value(&mut body, ct, said as f64);
+            for k in 0..n {
+                let mut i = (rng.next() % nv as u64) as f64;
+                if flaw == 2 && f == nf / 2 && k == 1 {
+                    i = nv as f64 + (case % 2) as f64;
+                }
+                value(&mut body, it, i);
+            }
+            end(&mut body);
+            if flaw == 3 && enc == "ascii" && f == 0 {
+                body.extend(nl.as_bytes());
+            }
+        }
+        match flaw {
+            4 => body.extend(b"7"),
+            5 => {
+                body.truncate(body.len().saturating_sub(2));
+            }
+            6 if enc == "ascii" => body.extend(format!("{nl}{nl}  {nl}").as_bytes()),
+            _ => {}
+        }
+        let mut bytes = head.into_bytes();
+        bytes.extend(body);
+        let general = ply::both_readers(&bytes, 1).1.map_err(|e| e.to_string());
+        for pieces in [1, 2, 3, 7] {
+            let (side, _) = ply::both_readers(&bytes, pieces);
+            if let Some(m) = &side {
+                assert_eq!(Ok(m), general.as_ref(), "case {case}, {pieces} pieces");
+                fast += 1;
+            }
+        }
+        let read = read_bytes(&bytes, Format::PlyAscii).map_err(|e| e.to_string());
+        assert_eq!(read, general, "case {case}");
+        // Files without a flaw are read side by side.
+        if flaw > 7 && nf > 0 {
+            assert!(ply::both_readers(&bytes, 3).0.is_some(), "case {case}");
+        }
+    }
+    assert!(fast > 400, "{fast} side by side");
+}
