@@ -1,5 +1,6 @@
 //! Reading speed: a 2M-triangle binary STL (UV sphere, 100 MB) against a plain memory copy
-//! of the same bytes. Run: `cargo bench -p meshbool --bench io`.
+//! of the same bytes; reading and writing a 500k-triangle sphere as OBJ and PLY (binary and
+//! ASCII), in memory. Run: `cargo bench -p meshbool --bench io`.
 
 use std::sync::LazyLock;
 
@@ -54,4 +55,59 @@ static SHUFFLED: LazyLock<Vec<u8>> = LazyLock::new(|| {
 #[divan::bench(sample_count = 10)]
 fn read_2m_binary_stl_scrambled() -> meshbool::Mesh {
     io::read_bytes(divan::black_box(&SHUFFLED), Format::StlBinary).unwrap()
+}
+
+/// 2 · 500 · 500 = 499,000 triangles.
+static SPHERE_500K: LazyLock<meshbool::Mesh> = LazyLock::new(|| uv_sphere([0.0; 3], 1.0, 500, 500));
+
+/// The 500k sphere written in `format`.
+fn written(format: Format) -> Vec<u8> {
+    let mut out = Vec::new();
+    io::write(&mut out, &SPHERE_500K, format).unwrap();
+    out
+}
+
+static OBJ: LazyLock<Vec<u8>> = LazyLock::new(|| written(Format::Obj));
+static PLY: LazyLock<Vec<u8>> = LazyLock::new(|| written(Format::PlyBinaryLe));
+static PLY_ASCII: LazyLock<Vec<u8>> = LazyLock::new(|| written(Format::PlyAscii));
+
+#[divan::bench(sample_count = 20)]
+fn read_500k_obj() -> meshbool::Mesh {
+    io::read_bytes(divan::black_box(&OBJ), Format::Obj).unwrap()
+}
+
+#[divan::bench(sample_count = 20)]
+fn read_500k_ply() -> meshbool::Mesh {
+    io::read_bytes(divan::black_box(&PLY), Format::PlyBinaryLe).unwrap()
+}
+
+#[divan::bench(sample_count = 20)]
+fn read_500k_ply_ascii() -> meshbool::Mesh {
+    io::read_bytes(divan::black_box(&PLY_ASCII), Format::PlyAscii).unwrap()
+}
+
+/// Writing into memory (the buffer reserved before the timing).
+fn write_500k(bencher: divan::Bencher, format: Format) {
+    let m = &*SPHERE_500K;
+    bencher
+        .with_inputs(|| Vec::with_capacity(64 << 20))
+        .bench_values(|mut out: Vec<u8>| {
+            io::write(&mut out, m, format).unwrap();
+            out
+        });
+}
+
+#[divan::bench(sample_count = 20)]
+fn write_500k_obj(bencher: divan::Bencher) {
+    write_500k(bencher, Format::Obj);
+}
+
+#[divan::bench(sample_count = 20)]
+fn write_500k_ply(bencher: divan::Bencher) {
+    write_500k(bencher, Format::PlyBinaryLe);
+}
+
+#[divan::bench(sample_count = 20)]
+fn write_500k_ply_ascii(bencher: divan::Bencher) {
+    write_500k(bencher, Format::PlyAscii);
 }

@@ -326,9 +326,15 @@ impl<'a, W: Write> Out<'a, W> {
     const CHUNK: usize = 1 << 16;
 
     fn new(w: &'a mut W) -> Self {
+        Self::with_buffer(w, Vec::with_capacity(Self::CHUNK + 1024))
+    }
+
+    /// An `Out` that formats into `buf` (emptied first).
+    fn with_buffer(w: &'a mut W, mut buf: Vec<u8>) -> Self {
+        buf.clear();
         Out {
             w,
-            buf: Vec::with_capacity(Self::CHUNK + 1024),
+            buf,
             num: ryu::Buffer::new(),
             int: itoa::Buffer::new(),
         }
@@ -375,6 +381,53 @@ impl<'a, W: Write> Out<'a, W> {
         self.buf.clear();
         Ok(())
     }
+}
+
+/// Writes records `0..n`, each formatted by `record` into an [`Out`] of its own: on one
+/// thread straight through, passed on as its buffer fills; on more, blocks of records
+/// are formatted side by side and written in order (a batch of blocks at a time, so
+/// that little is held).
+fn records<W: Write>(
+    o: &mut Out<'_, W>,
+    n: usize,
+    record: impl Fn(&mut Out<'_, std::io::Sink>, usize) + Sync,
+) -> std::io::Result<()> {
+    use rayon::prelude::*;
+    const BLOCK: usize = 1 << 13;
+    // What `o` holds goes first.
+    o.w.write_all(&o.buf)?;
+    o.buf.clear();
+    let mut sink = std::io::sink();
+    let mut t = Out::new(&mut sink);
+    let threads = rayon::current_num_threads();
+    if threads == 1 || n < 2 * BLOCK {
+        for i in 0..n {
+            record(&mut t, i);
+            if t.buf.len() >= Out::<W>::CHUNK {
+                o.w.write_all(&t.buf)?;
+                t.buf.clear();
+            }
+        }
+        o.w.write_all(&t.buf)?;
+        return Ok(());
+    }
+    // A buffer per block of a batch, kept from batch to batch.
+    let mut blocks: Vec<Vec<u8>> = vec![Vec::new(); 4 * threads];
+    for start in (0..n).step_by(BLOCK * blocks.len()) {
+        blocks.par_iter_mut().enumerate().for_each(|(k, buf)| {
+            let mut sink = std::io::sink();
+            let mut t = Out::with_buffer(&mut sink, std::mem::take(buf));
+            let first = (start + k * BLOCK).min(n);
+            for i in first..(first + BLOCK).min(n) {
+                record(&mut t, i);
+            }
+            *buf = t.buf;
+        });
+        for b in &blocks {
+            o.w.write_all(b)?;
+        }
+    }
+    Ok(())
 }
 
 /// Parses a decimal number from a text format; non-finite values are errors.

@@ -256,16 +256,15 @@ impl Piece {
 pub(super) fn write(out: &mut impl Write, mesh: &Mesh) -> Result<()> {
     let mut o = Out::new(out);
     o.bytes(b"# meshbool\n");
-    for p in &mesh.positions {
-        o.obj_vertex(p);
-        o.record_done()?;
-    }
-    for t in &mesh.triangles {
+    super::records(&mut o, mesh.positions.len(), |o, v| {
+        o.obj_vertex(&mesh.positions[v]);
+    })?;
+    super::records(&mut o, mesh.triangles.len(), |o, t| {
         o.bytes(b"f");
-        for &i in t {
+        for &i in &mesh.triangles[t] {
             o.bytes(b" ").int(u64::from(i) + 1);
         }
-        o.bytes(b"\n").record_done()?;
-    }
+        o.bytes(b"\n");
+    })?;
     o.finish()
 }

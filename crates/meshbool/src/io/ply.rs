@@ -633,28 +633,27 @@ pub(super) fn write(out: &mut impl Write, mesh: &Mesh, format: Format) -> Result
     o.bytes(head.as_bytes());
     let f = |x: f64| if be { x.to_be_bytes() } else { x.to_le_bytes() };
     let u = |x: u32| if be { x.to_be_bytes() } else { x.to_le_bytes() };
-    for p in &mesh.positions {
+    super::records(&mut o, mesh.positions.len(), |o, v| {
+        let p = &mesh.positions[v];
         if format == Format::PlyAscii {
             o.coords(p, b" ").bytes(b"\n");
         } else {
             o.bytes(&f(p[0])).bytes(&f(p[1])).bytes(&f(p[2]));
         }
-        o.record_done()?;
-    }
-    for t in &mesh.triangles {
+    })?;
+    super::records(&mut o, mesh.triangles.len(), |o, t| {
         if format == Format::PlyAscii {
             o.bytes(b"3");
-            for &i in t {
+            for &i in &mesh.triangles[t] {
                 o.bytes(b" ").int(u64::from(i));
             }
             o.bytes(b"\n");
         } else {
             o.bytes(&[3]);
-            for &i in t {
+            for &i in &mesh.triangles[t] {
                 o.bytes(&u(i));
             }
         }
-        o.record_done()?;
-    }
+    })?;
     o.finish()
 }

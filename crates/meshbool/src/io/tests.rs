@@ -1145,3 +1145,33 @@ fn ply_triangles_side_by_side_read_as_the_general_reader() {
     }
     assert!(fast > 400, "{fast} side by side");
 }
+
+/// Text and PLY records formatted side by side are written in order: the same bytes on
+/// one thread and on several, across block and batch boundaries.
+#[test]
+fn records_written_side_by_side_are_the_bytes_of_one_thread() {
+    // 2 · 300 · 150 = 89,400 triangles, 44,702 vertices: several batches of 3 threads.
+    let m = crate::shapes::uv_sphere([0.0; 3], 1.0, 300, 151);
+    for format in [
+        Format::Obj,
+        Format::PlyAscii,
+        Format::PlyBinaryLe,
+        Format::PlyBinaryBe,
+    ] {
+        let on = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| {
+                let mut out = Vec::new();
+                write(&mut out, &m, format).unwrap();
+                out
+            })
+        };
+        let one = on(1);
+        assert_eq!(on(3), one, "{format:?}");
+        assert_eq!(on(8), one, "{format:?}");
+        assert_eq!(read_bytes(&one, format).unwrap(), m, "{format:?}");
+    }
+}
