@@ -2286,7 +2286,17 @@ fn split_and_pick_snap() {
             assert!(d >= 0.01, "edge of {d}");
         }
     }
-    report(&["split", a, b, "-o", exact_dir, "--format", "obj", "--json"]);
+    report(&[
+        "split",
+        a,
+        b,
+        "-o",
+        exact_dir,
+        "--format",
+        "obj",
+        "--keep-seam-points",
+        "--json",
+    ]);
     let r = report(&[
         "pick",
         exact_dir,
@@ -2304,6 +2314,29 @@ fn split_and_pick_snap() {
         (24.into(), 0.75.into())
     );
     assert_eq!(r["closed"], true);
+    // The split's own exact clean-up (on by default) already leaves the coarsest
+    // difference, the boolean's: 20 triangles, closed, without a tolerance.
+    let clean_dir = tmp("split_clean_dir");
+    let clean_dir = clean_dir.to_str().unwrap();
+    let m = report(&["split", a, b, "-o", clean_dir, "--format", "obj", "--json"]);
+    assert_eq!(m["cleanup"]["removed_points"], 6);
+    let r = report(&[
+        "pick",
+        clean_dir,
+        "--op",
+        "difference",
+        "-o",
+        tmp("split_clean_pick.obj").to_str().unwrap(),
+        "--json",
+    ]);
+    assert_eq!(
+        (
+            r["triangles"].clone(),
+            r["volume"].clone(),
+            r["closed"].clone()
+        ),
+        (20.into(), 0.75.into(), true.into())
+    );
 }
 
 #[test]

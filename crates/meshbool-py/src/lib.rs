@@ -376,7 +376,7 @@ impl Split {
 
 /// Splits two meshes along their intersection.
 #[pyfunction]
-#[pyo3(signature = (av, af, bv, bf, force, self_check, resolve, orient, threads, merge_small, snap=0.0))]
+#[pyo3(signature = (av, af, bv, bf, force, self_check, resolve, orient, threads, merge_small, snap=0.0, keep_seam_points=false))]
 #[allow(clippy::too_many_arguments)]
 fn split(
     py: Python<'_>,
@@ -391,12 +391,14 @@ fn split(
     threads: Option<usize>,
     merge_small: usize,
     snap: f64,
+    keep_seam_points: bool,
 ) -> PyResult<Split> {
     let (a, b) = (mesh(&av, &af)?, mesh(&bv, &bf)?);
     let opts = SplitOptions {
         checks: checks(force, self_check, resolve, orient),
         merge_small,
         snap,
+        keep_seam_points,
         run: run(threads),
     };
     let out = py

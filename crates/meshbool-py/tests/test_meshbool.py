@@ -133,15 +133,22 @@ def test_kirra_terrain_minus_cylinder_split_and_pick(tmp_path):
     s = meshbool.split(up, cylinder)
     assert s.groups == ["a_in_b", "a_out_b", "b_in_a", "b_out_a"]
     counts = {g: len(s.group(g)) for g in s.groups}
-    assert counts == {"a_in_b": 897, "a_out_b": 10645, "b_in_a": 201, "b_out_a": 201}
+    assert counts == {"a_in_b": 881, "a_out_b": 10629, "b_in_a": 185, "b_out_a": 185}
     assert len(s.a_on_b_same) == 0
-    assert [len(c) for c in s.components("a_out_b")] == [10645]
+    assert [len(c) for c in s.components("a_out_b")] == [10629]
     mined = s.pick("a_out_b", "b_in_a:flip")
-    # The pick keeps every seam point; the boolean removes the 16 where the rim is
-    # straight (2 triangles each), the same without its clean-up.
+    # The split's clean-up removes the 16 seam points where the rim is straight (one
+    # triangle in each of the four groups), as the boolean's does (2 triangles each of
+    # its result); with every seam point kept, the raw groups and the raw boolean.
+    assert s.report("obj")["cleanup"]["removed_points"] == 16
+    kept = meshbool.split(up, cylinder, keep_seam_points=True)
+    assert {g: len(kept.group(g)) for g in kept.groups} == {
+        "a_in_b": 897, "a_out_b": 10645, "b_in_a": 201, "b_out_a": 201
+    }
     diff = meshbool.boolean(up, cylinder, "difference")
     raw = meshbool.boolean(up, cylinder, "difference", keep_seam_points=True)
-    assert len(mined) == len(raw) == len(diff) + 32 and mined.report["boundary_edges"] == 560
+    assert len(mined) == len(diff) == len(raw) - 32 and mined.report["boundary_edges"] == 560
+    assert len(kept.pick("a_out_b", "b_in_a:flip")) == len(raw)
     assert diff.report["cleanup"]["removed_points"] == 16
     assert abs(mined.volume - diff.volume) < 1e-6 * abs(diff.volume)
     with pytest.raises(ValueError, match="a piece may be picked once"):
@@ -407,7 +414,7 @@ def test_readme_python_example_runs(monkeypatch, capsys):
     exec(compile(block, "README.md", "exec"), {})
     out = capsys.readouterr().out.splitlines()
     assert out[0] == "(5688, 3) uint32 560"
-    assert out[2].startswith("['a_in_b', 'a_out_b', 'b_in_a', 'b_out_a'] 897 [10645]")
+    assert out[2].startswith("['a_in_b', 'a_out_b', 'b_in_a', 'b_out_a'] 881 [10629]")
     assert out[3].endswith("True True")
 
 
@@ -486,11 +493,16 @@ def test_split_and_pick_snap():
         m = s.pick(op=op)
         assert m.is_closed and m.stats()["non_manifold_edges"] == 0
         assert abs(m.volume - volume) <= d * m.area
-    # pick with snap, from the exact split: the snapped difference.
-    exact = meshbool.split(cube, cutter)
+    # pick with snap, from the exact split with every seam point: the snapped difference.
+    exact = meshbool.split(cube, cutter, keep_seam_points=True)
     m = exact.pick(op="difference", snap=d)
     assert m.is_closed and m.report["snap"]["left"] == 0
     assert len(m.faces) == 24 and m.volume == 0.75
+    # The split's exact clean-up (the default) already gives the coarsest difference.
+    clean = meshbool.split(cube, cutter)
+    assert clean.report()["cleanup"]["removed_points"] == 6
+    m = clean.pick(op="difference")
+    assert m.is_closed and len(m.faces) == 20 and m.volume == 0.75
     parts = [(exact.a_out_b, False), (exact.b_in_a, True)]
     assert meshbool.pick(parts, snap=d).report["snap"]["collapsed"] > 0
     with pytest.raises(ValueError, match="snap"):

@@ -227,6 +227,7 @@ pub fn split(
     let opts = SplitOptions {
         checks: checks(&o)?,
         snap: number(&o, "snap")?.unwrap_or(0.0),
+        keep_seam_points: flag(&o, "keepSeamPoints", true)?,
         ..SplitOptions::default()
     };
     let out = ops::split(&a, &b, &opts).map_err(js_err)?;

@@ -373,9 +373,12 @@ fn needles(m: &Mesh) -> usize {
         .count()
 }
 
+/// The split at `snap`; with 0, the exact arrangement's groups with every seam point (the
+/// baseline the snap's counts are measured against, as a boolean's raw result).
 fn split(a: &Mesh, b: &Mesh, snap: f64) -> ops::SplitOutput {
     let opts = ops::SplitOptions {
         snap,
+        keep_seam_points: true,
         ..ops::SplitOptions::default()
     };
     ops::split(a, b, &opts).unwrap()

@@ -26,6 +26,12 @@ pub struct Args {
     /// of the same group (stray fragments); components are numbered largest first.
     #[arg(long, default_value_t = 0)]
     merge_small: usize,
+    /// Keep every seam point of the exact arrangement. By default seam points where the
+    /// seam runs straight through flat faces of both meshes are removed and zero-area
+    /// triangles made by rounding are flipped away (no group changes shape; the groups
+    /// stay conforming).
+    #[arg(long)]
+    keep_seam_points: bool,
     #[command(flatten)]
     snap: super::Snap,
     #[command(flatten)]
@@ -45,6 +51,7 @@ pub fn run(args: &Args) -> Result<()> {
         let opts = SplitOptions {
             merge_small: args.merge_small,
             snap: args.snap.tolerance,
+            keep_seam_points: args.keep_seam_points,
             run: flags.run(&spinner),
             ..SplitOptions::default()
         };

@@ -430,18 +430,22 @@ def split(
     threads: Optional[int] = None,
     merge_small: int = 0,
     snap: float = 0.0,
+    keep_seam_points: bool = False,
 ) -> Split:
     """Splits ``a`` and ``b`` along their intersection into groups and components.
     Checks as for :func:`boolean`; ``merge_small`` folds components of fewer triangles
     into the nearest larger one of their group. ``snap``: a tolerance D > 0 cleans all
     groups together where the split cut (as :func:`boolean`'s ``snap``), so that any
-    pick of them is closed where the exact pick is (``report()["snap"]``)."""
+    pick of them is closed where the exact pick is (``report()["snap"]``).
+    ``keep_seam_points``: keep every seam point of the exact arrangement (by default
+    those where the seam runs straight through flat faces of both meshes go, no group
+    changing shape; ``report()["cleanup"]``)."""
     av, af = _parts(a)
     bv, bf = _parts(b)
     return Split(
         _native.split(
             av, af, bv, bf, force, self_check, resolve, orient, threads, merge_small,
-            float(snap),
+            float(snap), keep_seam_points,
         )
     )
 

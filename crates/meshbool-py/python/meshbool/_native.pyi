@@ -92,6 +92,7 @@ def split(
     threads: Optional[int],
     merge_small: int,
     snap: float = 0.0,
+    keep_seam_points: bool = False,
 ) -> Split: ...
 def pieces_for_op(op: str) -> List[str]: ...
 def pick(

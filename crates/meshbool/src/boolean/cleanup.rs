@@ -21,7 +21,7 @@
 //! edge share no neighbour but the edge's far corners; a flip makes no edge twice).
 
 use rayon::prelude::*;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use super::{Provenance, Source};
 use crate::kernel::{normals_cross_sign, normals_dot_sign, orient3d_explicit, Sign};
@@ -30,7 +30,7 @@ use crate::repair::{common, filled_from_end, neighbours};
 use crate::Mesh;
 
 /// What the exact clean-up of a boolean's result did ([`super::PipelineOptions::cleanup`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct CleanupReport {
     /// Seam points removed where the result is flat or straight through them: each a
     /// collapse onto a neighbour in the same plane or on the same line.
@@ -81,6 +81,17 @@ struct Work<'a> {
     dead_triangles: Vec<u32>,
     dead_vertices: Vec<u32>,
     report: CleanupReport,
+    /// A split's groups: each triangle's group, where A's pieces and B's are two sheets
+    /// glued along the seam ([`clean_up_sheets`]); `None` for a boolean's result.
+    labels: Option<Vec<u32>>,
+}
+
+/// A closed fan of triangles around a vertex: its neighbours (sorted), and for each the
+/// triangle whose edge runs out of the vertex to it and the one whose edge runs in.
+struct ClosedFan {
+    neighbours: Vec<u32>,
+    out: Vec<u32>,
+    into: Vec<u32>,
 }
 
 impl Work<'_> {
@@ -151,6 +162,11 @@ impl Work<'_> {
     /// Whether collapsing `p` onto `q` keeps the mesh manifold: `q`'s star is known,
     /// exactly two triangles hold the edge, and the ends share no other neighbour.
     fn link_ok(&self, p: u32, q: u32, star_p: &[u32]) -> bool {
+        self.complete(q) && self.link_ok_with(p, q, star_p, &self.star(q))
+    }
+
+    /// [`Work::link_ok`] with `q`'s star given (`q`'s star known).
+    fn link_ok_with(&self, p: u32, q: u32, star_p: &[u32], star_q: &[u32]) -> bool {
         if !self.complete(q) {
             return false;
         }
@@ -162,8 +178,7 @@ impl Work<'_> {
         if on_edge.len() != 2 {
             return false;
         }
-        let star_q = self.star(q);
-        let (np, nq) = (self.neighbours(star_p, p), self.neighbours(&star_q, q));
+        let (np, nq) = (self.neighbours(star_p, p), self.neighbours(star_q, q));
         let shared = common(&np, &nq).len();
         let far: Vec<u32> = on_edge
             .iter()
@@ -212,20 +227,16 @@ impl Work<'_> {
 
     /// Tries to remove seam vertex `p`; returns the vertex it went onto and `p`'s
     /// neighbours before.
-    fn remove(&mut self, p: u32) -> Option<(u32, Vec<u32>)> {
-        if self.dead_vertex[p as usize] || !self.complete(p) {
-            return None;
-        }
-        let star = self.star(p);
-        // A closed fan: every neighbour starts exactly one triangle's edge out of p and
-        // ends exactly one (`out[x]`, `into[x]`).
+    /// The triangles `star` around `p` as a closed fan: every neighbour starts exactly
+    /// one triangle's edge out of `p` and ends exactly one; `None` otherwise.
+    fn closed_fan(&self, p: u32, star: &[u32]) -> Option<ClosedFan> {
         let mut fan: Vec<(u32, u32, u32)> = Vec::with_capacity(star.len()); // (next, prev, t)
-        for &t in &star {
+        for &t in star {
             let tri = self.triangles[t as usize];
             let i = tri.iter().position(|&v| v == p)?;
             fan.push((tri[(i + 1) % 3], tri[(i + 2) % 3], t));
         }
-        let neighbours = self.neighbours(&star, p);
+        let neighbours = self.neighbours(star, p);
         if neighbours.len() != fan.len() {
             return None;
         }
@@ -242,6 +253,94 @@ impl Work<'_> {
             out[i] = t;
             into[j] = t;
         }
+        Some(ClosedFan {
+            neighbours,
+            out,
+            into,
+        })
+    }
+
+    /// The sheet of triangle `t` in a split's groups: 0 for A's pieces, 1 for B's.
+    fn sheet(&self, t: u32) -> usize {
+        usize::from(self.provenance[t as usize].source == Source::B)
+    }
+
+    /// Whether `p` lies strictly between `q` and `r` along some coordinate (of three
+    /// points known to be on one line: rounding, monotone, keeps it).
+    fn between(&self, q: u32, p: u32, r: u32) -> bool {
+        let [q, x, r] = [q, p, r].map(|v| self.positions[v as usize]);
+        (0..3).any(|k| (q[k] < x[k] && x[k] < r[k]) || (q[k] > x[k] && x[k] > r[k]))
+    }
+
+    /// [`Work::remove`] in a split's groups: `p` goes only where each sheet is a closed
+    /// fan in one plane around it, the two planes cross, and `p` lies between its two
+    /// seam neighbours (on the line where the planes meet), by one collapse onto one of
+    /// them in both sheets: the seam stays a straight line through where `p` was, so no
+    /// group changes shape and the groups stay conforming. Two seam points at one
+    /// position joined by a seam edge collapse the same way.
+    fn remove_across_sheets(&mut self, p: u32) -> Option<(u32, Vec<u32>)> {
+        let star = self.star(p);
+        let mut sides: [Vec<u32>; 2] = [Vec::new(), Vec::new()];
+        for &t in &star {
+            sides[self.sheet(t)].push(t);
+        }
+        let fans = [
+            self.closed_fan(p, &sides[0])?,
+            self.closed_fan(p, &sides[1])?,
+        ];
+        let seam = common(&fans[0].neighbours, &fans[1].neighbours);
+        let [q, r] = seam[..] else {
+            return None;
+        };
+        let mut neighbours = fans[0].neighbours.clone();
+        neighbours.extend(&fans[1].neighbours);
+        neighbours.sort_unstable();
+        neighbours.dedup();
+        let link = |w: &Self, q: u32| {
+            (0..2).all(|s| {
+                let star_q: Vec<u32> = w.star(q).into_iter().filter(|&t| w.sheet(t) == s).collect();
+                w.link_ok_with(p, q, &sides[s], &star_q)
+            })
+        };
+        let position = |v: u32| self.positions[v as usize];
+        for target in [q, r] {
+            if position(target) == position(p) && link(self, target) {
+                self.collapse(p, target, &star);
+                self.report.zero_length_edges += 1;
+                return Some((target, neighbours));
+            }
+        }
+        let flat = |w: &Self, f: &ClosedFan| (0..f.out.len()).all(|i| w.flat(f.out[i], f.into[i]));
+        if !(flat(self, &fans[0]) && flat(self, &fans[1])) {
+            return None;
+        }
+        let (pa, pb) = (self.parent(sides[0][0]), self.parent(sides[1][0]));
+        if (0..3).all(|k| normals_cross_sign(&pa, &pb, k) == Sign::Zero) || !self.between(q, p, r) {
+            return None;
+        }
+        for target in [q, r] {
+            if link(self, target) && self.keeps_facing(p, target, &star) {
+                self.collapse(p, target, &star);
+                self.report.removed_points += 1;
+                return Some((target, neighbours));
+            }
+        }
+        None
+    }
+
+    fn remove(&mut self, p: u32) -> Option<(u32, Vec<u32>)> {
+        if self.dead_vertex[p as usize] || !self.complete(p) {
+            return None;
+        }
+        if self.labels.is_some() {
+            return self.remove_across_sheets(p);
+        }
+        let star = self.star(p);
+        let ClosedFan {
+            neighbours,
+            out,
+            into,
+        } = self.closed_fan(p, &star)?;
         let position = |v: u32| self.positions[v as usize];
         // Zero-length edges first: the same position, nothing to check but the link.
         for &q in &neighbours {
@@ -269,14 +368,7 @@ impl Work<'_> {
                 if (0..3).all(|k| normals_cross_sign(&pt, &pu, k) == Sign::Zero) {
                     return None;
                 }
-                let (q, r, x) = (
-                    position(neighbours[i]),
-                    position(neighbours[j]),
-                    position(p),
-                );
-                let between =
-                    (0..3).any(|k| (q[k] < x[k] && x[k] < r[k]) || (q[k] > x[k] && x[k] > r[k]));
-                if !between {
+                if !self.between(neighbours[i], p, neighbours[j]) {
                     return None;
                 }
                 vec![neighbours[i], neighbours[j]]
@@ -311,10 +403,12 @@ impl Work<'_> {
             return false;
         }
         let star_a = self.star(a);
+        let label = |u: u32| self.labels.as_ref().map(|l| l[u as usize]);
         let across: Vec<u32> = star_a
             .iter()
             .copied()
             .filter(|&u| u != t && self.triangles[u as usize].contains(&b))
+            .filter(|&u| label(u) == label(t))
             .collect();
         let [n] = across[..] else {
             return false;
@@ -358,6 +452,34 @@ impl Work<'_> {
 pub(crate) fn clean_up(
     mesh: &mut Mesh,
     provenance: &mut Vec<Provenance>,
+    seam_vertices: &mut Vec<u32>,
+    added: &[u32],
+    inputs: [&Mesh; 2],
+) -> CleanupReport {
+    clean_up_labelled(mesh, provenance, None, seam_vertices, added, inputs)
+}
+
+/// [`clean_up`] of a split's groups merged into one mesh (A's pieces and B's: two sheets
+/// glued along the seam, whose edges have four triangles), `labels` naming each
+/// triangle's group (and following it): a seam point goes only where the seam runs
+/// straight through it and each sheet is flat around it ([`Work::remove_across_sheets`]),
+/// caps flip only within their group, so that no group changes shape and the groups
+/// stay conforming.
+pub(crate) fn clean_up_sheets(
+    mesh: &mut Mesh,
+    provenance: &mut Vec<Provenance>,
+    labels: &mut Vec<u32>,
+    seam_vertices: &mut Vec<u32>,
+    added: &[u32],
+    inputs: [&Mesh; 2],
+) -> CleanupReport {
+    clean_up_labelled(mesh, provenance, Some(labels), seam_vertices, added, inputs)
+}
+
+fn clean_up_labelled(
+    mesh: &mut Mesh,
+    provenance: &mut Vec<Provenance>,
+    mut labels: Option<&mut Vec<u32>>,
     seam_vertices: &mut Vec<u32>,
     added: &[u32],
     [a, b]: [&Mesh; 2],
@@ -425,6 +547,7 @@ pub(crate) fn clean_up(
         dead_triangles: Vec::new(),
         dead_vertices: Vec::new(),
         report: CleanupReport::default(),
+        labels: labels.as_mut().map(|l| std::mem::take(&mut **l)),
     };
     // Seam points, then again those next to a removed one (its removal can make theirs
     // possible), until nothing changes.
@@ -463,12 +586,17 @@ pub(crate) fn clean_up(
         mut dead_triangles,
         mut dead_vertices,
         report,
+        labels: labels_in,
         ..
     } = w;
+    let mut labels_in = labels_in.unwrap_or_default();
     if report.triangles_removed == 0 {
         // Flips only: nothing to compact.
         mesh.triangles = triangles;
         *provenance = provenance_in;
+        if let Some(l) = labels {
+            *l = labels_in;
+        }
         return report;
     }
     // Compact without moving what stays in place (few go): each dead triangle's and
@@ -480,9 +608,16 @@ pub(crate) fn clean_up(
     for &(from, to) in &tmoves {
         triangles[to as usize] = triangles[from as usize];
         provenance_in[to as usize] = provenance_in[from as usize];
+        if let Some(l) = labels_in.get(from as usize).copied() {
+            labels_in[to as usize] = l;
+        }
     }
     triangles.truncate(nt);
     provenance_in.truncate(nt);
+    labels_in.truncate(nt);
+    if let Some(l) = labels {
+        *l = labels_in;
+    }
     let (n, moves) = filled_from_end(&dead_vertices, nv);
     for &(from, to) in &moves {
         mesh.positions[to as usize] = mesh.positions[from as usize];

@@ -607,6 +607,21 @@ pub fn merge(
     }
 }
 
+/// Of the merged mesh's `seam_vertices` (with the vertex of A's arrangement each is,
+/// `seam_origin`), those the arrangement added: neither A's vertex nor B's.
+fn added_points(s: &Split, seam_origin: &[u32], seam_vertices: &[u32]) -> Vec<u32> {
+    let mut b_vertex = vec![false; s.a.mesh.positions.len()];
+    for (&va, &vb) in s.a.seam_vertex.iter().zip(&s.b.seam_vertex) {
+        if (vb as usize) < s.b.input_vertices {
+            b_vertex[va as usize] = true;
+        }
+    }
+    (seam_origin.iter().zip(seam_vertices))
+        .filter(|&(&o, _)| o as usize >= s.a.input_vertices && !b_vertex[o as usize])
+        .map(|(_, &v)| v)
+        .collect()
+}
+
 /// `v` cut into consecutive slices of the given lengths (which must add up to at most its
 /// length).
 pub(crate) fn split_by<'v, T>(mut v: &'v mut [T], lengths: &[usize]) -> Vec<&'v mut [T]> {
@@ -668,17 +683,7 @@ pub fn boolean(a: &Mesh, b: &Mesh, op: Op, opts: &PipelineOptions) -> BooleanRes
     );
     let (mut mesh, mut provenance) = (mesh, merged.provenance);
     let cleanup = if opts.cleanup {
-        // The seam points the arrangement added (neither A's vertex nor B's).
-        let mut b_vertex = vec![false; s.a.mesh.positions.len()];
-        for (&va, &vb) in s.a.seam_vertex.iter().zip(&s.b.seam_vertex) {
-            if (vb as usize) < s.b.input_vertices {
-                b_vertex[va as usize] = true;
-            }
-        }
-        let added: Vec<u32> = (merged.seam_origin.iter().zip(&seam_vertices))
-            .filter(|&(&o, _)| o as usize >= s.a.input_vertices && !b_vertex[o as usize])
-            .map(|(_, &v)| v)
-            .collect();
+        let added = added_points(&s, &merged.seam_origin, &seam_vertices);
         cleanup::clean_up(
             &mut mesh,
             &mut provenance,
@@ -791,6 +796,49 @@ impl Group {
 by_name!(Group, "group");
 
 impl Split {
+    /// Every non-empty group of the split ([`Split::group`]), in the order of
+    /// [`Group::ALL`], made from one mesh of all of them; with `cleanup`, what the
+    /// arrangement added and the groups do not need goes first, the groups kept
+    /// conforming and each of its shape ([`PipelineOptions::cleanup`] for splits: a seam
+    /// point goes only where the seam runs straight through it and both meshes are flat
+    /// around it). `a` and `b` are the split's inputs.
+    pub fn groups(&self, a: &Mesh, b: &Mesh, cleanup: bool) -> (Vec<GroupMesh>, CleanupReport) {
+        let mut all = merge(self, |_| Keep::AsIs, |_| Keep::AsIs);
+        let mut labels = self.group_labels(all.mesh.triangles.len());
+        let report = if cleanup {
+            let added = added_points(self, &all.seam_origin, &all.seam_vertices);
+            cleanup::clean_up_sheets(
+                &mut all.mesh,
+                &mut all.provenance,
+                &mut labels,
+                &mut all.seam_vertices,
+                &added,
+                [a, b],
+            )
+        } else {
+            CleanupReport::default()
+        };
+        (snap::groups_of(&all.mesh, &all.provenance, &labels), report)
+    }
+
+    /// Each triangle's group (its index in [`Group::ALL`]) in the merge of all of them:
+    /// A's triangles, then B's.
+    pub(crate) fn group_labels(&self, n: usize) -> Vec<u32> {
+        let na = self.a.mesh.triangles.len();
+        let group_of = |k: usize| {
+            let (source, class) = if k < na {
+                (Source::A, self.class_a.class[k])
+            } else {
+                (Source::B, self.class_b.class[k - na])
+            };
+            Group::ALL
+                .iter()
+                .position(|g| g.side_and_class() == (source, class))
+                .map_or(u32::MAX, |i| i as u32)
+        };
+        (0..n).into_par_iter().map(group_of).collect()
+    }
+
     /// The triangles of one group as a mesh (vertices compacted), with their provenance.
     pub fn group(&self, g: Group) -> (Mesh, Vec<Provenance>) {
         let (side, class) = g.side_and_class();

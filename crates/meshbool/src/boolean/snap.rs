@@ -57,23 +57,8 @@ pub type GroupMesh = (Group, Mesh, Vec<Provenance>);
 /// Errors: a tolerance that is negative, NaN or infinite.
 pub fn snap_split(s: &Split, tolerance: f64) -> Result<(Vec<GroupMesh>, SnapReport)> {
     check_tolerance(tolerance)?;
-    let na = s.a.mesh.triangles.len();
     let mut all = merge(s, |_| Keep::AsIs, |_| Keep::AsIs);
-    let group_of = |k: usize| {
-        let (source, class) = if k < na {
-            (Source::A, s.class_a.class[k])
-        } else {
-            (Source::B, s.class_b.class[k - na])
-        };
-        Group::ALL
-            .iter()
-            .position(|g| g.side_and_class() == (source, class))
-            .map_or(u32::MAX, |i| i as u32)
-    };
-    let mut labels: Vec<u32> = (0..all.mesh.triangles.len())
-        .into_par_iter()
-        .map(group_of)
-        .collect();
+    let mut labels = s.group_labels(all.mesh.triangles.len());
     let sheets = by_source(&all.provenance);
     let opts = SnapOptions {
         tolerance,
@@ -85,7 +70,14 @@ pub fn snap_split(s: &Split, tolerance: f64) -> Result<(Vec<GroupMesh>, SnapRepo
     let (report, removed) = snap_unchecked(&mut all.mesh, &opts);
     remove_sorted(&mut labels, &removed.triangles);
     remove_sorted(&mut all.provenance, &removed.triangles);
-    let groups = Group::ALL
+    Ok((groups_of(&all.mesh, &all.provenance, &labels), report))
+}
+
+/// The non-empty groups of a mesh of all of them (`labels`: each triangle's index in
+/// [`Group::ALL`]), in that order, each with its mesh (vertices in `m`'s order) and
+/// provenance.
+pub(super) fn groups_of(m: &Mesh, provenance: &[Provenance], labels: &[u32]) -> Vec<GroupMesh> {
+    Group::ALL
         .iter()
         .enumerate()
         .filter_map(|(i, &g)| {
@@ -95,11 +87,10 @@ pub fn snap_split(s: &Split, tolerance: f64) -> Result<(Vec<GroupMesh>, SnapRepo
             if ids.is_empty() {
                 return None;
             }
-            let provenance = ids.iter().map(|&t| all.provenance[t as usize]).collect();
-            Some((g, in_order(&all.mesh, &ids), provenance))
+            let provenance = ids.iter().map(|&t| provenance[t as usize]).collect();
+            Some((g, in_order(m, &ids), provenance))
         })
-        .collect();
-    Ok((groups, report))
+        .collect()
 }
 
 /// Each triangle's input as a label: 0 for A, 1 for B.

@@ -11,7 +11,7 @@ use std::str::FromStr;
 use serde::{Deserialize, Serialize};
 
 use super::{Checks, Input, Operand, OperandReport, RunOptions, SCHEMA};
-use crate::boolean::{Group, Keep, Op, Provenance, Stage};
+use crate::boolean::{CleanupReport, Group, Keep, Op, Provenance, Stage};
 use crate::edges::components_merged;
 use crate::measure::{area, mesh_stats, signed_volume, MeshStats};
 use crate::repair::{split_nonmanifold, NonManifoldReport, SnapReport};
@@ -30,6 +30,12 @@ pub struct SplitOptions {
     /// ([`super::BooleanOptions::snap`]), so that they stay conforming: a pick of any
     /// set of them is closed where the exact pick is.
     pub snap: f64,
+    /// Keep every seam point of the exact arrangement. Off (the default), seam points
+    /// where the seam runs straight through flat faces of both meshes, and zero-area
+    /// triangles that rounding made, go, the groups kept conforming and each of its shape
+    /// ([`crate::boolean::Split::groups`]); as a boolean's
+    /// [`super::BooleanOptions::keep_seam_points`].
+    pub keep_seam_points: bool,
     /// Threads and progress.
     pub run: RunOptions,
 }
@@ -62,6 +68,9 @@ pub struct SplitOutput {
     pub groups: Vec<GroupPieces>,
     /// What snapping did ([`SplitOptions::snap`]); `None` without it.
     pub snap: Option<SnapReport>,
+    /// What the exact clean-up did (all zero with [`SplitOptions::keep_seam_points`] or
+    /// a snap tolerance, which cleans instead).
+    pub cleanup: CleanupReport,
     /// Time of the split and the components, in seconds.
     pub seconds: f64,
 }
@@ -115,6 +124,9 @@ pub struct SplitReport {
     /// What snapping did (only with a snap tolerance).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub snap: Option<SnapReport>,
+    /// What the exact clean-up did ([`SplitOutput::cleanup`]).
+    #[serde(default)]
+    pub cleanup: CleanupReport,
 }
 
 /// Splits `a` and `b` along their intersection into groups and components. Inputs as for
@@ -140,23 +152,17 @@ pub fn split<'a>(
     }
     let run = |a: &Operand, b: &Operand| {
         let s = crate::boolean::split(a.mesh(), b.mesh(), &opts.run.pipeline());
-        let (exact, snap) = if opts.snap > 0.0 {
+        let (exact, snap, cleanup) = if opts.snap > 0.0 {
             opts.run.stage(Stage::Snap);
             // The tolerance was checked above: never an error here.
             match crate::boolean::snap_split(&s, opts.snap) {
-                Ok((groups, report)) => (groups, Some(report)),
-                Err(_) => (Vec::new(), None),
+                Ok((groups, report)) => (groups, Some(report), CleanupReport::default()),
+                Err(_) => (Vec::new(), None, CleanupReport::default()),
             }
         } else {
             opts.run.stage(Stage::Merge);
-            let groups = Group::ALL
-                .into_iter()
-                .map(|group| {
-                    let (mesh, provenance) = s.group(group);
-                    (group, mesh, provenance)
-                })
-                .collect();
-            (groups, None)
+            let (groups, cleanup) = s.groups(a.mesh(), b.mesh(), !opts.keep_seam_points);
+            (groups, None, cleanup)
         };
         let groups = exact
             .into_iter()
@@ -181,17 +187,18 @@ pub fn split<'a>(
         (
             s.seam.points.len(),
             groups,
-            snap,
+            (snap, cleanup),
             [a.report().clone(), b.report().clone()],
         )
     };
-    let ((seam_points, groups, snap, operands), seconds) =
+    let ((seam_points, groups, (snap, cleanup), operands), seconds) =
         Input::with_both(a, b, &opts.checks, &opts.run, run)?;
     Ok(SplitOutput {
         operands,
         seam_points,
         groups,
         snap,
+        cleanup,
         seconds,
     })
 }
@@ -270,6 +277,7 @@ impl SplitOutput {
                 .collect(),
             assumed: self.operands.iter().flat_map(|o| o.assumed()).collect(),
             snap: self.snap.clone(),
+            cleanup: self.cleanup,
         }
     }
 
