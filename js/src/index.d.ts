@@ -91,11 +91,13 @@ export interface CheckOptions {
 	 */
 	snap?: number;
 	/**
-	 * Keep every seam point of the exact arrangement (booleans; default true, so that a
-	 * boolean equals its merged split groups as in the reference library). `false` runs
-	 * the exact clean-up: seam points where the result is flat or straight are removed and
-	 * zero-area triangles made by rounding are collapsed or flipped away, no surface
-	 * moving; the report's `cleanup` says what was done.
+	 * Keep every seam point of the exact arrangement (booleans and splits; default true,
+	 * so that a boolean equals its merged split groups as in the reference library).
+	 * `false` runs the exact clean-up: seam points where the result is flat or straight
+	 * are removed and zero-area triangles made by rounding are collapsed or flipped away,
+	 * no surface moving (a split's groups together, each keeping its shape, only where
+	 * the seam runs straight through flat faces of both meshes); the report's `cleanup`
+	 * says what was done.
 	 */
 	keepSeamPoints?: boolean;
 }

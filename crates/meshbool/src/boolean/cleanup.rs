@@ -26,7 +26,7 @@ use serde::{Deserialize, Serialize};
 use super::{Provenance, Source};
 use crate::kernel::{normals_cross_sign, normals_dot_sign, orient3d_explicit, Sign};
 use crate::measure::is_degenerate;
-use crate::repair::{common, filled_from_end, neighbours};
+use crate::repair::{common, filled_from_end, moved, neighbours};
 use crate::Mesh;
 
 /// What the exact clean-up of a boolean's result did ([`super::PipelineOptions::cleanup`]).
@@ -627,7 +627,7 @@ fn clean_up_labelled(
         if (v as usize) < n {
             v
         } else {
-            moves[moves.partition_point(|&(f, _)| f < v)].1
+            moved(&moves, v)
         }
     };
     if !moves.is_empty() {

@@ -802,7 +802,12 @@ impl Split {
     /// conforming and each of its shape ([`PipelineOptions::cleanup`] for splits: a seam
     /// point goes only where the seam runs straight through it and both meshes are flat
     /// around it). `a` and `b` are the split's inputs.
-    pub fn groups(&self, a: &Mesh, b: &Mesh, cleanup: bool) -> (Vec<GroupMesh>, CleanupReport) {
+    pub(crate) fn groups(
+        &self,
+        a: &Mesh,
+        b: &Mesh,
+        cleanup: bool,
+    ) -> (Vec<GroupMesh>, CleanupReport) {
         let mut all = merge(self, |_| Keep::AsIs, |_| Keep::AsIs);
         let mut labels = self.group_labels(all.mesh.triangles.len());
         let report = if cleanup {

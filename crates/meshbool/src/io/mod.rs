@@ -470,8 +470,19 @@ fn tokens(line: &[u8]) -> impl Iterator<Item = &[u8]> {
         .filter(|t| !t.is_empty())
 }
 
-/// Text files of at least this many bytes per thread are parsed in pieces side by side.
+/// Text files are parsed in pieces of about this many bytes side by side ([`pieces`]).
 const PIECE: usize = 1 << 20;
+
+/// How many pieces of whole lines a text file of `len` bytes is parsed in: one per
+/// [`PIECE`], at most eight per thread; one on one thread.
+fn pieces(len: usize) -> usize {
+    let threads = rayon::current_num_threads();
+    if threads > 1 {
+        (len / PIECE).clamp(1, 8 * threads)
+    } else {
+        1
+    }
+}
 
 /// `bytes` cut into about `pieces` pieces, each ending just after a line's end (the last
 /// at the end).

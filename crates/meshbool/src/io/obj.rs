@@ -7,7 +7,7 @@ use std::io::Write;
 
 use rayon::prelude::*;
 
-use super::{concat, exclusive_sums, lines, parse_f64, tokens, whole_lines, Format, Out, PIECE};
+use super::{concat, exclusive_sums, lines, parse_f64, tokens, whole_lines, Format, Out};
 use crate::error::{Error, Location, Result};
 use crate::Mesh;
 
@@ -46,12 +46,7 @@ pub(super) fn looks_like(bytes: &[u8]) -> bool {
 }
 
 pub(super) fn read(bytes: &[u8]) -> Result<Mesh> {
-    let pieces = if rayon::current_num_threads() > 1 {
-        (bytes.len() / PIECE).min(8 * rayon::current_num_threads())
-    } else {
-        1
-    };
-    read_in(bytes, pieces)
+    read_in(bytes, super::pieces(bytes.len()))
 }
 
 /// [`read`] in about `pieces` pieces of whole lines, parsed side by side: vertices and

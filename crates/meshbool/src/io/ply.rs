@@ -9,7 +9,7 @@ use std::io::Write;
 
 use rayon::prelude::*;
 
-use super::{concat, exclusive_sums, lines, parse_f64, tokens, whole_lines, Format, Out, PIECE};
+use super::{concat, exclusive_sums, lines, parse_f64, tokens, whole_lines, Format, Out};
 use crate::error::{Error, Location, Result};
 use crate::Mesh;
 
@@ -228,22 +228,22 @@ impl Body<'_> {
 /// endian where `be`.
 #[inline]
 fn value(raw: &[u8], ty: Scalar, be: bool) -> f64 {
-    let n = ty.size();
-    let mut b = [0u8; 8];
-    b[..n].copy_from_slice(&raw[..n]);
-    if be {
-        b[..n].reverse();
-    }
-    let b4 = [b[0], b[1], b[2], b[3]];
+    let word = |n: usize| {
+        let mut b = [0u8; 8];
+        b[..n].copy_from_slice(&raw[..n]);
+        if be {
+            b[..n].reverse();
+        }
+        b
+    };
     match ty {
-        Scalar::I8 => f64::from(b[0] as i8),
-        Scalar::U8 => f64::from(b[0]),
-        Scalar::I16 => f64::from(i16::from_le_bytes([b[0], b[1]])),
-        Scalar::U16 => f64::from(u16::from_le_bytes([b[0], b[1]])),
-        Scalar::I32 => f64::from(i32::from_le_bytes(b4)),
-        Scalar::U32 => f64::from(u32::from_le_bytes(b4)),
-        Scalar::F32 => f64::from(f32::from_le_bytes(b4)),
-        Scalar::F64 => f64::from_le_bytes(b),
+        Scalar::F32 => {
+            let b = word(4);
+            f64::from(f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+        }
+        Scalar::F64 => f64::from_le_bytes(word(8)),
+        // Exact: integers of at most 32 bits.
+        _ => integer(raw, ty, be) as f64,
     }
 }
 
@@ -324,13 +324,7 @@ fn triangles_side_by_side(
     elements: &[Element],
     start: usize,
 ) -> Option<Mesh> {
-    let threads = rayon::current_num_threads();
-    let pieces = if threads > 1 {
-        (bytes.len() / PIECE).min(8 * threads)
-    } else {
-        1
-    };
-    triangles_in_pieces(bytes, format, elements, start, pieces)
+    triangles_in_pieces(bytes, format, elements, start, super::pieces(bytes.len()))
 }
 
 /// [`triangles_side_by_side`], an ASCII body in about `pieces` pieces of whole lines.

@@ -326,7 +326,7 @@ impl Filled {
 
 /// Where vertex `v` (one of the moved ones) went: `moves` sorted by source.
 #[inline]
-fn moved(moves: &[(u32, u32)], v: u32) -> u32 {
+pub(crate) fn moved(moves: &[(u32, u32)], v: u32) -> u32 {
     moves[moves.partition_point(|&(f, _)| f < v)].1
 }
 
@@ -491,6 +491,8 @@ impl Edit {
     /// `per_triangle` follows): a few moves and one pass renaming the moved vertices,
     /// instead of shifting and renumbering everything.
     fn fill<T: Copy>(self, mesh: &mut Mesh, per_triangle: &mut Vec<T>) -> Filled {
+        debug_assert!(self.removed.windows(2).all(|w| w[0] < w[1]));
+        debug_assert!(self.dead.windows(2).all(|w| w[0] < w[1]));
         for &(t, tri) in &self.replaced {
             mesh.triangles[t as usize] = tri;
         }
