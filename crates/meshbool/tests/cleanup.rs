@@ -212,6 +212,16 @@ fn split(a: &Mesh, b: &Mesh, keep_seam_points: bool) -> ops::SplitOutput {
 
 /// The total length of the edges of one triangle.
 fn boundary_length(m: &Mesh) -> f64 {
+    edges_length(m, |n| n == 1)
+}
+
+/// The total length of the edges held by more than two triangles.
+fn non_manifold_length(m: &Mesh) -> f64 {
+    edges_length(m, |n| n > 2)
+}
+
+/// The total length of the edges of `m` held by a count of triangles that `counted` takes.
+fn edges_length(m: &Mesh, counted: impl Fn(usize) -> bool) -> f64 {
     let mut uses = std::collections::HashMap::new();
     for t in m.triangles() {
         for k in 0..3 {
@@ -221,7 +231,7 @@ fn boundary_length(m: &Mesh) -> f64 {
     }
     let p = m.positions();
     uses.iter()
-        .filter(|&(_, &n)| n == 1)
+        .filter(|&(_, &n)| counted(n))
         .map(|(&(a, b), _)| {
             let (x, y) = (p[a as usize], p[b as usize]);
             ((x[0] - y[0]).powi(2) + (x[1] - y[1]).powi(2) + (x[2] - y[2]).powi(2)).sqrt()
@@ -341,25 +351,6 @@ fn split_clean_up_on_moved_curved_and_open_inputs() {
         "terrain",
     );
     assert!(removed > 0);
-}
-
-/// The total length of the edges held by more than two triangles.
-fn non_manifold_length(m: &Mesh) -> f64 {
-    let mut uses = std::collections::HashMap::new();
-    for t in m.triangles() {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            *uses.entry((a.min(b), a.max(b))).or_insert(0) += 1;
-        }
-    }
-    let p = m.positions();
-    uses.iter()
-        .filter(|&(_, &n)| n > 2)
-        .map(|(&(a, b), _)| {
-            let (x, y) = (p[a as usize], p[b as usize]);
-            ((x[0] - y[0]).powi(2) + (x[1] - y[1]).powi(2) + (x[2] - y[2]).powi(2)).sqrt()
-        })
-        .sum()
 }
 
 /// Every pick of every group of a split (each subset, B's parts as they are and
