@@ -30,11 +30,11 @@ pub struct SplitOptions {
     /// ([`super::BooleanOptions::snap`]), so that they stay conforming: a pick of any
     /// set of them is closed where the exact pick is.
     pub snap: f64,
-    /// Keep every seam point of the exact arrangement. Off (the default), seam points
-    /// where the seam runs straight through flat faces of both meshes, and zero-area
-    /// triangles that rounding made, go, the groups kept conforming and each of its shape
-    /// ([`crate::boolean::Split::groups`]); as a boolean's
-    /// [`super::BooleanOptions::keep_seam_points`].
+    /// Keep every seam point of the exact arrangement. Off (the default), the groups are
+    /// cleaned together: seam points where the seam runs straight through flat faces of
+    /// both meshes go (one collapse in all four groups), and zero-area triangles that
+    /// rounding made flip within their group; no group changes shape and the groups stay
+    /// conforming. As a boolean's [`super::BooleanOptions::keep_seam_points`].
     pub keep_seam_points: bool,
     /// Threads and progress.
     pub run: RunOptions,
