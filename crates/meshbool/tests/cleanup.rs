@@ -10,7 +10,7 @@ use meshbool::shapes::rigid_motion;
 use meshbool::{Mesh, Op};
 
 mod common;
-use common::{assert_in_parent_faces, cube_and_cutter};
+use common::{assert_in_parent_faces, cube_and_cutter, skew_motion};
 
 fn boolean(a: &Mesh, b: &Mesh, op: Op, keep_seam_points: bool) -> BooleanOutput {
     let opts = BooleanOptions {
@@ -112,13 +112,7 @@ fn rigid_motions_keep_every_guarantee() {
     let (a0, b0) = cube_and_cutter();
     let mut zero_length = 0;
     for seed in 0..6u64 {
-        let f = |k: u64| ((seed * 7919 + k * 104_729) % 1000) as f64 / 1000.0;
-        let axis = [f(1) - 0.5, f(2) - 0.5, f(3) + 0.1];
-        let (angle, shift) = (6.0 * f(4), [10.0 * f(5), -3.0 * f(6), 100.0 * f(7)]);
-        let (a, b) = (
-            rigid_motion(&a0, axis, angle, shift),
-            rigid_motion(&b0, axis, angle, shift),
-        );
+        let (a, b) = skew_motion(seed, &a0, &b0);
         for op in Op::ALL {
             let raw = boolean(&a, &b, op, true);
             let clean = boolean(&a, &b, op, false);
@@ -138,13 +132,7 @@ fn rigid_motions_keep_every_guarantee() {
 /// points): the guarantees hold; the volume identity holds with the clean-up.
 #[test]
 fn curved_and_open_inputs() {
-    let s1 = meshbool::shapes::uv_sphere([0.0; 3], 1.0, 48, 24);
-    let s2 = rigid_motion(
-        &meshbool::shapes::uv_sphere([0.4, 0.1, 0.2], 0.9, 40, 20),
-        [0.3, 0.2, 1.0],
-        0.7,
-        [0.0; 3],
-    );
+    let (s1, s2) = crossing_spheres();
     let mut v = [0.0; 4];
     for (k, op) in Op::ALL.into_iter().enumerate() {
         let (raw, clean) = (boolean(&s1, &s2, op, true), boolean(&s1, &s2, op, false));
@@ -154,13 +142,7 @@ fn curved_and_open_inputs() {
     let (va, vb) = (signed_volume(&s1), signed_volume(&s2));
     assert!((v[0] + v[1] - va - vb).abs() < 1e-9, "{v:?}");
     assert!((v[2] + v[1] - va).abs() < 1e-9, "{v:?}");
-    let data = |n: &str| {
-        let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../../data")
-            .join(n);
-        meshbool::io::read_path(&p).unwrap()
-    };
-    let (terrain, cylinder) = (data("kirra_terrain.obj"), data("kirra_cylinder.obj"));
+    let (terrain, cylinder) = kirra_terrain_and_cylinder();
     for op in Op::ALL {
         let (raw, clean) = (
             boolean(&terrain, &cylinder, op, true),
@@ -317,34 +299,16 @@ fn a_split_loses_its_straight_seam_points_and_keeps_its_groups() {
 fn split_clean_up_on_moved_curved_and_open_inputs() {
     let (a0, b0) = cube_and_cutter();
     for seed in 0..4u64 {
-        let f = |k: u64| ((seed * 7919 + k * 104_729) % 1000) as f64 / 1000.0;
-        let axis = [f(1) - 0.5, f(2) - 0.5, f(3) + 0.1];
-        let (angle, shift) = (6.0 * f(4), [10.0 * f(5), -3.0 * f(6), 100.0 * f(7)]);
-        let (a, b) = (
-            rigid_motion(&a0, axis, angle, shift),
-            rigid_motion(&b0, axis, angle, shift),
-        );
+        let (a, b) = skew_motion(seed, &a0, &b0);
         check_split(
             &split(&a, &b, true),
             &split(&a, &b, false),
             &format!("seed {seed}"),
         );
     }
-    let s1 = meshbool::shapes::uv_sphere([0.0; 3], 1.0, 48, 24);
-    let s2 = rigid_motion(
-        &meshbool::shapes::uv_sphere([0.4, 0.1, 0.2], 0.9, 40, 20),
-        [0.3, 0.2, 1.0],
-        0.7,
-        [0.0; 3],
-    );
+    let (s1, s2) = crossing_spheres();
     check_split(&split(&s1, &s2, true), &split(&s1, &s2, false), "spheres");
-    let data = |n: &str| {
-        let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../../data")
-            .join(n);
-        meshbool::io::read_path(&p).unwrap()
-    };
-    let (terrain, cylinder) = (data("kirra_terrain.obj"), data("kirra_cylinder.obj"));
+    let (terrain, cylinder) = kirra_terrain_and_cylinder();
     let removed = check_split(
         &split(&terrain, &cylinder, true),
         &split(&terrain, &cylinder, false),
@@ -423,16 +387,10 @@ fn split_clean_up_keeps_every_pick_of_touching_and_coplanar_parts() {
     let close = |x: f64, y: f64| (x - y).abs() <= 1e-12 * y.abs().max(1.0);
     for (name, b0) in &cases {
         for seed in 0..4u64 {
-            let f = |k: u64| ((seed * 7919 + k * 104_729) % 1000) as f64 / 1000.0;
-            let axis = [f(1) - 0.5, f(2) - 0.5, f(3) + 0.1];
-            let (angle, shift) = (6.0 * f(4), [10.0 * f(5), -3.0 * f(6), 100.0 * f(7)]);
             let (a, b) = if seed == 0 {
                 (a.clone(), b0.clone())
             } else {
-                (
-                    rigid_motion(&a, axis, angle, shift),
-                    rigid_motion(b0, axis, angle, shift),
-                )
+                skew_motion(seed, &a, b0)
             };
             let what = format!("{name}, seed {seed}");
             let (raw, clean) = (split(&a, &b, true), split(&a, &b, false));
@@ -466,4 +424,27 @@ fn assert_same_picks(clean: &ops::SplitOutput, raw: &ops::SplitOutput, what: &st
         assert!(close(c.3, r.3), "{what}: {} boundary {} {}", c.0, c.3, r.3);
         assert!(close(c.4, r.4), "{what}: {} volume {} {}", c.0, c.4, r.4);
     }
+}
+
+/// The Kirra terrain (open) and the cylinder that pierces it, from the repository's data.
+fn kirra_terrain_and_cylinder() -> (Mesh, Mesh) {
+    let data = |n: &str| {
+        let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../data")
+            .join(n);
+        meshbool::io::read_path(&p).unwrap()
+    };
+    (data("kirra_terrain.obj"), data("kirra_cylinder.obj"))
+}
+
+/// Two UV spheres of unlike tessellations crossing at an angle (curved seams).
+fn crossing_spheres() -> (Mesh, Mesh) {
+    let s1 = meshbool::shapes::uv_sphere([0.0; 3], 1.0, 48, 24);
+    let s2 = rigid_motion(
+        &meshbool::shapes::uv_sphere([0.4, 0.1, 0.2], 0.9, 40, 20),
+        [0.3, 0.2, 1.0],
+        0.7,
+        [0.0; 3],
+    );
+    (s1, s2)
 }

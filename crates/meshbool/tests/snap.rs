@@ -12,7 +12,7 @@ use meshbool::shapes::{heightfield, rigid_motion};
 use meshbool::{Error, Mesh, Op};
 
 mod common;
-use common::{assert_in_parent_faces, cube_and_cutter};
+use common::{assert_in_parent_faces, cube_and_cutter, skew_motion};
 
 const D: f64 = 0.01;
 
@@ -145,14 +145,7 @@ fn without_a_tolerance_the_result_is_the_exact_one() {
 fn rigid_motions_snap_the_same() {
     let (a, b) = cube_and_cutter();
     for seed in 0..6u64 {
-        // A rotation about a skew axis and a translation, different for every seed.
-        let f = |k: u64| ((seed * 7919 + k * 104_729) % 1000) as f64 / 1000.0;
-        let axis = [f(1) - 0.5, f(2) - 0.5, f(3) + 0.1];
-        let (angle, shift) = (6.0 * f(4), [10.0 * f(5), -3.0 * f(6), 100.0 * f(7)]);
-        let (a, b) = (
-            rigid_motion(&a, axis, angle, shift),
-            rigid_motion(&b, axis, angle, shift),
-        );
+        let (a, b) = skew_motion(seed, &a, &b);
         for (op, triangles) in [(Op::Difference, 24), (Op::Intersection, 16)] {
             let exact = boolean(&a, &b, op, 0.0);
             let snapped = boolean(&a, &b, op, D);

@@ -33,3 +33,16 @@ pub fn assert_in_parent_faces(
         }
     }
 }
+
+/// `a` and `b` moved together by a rotation about a skew axis and a translation, different
+/// for every `seed` (faces no longer exactly axis-aligned: their corners are rounded).
+pub fn skew_motion(seed: u64, a: &Mesh, b: &Mesh) -> (Mesh, Mesh) {
+    use meshbool::shapes::rigid_motion;
+    let f = |k: u64| ((seed * 7919 + k * 104_729) % 1000) as f64 / 1000.0;
+    let axis = [f(1) - 0.5, f(2) - 0.5, f(3) + 0.1];
+    let (angle, shift) = (6.0 * f(4), [10.0 * f(5), -3.0 * f(6), 100.0 * f(7)]);
+    (
+        rigid_motion(a, axis, angle, shift),
+        rigid_motion(b, axis, angle, shift),
+    )
+}
