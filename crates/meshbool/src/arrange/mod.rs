@@ -417,14 +417,7 @@ fn reassemble(mesh: &Mesh, results: Vec<(u32, CutResult)>) -> Reassembled {
     let total = sizes.iter().sum();
     let mut triangles = vec![[0u32; 3]; total];
     let mut parent = vec![0u32; total];
-    let mut first = 0usize;
-    let firsts: Vec<usize> = sizes
-        .iter()
-        .map(|&s| {
-            first += s;
-            first - s
-        })
-        .collect();
+    let firsts = crate::boolean::exclusive_sums(&sizes);
     // Per span: its failures and its pieces turned by rounding.
     type Found = (Vec<(u32, FailReason)>, Vec<u32>);
     let lists: Vec<Found> = crate::boolean::split_by(&mut triangles, &sizes)

@@ -26,7 +26,7 @@ use serde::{Deserialize, Serialize};
 use super::{Provenance, Source};
 use crate::kernel::{normals_cross_sign, normals_dot_sign, orient3d_explicit, Sign};
 use crate::measure::is_degenerate;
-use crate::repair::{common, filled_from_end, moved, neighbours};
+use crate::repair::{common, compact_from_end, neighbours};
 use crate::Mesh;
 
 /// What the exact clean-up of a boolean's result did ([`super::PipelineOptions::cleanup`]).
@@ -579,10 +579,8 @@ fn clean_up_labelled(
         }
     }
     let Work {
-        mut triangles,
-        alive,
+        triangles,
         provenance: mut provenance_in,
-        dead_vertex,
         mut dead_triangles,
         mut dead_vertices,
         report,
@@ -604,41 +602,24 @@ fn clean_up_labelled(
     // vertices were collapsed, so they are unreferenced); ids follow.
     dead_triangles.sort_unstable();
     dead_vertices.sort_unstable();
-    let (nt, tmoves) = filled_from_end(&dead_triangles, alive.len());
-    for &(from, to) in &tmoves {
-        triangles[to as usize] = triangles[from as usize];
-        provenance_in[to as usize] = provenance_in[from as usize];
-        if let Some(l) = labels_in.get(from as usize).copied() {
-            labels_in[to as usize] = l;
+    mesh.triangles = triangles;
+    let filled = compact_from_end(mesh, &dead_triangles, dead_vertices, |from, to| {
+        provenance_in[to] = provenance_in[from];
+        if let Some(l) = labels_in.get(from).copied() {
+            labels_in[to] = l;
         }
-    }
-    triangles.truncate(nt);
+    });
+    let nt = mesh.triangles.len();
     provenance_in.truncate(nt);
     labels_in.truncate(nt);
     if let Some(l) = labels {
         *l = labels_in;
     }
-    let (n, moves) = filled_from_end(&dead_vertices, nv);
-    for &(from, to) in &moves {
-        mesh.positions[to as usize] = mesh.positions[from as usize];
-    }
-    mesh.positions.truncate(n);
-    let renamed = |v: u32| {
-        if (v as usize) < n {
-            v
-        } else {
-            moved(&moves, v)
-        }
-    };
-    if !moves.is_empty() {
-        triangles.par_iter_mut().for_each(|t| *t = t.map(renamed));
-    }
-    mesh.triangles = triangles;
     *provenance = provenance_in;
-    seam_vertices.retain(|&v| !dead_vertex[v as usize]);
-    for v in seam_vertices.iter_mut() {
-        *v = renamed(*v);
-    }
+    *seam_vertices = seam_vertices
+        .iter()
+        .filter_map(|&v| filled.renamed(v))
+        .collect();
     seam_vertices.sort_unstable();
     report
 }

@@ -560,14 +560,7 @@ pub fn merge(
         .map(|c| c.iter().filter(|u| u.load(Relaxed)).count())
         .collect();
     let mut positions = vec![[0.0; 3]; used_in.iter().sum()];
-    let mut first = 0u32;
-    let starts: Vec<u32> = used_in
-        .iter()
-        .map(|&n| {
-            first += n as u32;
-            first - n as u32
-        })
-        .collect();
+    let starts = exclusive_sums(&used_in);
     let mut new_id = vec![0u32; na + nb];
     new_id
         .par_chunks_mut(CHUNK)
@@ -580,7 +573,7 @@ pub fn merge(
                 *id = if used[v].load(Relaxed) {
                     pos[next] = position(v);
                     next += 1;
-                    starts[c] + next as u32 - 1
+                    (starts[c] + next - 1) as u32
                 } else {
                     u32::MAX
                 };
@@ -619,6 +612,19 @@ fn added_points(s: &Split, seam_origin: &[u32], seam_vertices: &[u32]) -> Vec<u3
     (seam_origin.iter().zip(seam_vertices))
         .filter(|&(&o, _)| o as usize >= s.a.input_vertices && !b_vertex[o as usize])
         .map(|(_, &v)| v)
+        .collect()
+}
+
+/// Each element's sum of the elements before it: where each of consecutive parts of
+/// these sizes starts.
+pub(crate) fn exclusive_sums(counts: &[usize]) -> Vec<usize> {
+    let mut sum = 0;
+    counts
+        .iter()
+        .map(|&c| {
+            sum += c;
+            sum - c
+        })
         .collect()
 }
 

@@ -504,18 +504,6 @@ fn whole_lines(bytes: &[u8], pieces: usize) -> Vec<&[u8]> {
     out
 }
 
-/// Each element's sum of the elements before it.
-fn exclusive_sums(counts: &[usize]) -> Vec<usize> {
-    let mut sum = 0;
-    counts
-        .iter()
-        .map(|&c| {
-            sum += c;
-            sum - c
-        })
-        .collect()
-}
-
 /// The vectors one after another (copied side by side; one is taken as it is).
 fn concat<T: Copy + Default + Send + Sync>(mut parts: Vec<Vec<T>>) -> Vec<T> {
     if parts.len() == 1 {

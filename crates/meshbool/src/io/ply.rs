@@ -9,7 +9,8 @@ use std::io::Write;
 
 use rayon::prelude::*;
 
-use super::{concat, exclusive_sums, lines, parse_f64, tokens, whole_lines, Format, Out};
+use super::{concat, lines, parse_f64, tokens, whole_lines, Format, Out};
+use crate::boolean::exclusive_sums;
 use crate::error::{Error, Location, Result};
 use crate::Mesh;
 
@@ -435,13 +436,8 @@ fn ascii_body(body: &[u8], u: &Usual, pieces: usize) -> Option<Decoded> {
             .collect();
         exclusive_sums(&counts)
     };
-    let number = |t: &[u8]| {
-        std::str::from_utf8(t)
-            .ok()?
-            .parse::<f64>()
-            .ok()
-            .filter(|x| x.is_finite())
-    };
+    // A finite number, as the general reader takes it (anything else goes to it).
+    let number = |t: &[u8]| parse_f64(t, Format::PlyAscii, 0).ok();
     let parts = (0..pieces.len())
         .into_par_iter()
         .zip(firsts)

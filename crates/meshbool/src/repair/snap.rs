@@ -326,14 +326,57 @@ impl Filled {
 
 /// Where vertex `v` (one of the moved ones) went: `moves` sorted by source.
 #[inline]
-pub(crate) fn moved(moves: &[(u32, u32)], v: u32) -> u32 {
+fn moved(moves: &[(u32, u32)], v: u32) -> u32 {
     moves[moves.partition_point(|&(f, _)| f < v)].1
+}
+
+/// Removes the triangles `dead_triangles` and the unreferenced vertices `dead_vertices`
+/// (both sorted, distinct) from `mesh`, each slot below the new counts taken by the last
+/// live one, so that nothing else moves: `carry(from, to)` is told of every triangle moved
+/// (what is kept per triangle follows it; truncate it to the new count after), and the
+/// triangles' corners follow the vertices moved (one pass, only where vertices moved).
+/// Returns what became of the vertices.
+pub(crate) fn compact_from_end(
+    mesh: &mut Mesh,
+    dead_triangles: &[u32],
+    dead_vertices: Vec<u32>,
+    mut carry: impl FnMut(usize, usize),
+) -> Filled {
+    debug_assert!(dead_triangles.windows(2).all(|w| w[0] < w[1]));
+    debug_assert!(dead_vertices.windows(2).all(|w| w[0] < w[1]));
+    let (n, moves) = filled_from_end(dead_triangles, mesh.triangles.len());
+    for &(from, to) in &moves {
+        mesh.triangles[to as usize] = mesh.triangles[from as usize];
+        carry(from as usize, to as usize);
+    }
+    mesh.triangles.truncate(n);
+    let (count, moves) = filled_from_end(&dead_vertices, mesh.positions.len());
+    for &(from, to) in &moves {
+        mesh.positions[to as usize] = mesh.positions[from as usize];
+    }
+    mesh.positions.truncate(count);
+    if !moves.is_empty() {
+        let last = count as u32;
+        mesh.triangles
+            .par_iter_mut()
+            .with_min_len(1 << 12)
+            .for_each(|t| {
+                if t.iter().any(|&v| v >= last) {
+                    *t = t.map(|v| if v < last { v } else { moved(&moves, v) });
+                }
+            });
+    }
+    Filled {
+        dead: dead_vertices,
+        count,
+        moves,
+    }
 }
 
 /// Compaction that moves few: of `len` slots, `dead` (sorted, distinct) go, and each dead
 /// slot below the new count takes a live one from the end. Returns the new count and the
 /// moves (from, to), sorted by source.
-pub(crate) fn filled_from_end(dead: &[u32], len: usize) -> (usize, Vec<(u32, u32)>) {
+fn filled_from_end(dead: &[u32], len: usize) -> (usize, Vec<(u32, u32)>) {
     let n = len - dead.len();
     let split = dead.partition_point(|&k| (k as usize) < n);
     let (holes, tail) = dead.split_at(split);
@@ -491,39 +534,14 @@ impl Edit {
     /// `per_triangle` follows): a few moves and one pass renaming the moved vertices,
     /// instead of shifting and renumbering everything.
     fn fill<T: Copy>(self, mesh: &mut Mesh, per_triangle: &mut Vec<T>) -> Filled {
-        debug_assert!(self.removed.windows(2).all(|w| w[0] < w[1]));
-        debug_assert!(self.dead.windows(2).all(|w| w[0] < w[1]));
         for &(t, tri) in &self.replaced {
             mesh.triangles[t as usize] = tri;
         }
-        let (n, moves) = filled_from_end(&self.removed, mesh.triangles.len());
-        for &(from, to) in &moves {
-            mesh.triangles[to as usize] = mesh.triangles[from as usize];
-            per_triangle[to as usize] = per_triangle[from as usize];
-        }
-        mesh.triangles.truncate(n);
-        per_triangle.truncate(n);
-        let (count, moves) = filled_from_end(&self.dead, mesh.positions.len());
-        for &(from, to) in &moves {
-            mesh.positions[to as usize] = mesh.positions[from as usize];
-        }
-        mesh.positions.truncate(count);
-        if !moves.is_empty() {
-            let last = count as u32;
-            mesh.triangles
-                .par_iter_mut()
-                .with_min_len(1 << 12)
-                .for_each(|t| {
-                    if t.iter().any(|&v| v >= last) {
-                        *t = t.map(|v| if v < last { v } else { moved(&moves, v) });
-                    }
-                });
-        }
-        Filled {
-            dead: self.dead,
-            count,
-            moves,
-        }
+        let filled = compact_from_end(mesh, &self.removed, self.dead, |from, to| {
+            per_triangle[to] = per_triangle[from];
+        });
+        per_triangle.truncate(mesh.triangles.len());
+        filled
     }
 }
 
