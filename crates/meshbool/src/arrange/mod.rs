@@ -415,8 +415,8 @@ fn reassemble(mesh: &Mesh, results: Vec<(u32, CutResult)>) -> Reassembled {
         })
         .collect();
     let total = sizes.iter().sum();
-    let mut triangles = vec![[0u32; 3]; total];
-    let mut parent = vec![0u32; total];
+    let mut triangles = crate::boolean::filled([0u32; 3], total);
+    let mut parent = crate::boolean::filled(0u32, total);
     let firsts = crate::boolean::exclusive_sums(&sizes);
     // Per span: its failures and its pieces turned by rounding.
     type Found = (Vec<(u32, FailReason)>, Vec<u32>);

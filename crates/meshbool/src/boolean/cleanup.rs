@@ -21,6 +21,7 @@
 //! edge share no neighbour but the edge's far corners; a flip makes no edge twice).
 
 use rayon::prelude::*;
+use rustc_hash::FxHashMap;
 use serde::{Deserialize, Serialize};
 
 use super::{Provenance, Source};
@@ -336,11 +337,7 @@ impl Work<'_> {
             return self.remove_across_sheets(p);
         }
         let star = self.star(p);
-        let ClosedFan {
-            neighbours,
-            out,
-            into,
-        } = self.closed_fan(p, &star)?;
+        let (neighbours, targets) = self.plan(p, &star)?;
         let position = |v: u32| self.positions[v as usize];
         // Zero-length edges first: the same position, nothing to check but the link.
         for &q in &neighbours {
@@ -350,32 +347,7 @@ impl Work<'_> {
                 return Some((q, neighbours));
             }
         }
-        let creases: Vec<usize> = (0..neighbours.len())
-            .filter(|&i| !self.flat(out[i], into[i]))
-            .collect();
-        let targets: Vec<u32> = match creases[..] {
-            [] => {
-                // Input vertices (exact points) first.
-                let mut t = neighbours.clone();
-                t.sort_by_key(|&v| self.seam[v as usize]);
-                t
-            }
-            [i, j] => {
-                // Two planes that meet in a line (not one plane folded back): p and its
-                // two neighbours on the crease lie on that line, exactly; p must be
-                // strictly between them, which rounding (monotone) keeps per coordinate.
-                let (pt, pu) = (self.parent(out[i]), self.parent(into[i]));
-                if (0..3).all(|k| normals_cross_sign(&pt, &pu, k) == Sign::Zero) {
-                    return None;
-                }
-                if !self.between(neighbours[i], p, neighbours[j]) {
-                    return None;
-                }
-                vec![neighbours[i], neighbours[j]]
-            }
-            _ => return None,
-        };
-        for q in targets {
+        for q in targets.unwrap_or_default() {
             if self.link_ok(p, q, &star) && self.keeps_facing(p, q, &star) {
                 self.collapse(p, q, &star);
                 self.report.removed_points += 1;
@@ -383,6 +355,55 @@ impl Work<'_> {
             }
         }
         None
+    }
+
+    /// What `p`'s star alone says of removing `p` (reading, not changing anything): `None`
+    /// where the star is no closed fan; else `p`'s neighbours, and the neighbours to try
+    /// moving `p` onto (after any at `p`'s position), `None` where the star rules that out.
+    fn plan(&self, p: u32, star: &[u32]) -> Option<(Vec<u32>, Option<Vec<u32>>)> {
+        let ClosedFan {
+            neighbours,
+            out,
+            into,
+        } = self.closed_fan(p, star)?;
+        let creases: Vec<usize> = (0..neighbours.len())
+            .filter(|&i| !self.flat(out[i], into[i]))
+            .collect();
+        let targets: Option<Vec<u32>> = match creases[..] {
+            [] => {
+                // Input vertices (exact points) first.
+                let mut t = neighbours.clone();
+                t.sort_by_key(|&v| self.seam[v as usize]);
+                Some(t)
+            }
+            [i, j] => {
+                // Two planes that meet in a line (not one plane folded back): p and its
+                // two neighbours on the crease lie on that line, exactly; p must be
+                // strictly between them, which rounding (monotone) keeps per coordinate.
+                let (pt, pu) = (self.parent(out[i]), self.parent(into[i]));
+                let crossing = (0..3).any(|k| normals_cross_sign(&pt, &pu, k) != Sign::Zero);
+                (crossing && self.between(neighbours[i], p, neighbours[j]))
+                    .then(|| vec![neighbours[i], neighbours[j]])
+            }
+            _ => None,
+        };
+        Some((neighbours, targets))
+    }
+
+    /// Whether [`Work::remove`] of the boolean's seam point `p` fails whatever its
+    /// neighbours' stars are: its own star rules it out and no neighbour lies at its
+    /// position. That holds until `p`'s star changes (a removal next to it).
+    fn ruled_out(&self, p: u32) -> bool {
+        if self.labels.is_some() || !self.complete(p) {
+            return false;
+        }
+        match self.plan(p, &self.star(p)) {
+            None => true,
+            Some((neighbours, None)) => neighbours
+                .iter()
+                .all(|&q| self.positions[q as usize] != self.positions[p as usize]),
+            Some(_) => false,
+        }
     }
 
     /// Flips the cap `t` (three distinct corners on one line) into the neighbour across
@@ -519,7 +540,7 @@ fn clean_up_labelled(
         }
     }
     let around = touching(&ring);
-    let mut slot = vec![u32::MAX; nv];
+    let mut slot = crate::boolean::filled(u32::MAX, nv);
     let mut stars: Vec<Vec<u32>> = Vec::new();
     for &t in &around {
         for v in mesh.triangles[t as usize] {
@@ -551,12 +572,42 @@ fn clean_up_labelled(
     };
     // Seam points, then again those next to a removed one (its removal can make theirs
     // possible), until nothing changes.
+    // Those whose own star rules them out are found side by side first, and skipped
+    // while their stars stay as they were (the same outcome, the same order).
     let mut queue: Vec<u32> = added.iter().rev().copied().collect();
     let mut queued = w.seam.clone();
+    let mut ruled_out = vec![false; nv];
+    for (&p, out) in added.iter().zip(
+        added
+            .par_iter()
+            .map(|&p| w.ruled_out(p))
+            .collect::<Vec<_>>(),
+    ) {
+        ruled_out[p as usize] = out;
+    }
+    // Checked in debug builds and the library's tests: a point is skipped only with the
+    // star it was ruled out with.
+    let check = cfg!(any(test, debug_assertions));
+    let star_of = |w: &Work, p: u32| -> Vec<[u32; 3]> {
+        w.star(p).iter().map(|&t| w.triangles[t as usize]).collect()
+    };
+    let first_stars: FxHashMap<u32, Vec<[u32; 3]>> = added
+        .iter()
+        .filter(|&&p| check && ruled_out[p as usize])
+        .map(|&p| (p, star_of(&w, p)))
+        .collect();
     while let Some(p) = queue.pop() {
         queued[p as usize] = false;
+        if ruled_out[p as usize] {
+            assert!(
+                !check || star_of(&w, p) == first_stars[&p],
+                "star of {p} changed"
+            );
+            continue;
+        }
         if let Some((q, neighbours)) = w.remove(p) {
             for x in neighbours.into_iter().chain([q]) {
+                ruled_out[x as usize] = false;
                 if w.seam[x as usize] && !w.dead_vertex[x as usize] && !queued[x as usize] {
                     queued[x as usize] = true;
                     queue.push(x);
@@ -566,13 +617,13 @@ fn clean_up_labelled(
     }
     // Caps left at the seam.
     let mut caps: Vec<u32> = added
-        .iter()
+        .par_iter()
         .filter(|&&v| !w.dead_vertex[v as usize])
-        .flat_map(|&v| w.star(v))
+        .flat_map_iter(|&v| w.star(v))
         .collect();
-    caps.sort_unstable();
+    caps.par_sort_unstable();
     caps.dedup();
-    caps.retain(|&t| w.zero_area(t));
+    let caps: Vec<u32> = caps.into_par_iter().filter(|&t| w.zero_area(t)).collect();
     for &t in &caps {
         if w.alive[t as usize] && w.zero_area(t) && !w.flip_cap(t) {
             w.report.zero_area_left += 1;

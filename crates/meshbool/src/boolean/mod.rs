@@ -474,7 +474,7 @@ pub fn merge(
     const CHUNK: usize = 1 << 14;
     let (na, nb) = (s.a.mesh.positions.len(), s.b.mesh.positions.len());
     // B's vertex ids in the merged numbering: seam vertices are A's, others follow A's.
-    let mut b_to_merged: Vec<u32> = (na as u32..(na + nb) as u32).collect();
+    let mut b_to_merged: Vec<u32> = (na as u32..(na + nb) as u32).into_par_iter().collect();
     for (sp, &vb) in s.b.seam_vertex.iter().enumerate() {
         b_to_merged[vb as usize] = s.a.seam_vertex[sp];
     }
@@ -504,15 +504,13 @@ pub fn merge(
         })
         .collect();
     let total: usize = counts.iter().sum();
-    let mut triangles = vec![[0u32; 3]; total];
+    let mut triangles = filled([0u32; 3], total);
     let none = Provenance {
         source: Source::A,
         triangle: 0,
         flipped: false,
     };
-    // Filled side by side (a serial fill of fresh memory is this stage's serial part).
-    let mut provenance = Vec::with_capacity(total);
-    provenance.par_extend(rayon::iter::repeat_n(none, total));
+    let mut provenance = filled(none, total);
     let used: Vec<AtomicBool> = (0..na + nb)
         .into_par_iter()
         .map(|_| AtomicBool::new(false))
@@ -559,9 +557,9 @@ pub fn merge(
         .par_chunks(CHUNK)
         .map(|c| c.iter().filter(|u| u.load(Relaxed)).count())
         .collect();
-    let mut positions = vec![[0.0; 3]; used_in.iter().sum()];
+    let mut positions = filled([0.0; 3], used_in.iter().sum());
     let starts = exclusive_sums(&used_in);
-    let mut new_id = vec![0u32; na + nb];
+    let mut new_id = filled(0u32, na + nb);
     new_id
         .par_chunks_mut(CHUNK)
         .zip(split_by(&mut positions, &used_in))
@@ -626,6 +624,18 @@ pub(crate) fn exclusive_sums(counts: &[usize]) -> Vec<usize> {
             sum - c
         })
         .collect()
+}
+
+/// `n` copies of `value` in fresh memory, written side by side on large sizes: there a
+/// serial fill (the first touch of fresh pages, or the allocator's zeroing of reused ones)
+/// is a serial part of the stage that asks for the memory.
+pub(crate) fn filled<T: Clone + Send + Sync>(value: T, n: usize) -> Vec<T> {
+    if n < 1 << 16 {
+        return vec![value; n];
+    }
+    let mut v = Vec::with_capacity(n);
+    v.par_extend(rayon::iter::repeat_n(value, n));
+    v
 }
 
 /// `v` cut into consecutive slices of the given lengths (which must add up to at most its

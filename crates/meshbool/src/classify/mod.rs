@@ -9,6 +9,7 @@
 //! stops inside the patch), use the generalized winding number of the other mesh.
 
 use std::cell::OnceCell;
+use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
 
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
@@ -253,7 +254,7 @@ pub fn classify(x: &CutMesh, y: &CutMesh, y_closed: bool, exact_winding_up_to: f
     let by_winding = resolved.by_winding;
     Classified {
         class: settle(resolved, answers, patch, patches),
-        patch: patch.clone(),
+        patch: patch.par_iter().copied().collect(),
         patches,
         by_winding,
         approximate_winding,
@@ -359,37 +360,54 @@ fn resolve_patches(votes: Vec<Vote>, patch: &[u32], patches: usize) -> Resolved 
         let v = own_vote.get(&t).copied();
         own_vote.insert(t, combine(v, c).flatten());
     }
-    let mut first: Vec<Option<usize>> = vec![None; patches];
-    for (t, &p) in patch.iter().enumerate() {
-        first[p as usize].get_or_insert(t);
+    // The per-triangle passes run side by side (they are this stage's serial part on
+    // large meshes otherwise); those for patches left to winding numbers only where
+    // there are such patches.
+    let by_winding = decided
+        .iter()
+        .filter(|d| !matches!(d, Some(Some(_))))
+        .count();
+    const CHUNK: usize = 1 << 15;
+    // The first triangle of each patch without votes.
+    let first: Vec<AtomicU32> = (0..patches)
+        .into_par_iter()
+        .map(|_| AtomicU32::new(u32::MAX))
+        .collect();
+    if decided.contains(&None) {
+        patch.par_chunks(CHUNK).enumerate().for_each(|(c, ps)| {
+            for (j, &p) in ps.iter().enumerate() {
+                let t = (c * CHUNK + j) as u32;
+                let f = &first[p as usize];
+                if decided[p as usize].is_none() && f.load(Relaxed) > t {
+                    f.fetch_min(t, Relaxed);
+                }
+            }
+        });
     }
-    let n = patch.len();
-    let mut by_winding = 0;
-    let mut class: Vec<Option<Class>> = vec![None; n];
-    let mut queries: Vec<usize> = Vec::new();
-    for t in 0..n {
-        let p = patch[t] as usize;
-        class[t] = match decided[p] {
+    let class: Vec<Option<Class>> = patch
+        .par_iter()
+        .enumerate()
+        .map(|(t, &p)| match decided[p as usize] {
             Some(Some(c)) => Some(c),
-            None => {
-                if first[p] == Some(t) {
-                    by_winding += 1;
-                    queries.push(t);
+            None => None,
+            Some(None) => own_vote.get(&(t as u32)).copied().flatten(),
+        })
+        .collect();
+    let queries: Vec<usize> = if by_winding == 0 {
+        Vec::new()
+    } else {
+        (0..patch.len())
+            .into_par_iter()
+            .filter(|&t| {
+                let p = patch[t] as usize;
+                match decided[p] {
+                    Some(Some(_)) => false,
+                    None => first[p].load(Relaxed) == t as u32,
+                    Some(None) => class[t].is_none(),
                 }
-                None
-            }
-            Some(None) => {
-                if first[p] == Some(t) {
-                    by_winding += 1;
-                }
-                let own = own_vote.get(&(t as u32)).copied().flatten();
-                if own.is_none() {
-                    queries.push(t);
-                }
-                own
-            }
-        };
-    }
+            })
+            .collect()
+    };
     Resolved {
         decided,
         class,
@@ -446,7 +464,7 @@ fn settle(r: Resolved, answers: Vec<Class>, patch: &[u32], patches: usize) -> Ve
         }
     }
     class
-        .into_iter()
+        .into_par_iter()
         .enumerate()
         .map(|(t, c)| {
             c.or(patch_answer[patch[t] as usize])

@@ -53,30 +53,42 @@ pub(crate) fn split_at(
     exact: Option<ExactPoint>,
 ) -> (Mesh, NonManifoldReport, Vec<u32>) {
     let n = mesh.positions.len();
-    // The corners (triangle, position in it) of each candidate vertex, in triangle order.
-    let mut slot = vec![u32::MAX; n];
+    // The corners (triangle, position in it) of each candidate vertex, in triangle order:
+    // found in pieces of the triangles side by side (candidates are usually few), then
+    // sorted by candidate.
+    let mut slot = crate::boolean::filled(u32::MAX, n);
     for (i, &v) in candidates.iter().enumerate() {
         slot[v as usize] = i as u32;
     }
+    const CHUNK: usize = 1 << 15;
+    let found: Vec<Vec<(u32, u32, u8)>> = mesh
+        .triangles
+        .par_chunks(CHUNK)
+        .enumerate()
+        .map(|(c, tris)| {
+            let mut out = Vec::new();
+            for (j, tri) in tris.iter().enumerate() {
+                for (k, &v) in tri.iter().enumerate() {
+                    if slot[v as usize] != u32::MAX {
+                        out.push((slot[v as usize], (c * CHUNK + j) as u32, k as u8));
+                    }
+                }
+            }
+            out
+        })
+        .collect();
     let mut start = vec![0u32; candidates.len() + 1];
-    for &v in mesh.triangles.iter().flatten() {
-        if slot[v as usize] != u32::MAX {
-            start[slot[v as usize] as usize + 1] += 1;
-        }
+    for &(s, _, _) in found.iter().flatten() {
+        start[s as usize + 1] += 1;
     }
     for i in 0..candidates.len() {
         start[i + 1] += start[i];
     }
     let mut fill = start.clone();
     let mut corners = vec![(0u32, 0u8); start[candidates.len()] as usize];
-    for (t, tri) in mesh.triangles.iter().enumerate() {
-        for (k, &v) in tri.iter().enumerate() {
-            let s = slot[v as usize];
-            if s != u32::MAX {
-                corners[fill[s as usize] as usize] = (t as u32, k as u8);
-                fill[s as usize] += 1;
-            }
-        }
+    for &(s, t, k) in found.iter().flatten() {
+        corners[fill[s as usize] as usize] = (t, k);
+        fill[s as usize] += 1;
     }
     // Each candidate's fans, worked out on its own.
     let fans: Vec<Fans> = (0..candidates.len())
