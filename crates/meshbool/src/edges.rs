@@ -651,64 +651,98 @@ fn bucket_by_lower<T: Copy + Default>(
 
 /// The half-edges bucketed as [`bucket_by_lower`] buckets them, for every range of
 /// `step` vertices (`[p · step, (p + 1) · step)`, the last one clipped), on all threads:
-/// per chunk of triangles, each range's half-edges are listed in triangle order; then per
-/// range, its lists are bucketed in chunk order. Each range's `(v0, v1, start, half)` is
-/// what `bucket_by_lower(mesh, v0, v1, entry)` gives, every triangle read once.
+/// per chunk of triangles, each range's half-edges are counted, then written in place
+/// (each chunk into its own slice of every range's list: no list grows); then per range,
+/// its list is bucketed by lower vertex. Each range's `(v0, v1, start, half)` is what
+/// `bucket_by_lower(mesh, v0, v1, entry)` gives.
 fn bucket_ranges<T: Copy + Default + Send + Sync>(
     mesh: &Mesh,
     step: u32,
     entry: impl Fn(u32, u32, u32) -> T + Sync,
 ) -> Vec<(u32, u32, Vec<u32>, Vec<T>)> {
+    use crate::boolean::split_by;
     use rayon::prelude::*;
     const CHUNK: usize = 1 << 15;
     let nv = mesh.positions.len() as u32;
     let step = step.max(1);
     let parts = nv.div_ceil(step).max(1) as usize;
-    let lists: Vec<Vec<(Vec<u32>, Vec<T>)>> = mesh
+    // The lower vertex of each half-edge of triangle `tri` that is not a loop, with the
+    // half-edge's corner.
+    let lower = |tri: [u32; 3]| {
+        (0..3).filter_map(move |k| {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            (a != b).then(|| (a.min(b), k))
+        })
+    };
+    let counts: Vec<Vec<u32>> = mesh
         .triangles
         .par_chunks(CHUNK)
-        .enumerate()
-        .map(|(c, tris)| {
-            let mut out: Vec<(Vec<u32>, Vec<T>)> =
-                (0..parts).map(|_| (Vec::new(), Vec::new())).collect();
-            for (i, tri) in tris.iter().enumerate() {
-                let t = (c * CHUNK + i) as u32;
-                for k in 0..3 {
-                    let (a, b) = (tri[k], tri[(k + 1) % 3]);
-                    if a != b {
-                        let lo = a.min(b);
-                        let list = &mut out[(lo / step) as usize];
-                        list.0.push(lo);
-                        list.1.push(entry(a, b, 3 * t + k as u32));
-                    }
+        .map(|tris| {
+            let mut c = vec![0u32; parts];
+            for &tri in tris {
+                for (lo, _) in lower(tri) {
+                    c[(lo / step) as usize] += 1;
                 }
             }
-            out
+            c
         })
         .collect();
-    (0..parts)
+    // Per range, the lower vertices and entries of its half-edges, chunk after chunk.
+    let mut lists: Vec<(Vec<u32>, Vec<T>)> = (0..parts)
         .into_par_iter()
         .map(|p| {
+            let n = counts.iter().map(|c| c[p] as usize).sum();
+            (vec![0u32; n], vec![T::default(); n])
+        })
+        .collect();
+    let mut slices: Vec<Vec<(&mut [u32], &mut [T])>> =
+        counts.iter().map(|_| Vec::with_capacity(parts)).collect();
+    for (p, (los, entries)) in lists.iter_mut().enumerate() {
+        let lengths: Vec<usize> = counts.iter().map(|c| c[p] as usize).collect();
+        let pieces = split_by(los, &lengths)
+            .into_iter()
+            .zip(split_by(entries, &lengths));
+        for (chunk, piece) in slices.iter_mut().zip(pieces) {
+            chunk.push(piece);
+        }
+    }
+    mesh.triangles
+        .par_chunks(CHUNK)
+        .zip(slices)
+        .enumerate()
+        .for_each(|(c, (tris, mut slices))| {
+            let mut at = vec![0usize; parts];
+            for (i, &tri) in tris.iter().enumerate() {
+                let t = (c * CHUNK + i) as u32;
+                for (lo, k) in lower(tri) {
+                    let p = (lo / step) as usize;
+                    let (los, entries) = &mut slices[p];
+                    los[at[p]] = lo;
+                    entries[at[p]] = entry(tri[k], tri[(k + 1) % 3], 3 * t + k as u32);
+                    at[p] += 1;
+                }
+            }
+        });
+    lists
+        .into_par_iter()
+        .enumerate()
+        .map(|(p, (los, entries))| {
             let v0 = (p as u32).saturating_mul(step).min(nv);
             let v1 = (p as u32 + 1).saturating_mul(step).min(nv);
             let n = (v1 - v0) as usize;
             let mut start = vec![0u32; n + 1];
-            for l in &lists {
-                for &lo in &l[p].0 {
-                    start[(lo - v0) as usize + 1] += 1;
-                }
+            for &lo in &los {
+                start[(lo - v0) as usize + 1] += 1;
             }
             for i in 0..n {
                 start[i + 1] += start[i];
             }
             let mut fill = start.clone();
-            let mut half = vec![T::default(); start[n] as usize];
-            for l in &lists {
-                for (&lo, &e) in l[p].0.iter().zip(&l[p].1) {
-                    let i = (lo - v0) as usize;
-                    half[fill[i] as usize] = e;
-                    fill[i] += 1;
-                }
+            let mut half = vec![T::default(); los.len()];
+            for (&lo, &e) in los.iter().zip(&entries) {
+                let i = (lo - v0) as usize;
+                half[fill[i] as usize] = e;
+                fill[i] += 1;
             }
             (v0, v1, start, half)
         })
