@@ -626,11 +626,12 @@ pub(crate) fn exclusive_sums(counts: &[usize]) -> Vec<usize> {
         .collect()
 }
 
-/// `n` copies of `value` in fresh memory, written side by side on large sizes: there a
-/// serial fill (the first touch of fresh pages, or the allocator's zeroing of reused ones)
-/// is a serial part of the stage that asks for the memory.
+/// `n` copies of `value` in fresh memory, written side by side on large sizes and several
+/// threads: there a serial fill (the first touch of fresh pages, or the allocator's
+/// zeroing of reused ones) is a serial part of the stage that asks for the memory. On one
+/// thread, `vec!` (zeroed pages come from the allocator without a pass of their own).
 pub(crate) fn filled<T: Clone + Send + Sync>(value: T, n: usize) -> Vec<T> {
-    if n < 1 << 16 {
+    if n < 1 << 16 || rayon::current_num_threads() == 1 {
         return vec![value; n];
     }
     let mut v = Vec::with_capacity(n);
