@@ -387,7 +387,7 @@ where
             *n += c.len();
         }
     }
-    let mut ids = vec![0u32; n];
+    let mut ids = crate::boolean::filled(0u32, n);
     ids.par_chunks_mut(PART).enumerate().for_each(|(k, out)| {
         for (s, list) in lists[k].corners.iter().enumerate() {
             let local = &welded[s].local[offset[k][s]..offset[k][s] + list.len()];
@@ -396,17 +396,15 @@ where
             }
         }
     });
-    let mut positions = Vec::with_capacity(total as usize);
-    for m in merged {
-        positions.extend(m.positions);
-    }
+    let positions = crate::boolean::concat(merged.into_iter().map(|m| m.positions).collect());
+    debug_assert_eq!(positions.len(), total as usize);
     (positions, ids)
 }
 
 /// Corner ids three by three: the triangles of a welded soup (on all threads).
 pub(crate) fn triangles_of(ids: &[u32]) -> Vec<[u32; 3]> {
     use rayon::prelude::*;
-    let mut triangles = vec![[0u32; 3]; ids.len() / 3];
+    let mut triangles = crate::boolean::filled([0u32; 3], ids.len() / 3);
     triangles
         .par_chunks_mut(1 << 14)
         .zip(ids.par_chunks(3 << 14))

@@ -639,6 +639,21 @@ pub(crate) fn filled<T: Clone + Send + Sync>(value: T, n: usize) -> Vec<T> {
     v
 }
 
+/// The vectors one after another, copied side by side into [`filled`] memory (one is
+/// taken as it is).
+pub(crate) fn concat<T: Copy + Default + Send + Sync>(mut parts: Vec<Vec<T>>) -> Vec<T> {
+    if parts.len() == 1 {
+        return parts.pop().unwrap_or_default();
+    }
+    let lengths: Vec<usize> = parts.iter().map(|p| p.len()).collect();
+    let mut out = filled(T::default(), lengths.iter().sum());
+    split_by(&mut out, &lengths)
+        .into_par_iter()
+        .zip(parts)
+        .for_each(|(to, from)| to.copy_from_slice(&from));
+    out
+}
+
 /// `v` cut into consecutive slices of the given lengths (which must add up to at most its
 /// length).
 pub(crate) fn split_by<'v, T>(mut v: &'v mut [T], lengths: &[usize]) -> Vec<&'v mut [T]> {

@@ -504,21 +504,6 @@ fn whole_lines(bytes: &[u8], pieces: usize) -> Vec<&[u8]> {
     out
 }
 
-/// The vectors one after another (copied side by side; one is taken as it is).
-fn concat<T: Copy + Default + Send + Sync>(mut parts: Vec<Vec<T>>) -> Vec<T> {
-    if parts.len() == 1 {
-        return parts.pop().unwrap_or_default();
-    }
-    use rayon::prelude::*;
-    let lengths: Vec<usize> = parts.iter().map(|p| p.len()).collect();
-    let mut out = vec![T::default(); lengths.iter().sum()];
-    crate::boolean::split_by(&mut out, &lengths)
-        .into_par_iter()
-        .zip(parts)
-        .for_each(|(to, from)| to.copy_from_slice(&from));
-    out
-}
-
 /// Splits polygon `poly` (vertex indices, in order) into a fan of triangles.
 fn push_fan(poly: &[u32], out: &mut Vec<[u32; 3]>) {
     for k in 1..poly.len().saturating_sub(1) {

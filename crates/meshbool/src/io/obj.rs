@@ -7,7 +7,8 @@ use std::io::Write;
 
 use rayon::prelude::*;
 
-use super::{concat, lines, parse_f64, tokens, whole_lines, Format, Out};
+use super::{lines, parse_f64, tokens, whole_lines, Format, Out};
+use crate::boolean::concat;
 use crate::boolean::exclusive_sums;
 use crate::error::{Error, Location, Result};
 use crate::Mesh;
