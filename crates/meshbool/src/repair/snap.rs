@@ -915,7 +915,13 @@ impl Grid {
     }
 
     fn index(&self, c: [usize; 3]) -> usize {
-        (c[2] * self.n[1] + c[1]) * self.n[0] + c[0]
+        Self::index_of(self.n, c)
+    }
+
+    /// The index of cell `c` in a grid of `n` cells a side.
+    #[inline]
+    fn index_of(n: [usize; 3], c: [usize; 3]) -> usize {
+        (c[2] * n[1] + c[1]) * n[0] + c[0]
     }
 
     /// A point's cell, packed: each axis in its [`Grid::shift`] and [`Grid::mask`].
@@ -1037,10 +1043,17 @@ impl Grid {
 
     /// Calls `f(word, mask)` for the bits of every row (along x) of the cells of `r`, a
     /// word at a time, until it says stop; whether it went through all of them.
-    fn rows(&self, r: &[[usize; 3]; 2], mut f: impl FnMut(usize, u64) -> bool) -> bool {
+    fn rows(&self, r: &[[usize; 3]; 2], f: impl FnMut(usize, u64) -> bool) -> bool {
+        Self::rows_of(self.n, r, f)
+    }
+
+    /// [`Grid::rows`] of a grid of `n` cells a side (without borrowing one, so that `f`
+    /// may change its bits).
+    fn rows_of(n: [usize; 3], r: &[[usize; 3]; 2], mut f: impl FnMut(usize, u64) -> bool) -> bool {
+        let index = |c: [usize; 3]| Self::index_of(n, c);
         for z in r[0][2]..=r[1][2] {
             for y in r[0][1]..=r[1][1] {
-                let (first, last) = (self.index([r[0][0], y, z]), self.index([r[1][0], y, z]));
+                let (first, last) = (index([r[0][0], y, z]), index([r[1][0], y, z]));
                 for w in first / 64..=last / 64 {
                     let lo = if w == first / 64 { first % 64 } else { 0 };
                     let hi = if w == last / 64 { last % 64 } else { 63 };
@@ -1061,17 +1074,13 @@ impl Grid {
 
     /// Marks the cells of the range `r`; whether any was new.
     fn mark_range(&mut self, r: &[[usize; 3]; 2]) -> bool {
-        let mut words = Vec::new();
-        self.rows(r, |w, mask| {
-            if self.bits[w] & mask != mask {
-                words.push((w, mask));
-            }
+        let (bits, mut new) = (&mut self.bits, false);
+        Self::rows_of(self.n, r, |w, mask| {
+            new |= bits[w] & mask != mask;
+            bits[w] |= mask;
             true
         });
-        for &(w, mask) in &words {
-            self.bits[w] |= mask;
-        }
-        !words.is_empty()
+        new
     }
 
     /// Whether every cell of `b` is marked.
