@@ -660,7 +660,7 @@ fn bucket_ranges<T: Copy + Default + Send + Sync>(
     step: u32,
     entry: impl Fn(u32, u32, u32) -> T + Sync,
 ) -> Vec<(u32, u32, Vec<u32>, Vec<T>)> {
-    use crate::boolean::split_by;
+    use crate::par::split_by;
     use rayon::prelude::*;
     const CHUNK: usize = 1 << 15;
     let nv = mesh.positions.len() as u32;

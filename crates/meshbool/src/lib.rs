@@ -96,6 +96,7 @@ pub mod kernel;
 pub mod measure;
 mod mesh;
 pub mod ops;
+mod par;
 pub mod query;
 pub mod repair;
 pub mod shapes;

@@ -387,7 +387,7 @@ where
             *n += c.len();
         }
     }
-    let mut ids = crate::boolean::filled(0u32, n);
+    let mut ids = crate::par::filled(0u32, n);
     ids.par_chunks_mut(PART).enumerate().for_each(|(k, out)| {
         for (s, list) in lists[k].corners.iter().enumerate() {
             let local = &welded[s].local[offset[k][s]..offset[k][s] + list.len()];
@@ -396,7 +396,7 @@ where
             }
         }
     });
-    let positions = crate::boolean::concat(merged.into_iter().map(|m| m.positions).collect());
+    let positions = crate::par::concat(merged.into_iter().map(|m| m.positions).collect());
     debug_assert_eq!(positions.len(), total as usize);
     (positions, ids)
 }
@@ -404,7 +404,7 @@ where
 /// Corner ids three by three: the triangles of a welded soup (on all threads).
 pub(crate) fn triangles_of(ids: &[u32]) -> Vec<[u32; 3]> {
     use rayon::prelude::*;
-    let mut triangles = crate::boolean::filled([0u32; 3], ids.len() / 3);
+    let mut triangles = crate::par::filled([0u32; 3], ids.len() / 3);
     triangles
         .par_chunks_mut(1 << 14)
         .zip(ids.par_chunks(3 << 14))

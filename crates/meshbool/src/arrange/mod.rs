@@ -415,14 +415,14 @@ fn reassemble(mesh: &Mesh, results: Vec<(u32, CutResult)>) -> Reassembled {
         })
         .collect();
     let total = sizes.iter().sum();
-    let mut triangles = crate::boolean::filled([0u32; 3], total);
-    let mut parent = crate::boolean::filled(0u32, total);
-    let firsts = crate::boolean::exclusive_sums(&sizes);
+    let mut triangles = crate::par::filled([0u32; 3], total);
+    let mut parent = crate::par::filled(0u32, total);
+    let firsts = crate::par::exclusive_sums(&sizes);
     // Per span: its failures and its pieces turned by rounding.
     type Found = (Vec<(u32, FailReason)>, Vec<u32>);
-    let lists: Vec<Found> = crate::boolean::split_by(&mut triangles, &sizes)
+    let lists: Vec<Found> = crate::par::split_by(&mut triangles, &sizes)
         .into_par_iter()
-        .zip(crate::boolean::split_by(&mut parent, &sizes))
+        .zip(crate::par::split_by(&mut parent, &sizes))
         .enumerate()
         .map(|(k, (tris, par))| {
             let (start, end) = bounds[k];

@@ -540,7 +540,7 @@ fn clean_up_labelled(
         }
     }
     let around = touching(&ring);
-    let mut slot = crate::boolean::filled(u32::MAX, nv);
+    let mut slot = crate::par::filled(u32::MAX, nv);
     let mut stars: Vec<Vec<u32>> = Vec::new();
     for &t in &around {
         for v in mesh.triangles[t as usize] {

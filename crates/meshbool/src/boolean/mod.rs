@@ -31,6 +31,7 @@ use crate::classify::{classify, Class, Classified, CutMesh};
 use crate::edges::SeamTopology;
 pub use crate::intersect::Source;
 use crate::intersect::{intersect_with, Seam};
+use crate::par::{exclusive_sums, filled, split_by};
 use crate::repair::nonmanifold::split_at;
 use crate::repair::NonManifoldReport;
 use crate::Mesh;
@@ -610,60 +611,6 @@ fn added_points(s: &Split, seam_origin: &[u32], seam_vertices: &[u32]) -> Vec<u3
     (seam_origin.iter().zip(seam_vertices))
         .filter(|&(&o, _)| o as usize >= s.a.input_vertices && !b_vertex[o as usize])
         .map(|(_, &v)| v)
-        .collect()
-}
-
-/// Each element's sum of the elements before it: where each of consecutive parts of
-/// these sizes starts.
-pub(crate) fn exclusive_sums(counts: &[usize]) -> Vec<usize> {
-    let mut sum = 0;
-    counts
-        .iter()
-        .map(|&c| {
-            sum += c;
-            sum - c
-        })
-        .collect()
-}
-
-/// `n` copies of `value` in fresh memory, written side by side on large sizes and several
-/// threads: there a serial fill (the first touch of fresh pages, or the allocator's
-/// zeroing of reused ones) is a serial part of the stage that asks for the memory. On one
-/// thread, `vec!` (zeroed pages come from the allocator without a pass of their own).
-pub(crate) fn filled<T: Clone + Send + Sync>(value: T, n: usize) -> Vec<T> {
-    if n < 1 << 16 || rayon::current_num_threads() == 1 {
-        return vec![value; n];
-    }
-    let mut v = Vec::with_capacity(n);
-    v.par_extend(rayon::iter::repeat_n(value, n));
-    v
-}
-
-/// The vectors one after another, copied side by side into [`filled`] memory (one is
-/// taken as it is).
-pub(crate) fn concat<T: Copy + Default + Send + Sync>(mut parts: Vec<Vec<T>>) -> Vec<T> {
-    if parts.len() == 1 {
-        return parts.pop().unwrap_or_default();
-    }
-    let lengths: Vec<usize> = parts.iter().map(|p| p.len()).collect();
-    let mut out = filled(T::default(), lengths.iter().sum());
-    split_by(&mut out, &lengths)
-        .into_par_iter()
-        .zip(parts)
-        .for_each(|(to, from)| to.copy_from_slice(&from));
-    out
-}
-
-/// `v` cut into consecutive slices of the given lengths (which must add up to at most its
-/// length).
-pub(crate) fn split_by<'v, T>(mut v: &'v mut [T], lengths: &[usize]) -> Vec<&'v mut [T]> {
-    lengths
-        .iter()
-        .map(|&n| {
-            let (head, rest) = std::mem::take(&mut v).split_at_mut(n);
-            v = rest;
-            head
-        })
         .collect()
 }
 

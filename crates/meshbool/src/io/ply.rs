@@ -10,9 +10,9 @@ use std::io::Write;
 use rayon::prelude::*;
 
 use super::{lines, parse_f64, tokens, whole_lines, Format, Out};
-use crate::boolean::concat;
-use crate::boolean::exclusive_sums;
 use crate::error::{Error, Location, Result};
+use crate::par::concat;
+use crate::par::exclusive_sums;
 use crate::Mesh;
 
 #[derive(Clone, Copy, Debug, PartialEq)]

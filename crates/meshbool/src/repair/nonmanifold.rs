@@ -56,7 +56,7 @@ pub(crate) fn split_at(
     // The corners (triangle, position in it) of each candidate vertex, in triangle order:
     // found in pieces of the triangles side by side (candidates are usually few), then
     // sorted by candidate.
-    let mut slot = crate::boolean::filled(u32::MAX, n);
+    let mut slot = crate::par::filled(u32::MAX, n);
     for (i, &v) in candidates.iter().enumerate() {
         slot[v as usize] = i as u32;
     }
