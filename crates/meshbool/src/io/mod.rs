@@ -251,12 +251,10 @@ pub fn write_path_as(path: impl AsRef<Path>, mesh: &Mesh, format: Format) -> Res
         return surpac::write_path(path.as_ref(), mesh);
     }
     write_file(path.as_ref(), |out| {
-        // A large binary STL is written by all threads, each block at its offset.
+        // A large binary STL is written by all threads, each block at its offset, its
+        // write-back started as it goes (faster on one and two threads too).
         #[cfg(unix)]
-        if format == Format::StlBinary
-            && rayon::current_num_threads() > 2
-            && mesh.triangles.len() >= 1 << 16
-        {
+        if format == Format::StlBinary && mesh.triangles.len() >= 1 << 16 {
             mesh.validate()?;
             return stl::write_binary_at(out.get_ref(), mesh);
         }
@@ -304,6 +302,28 @@ pub fn write_file(
         let _ = fs::remove_file(&tmp);
     }
     result
+}
+
+/// Starts writing `len` bytes of `file` from `at` back to disk without waiting (Linux:
+/// `posix_fadvise(POSIX_FADV_DONTNEED)` starts the write-back of dirty pages; pages still
+/// being written are kept in the cache). [`write_file`]'s final sync then waits for little:
+/// for a 117 MB binary STL written on 16 threads, write and sync took 59–67 ms instead of
+/// 98–103 ms (BENCHMARKS.md). A hint only: on other systems, or where it fails, nothing
+/// happens and the sync does all the work.
+#[cfg(unix)]
+fn start_writeback(file: &fs::File, at: u64, len: usize) {
+    #[cfg(target_os = "linux")]
+    {
+        // Ignored on failure: the data are written either way and synced later.
+        let _ = rustix::fs::fadvise(
+            file,
+            at,
+            std::num::NonZeroU64::new(len as u64),
+            rustix::fs::Advice::DontNeed,
+        );
+    }
+    #[cfg(not(target_os = "linux"))]
+    let _ = (file, at, len);
 }
 
 /// Writes `bytes` to `path` as [`write_file`] does (never half-written, nothing lost on

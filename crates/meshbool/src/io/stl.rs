@@ -304,7 +304,8 @@ pub(super) fn write_binary(out: &mut impl Write, mesh: &Mesh) -> Result<()> {
 }
 
 /// [`write_binary`] into a file, each block written at its offset by the thread that
-/// encoded it (the copies into the page cache run side by side).
+/// encoded it (the copies into the page cache run side by side), its write-back to disk
+/// started at once ([`super::start_writeback`]).
 #[cfg(unix)]
 pub(super) fn write_binary_at(file: &std::fs::File, mesh: &Mesh) -> Result<()> {
     use rayon::prelude::*;
@@ -314,7 +315,10 @@ pub(super) fn write_binary_at(file: &std::fs::File, mesh: &Mesh) -> Result<()> {
         .into_par_iter()
         .try_for_each(|b| {
             let at = (HEADER + 4 + b * WRITE_BLOCK * RECORD) as u64;
-            file.write_all_at(&encode_block(mesh, b * WRITE_BLOCK), at)
+            let block = encode_block(mesh, b * WRITE_BLOCK);
+            file.write_all_at(&block, at)?;
+            super::start_writeback(file, at, block.len());
+            Ok::<(), std::io::Error>(())
         })?;
     Ok(())
 }

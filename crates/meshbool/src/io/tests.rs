@@ -857,9 +857,9 @@ fn binary_stl_with_solid_header_and_wrong_count_is_reported_as_binary() {
     assert_eq!(loc, Location::Line(6));
 }
 
-/// A large binary STL written and read on many threads (blocks written at their offsets,
-/// the file read in pieces, the corners welded in shards) is byte for byte the file one
-/// thread writes, and reads back to the same mesh, vertex numbering included; a mesh
+/// A large binary STL written to a file on any number of threads (blocks written at their
+/// offsets, their write-back started as they go) and read on many (the file read in
+/// pieces, the corners welded in shards) is byte for byte the file streamed in order, and reads back to the same mesh, vertex numbering included; a mesh
 /// that cannot be stored is refused on that path too, leaving nothing behind.
 #[test]
 fn large_binary_stl_on_many_threads_is_the_file_of_one() {
@@ -879,7 +879,7 @@ fn large_binary_stl_on_many_threads_is_the_file_of_one() {
             .unwrap()
     };
     let serial = on(1).install(|| read_bytes(&one, Format::StlBinary).unwrap());
-    for threads in [3, 8] {
+    for threads in [1, 2, 3, 8] {
         let pool = on(threads);
         pool.install(|| write_path(&path, &m)).unwrap();
         assert_eq!(std::fs::read(&path).unwrap(), one, "{threads} threads");
