@@ -180,24 +180,8 @@ impl Roots {
     /// to the roots climbed together, the higher parent always spliced onto the lower),
     /// which stops as soon as the paths meet and shortens them as it goes; every parent
     /// stays below its child, so each root is its set's lowest triangle.
-    pub(crate) fn join(&mut self, mut a: u32, mut b: u32) {
-        let parent = &mut self.parent;
-        loop {
-            let (pa, pb) = (parent[a as usize], parent[b as usize]);
-            if pa == pb {
-                return;
-            }
-            if pa < pb {
-                (a, b) = (b, a);
-                continue;
-            }
-            // parent(a) > parent(b): splice `a` onto `b`'s parent.
-            parent[a as usize] = pb;
-            if pa == a {
-                return; // `a` was a root: now linked
-            }
-            a = pa;
-        }
+    pub(crate) fn join(&mut self, a: u32, b: u32) {
+        splice(&mut self.parent, 0, a, b);
     }
 
     /// The number of components and each triangle's component, numbered in order of each
@@ -218,6 +202,101 @@ impl Roots {
             .collect();
         (count as usize, out)
     }
+}
+
+/// [`Roots::join`] on the ids `base..` whose parents are `parent` (each id's parent at
+/// `id - base`; `a` and `b` and every parent on their paths in that range).
+fn splice(parent: &mut [u32], base: u32, mut a: u32, mut b: u32) {
+    let at = |x: u32| (x - base) as usize;
+    loop {
+        let (pa, pb) = (parent[at(a)], parent[at(b)]);
+        if pa == pb {
+            return;
+        }
+        if pa < pb {
+            (a, b) = (b, a);
+            continue;
+        }
+        // parent(a) > parent(b): splice `a` onto `b`'s parent.
+        parent[at(a)] = pb;
+        if pa == a {
+            return; // `a` was a root: now linked
+        }
+        a = pa;
+    }
+}
+
+/// Each triangle's component (triangles connected through shared vertices) as the
+/// component's lowest vertex, for `triangles` over `n` vertices; the same on any number
+/// of threads. Consecutive chunks of triangles are joined side by side, each in its own
+/// range of vertices: those above every vertex the chunks before it name, up to the
+/// highest it names. Edges with an end outside its range are joined afterwards on one
+/// thread. Vertices numbered in order of first use (as the readers' weld numbers them)
+/// leave few such edges (those reaching back across a chunk's start); any other
+/// numbering gives the same components, more of the work on one thread.
+pub(crate) fn vertex_components(triangles: &[[u32; 3]], n: usize) -> Vec<u32> {
+    use rayon::prelude::*;
+    let threads = rayon::current_num_threads();
+    let chunk = if threads == 1 {
+        triangles.len().max(1)
+    } else {
+        triangles.len().div_ceil(4 * threads).max(1 << 12)
+    };
+    // Range k ends past the highest vertex chunks 0..=k name (the last at `n`).
+    let highest: Vec<usize> = if chunk >= triangles.len() {
+        vec![n]
+    } else {
+        triangles
+            .par_chunks(chunk)
+            .map(|c| c.iter().flatten().max().map_or(0, |&m| m as usize + 1))
+            .collect()
+    };
+    let mut ends: Vec<usize> = highest
+        .iter()
+        .scan(0, |end, &h| {
+            *end = h.max(*end).min(n);
+            Some(*end)
+        })
+        .collect();
+    if let Some(last) = ends.last_mut() {
+        *last = n;
+    }
+    let starts: Vec<usize> = std::iter::once(0).chain(ends.iter().copied()).collect();
+    let lengths: Vec<usize> = ends.iter().zip(&starts).map(|(e, s)| e - s).collect();
+    let mut parent: Vec<u32> = (0..n as u32).into_par_iter().collect();
+    let across: Vec<Vec<[u32; 2]>> = crate::par::split_by(&mut parent, &lengths)
+        .into_par_iter()
+        .zip(triangles.par_chunks(chunk))
+        .zip(&starts)
+        .map(|((range, tris), &start)| {
+            let (lo, hi) = (start as u32, (start + range.len()) as u32);
+            let mut across = Vec::new();
+            for &[a, b, c] in tris {
+                for (x, y) in [(a, b), (a, c)] {
+                    if (lo..hi).contains(&x) && (lo..hi).contains(&y) {
+                        splice(range, lo, x, y);
+                    } else {
+                        across.push([x, y]);
+                    }
+                }
+            }
+            across
+        })
+        .collect();
+    let mut roots = Roots { parent };
+    for [x, y] in across.into_iter().flatten() {
+        roots.join(x, y);
+    }
+    // Every parent is below its child: in increasing order, each vertex's parent is
+    // already its root.
+    let mut parent = roots.parent;
+    for x in 0..n {
+        parent[x] = parent[parent[x] as usize];
+    }
+    triangles
+        .par_iter()
+        .map(|t| parent[t[0] as usize])
+        .collect()
 }
 
 /// A half-edge `a → b` with id `h` as [`SeamTopology::new`] buckets it: higher vertex and
@@ -965,6 +1044,58 @@ mod tests {
                     .for_each(|&(a, b)| shared.join(a, b))
             });
             assert_eq!(shared.labels(), (count as usize, want), "{n} {joins}");
+        }
+    }
+
+    /// Components through shared vertices, from chunks of triangles joined side by side:
+    /// each triangle's component is its lowest vertex, as one union-find over every edge
+    /// gives, for vertices numbered in order of first use and at random, on 1 to 8 threads.
+    #[test]
+    fn vertex_components_are_those_of_one_union_find() {
+        let mut rng = crate::test_util::Rng(0xc0_ffee);
+        // Many small strips (numbered in order of first use), a few long ones.
+        let mut triangles: Vec<[u32; 3]> = Vec::new();
+        let mut next = 0u32;
+        for strip in 0..400 {
+            let len = if strip % 100 == 0 {
+                5000
+            } else {
+                1 + rng.next() as u32 % 60
+            };
+            let base = next;
+            for i in 0..len {
+                triangles.push([base + i, base + i + 1, base + i + 2]);
+            }
+            next = base + len + 2;
+        }
+        let n = next as usize + 10; // a few vertices no triangle names
+        let mut shuffled: Vec<u32> = (0..n as u32).collect();
+        for i in (1..n).rev() {
+            shuffled.swap(i, rng.next() as usize % (i + 1));
+        }
+        let renumbered: Vec<[u32; 3]> = triangles
+            .iter()
+            .map(|t| t.map(|v| shuffled[v as usize]))
+            .collect();
+        // Strips joined through a shared vertex far down the numbering.
+        let mut joined = triangles.clone();
+        joined.push([0, next - 1, next / 2]);
+        assert!(triangles.len() > 1 << 14);
+        for tris in [&triangles, &renumbered, &joined] {
+            let mut roots = Roots::new(n);
+            for &[a, b, c] in tris.iter() {
+                roots.join(a, b);
+                roots.join(a, c);
+            }
+            let want: Vec<u32> = tris.iter().map(|t| roots.find(t[0])).collect();
+            for threads in [1, 3, 8] {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                let got = pool.install(|| vertex_components(tris, n));
+                assert_eq!(got, want, "{threads} threads");
+            }
         }
     }
 

@@ -18,52 +18,34 @@ use crate::Mesh;
 /// around. Sorted triangle ids, and the number of such components.
 pub fn inside_out(mesh: &Mesh) -> (Vec<u32>, usize) {
     let n = mesh.positions.len();
+    let comp = crate::edges::vertex_components(&mesh.triangles, n);
     // Six times the signed volume per component, relative to one of its vertices (a
-    // component far from the origin keeps its precision), summed in triangle order.
-    let term = |t: &[u32; 3], c: u32| {
-        let o = mesh.positions[c as usize];
-        let [a, b, p] = t.map(|v| sub(&mesh.positions[v as usize], &o));
-        dot(&a, &cross(&b, &p))
-    };
+    // component far from the origin keeps its precision): summed in fixed chunks of
+    // triangles side by side (per run of one component's triangles), the chunks' sums
+    // then added in order, so that the sums do not depend on the number of threads.
+    const CHUNK: usize = 1 << 14;
+    let runs: Vec<Vec<(u32, f64)>> = mesh
+        .triangles
+        .par_chunks(CHUNK)
+        .zip(comp.par_chunks(CHUNK))
+        .map(|(tris, comps)| {
+            let mut runs: Vec<(u32, f64)> = Vec::new();
+            for (t, &c) in tris.iter().zip(comps) {
+                let o = mesh.positions[c as usize];
+                let [a, b, p] = t.map(|v| sub(&mesh.positions[v as usize], &o));
+                let term = dot(&a, &cross(&b, &p));
+                match runs.last_mut() {
+                    Some((last, sum)) if *last == c => *sum += term,
+                    _ => runs.push((c, term)),
+                }
+            }
+            runs
+        })
+        .collect();
     let mut volume = vec![0.0f64; n];
-    let comp: Vec<u32> = if rayon::current_num_threads() > 2 && mesh.triangles.len() >= 1 << 16 {
-        // Joined on all threads (roots are the lowest vertices on both paths), the terms
-        // computed side by side.
-        let roots = crate::edges::SharedRoots::new(n);
-        mesh.triangles
-            .par_iter()
-            .with_min_len(1 << 10)
-            .for_each(|&[a, b, c]| {
-                roots.join(a, b);
-                roots.join(a, c);
-            });
-        let comp: Vec<u32> = mesh
-            .triangles
-            .par_iter()
-            .map(|t| roots.find(t[0]))
-            .collect();
-        let terms: Vec<f64> = mesh
-            .triangles
-            .par_iter()
-            .zip(&comp)
-            .map(|(t, &c)| term(t, c))
-            .collect();
-        for (&c, &v) in comp.iter().zip(&terms) {
-            volume[c as usize] += v;
-        }
-        comp
-    } else {
-        let mut roots = crate::edges::Roots::new(n);
-        for &[a, b, c] in &mesh.triangles {
-            roots.join(a, b);
-            roots.join(a, c);
-        }
-        let comp: Vec<u32> = mesh.triangles.iter().map(|t| roots.find(t[0])).collect();
-        for (t, &c) in mesh.triangles.iter().zip(&comp) {
-            volume[c as usize] += term(t, c);
-        }
-        comp
-    };
+    for (c, v) in runs.into_iter().flatten() {
+        volume[c as usize] += v;
+    }
     let inward: Vec<u32> = (0..n as u32)
         .filter(|&c| volume[c as usize] < 0.0)
         .collect();
