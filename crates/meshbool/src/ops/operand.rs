@@ -280,7 +280,18 @@ impl Operand {
             op.report = settle(op.report, checks)?;
             return Ok(op);
         }
-        let found_counts = checks.edges.then(|| EdgeCounts::of(&mesh));
+        // On a large mesh and several threads, the components with negative volume are
+        // found beside the edge counts (their parallel parts leave threads idle), used
+        // below if the mesh is closed and its orientation stays as it is.
+        let (found_counts, mut inward) = if checks.edges
+            && mesh.triangles.len() >= 1 << 16
+            && rayon::current_num_threads() > 2
+        {
+            let (c, i) = rayon::join(|| EdgeCounts::of(&mesh), || crate::repair::inward(&mesh));
+            (Some(c), Some(i))
+        } else {
+            (checks.edges.then(|| EdgeCounts::of(&mesh)), None)
+        };
         // Triangles reversed at the door (orientation, inside-out components).
         let mut flipped = vec![false; mesh.triangles.len()];
         let mut counts = found_counts;
@@ -296,6 +307,7 @@ impl Operand {
                 }
                 reoriented_triangles = r.flipped;
                 mesh = oriented;
+                inward = None;
                 counts = Some(after);
             }
         }
@@ -315,7 +327,10 @@ impl Operand {
         // normals point away from; written the other way round it would be its complement).
         let (reversed, reversed_components) =
             if clean_edges && counts.is_some_and(|c| c.boundary == 0) {
-                crate::repair::inside_out(&mesh)
+                match inward {
+                    Some(inward) => inward.inside_out(&mesh),
+                    None => crate::repair::inside_out(&mesh),
+                }
             } else {
                 (Vec::new(), 0)
             };

@@ -649,6 +649,50 @@ fn inside_out_operands_are_reversed_with_a_line_in_assumed() {
     assert_eq!(signed_volume(&out.mesh), 26.0 + 1.0);
 }
 
+/// A large operand on several threads: its inside-out components are looked for beside
+/// the edge counts, and that early answer is dropped when the orientation is repaired
+/// (here the repaired sphere faces outward, where the mesh as given had a negative volume).
+#[test]
+fn inside_out_parts_found_beside_the_edge_counts_follow_a_repaired_orientation() {
+    let sphere = crate::shapes::uv_sphere([0.0; 3], 1.0, 200, 180);
+    assert!(sphere.triangles.len() >= 1 << 16);
+    // The band around the equator reversed: fewer triangles than the rest, more volume.
+    let mut mixed = sphere.clone();
+    let z = |m: &Mesh, t: &[u32; 3]| {
+        t.iter()
+            .map(|&v| m.positions[v as usize][2].abs())
+            .fold(0.0, f64::max)
+    };
+    let mut band = 0;
+    for t in 0..mixed.triangles.len() {
+        if z(&sphere, &sphere.triangles[t]) < 0.55 {
+            mixed.triangles[t].swap(1, 2);
+            band += 1;
+        }
+    }
+    assert!(2 * band < mixed.triangles.len());
+    assert!(signed_volume(&mixed) < 0.0, "{}", signed_volume(&mixed));
+    let far = Mesh::cuboid([5.0; 3], [6.0; 3]);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(4)
+        .build()
+        .unwrap();
+    for (a, reoriented, reversed) in [
+        (&mixed, band, 0),
+        (&sphere.flipped(), 0, 1),
+        (&sphere, 0, 0),
+    ] {
+        let out = pool
+            .install(|| boolean(a, &far, Op::Union, &BooleanOptions::default()))
+            .unwrap();
+        assert_eq!(out.operands[0].reoriented_triangles, reoriented);
+        assert_eq!(out.operands[0].reversed_components, reversed);
+        // The union of disjoint parts: their volumes added (to rounding of the sums).
+        let want = signed_volume(&sphere) + 1.0;
+        assert!((signed_volume(&out.mesh) - want).abs() <= 1e-13 * want);
+    }
+}
+
 #[test]
 fn picking_the_pieces_of_an_op_gives_the_boolean() {
     let (a, b) = cubes();

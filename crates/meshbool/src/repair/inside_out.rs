@@ -17,6 +17,22 @@ use crate::Mesh;
 /// shared vertices) with negative volume whose points the rest of the mesh does not wind
 /// around. Sorted triangle ids, and the number of such components.
 pub fn inside_out(mesh: &Mesh) -> (Vec<u32>, usize) {
+    inward(mesh).inside_out(mesh)
+}
+
+/// The components of a mesh with negative volume: the first, linear part of
+/// [`inside_out`], which the input checks run beside the edge counts (before they know
+/// whether the mesh is closed; the winding numbers, whose cost grows with the number of
+/// such components, only once it is known to be).
+pub(crate) struct Inward {
+    /// Each triangle's component (its lowest vertex).
+    comp: Vec<u32>,
+    /// The components with negative volume, in increasing order.
+    inward: Vec<u32>,
+}
+
+/// [`Inward`] of `mesh`.
+pub(crate) fn inward(mesh: &Mesh) -> Inward {
     let n = mesh.positions.len();
     let comp = crate::edges::vertex_components(&mesh.triangles, n);
     // Six times the signed volume per component, relative to one of its vertices (a
@@ -49,27 +65,35 @@ pub fn inside_out(mesh: &Mesh) -> (Vec<u32>, usize) {
     let inward: Vec<u32> = (0..n as u32)
         .filter(|&c| volume[c as usize] < 0.0)
         .collect();
-    let reversed: Vec<u32> = inward
-        .par_iter()
-        .copied()
-        .filter(|&c| {
-            let (mine, rest): (Vec<u32>, Vec<u32>) =
-                (0..mesh.triangles.len() as u32).partition(|&t| comp[t as usize] == c);
-            if rest.is_empty() {
-                return true;
-            }
-            // The centroid of the component's largest triangle: on it, off the rest.
-            let at = mesh
-                .probe(mine.iter().map(|&t| t as usize))
-                .expect("a component has triangles");
-            winding_number(&mesh.subset(&rest), at).round() < 1.0
-        })
-        .collect();
-    let mut triangles: Vec<u32> = (0..mesh.triangles.len() as u32)
-        .filter(|&t| reversed.binary_search(&comp[t as usize]).is_ok())
-        .collect();
-    triangles.sort_unstable();
-    (triangles, reversed.len())
+    Inward { comp, inward }
+}
+
+impl Inward {
+    /// [`inside_out`] of `mesh`, the mesh these components are of.
+    pub(crate) fn inside_out(self, mesh: &Mesh) -> (Vec<u32>, usize) {
+        let Inward { comp, inward } = self;
+        let reversed: Vec<u32> = inward
+            .par_iter()
+            .copied()
+            .filter(|&c| {
+                let (mine, rest): (Vec<u32>, Vec<u32>) =
+                    (0..mesh.triangles.len() as u32).partition(|&t| comp[t as usize] == c);
+                if rest.is_empty() {
+                    return true;
+                }
+                // The centroid of the component's largest triangle: on it, off the rest.
+                let at = mesh
+                    .probe(mine.iter().map(|&t| t as usize))
+                    .expect("a component has triangles");
+                winding_number(&mesh.subset(&rest), at).round() < 1.0
+            })
+            .collect();
+        let mut triangles: Vec<u32> = (0..mesh.triangles.len() as u32)
+            .filter(|&t| reversed.binary_search(&comp[t as usize]).is_ok())
+            .collect();
+        triangles.sort_unstable();
+        (triangles, reversed.len())
+    }
 }
 
 #[cfg(test)]

@@ -29,6 +29,7 @@ pub use degenerate::{remove_degenerates, DegenerateOptions, DegenerateReport};
 pub use duplicates::{remove_duplicates, remove_overlapping, DuplicateReport};
 pub use folds::{remove_folds, FoldReport};
 pub use inside_out::inside_out;
+pub(crate) use inside_out::inward;
 pub use nonmanifold::{split_nonmanifold, NonManifoldReport};
 pub use orient::{orient, Facing, OrientReport};
 pub use pipeline::{
