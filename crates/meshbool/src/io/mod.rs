@@ -258,8 +258,60 @@ pub fn write_path_as(path: impl AsRef<Path>, mesh: &Mesh, format: Format) -> Res
             mesh.validate()?;
             return stl::write_binary_at(out.get_ref(), mesh);
         }
+        // Other formats are written in order, their write-back started as they go.
+        #[cfg(unix)]
+        {
+            let mut back = BufWriter::new(WritingBack {
+                file: out.get_ref(),
+                written: 0,
+                started: 0,
+            });
+            write(&mut back, mesh, format)?;
+            back.flush()?;
+            Ok(())
+        }
+        #[cfg(not(unix))]
         write(out, mesh, format)
     })
+}
+
+/// A new file written in order from its start, whose write-back to disk is started every
+/// [`WritingBack::STEP`] bytes ([`start_writeback`]), so that the final sync waits for
+/// little.
+#[cfg(unix)]
+struct WritingBack<'f> {
+    file: &'f fs::File,
+    /// Bytes written so far, and up to where the write-back was started.
+    written: u64,
+    started: u64,
+}
+
+#[cfg(unix)]
+impl WritingBack<'_> {
+    const STEP: u64 = 8 << 20;
+}
+
+#[cfg(unix)]
+impl Write for WritingBack<'_> {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        let mut file = self.file;
+        let n = file.write(buf)?;
+        self.written += n as u64;
+        if self.written - self.started >= Self::STEP {
+            start_writeback(
+                self.file,
+                self.started,
+                (self.written - self.started) as usize,
+            );
+            self.started = self.written;
+        }
+        Ok(n)
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        let mut file = self.file;
+        file.flush()
+    }
 }
 
 /// Writes the file at `path` through `fill`, so that it is never seen half-written: the

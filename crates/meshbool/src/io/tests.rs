@@ -857,6 +857,30 @@ fn binary_stl_with_solid_header_and_wrong_count_is_reported_as_binary() {
     assert_eq!(loc, Location::Line(6));
 }
 
+/// Files of more than the write-back step in the formats written in order (their
+/// write-back started every few megabytes) hold the bytes written to memory.
+#[test]
+fn large_files_written_in_order_are_the_bytes_written_to_memory() {
+    let dir = std::env::temp_dir().join(format!("meshbool-writeback-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let m = crate::shapes::uv_sphere([1_000.5, -2_000.25, 12.5], 40.0, 400, 260);
+    for (format, name) in [
+        (Format::Obj, "big.obj"),
+        (Format::PlyAscii, "big.ply"),
+        (Format::PlyBinaryLe, "bin.ply"),
+        (Format::StlAscii, "big.stl"),
+    ] {
+        let want = write_to_vec(&m, format);
+        let path = dir.join(name);
+        write_path_as(&path, &m, format).unwrap();
+        assert_eq!(std::fs::read(&path).unwrap(), want, "{format:?}");
+        if format != Format::PlyBinaryLe {
+            assert!(want.len() as u64 > 8 << 20, "{format:?}: {}", want.len());
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// A large binary STL written to a file on any number of threads (blocks written at their
 /// offsets, their write-back started as they go) and read on many (the file read in
 /// pieces, the corners welded in shards) is byte for byte the file streamed in order, and reads back to the same mesh, vertex numbering included; a mesh
