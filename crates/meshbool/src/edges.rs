@@ -283,13 +283,36 @@ pub(crate) fn vertex_components(triangles: &[[u32; 3]], n: usize) -> Vec<u32> {
             across
         })
         .collect();
-    let mut roots = Roots { parent };
-    for [x, y] in across.into_iter().flatten() {
-        roots.join(x, y);
-    }
+    // The edges across ranges: on one thread where few (numbering by first use); where
+    // many (a numbering that puts far vertices in early chunks), side by side in the
+    // shared union-find, which also keeps every parent below its child.
+    let count: usize = across.iter().map(Vec::len).sum();
+    let mut parent = if threads > 2 && count > triangles.len() / 4 {
+        let shared = SharedRoots {
+            parent: parent
+                .into_par_iter()
+                .map(std::sync::atomic::AtomicU32::new)
+                .collect(),
+        };
+        across.par_iter().for_each(|pairs| {
+            pairs
+                .par_chunks(1 << 12)
+                .for_each(|c| c.iter().for_each(|&[x, y]| shared.join(x, y)))
+        });
+        shared
+            .parent
+            .into_par_iter()
+            .map(std::sync::atomic::AtomicU32::into_inner)
+            .collect()
+    } else {
+        let mut roots = Roots { parent };
+        for [x, y] in across.into_iter().flatten() {
+            roots.join(x, y);
+        }
+        roots.parent
+    };
     // Every parent is below its child: in increasing order, each vertex's parent is
     // already its root.
-    let mut parent = roots.parent;
     for x in 0..n {
         parent[x] = parent[parent[x] as usize];
     }
@@ -1053,7 +1076,9 @@ mod tests {
     #[test]
     fn vertex_components_are_those_of_one_union_find() {
         let mut rng = crate::test_util::Rng(0xc0_ffee);
-        // Many small strips (numbered in order of first use), a few long ones.
+        // Many small strips (numbered in order of first use), a few long ones; each
+        // triangle joins the strip's next vertex and one of its own, so that no join is
+        // redundant.
         let mut triangles: Vec<[u32; 3]> = Vec::new();
         let mut next = 0u32;
         for strip in 0..400 {
@@ -1064,9 +1089,9 @@ mod tests {
             };
             let base = next;
             for i in 0..len {
-                triangles.push([base + i, base + i + 1, base + i + 2]);
+                triangles.push([base + 2 * i, base + 2 * i + 2, base + 2 * i + 1]);
             }
-            next = base + len + 2;
+            next = base + 2 * len + 1;
         }
         let n = next as usize + 10; // a few vertices no triangle names
         let mut shuffled: Vec<u32> = (0..n as u32).collect();

@@ -17,6 +17,16 @@ use crate::Mesh;
 /// shared vertices) with negative volume whose points the rest of the mesh does not wind
 /// around. Sorted triangle ids, and the number of such components.
 pub fn inside_out(mesh: &Mesh) -> (Vec<u32>, usize) {
+    // A corner naming no vertex: no meaning, and nothing to look up.
+    let n = mesh.positions.len();
+    if mesh
+        .triangles
+        .par_iter()
+        .flatten()
+        .any(|&v| v as usize >= n)
+    {
+        return (Vec::new(), 0);
+    }
     inward(mesh).inside_out(mesh)
 }
 
@@ -31,7 +41,7 @@ pub(crate) struct Inward {
     inward: Vec<u32>,
 }
 
-/// [`Inward`] of `mesh`.
+/// [`Inward`] of `mesh`, a mesh whose corners all name vertices.
 pub(crate) fn inward(mesh: &Mesh) -> Inward {
     let n = mesh.positions.len();
     let comp = crate::edges::vertex_components(&mesh.triangles, n);
@@ -72,6 +82,9 @@ impl Inward {
     /// [`inside_out`] of `mesh`, the mesh these components are of.
     pub(crate) fn inside_out(self, mesh: &Mesh) -> (Vec<u32>, usize) {
         let Inward { comp, inward } = self;
+        if inward.is_empty() {
+            return (Vec::new(), 0);
+        }
         let reversed: Vec<u32> = inward
             .par_iter()
             .copied()
@@ -110,6 +123,10 @@ mod tests {
 
     #[test]
     fn inside_out_parts_are_found_and_cavities_are_not() {
+        // Corners naming no vertex: nothing found, no panic.
+        let mut broken = Mesh::cuboid([0.0; 3], [3.0; 3]).flipped();
+        broken.triangles[5][1] = 99;
+        assert_eq!(inside_out(&broken), (vec![], 0));
         let outer = Mesh::cuboid([0.0; 3], [3.0; 3]);
         let inner = Mesh::cuboid([1.0; 3], [2.0; 3]);
         assert_eq!(inside_out(&outer), (vec![], 0));
