@@ -22,8 +22,8 @@ pub fn inside_out(mesh: &Mesh) -> (Vec<u32>, usize) {
     if mesh
         .triangles
         .par_iter()
-        .flatten()
-        .any(|&v| v as usize >= n)
+        .with_min_len(1 << 12)
+        .any(|t| t.iter().any(|&v| v as usize >= n))
     {
         return (Vec::new(), 0);
     }
