@@ -230,10 +230,11 @@ fn splice(parent: &mut [u32], base: u32, mut a: u32, mut b: u32) {
 /// component's lowest vertex, for `triangles` over `n` vertices; the same on any number
 /// of threads. Consecutive chunks of triangles are joined side by side, each in its own
 /// range of vertices: those above every vertex the chunks before it name, up to the
-/// highest it names. Edges with an end outside its range are joined afterwards on one
-/// thread. Vertices numbered in order of first use (as the readers' weld numbers them)
-/// leave few such edges (those reaching back across a chunk's start); any other
-/// numbering gives the same components, more of the work on one thread.
+/// highest it names. Edges with an end outside its range are joined afterwards: on one
+/// thread where they are few, as vertices numbered in order of first use (as the
+/// readers' weld numbers them) leave them (those reaching back across a chunk's start);
+/// side by side in the shared union-find where they are many (another numbering). The
+/// components are the same either way.
 pub(crate) fn vertex_components(triangles: &[[u32; 3]], n: usize) -> Vec<u32> {
     use rayon::prelude::*;
     let threads = rayon::current_num_threads();
