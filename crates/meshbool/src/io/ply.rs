@@ -11,8 +11,7 @@ use rayon::prelude::*;
 
 use super::{lines, parse_f64, tokens, whole_lines, Format, Out};
 use crate::error::{Error, Location, Result};
-use crate::par::concat;
-use crate::par::exclusive_sums;
+use crate::par::{concat, exclusive_sums};
 use crate::Mesh;
 
 #[derive(Clone, Copy, Debug, PartialEq)]

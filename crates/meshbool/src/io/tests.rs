@@ -882,8 +882,9 @@ fn large_files_written_in_order_are_the_bytes_written_to_memory() {
 
 /// A large binary STL written to a file on any number of threads (blocks written at their
 /// offsets, their write-back started as they go) and read on many (the file read in
-/// pieces, the corners welded in shards) is byte for byte the file streamed in order, and reads back to the same mesh, vertex numbering included; a mesh
-/// that cannot be stored is refused on that path too, leaving nothing behind.
+/// pieces, the corners welded in shards) is byte for byte the file streamed in order, and
+/// reads back to the same mesh, vertex numbering included; a mesh that cannot be stored
+/// is refused on that path too, leaving nothing behind.
 #[test]
 fn large_binary_stl_on_many_threads_is_the_file_of_one() {
     let dir = std::env::temp_dir().join(format!("meshbool-parallel-{}", std::process::id()));
