@@ -39,6 +39,7 @@ use crate::Mesh;
 mod cleanup;
 pub mod nary;
 pub mod resolve;
+mod sides;
 mod snap;
 pub use cleanup::CleanupReport;
 pub use resolve::{resolve, FillRule, ResolveReport, Resolved};

@@ -16,7 +16,7 @@ use rustc_hash::FxHashMap;
 use serde::Serialize;
 
 use super::nary::{reduce, Part, Reduced};
-use super::{Op, PipelineOptions};
+use super::{sides, Op, PipelineOptions};
 use crate::arrange::arrange_self;
 use crate::classify::{winding_number, winding_number_without, winding_term, FastWinding};
 use crate::edges::{EdgeKind, EdgeTopology};
@@ -110,6 +110,11 @@ pub struct ResolveReport {
     /// (vertices duplicated, positions unchanged), and the sheets resolved as components
     /// that touch or overlap.
     pub separated_input: NonManifoldReport,
+    /// Through the self-arrangement, whether the patches' sides were measured
+    /// (floating-point winding numbers at one point of each) rather than decided
+    /// exactly: where the arrangement failed to cut triangles, or coincident parts share
+    /// no edge. False when exact, or not through the self-arrangement.
+    pub winding_measured: bool,
 }
 
 /// The resolved solid: a mesh, the input triangle each of its triangles is part of, and
@@ -435,11 +440,11 @@ fn probe(mesh: &Mesh) -> [f64; 3] {
 /// Resolves `mesh` through its self-arrangement: the mesh cut along where it crosses
 /// itself ([`crate::arrange::arrange_self`]) into patches bounded by the crossings; each
 /// patch is kept, dropped or reversed by the fill rule applied to the winding number of
-/// the whole mesh just in front of and behind it (which differ by one). The winding
-/// number is the floating-point sum of solid angles at the centroid of the patch's
-/// largest piece, its own piece left out (a half-integer, rounded), as in classification's
-/// fallback: a measure, not an exact predicate, wrong only for a point within rounding of
-/// another sheet.
+/// the whole mesh just in front of and behind it. Those come exactly from the fans of
+/// triangles around the seam edges and one ray per connected group of patches
+/// ([`sides::patch_sides`]); where that route does not decide (triangles the arrangement
+/// failed to cut, coincident parts sharing no edge), from a measure
+/// ([`measured_sides`], [`ResolveReport::winding_measured`]).
 fn resolve_self(
     mesh: &Mesh,
     pairs: &[(u32, u32)],
@@ -465,6 +470,47 @@ fn resolve_self(
     // four or more).
     let (count, patch) = topo.components_across(|e| topo.uses_of(e).len() == 2);
     report.patches = count;
+    let best = largest_pieces(m, &patch, count);
+    // Per patch: None dropped (or only zero-area pieces), Some(flip) kept: kept where the
+    // rule's inside differs on its two sides, facing away from the inside. A patch in a
+    // stack of coincident sheets (coplanar overlaps) counts the whole stack: the winding
+    // numbers in front of and behind it differ by the stack's net orientation, and only
+    // the stack's first patch is kept.
+    let keep: Vec<Option<bool>> = match sides::patch_sides(mesh, &arr, &topo, &patch, count, &best)
+    {
+        Some(s) => exact_keep(&s, &best, rule),
+        None => {
+            report.winding_measured = true;
+            measured_sides(mesh, pairs, &arr, &patch, count, &best, rule, opts)
+        }
+    };
+    report.patches_dropped = keep.iter().filter(|k| k.is_none()).count();
+    report.patches_flipped = keep.iter().filter(|k| **k == Some(true)).count();
+    let kept: Vec<u32> = (0..m.triangles.len() as u32)
+        .filter(|&t| keep[patch[t as usize] as usize].is_some())
+        .collect();
+    let mut out = m.subset(&kept);
+    for (i, &t) in kept.iter().enumerate() {
+        if keep[patch[t as usize] as usize] == Some(true) {
+            out.triangles[i].swap(1, 2);
+        }
+    }
+    let parent = kept.iter().map(|&t| arr.parent[t as usize]).collect();
+    if !opts.keep_nonmanifold {
+        let (split, r) = split_nonmanifold(&out);
+        out = split;
+        report.split_nonmanifold = r;
+    }
+    Ok(Resolved {
+        mesh: out,
+        parent,
+        report,
+    })
+}
+
+/// Each of the `count` patches' largest piece (`patch`: each triangle's patch) as (twice
+/// its area, triangle); `(0, usize::MAX)` for a patch with no piece of positive area.
+fn largest_pieces(m: &Mesh, patch: &[u32], count: usize) -> Vec<(f64, usize)> {
     let mut best = vec![(0.0f64, usize::MAX); count];
     for (t, &p) in patch.iter().enumerate() {
         let a = m.twice_area(t);
@@ -472,9 +518,41 @@ fn resolve_self(
             best[p as usize] = (a, t);
         }
     }
-    // The winding number just in front of each patch: at the centroid of its largest
-    // piece, that piece left out (exact sums while they are cheap, the hierarchical
-    // approximation with the piece's own term taken out beyond).
+    best
+}
+
+/// [`resolve_self`]'s keep-or-drop of each patch from its exact sides: kept where the
+/// rule's inside differs on its two sides (the first of a stack only), reversed where its
+/// back is not inside; dropped where it has no piece of positive area (`best`).
+fn exact_keep(s: &sides::PatchSides, best: &[(f64, usize)], rule: FillRule) -> Vec<Option<bool>> {
+    (0..best.len())
+        .map(|p| {
+            let (front, behind) = (s.front[p], s.front[p] + s.net[p]);
+            let changes = rule.inside(behind) != rule.inside(front);
+            (best[p].1 != usize::MAX && s.first[p] && changes).then(|| !rule.inside(behind))
+        })
+        .collect()
+}
+
+/// [`resolve_self`]'s keep-or-drop of each patch where the exact route
+/// ([`sides::patch_sides`]) does not decide: the winding number of the whole mesh just in
+/// front of each patch measured at the centroid of its largest piece, that piece left out
+/// (a half-integer, rounded; exact sums while they are cheap, the hierarchical
+/// approximation with the piece's own term taken out beyond), as in classification's
+/// fallback: a measure, not an exact predicate, wrong only for a point within rounding of
+/// another sheet.
+#[allow(clippy::too_many_arguments)]
+fn measured_sides(
+    mesh: &Mesh,
+    pairs: &[(u32, u32)],
+    arr: &crate::arrange::Arranged,
+    patch: &[u32],
+    count: usize,
+    best: &[(f64, usize)],
+    rule: FillRule,
+    opts: &PipelineOptions,
+) -> Vec<Option<bool>> {
+    let m = &arr.mesh;
     let probes: Vec<(usize, [f64; 3])> = best
         .iter()
         .filter(|&&(_, t)| t != usize::MAX)
@@ -498,10 +576,6 @@ fn resolve_self(
                 })
                 .collect()
         };
-    // Per patch: None dropped (or only zero-area pieces), Some(flip) kept. A patch in a
-    // stack of coincident sheets (coplanar overlaps) counts the whole stack: the winding
-    // numbers in front of and behind it differ by the stack's net orientation, and only
-    // the stack's first patch is kept.
     let stacks = CoincidentPieces::new(mesh, pairs, &arr.parent);
     let mut keep: Vec<Option<bool>> = vec![None; count];
     for (&(t, p), w) in probes.iter().zip(around) {
@@ -520,28 +594,7 @@ fn resolve_self(
         keep[patch[t] as usize] =
             (first && rule.inside(behind) != rule.inside(front)).then(|| !rule.inside(behind));
     }
-    report.patches_dropped = keep.iter().filter(|k| k.is_none()).count();
-    report.patches_flipped = keep.iter().filter(|k| **k == Some(true)).count();
-    let kept: Vec<u32> = (0..m.triangles.len() as u32)
-        .filter(|&t| keep[patch[t as usize] as usize].is_some())
-        .collect();
-    let mut out = m.subset(&kept);
-    for (i, &t) in kept.iter().enumerate() {
-        if keep[patch[t as usize] as usize] == Some(true) {
-            out.triangles[i].swap(1, 2);
-        }
-    }
-    let parent = kept.iter().map(|&t| arr.parent[t as usize]).collect();
-    if !opts.keep_nonmanifold {
-        let (split, r) = split_nonmanifold(&out);
-        out = split;
-        report.split_nonmanifold = r;
-    }
-    Ok(Resolved {
-        mesh: out,
-        parent,
-        report,
-    })
+    keep
 }
 
 #[cfg(test)]
@@ -625,6 +678,8 @@ mod tests {
         ] {
             let r = resolve_self(&m, &pairs, rule, &opts, ResolveReport::default()).unwrap();
             assert_eq!(r.report.failed_triangles, 0, "{rule:?}");
+            // Coincident faces sharing edges: decided exactly.
+            assert!(!r.report.winding_measured, "{rule:?}");
             let s = mesh_stats(&r.mesh);
             assert!(s.closed, "{rule:?} {s:?}");
             assert_eq!((s.non_manifold_edges, s.inconsistent_edges), (0, 0));
@@ -649,6 +704,90 @@ mod tests {
             assert_eq!(signed_volume(&r.mesh), volume, "{rule:?}");
             if triangles > 0 {
                 assert!(mesh_stats(&r.mesh).closed);
+            }
+        }
+    }
+
+    /// Each patch's keep-or-drop under `rule` by the exact route (`None` where it does
+    /// not decide) and by the measure.
+    fn both_routes(m: &Mesh, rule: FillRule) -> (Option<Vec<Option<bool>>>, Vec<Option<bool>>) {
+        let pairs = self_intersections(m);
+        let seam = self_seam(m, &pairs);
+        let arr = arrange_self(m, &seam);
+        let topo = EdgeTopology::new(&arr.mesh);
+        let (count, patch) = topo.components_across(|e| topo.uses_of(e).len() == 2);
+        let best = largest_pieces(&arr.mesh, &patch, count);
+        let exact = sides::patch_sides(m, &arr, &topo, &patch, count, &best)
+            .map(|s| exact_keep(&s, &best, rule));
+        let opts = PipelineOptions::default();
+        let measured = measured_sides(m, &pairs, &arr, &patch, count, &best, rule, &opts);
+        (exact, measured)
+    }
+
+    /// Where nothing lies within rounding of a probe, the exact sides and the measured
+    /// ones keep, drop and reverse the same patches: overlapping spheres (among them
+    /// inward-facing ones and nested ones), cubes sharing faces, a torus-like ring of
+    /// boxes, under every rule.
+    #[test]
+    fn exact_sides_agree_with_the_measure() {
+        let mut rng = Rng(0x5eed_1234_abcd_0077);
+        let mut spheres = Mesh::default();
+        for i in 0..24 {
+            let c = [3.0 * rng.unit(), 3.0 * rng.unit(), 3.0 * rng.unit()];
+            let s = uv_sphere(c, 0.5 + 0.7 * rng.unit(), 20, 10);
+            spheres
+                .append(&if i % 5 == 4 { s.flipped() } else { s })
+                .unwrap();
+        }
+        // A sphere inside another, crossed by a third.
+        let mut nested = uv_sphere([0.0; 3], 2.0, 24, 12);
+        nested
+            .append(&uv_sphere([0.2, 0.1, 0.0], 1.0, 16, 8))
+            .unwrap();
+        nested
+            .append(&uv_sphere([1.5, 0.0, 0.3], 1.0, 16, 8))
+            .unwrap();
+        let mut cubes = Mesh::cuboid([-1.0; 3], [1.0; 3]);
+        cubes
+            .append(&Mesh::cuboid([0.0, -1.0, -1.0], [2.0, 1.0, 1.0]))
+            .unwrap();
+        // A box resting on another's face: coincident faces facing opposite ways.
+        let mut touching = Mesh::cuboid([0.0; 3], [1.0; 3]);
+        touching
+            .append(&Mesh::cuboid([1.0, 0.25, 0.25], [2.0, 0.75, 0.75]))
+            .unwrap();
+        // A cavity (an inward-facing box) inside a box, its face on the box's face: a
+        // stack of faces facing opposite ways with nothing in front, carving a notch.
+        let mut notch = Mesh::cuboid([0.0; 3], [1.0; 3]);
+        notch
+            .append(&Mesh::cuboid([0.5, 0.25, 0.25], [1.0, 0.75, 0.75]).flipped())
+            .unwrap();
+        let mut ring = Mesh::default();
+        for k in 0..6 {
+            let a = k as f64 * std::f64::consts::PI / 3.0;
+            let b = Mesh::cuboid([-1.2, -0.3, -0.3], [1.2, 0.3, 0.3]);
+            ring.append(&crate::shapes::rigid_motion(
+                &b,
+                [0.0, 0.0, 1.0],
+                a,
+                [2.0 * a.cos(), 2.0 * a.sin(), 0.0],
+            ))
+            .unwrap();
+        }
+        for (name, m) in [
+            ("spheres", &spheres),
+            ("nested", &nested),
+            ("cubes", &cubes),
+            ("touching", &touching),
+            ("notch", &notch),
+            ("ring", &ring),
+        ] {
+            for rule in FillRule::ALL {
+                let (exact, measured) = both_routes(m, rule);
+                let exact =
+                    exact.unwrap_or_else(|| panic!("{name} {rule:?}: the exact route decides"));
+                assert_eq!(exact, measured, "{name} {rule:?}");
+                assert!(exact.iter().any(|k| k.is_some()), "{name} {rule:?}");
             }
         }
     }

@@ -1,0 +1,568 @@
+//! Exact winding numbers on both sides of the patches of a self-arrangement, for
+//! [`super::resolve`].
+//!
+//! The winding number of a mesh made of closed sheets changes by one across each sheet
+//! (rising from its front to its back) and nowhere else. A patch (a piece of the arranged
+//! mesh between seam edges) is crossed by no other sheet, so the winding number just in
+//! front of it is one integer, `front`, and just behind it `front + net`, where `net` is
+//! 1 for a patch alone and the net facing of its stack where sheets coincide there.
+//!
+//! Around a seam edge the triangles that use it, taken in their exact angular order,
+//! bound wedges of space; crossing each triangle from wedge to wedge changes the winding
+//! number by one, so the `front` of every patch at the edge is known relative to any one
+//! of them. The angular order compares far vertices (exact points) against the input
+//! planes of the other triangles. Propagated edge by edge (a union-find keeping each
+//! patch's offset to its root), this leaves one unknown per connected group of patches,
+//! which one ray finds: from outside the mesh along a coordinate axis to a point of one
+//! of the group's triangles, counting the input triangles it crosses, with exact tests.
+//! No floating-point measure decides anything; where a test is degenerate (the ray
+//! through an edge, a far vertex on the edge's line) another ray or the caller's measure
+//! is used.
+
+use rayon::prelude::*;
+
+use crate::arrange::Arranged;
+use crate::bvh::Bvh;
+use crate::edges::{EdgeTopology, Roots};
+use crate::kernel::{orient2d, orient3d_plane, Point, Sign};
+use crate::Mesh;
+
+/// The winding numbers on both sides of every patch.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(super) struct PatchSides {
+    /// Just in front of the patch (beyond the sheets coincident with it).
+    pub(super) front: Vec<i64>,
+    /// Behind it minus in front of it: 1 for a patch alone; for a stack of coincident
+    /// patches, those facing as this one does less those facing the other way.
+    pub(super) net: Vec<i64>,
+    /// Whether the patch is the first (lowest id) of its stack of coincident patches (a
+    /// patch alone is).
+    pub(super) first: Vec<bool>,
+}
+
+/// +1, −1 or 0.
+fn unit(s: Sign) -> i64 {
+    match s {
+        Sign::Positive => 1,
+        Sign::Negative => -1,
+        Sign::Zero => 0,
+    }
+}
+
+/// One use of a seam edge `p → q` (its lower vertex to its higher).
+struct Side {
+    patch: u32,
+    /// The triangle runs `p → q`: its front faces the wedge after it (counter-clockwise
+    /// around `p → q`).
+    forward: bool,
+    /// Its vertex off the edge.
+    far: Point,
+    /// Its input triangle (the plane it lies in, oriented as it is).
+    plane: [[f64; 3]; 3],
+}
+
+impl Side {
+    /// `orient3d(p, q, far, w)`: positive where `w` lies counter-clockwise of this side
+    /// within half a turn (the triangle `p q far` lies in the input plane, oriented as
+    /// the input triangle when the triangle runs `p → q`).
+    fn towards(&self, w: &Point) -> Sign {
+        let s = orient3d_plane(&self.plane[0], &self.plane[1], &self.plane[2], w);
+        if self.forward {
+            s
+        } else {
+            s.reversed()
+        }
+    }
+}
+
+/// The axis whose projection keeps triangle `t` (explicit) non-degenerate, the largest
+/// normal component first; with the sign of that component. `None` for a degenerate
+/// triangle.
+fn projection(t: &[[f64; 3]; 3]) -> Option<(usize, Sign)> {
+    let (u, v) = (sub(&t[1], &t[0]), sub(&t[2], &t[0]));
+    let n = [
+        u[1] * v[2] - u[2] * v[1],
+        u[2] * v[0] - u[0] * v[2],
+        u[0] * v[1] - u[1] * v[0],
+    ];
+    let mut axes = [0usize, 1, 2];
+    axes.sort_by(|&i, &j| n[j].abs().total_cmp(&n[i].abs()));
+    let pts = t.map(Point::Explicit);
+    axes.into_iter().find_map(|k| {
+        let s = orient2d(&pts[0], &pts[1], &pts[2], k);
+        (s != Sign::Zero).then_some((k, s))
+    })
+}
+
+fn sub(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// What a seam edge tells of one of its uses.
+#[derive(Clone, Copy, Debug)]
+struct Fact {
+    patch: u32,
+    /// The winding number in front of it, relative to the others at the edge.
+    front: i64,
+    /// Its stack's net facing (1 alone).
+    net: i64,
+    /// The uses at its angle (coincident sheets), counted from `0` at the edge.
+    angle: u32,
+    /// Whether another use shares that angle.
+    coincident: bool,
+}
+
+type EdgeFacts = Vec<Fact>;
+
+/// The facts of seam edge `e`; `None` where a far vertex lies on the edge's line, or the
+/// winding numbers around it do not close (not closed sheets).
+fn edge_facts(
+    arr: &Arranged,
+    input: &Mesh,
+    topo: &EdgeTopology,
+    patch: &[u32],
+    e: usize,
+) -> Option<EdgeFacts> {
+    let [lo, hi] = topo.edges[e];
+    let (p, q) = (arr.point(lo), arr.point(hi));
+    let sides: Vec<Side> = topo
+        .uses_of(e)
+        .iter()
+        .map(|u| {
+            let t = u.triangle as usize;
+            let far = arr.mesh.triangles[t][(u.corner as usize + 2) % 3];
+            Side {
+                patch: patch[t],
+                forward: u.forward,
+                far: arr.point(far),
+                plane: input.corners(arr.parent[t] as usize),
+            }
+        })
+        .collect();
+    // Angular order from the first side: (half-turn, 0 on the first side's ray or the
+    // opposite one, else 1).
+    let first = &sides[0];
+    let (axis, _) = projection(&first.plane)?;
+    let sign_on = |w: &Point| orient2d(&p, &q, w, axis);
+    let first_on = sign_on(&first.far);
+    if first_on == Sign::Zero {
+        return None;
+    }
+    let mut keys = Vec::with_capacity(sides.len());
+    for s in &sides {
+        keys.push(match first.towards(&s.far) {
+            Sign::Positive => (0u8, 1u8),
+            Sign::Negative => (1, 1),
+            // In the first side's plane: on its ray or the opposite one.
+            Sign::Zero => match sign_on(&s.far) {
+                Sign::Zero => return None,
+                x if x == first_on => (0, 0),
+                _ => (1, 0),
+            },
+        });
+    }
+    let mut order: Vec<usize> = (0..sides.len()).collect();
+    order.sort_by(|&i, &j| {
+        keys[i].cmp(&keys[j]).then_with(|| {
+            if keys[i].1 == 0 {
+                return std::cmp::Ordering::Equal;
+            }
+            match sides[i].towards(&sides[j].far) {
+                Sign::Positive => std::cmp::Ordering::Less,
+                Sign::Negative => std::cmp::Ordering::Greater,
+                Sign::Zero => std::cmp::Ordering::Equal,
+            }
+        })
+    });
+    // Groups of sides at one angle, counter-clockwise.
+    let same_angle = |i: usize, j: usize| {
+        keys[i] == keys[j] && (keys[i].1 == 0 || sides[i].towards(&sides[j].far) == Sign::Zero)
+    };
+    let mut groups: Vec<&[usize]> = Vec::new();
+    let mut start = 0;
+    for k in 1..=order.len() {
+        if k == order.len() || !same_angle(order[k - 1], order[k]) {
+            groups.push(&order[start..k]);
+            start = k;
+        }
+    }
+    // Winding numbers of the wedges, the wedge after group g at `after[g]`, relative to
+    // the wedge before the first group: crossing a side counter-clockwise goes from its
+    // back to its front (−1) when it runs p → q, else from its front to its back (+1).
+    let mut after = Vec::with_capacity(groups.len());
+    let mut w = 0i64;
+    for g in &groups {
+        w += g
+            .iter()
+            .map(|&i| if sides[i].forward { -1 } else { 1 })
+            .sum::<i64>();
+        after.push(w);
+    }
+    if w != 0 {
+        return None;
+    }
+    let mut facts = Vec::with_capacity(sides.len());
+    for (gi, g) in groups.iter().enumerate() {
+        let before = if gi == 0 { 0 } else { after[gi - 1] };
+        for &i in g.iter() {
+            let s = &sides[i];
+            let front = if s.forward { after[gi] } else { before };
+            let net = g
+                .iter()
+                .map(|&j| if sides[j].forward == s.forward { 1 } else { -1 })
+                .sum();
+            facts.push(Fact {
+                patch: s.patch,
+                front,
+                net,
+                angle: gi as u32,
+                coincident: g.len() > 1,
+            });
+        }
+    }
+    Some(facts)
+}
+
+/// Offsets between patches: a union-find whose nodes keep their value less their
+/// parent's (the whole path pointed at the root on each find).
+struct Offsets {
+    parent: Vec<u32>,
+    offset: Vec<i64>,
+}
+
+impl Offsets {
+    fn new(n: usize) -> Self {
+        Offsets {
+            parent: (0..n as u32).collect(),
+            offset: vec![0; n],
+        }
+    }
+
+    /// The root of `x` and `value(x) − value(root)`.
+    fn find(&mut self, x: u32) -> (u32, i64) {
+        // Collect the path, then point every node on it at the root.
+        let mut path = Vec::new();
+        let mut r = x;
+        while self.parent[r as usize] != r {
+            path.push(r);
+            r = self.parent[r as usize];
+        }
+        // From the node nearest the root down: each offset becomes its offset to the root.
+        let mut acc = 0i64;
+        for &y in path.iter().rev() {
+            acc += self.offset[y as usize];
+            self.offset[y as usize] = acc;
+            self.parent[y as usize] = r;
+        }
+        (
+            r,
+            if path.is_empty() {
+                0
+            } else {
+                self.offset[x as usize]
+            },
+        )
+    }
+
+    /// Records `value(b) − value(a) = d`; false where that contradicts what is known.
+    fn relate(&mut self, a: u32, b: u32, d: i64) -> bool {
+        let ((ra, oa), (rb, ob)) = (self.find(a), self.find(b));
+        if ra == rb {
+            return ob - oa == d;
+        }
+        // value(rb) − value(ra) = d + oa − ob; the lower id stays the root.
+        let between = d + oa - ob;
+        if ra < rb {
+            self.parent[rb as usize] = ra;
+            self.offset[rb as usize] = between;
+        } else {
+            self.parent[ra as usize] = rb;
+            self.offset[ra as usize] = -between;
+        }
+        true
+    }
+}
+
+/// The winding number in front of triangle `t` of the arrangement, by a ray along an axis
+/// from beyond the mesh (`lo`, `hi`: the mesh's box) to the point of `t`'s plane over its
+/// rounded centroid, crossing the input triangles (exact tests); `None` where the point
+/// is not strictly inside `t`, the ray meets an edge or runs in a triangle's plane, or
+/// another sheet coincides with `t` there.
+fn ray(
+    arr: &Arranged,
+    input: &Mesh,
+    index: Option<&Bvh>,
+    lo: &[f64; 3],
+    hi: &[f64; 3],
+    t: usize,
+) -> Option<i64> {
+    let parent = arr.parent[t] as usize;
+    let plane = input.corners(parent);
+    let (k, facing) = projection(&plane)?;
+    let tri = arr.mesh.triangles[t].map(|v| arr.point(v));
+    let at = arr.mesh.centroid(t);
+    let probe = Point::Explicit(at);
+    let inside =
+        |c: &[Point; 3], s: Sign| (0..3).all(|i| orient2d(&c[i], &c[(i + 1) % 3], &probe, k) == s);
+    if !inside(&tri, facing) {
+        return None;
+    }
+    let pad = |x: f64| 1.0 + x.abs();
+    let (mut from, mut to) = (at, at);
+    from[k] = lo[k] - pad(lo[k]);
+    to[k] = hi[k] + pad(hi[k]);
+    if !from[k].is_finite() || !to[k].is_finite() {
+        return None;
+    }
+    let h = Point::lpi(from, to, plane[0], plane[1], plane[2]);
+    let mut beyond = 0i64;
+    for s in meeting(input, index, &[from, to]) {
+        let sc = input.corners(s as usize);
+        let pts = sc.map(Point::Explicit);
+        let o = orient2d(&pts[0], &pts[1], &pts[2], k);
+        let e: [Sign; 3] = std::array::from_fn(|i| orient2d(&pts[i], &pts[(i + 1) % 3], &probe, k));
+        if o == Sign::Zero {
+            // Parallel to the ray: not crossed. Where the ray runs in it, it leaves it
+            // (and the sheets coplanar with it) through an edge of a triangle that is not
+            // parallel, which the test below finds.
+            continue;
+        }
+        if e.contains(&o.reversed()) {
+            continue;
+        }
+        if e.contains(&Sign::Zero) {
+            return None;
+        }
+        match orient3d_plane(&sc[0], &sc[1], &sc[2], &h) {
+            // Through the point: t's own input triangle, else a sheet coincident with it
+            // or one crossing it (which the arrangement would have cut t along).
+            Sign::Zero if s as usize == parent => {}
+            Sign::Zero => return None,
+            // Beyond the point along the axis (the ray crosses it first), the sign of
+            // `h`'s side times the sign of the normal's axis component is negative;
+            // crossing it towards −axis goes from front to back where that component is
+            // positive.
+            sd if unit(sd) * unit(o) < 0 => beyond += unit(o),
+            _ => {}
+        }
+    }
+    // `beyond`: the winding number on t's +axis side; its front is there when its normal
+    // points up the axis, else past t (rising by one from its front to its back).
+    Some(if facing == Sign::Positive {
+        beyond
+    } else {
+        beyond - 1
+    })
+}
+
+/// Rays up to which [`patch_sides`] passes over all input triangles for each, rather
+/// than building a tree over them.
+const FEW_RAYS: usize = 4;
+
+/// The input triangles whose boxes meet box `b`: through `index`, else by a pass over all.
+fn meeting(input: &Mesh, index: Option<&Bvh>, b: &[[f64; 3]; 2]) -> Vec<u32> {
+    match index {
+        Some(bvh) => bvh.in_box(input, b),
+        None => (0..input.triangles.len() as u32)
+            .into_par_iter()
+            .with_min_len(1 << 12)
+            .filter(|&t| crate::bvh::overlaps(&crate::bvh::tri_box(input, t), b))
+            .collect(),
+    }
+}
+
+/// The winding numbers on both sides of each of the `count` patches (`patch`: each
+/// triangle's) of `arr`, the self-arrangement of `input` (`topo`: its edges); patches
+/// whose largest triangle (`largest`: its twice area and id, `usize::MAX` for none of
+/// positive area) is none are left at 0. `None` where the exact
+/// route does not decide: triangles the arrangement failed to cut, a degenerate fan or
+/// ray, a patch on a sheet no seam edge tells of, or winding numbers that contradict one
+/// another (not closed sheets).
+pub(super) fn patch_sides(
+    input: &Mesh,
+    arr: &Arranged,
+    topo: &EdgeTopology,
+    patch: &[u32],
+    count: usize,
+    largest: &[(f64, usize)],
+) -> Option<PatchSides> {
+    if !arr.failed.is_empty() {
+        return None;
+    }
+    let seams: Vec<usize> = (0..topo.edge_count())
+        .filter(|&e| topo.uses_of(e).len() != 2)
+        .collect();
+    let facts: Vec<EdgeFacts> = seams
+        .par_iter()
+        .map(|&e| {
+            if topo.uses_of(e).len() < 2 {
+                return None;
+            }
+            edge_facts(arr, input, topo, patch, e)
+        })
+        .collect::<Option<_>>()?;
+    let mut offsets = Offsets::new(count);
+    let mut net: Vec<Option<i64>> = vec![None; count];
+    let mut stacked = vec![false; count];
+    // Stacks: patches sharing an angle at some edge (the lowest id the root).
+    let mut stacks = Roots::new(count);
+    for f in &facts {
+        let f0 = f[0];
+        for (i, x) in f.iter().enumerate() {
+            if !offsets.relate(f0.patch, x.patch, x.front - f0.front) {
+                return None;
+            }
+            match net[x.patch as usize] {
+                Some(m) if m != x.net => return None,
+                _ => net[x.patch as usize] = Some(x.net),
+            }
+            if x.coincident {
+                stacked[x.patch as usize] = true;
+                if let Some(y) = f[..i].iter().rev().find(|y| y.angle == x.angle) {
+                    stacks.join(y.patch, x.patch);
+                }
+            }
+        }
+    }
+    // One ray per group of patches, from the group's largest triangles down.
+    let crate::Aabb { min: lo, max: hi } = input.bounds()?;
+    let mut members: Vec<Vec<u32>> = vec![Vec::new(); count];
+    for p in 0..count as u32 {
+        let (r, _) = offsets.find(p);
+        members[r as usize].push(p);
+    }
+    let roots: Vec<u32> = (0..count as u32)
+        .filter(|&r| !members[r as usize].is_empty())
+        .collect();
+    // A tree pays where there are many rays; a few are cheaper as passes over all.
+    let bvh = (roots.len() > FEW_RAYS).then(|| Bvh::new(input));
+    let offsets_of: Vec<i64> = (0..count as u32).map(|p| offsets.find(p).1).collect();
+    const TRIES: usize = 16;
+    let root_values: Vec<Option<(u32, i64)>> = roots
+        .par_iter()
+        .map(|&r| {
+            let mut cands: Vec<(bool, f64, u32)> = members[r as usize]
+                .iter()
+                .filter(|&&p| largest[p as usize].1 != usize::MAX)
+                .map(|&p| (stacked[p as usize], -largest[p as usize].0, p))
+                .collect();
+            if cands.is_empty() {
+                // Only zero-area pieces: dropped by the caller whatever their sides.
+                return Some((r, 0));
+            }
+            cands.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)).then(a.2.cmp(&b.2)));
+            // A patch alone (no coincident sheet), where the ray's point is in front
+            // of it and of nothing else.
+            for &(_, _, p) in cands.iter().filter(|c| !c.0).take(TRIES) {
+                let t = largest[p as usize].1;
+                if let Some(front) = ray(arr, input, bvh.as_ref(), &lo, &hi, t) {
+                    return Some((r, front - offsets_of[p as usize]));
+                }
+            }
+            None
+        })
+        .collect();
+    let mut root_value = vec![0i64; count];
+    for v in root_values {
+        let (r, value) = v?;
+        root_value[r as usize] = value;
+    }
+    let first = (0..count as u32).map(|p| stacks.find(p) == p).collect();
+    let front = (0..count as u32)
+        .map(|p| {
+            let (r, o) = (offsets.find(p).0, offsets_of[p as usize]);
+            root_value[r as usize] + o
+        })
+        .collect();
+    Some(PatchSides {
+        front,
+        // A patch without seam edges is alone (its ray found no coincident sheet).
+        net: net.into_iter().map(|n| n.unwrap_or(1)).collect(),
+        first,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::arrange::arrange_self;
+    use crate::intersect::{self_intersections, self_seam};
+
+    /// The rays of each triangle of `m` (arranged along its own seam), with their
+    /// triangle's input triangle.
+    fn rays(m: &Mesh) -> Vec<(u32, Option<i64>)> {
+        let seam = self_seam(m, &self_intersections(m));
+        let arr = arrange_self(m, &seam);
+        let b = m.bounds().unwrap();
+        let bvh = Bvh::new(m);
+        (0..arr.mesh.triangles.len())
+            .map(|t| {
+                let direct = ray(&arr, m, None, &b.min, &b.max, t);
+                assert_eq!(direct, ray(&arr, m, Some(&bvh), &b.min, &b.max, t));
+                (arr.parent[t], direct)
+            })
+            .collect()
+    }
+
+    /// A box in a box: the winding number in front of the outer box's faces is 0, in
+    /// front of the inner one's 1, or 0 when the inner box faces inward (a cavity); boxes
+    /// turned about a skew axis so that rays go along no face.
+    #[test]
+    fn rays_count_the_sheets_they_cross() {
+        for cavity in [false, true] {
+            let outer = Mesh::cuboid([0.0; 3], [3.0; 3]);
+            let inner = Mesh::cuboid([1.0; 3], [2.0; 3]);
+            let mut m = outer.clone();
+            m.append(&if cavity { inner.flipped() } else { inner })
+                .unwrap();
+            let m = crate::shapes::rigid_motion(&m, [1.0, 2.0, 3.0], 0.7, [0.1, 0.2, 0.3]);
+            let found = rays(&m);
+            assert_eq!(found.len(), 24);
+            for (parent, front) in found {
+                let want = if parent < 12 || cavity { 0 } else { 1 };
+                assert_eq!(front, Some(want), "triangle of {parent}, cavity {cavity}");
+            }
+        }
+    }
+
+    /// A box given twice (vertices not shared): every ray meets the other copy's face in
+    /// its own triangle's plane, and gives no answer.
+    #[test]
+    fn rays_through_a_coincident_sheet_give_none() {
+        let cube = Mesh::cuboid([0.0; 3], [1.0; 3]);
+        let mut twice = cube.clone();
+        twice.append(&cube).unwrap();
+        let found = rays(&twice);
+        assert!(!found.is_empty());
+        assert!(found.iter().all(|(_, f)| f.is_none()), "{found:?}");
+    }
+
+    /// A ray through an edge (a box whose top and bottom are split along crossing
+    /// diagonals: the rays up from the centroids of the bottom triangles meet the top's
+    /// diagonal) gives no answer; the others give the winding number 0 of the outside.
+    #[test]
+    fn rays_through_an_edge_give_none() {
+        let mut cube = Mesh::cuboid([0.0; 3], [1.0; 3]);
+        assert_eq!(cube.triangles[2..4], [[4, 5, 6], [5, 7, 6]]);
+        cube.triangles[2] = [4, 5, 7];
+        cube.triangles[3] = [4, 7, 6];
+        let found = rays(&cube);
+        assert_eq!(found[..2], [(0, None), (1, None)]);
+        assert!(found[2..].iter().all(|(_, f)| *f == Some(0)), "{found:?}");
+    }
+
+    /// A ray that runs in a face along the axis (a second box whose face y = 1/3 holds
+    /// the ray from the centroid of the first box's triangle with corners at y = 0, 1, 0
+    /// on its face x = 1) gives no answer: it leaves that face through an edge.
+    #[test]
+    fn rays_along_a_face_give_none() {
+        let mut m = Mesh::cuboid([0.0; 3], [1.0; 3]);
+        assert_eq!(m.triangles[10], [1, 3, 5]);
+        m.append(&Mesh::cuboid([2.0, 1.0 / 3.0, 0.0], [3.0, 1.0, 1.0]))
+            .unwrap();
+        let found = rays(&m);
+        assert_eq!(found[10], (10, None));
+        let answered = found.iter().filter(|(_, f)| *f == Some(0)).count();
+        assert!(answered >= 20, "{found:?}");
+    }
+}
