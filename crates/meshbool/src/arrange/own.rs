@@ -14,7 +14,7 @@ use rustc_hash::FxHashMap;
 
 use super::{cut_triangle, cut_triangles, reassemble, seam_edges, Arranged, SeamPoints};
 use crate::intersect::{Feature, Seam};
-use crate::kernel::{orient2d, Enclosure, Point, Sign, Triangle};
+use crate::kernel::{orient2d, orient3d_explicit, same_point, Enclosure, Point, Sign, Triangle};
 use crate::Mesh;
 
 /// Per triangle: its constraints (seam edges), each with the triangle it comes from
@@ -32,18 +32,46 @@ pub fn arrange_self(mesh: &Mesh, seam: &Seam) -> Arranged {
     let mut with_other: Sourced = FxHashMap::default();
     for src in &seam.sources {
         let e = seam_edges[src.segment as usize];
-        let coplanar = seam.segments[src.segment as usize].coplanar;
         for (t, o) in [(src.tri_a, src.tri_b), (src.tri_b, src.tri_a)] {
+            // The triangle a segment crosses `t` with, where one does: a segment found
+            // both by a coplanar pair and by a crossing one (an edge of a face shared
+            // with `t`) crosses with the latter.
+            let other = (!coplanar(mesh, t, o)).then_some(o);
             let list = with_other.entry(t).or_default();
-            if !list.iter().any(|(x, _)| *x == e) {
-                list.push((e, (!coplanar).then_some(o)));
+            match list.iter_mut().find(|(x, _)| *x == e) {
+                Some(known) => {
+                    known.1 = known.1.or(other);
+                }
+                None => list.push((e, other)),
             }
         }
     }
     add_crossings(mesh, &mut points, &with_other);
+    // One vertex per point: the same point named by different features (on a line where
+    // two coplanar faces meet a third, on four planes) or made again as a three-plane
+    // point.
+    let canon = merge_equal_points(mesh, &mut points);
+    let seam_edges: Vec<[u32; 2]> = seam_edges
+        .into_iter()
+        .map(|[a, b]| {
+            let (a, b) = (canon(a), canon(b));
+            [a.min(b), a.max(b)]
+        })
+        .collect();
     let constraints: FxHashMap<u32, Vec<[u32; 2]>> = with_other
         .into_iter()
-        .map(|(t, list)| (t, list.into_iter().map(|(e, _)| e).collect()))
+        .map(|(t, list)| {
+            // In their order (which the triangulation follows), each once.
+            let mut cons: Vec<[u32; 2]> = Vec::with_capacity(list.len());
+            for ([a, b], _) in list {
+                let (a, b) = (canon(a), canon(b));
+                let e = [a.min(b), a.max(b)];
+                if a != b && !cons.contains(&e) {
+                    cons.push(e);
+                }
+            }
+            (t, cons)
+        })
         .collect();
     let cut = cut_triangles(mesh, &points, &constraints);
     let results: Vec<_> = cut
@@ -51,6 +79,92 @@ pub fn arrange_self(mesh: &Mesh, seam: &Seam) -> Arranged {
         .map(|&t| (t, cut_triangle(mesh, t, &points, &constraints)))
         .collect();
     Arranged::assemble(points, seam_edges, reassemble(mesh, results))
+}
+
+/// Whether triangles `t` and `o` of `mesh` lie in one plane (exact).
+fn coplanar(mesh: &Mesh, t: u32, o: u32) -> bool {
+    let [a, b, c] = mesh.corners(t as usize);
+    mesh.corners(o as usize)
+        .iter()
+        .all(|d| orient3d_explicit(&a, &b, &c, d) == Sign::Zero)
+}
+
+/// Gives exactly equal points one vertex: each added vertex equal to an input vertex of
+/// the seam, or to an added vertex of lower id, is replaced by it in `points`' lists of
+/// the points on faces and edges and in its seam vertices (the replaced vertex stays,
+/// unused). Candidates are found by their approximate positions (sorted along x, within
+/// a relative 1e-9 on every axis) and compared exactly. Returns the replacement of every
+/// vertex id (itself where kept).
+fn merge_equal_points(mesh: &Mesh, points: &mut SeamPoints) -> impl Fn(u32) -> u32 {
+    let n = points.positions.len();
+    let first_added = points.input_vertices as u32;
+    // The input vertices that are seam points, and every added vertex.
+    let mut ids: Vec<u32> = points
+        .seam_vertex
+        .iter()
+        .copied()
+        .filter(|&v| v < first_added)
+        .chain(first_added..n as u32)
+        .collect();
+    ids.par_sort_unstable();
+    ids.dedup();
+    let pos = &points.positions;
+    ids.par_sort_unstable_by(|&a, &b| {
+        pos[a as usize][0]
+            .total_cmp(&pos[b as usize][0])
+            .then(a.cmp(&b))
+    });
+    let exact = |v: u32| -> Point {
+        match (v as usize).checked_sub(points.input_vertices) {
+            Some(i) => points.added[i].clone(),
+            None => Point::Explicit(mesh.positions[v as usize]),
+        }
+    };
+    let near = |a: &[f64; 3], b: &[f64; 3], k: usize| {
+        (a[k] - b[k]).abs() <= 1e-9 * (1.0 + a[k].abs().max(b[k].abs()))
+    };
+    let mut canon: Vec<u32> = (0..n as u32).collect();
+    let mut merged = false;
+    for i in 0..ids.len() {
+        let a = ids[i];
+        let pa = pos[a as usize];
+        for &b in &ids[i + 1..] {
+            let pb = pos[b as usize];
+            if !near(&pa, &pb, 0) {
+                break;
+            }
+            if near(&pa, &pb, 1) && near(&pa, &pb, 2) && same_point(&exact(a), &exact(b)) {
+                // The lower id stays the root (an input vertex before any added one).
+                let (ra, rb) = (root(&canon, a), root(&canon, b));
+                canon[ra.max(rb) as usize] = ra.min(rb);
+                merged |= ra != rb;
+            }
+        }
+    }
+    fn root(canon: &[u32], mut v: u32) -> u32 {
+        while canon[v as usize] != v {
+            v = canon[v as usize];
+        }
+        v
+    }
+    if merged {
+        for v in 0..n as u32 {
+            canon[v as usize] = root(&canon, v);
+        }
+        let map = |list: &mut Vec<u32>| {
+            for v in list.iter_mut() {
+                *v = canon[*v as usize];
+            }
+            list.sort_unstable();
+            list.dedup();
+        };
+        points.on_face.values_mut().for_each(map);
+        points.on_edge.values_mut().for_each(map);
+        for v in &mut points.seam_vertex {
+            *v = canon[*v as usize];
+        }
+    }
+    move |v: u32| canon[v as usize]
 }
 
 /// Every seam point as a vertex: an input vertex as itself, any other point new, noted on

@@ -791,4 +791,37 @@ mod tests {
             }
         }
     }
+
+    /// Two boxes sharing their top plane and a third crossing that plane where their
+    /// faces meet (one point on the third's vertical edge, the first's top diagonal and
+    /// the second's top face; the line where the second's face x = 0 meets the shared
+    /// plane crossing the third's wall): one vertex per point, every triangle cut, and
+    /// each rule's exact solid, decided exactly. Before, the segment of the shared plane
+    /// was taken as crossing the first box with the coplanar face, its three-plane point
+    /// had no position, and five triangles failed (an open result under even-odd).
+    #[test]
+    fn coplanar_faces_crossed_by_a_third_part() {
+        let mut m = Mesh::cuboid([-1.0; 3], [1.0; 3]);
+        m.append(&Mesh::cuboid([0.0, -1.0, -1.0], [2.0, 1.0, 1.0]))
+            .unwrap();
+        m.append(&Mesh::cuboid([-0.5, -0.5, 0.0], [0.5, 0.5, 3.0]))
+            .unwrap();
+        let pairs = self_intersections(&m);
+        let opts = PipelineOptions::default();
+        // 8 + 8 + 3, less the pairs' overlaps (4, 1, 0.5), plus the triple's (0.5); odd
+        // counts: singles − 2 · pairs + 4 · triple.
+        for (rule, volume) in [
+            (FillRule::Positive, 14.0),
+            (FillRule::NonZero, 14.0),
+            (FillRule::EvenOdd, 10.0),
+        ] {
+            let r = resolve_self(&m, &pairs, rule, &opts, ResolveReport::default()).unwrap();
+            assert_eq!(r.report.failed_triangles, 0, "{rule:?}");
+            assert!(!r.report.winding_measured, "{rule:?}");
+            let s = mesh_stats(&r.mesh);
+            assert!(s.closed, "{rule:?} {s:?}");
+            assert_eq!((s.non_manifold_edges, s.inconsistent_edges), (0, 0));
+            assert_eq!(signed_volume(&r.mesh), volume, "{rule:?}");
+        }
+    }
 }
