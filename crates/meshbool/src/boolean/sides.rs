@@ -283,11 +283,128 @@ impl Offsets {
     }
 }
 
+/// A point strictly inside a triangle and on its plane, and the ray to it along an axis
+/// from beyond a box: what [`Probe::hit`] tests triangles against.
+pub(super) struct Probe {
+    /// The axis along which the ray runs (towards −axis), the one that keeps the
+    /// triangle's plane widest.
+    k: usize,
+    /// The sign of the plane's normal along the axis (the triangle's facing).
+    facing: Sign,
+    /// The point (the plane's over `at`).
+    h: Point,
+    /// The triangle's rounded centroid, the ray's line in the projection.
+    at: Point,
+    /// The ray's box: from beyond the box's low side to beyond its high side.
+    span: [[f64; 3]; 2],
+}
+
+/// What the ray of a [`Probe`] does at one triangle.
+enum Hit {
+    /// Misses it, runs parallel to it, or meets it on the far side of the point.
+    Miss,
+    /// Crosses it before the point, changing the winding number by this (towards −axis).
+    Before(i64),
+    /// Meets it at the point (its plane holds the point).
+    At,
+    /// Meets it on an edge or corner: no answer.
+    Edge,
+}
+
+impl Probe {
+    /// The probe of a triangle with corners `tri` (exact) in the plane of the explicit
+    /// triangle `plane` (oriented as it is), at its rounded centroid `at`, the ray from
+    /// beyond `lo`..`hi`; `None` where `at` is not strictly inside the triangle along the
+    /// chosen axis, or the box is too large to go beyond.
+    pub(super) fn new(
+        plane: &[[f64; 3]; 3],
+        tri: &[Point; 3],
+        at: [f64; 3],
+        lo: &[f64; 3],
+        hi: &[f64; 3],
+    ) -> Option<Probe> {
+        let (k, facing) = projection(plane)?;
+        let probe = Point::Explicit(at);
+        if !(0..3).all(|i| orient2d(&tri[i], &tri[(i + 1) % 3], &probe, k) == facing) {
+            return None;
+        }
+        let pad = |x: f64| 1.0 + x.abs();
+        let (mut from, mut to) = (at, at);
+        from[k] = lo[k] - pad(lo[k]);
+        to[k] = hi[k] + pad(hi[k]);
+        if !from[k].is_finite() || !to[k].is_finite() {
+            return None;
+        }
+        Some(Probe {
+            k,
+            facing,
+            h: Point::lpi(from, to, plane[0], plane[1], plane[2]),
+            at: probe,
+            span: [from, to],
+        })
+    }
+
+    /// Tests the ray against triangle `sc` (explicit, exact tests).
+    fn hit(&self, sc: &[[f64; 3]; 3]) -> Hit {
+        let k = self.k;
+        let pts = sc.map(Point::Explicit);
+        let o = orient2d(&pts[0], &pts[1], &pts[2], k);
+        if o == Sign::Zero {
+            // Parallel to the ray: not crossed. Where the ray runs in it, it leaves it
+            // (and the sheets coplanar with it) through an edge of a triangle that is not
+            // parallel, which the test below finds.
+            return Hit::Miss;
+        }
+        let e: [Sign; 3] =
+            std::array::from_fn(|i| orient2d(&pts[i], &pts[(i + 1) % 3], &self.at, k));
+        if e.contains(&o.reversed()) {
+            return Hit::Miss;
+        }
+        if e.contains(&Sign::Zero) {
+            return Hit::Edge;
+        }
+        match orient3d_plane(&sc[0], &sc[1], &sc[2], &self.h) {
+            Sign::Zero => Hit::At,
+            // Before the point along the ray (beyond it along the axis), the sign of the
+            // point's side times the sign of the normal's axis component is negative;
+            // crossing it towards −axis goes from front to back where that component is
+            // positive.
+            sd if unit(sd) * unit(o) < 0 => Hit::Before(unit(o)),
+            _ => Hit::Miss,
+        }
+    }
+
+    /// The winding number just on the +axis side of the point, of the triangles `tris`
+    /// (closed sheets; `own(i)`: the ones whose plane holds the point by construction);
+    /// `None` where the ray meets an edge, or another triangle at the point.
+    pub(super) fn winding(
+        &self,
+        tris: impl Iterator<Item = (usize, [[f64; 3]; 3])>,
+        own: impl Fn(usize) -> bool,
+    ) -> Option<i64> {
+        let mut before = 0i64;
+        for (i, sc) in tris {
+            match self.hit(&sc) {
+                Hit::Miss => {}
+                Hit::Before(d) => before += d,
+                Hit::At if own(i) => {}
+                Hit::At | Hit::Edge => return None,
+            }
+        }
+        Some(before)
+    }
+
+    /// The ray's box.
+    pub(super) fn span(&self) -> &[[f64; 3]; 2] {
+        &self.span
+    }
+}
+
 /// The winding number in front of triangle `t` of the arrangement, by a ray along an axis
 /// from beyond the mesh (`lo`, `hi`: the mesh's box) to the point of `t`'s plane over its
 /// rounded centroid, crossing the input triangles (exact tests); `None` where the point
-/// is not strictly inside `t`, the ray meets an edge or runs in a triangle's plane, or
-/// another sheet coincides with `t` there.
+/// is not strictly inside `t`, the ray meets an edge, or another sheet coincides with `t`
+/// or crosses it there.
 fn ray(
     arr: &Arranged,
     input: &Mesh,
@@ -298,57 +415,18 @@ fn ray(
 ) -> Option<i64> {
     let parent = arr.parent[t] as usize;
     let plane = input.corners(parent);
-    let (k, facing) = projection(&plane)?;
     let tri = arr.mesh.triangles[t].map(|v| arr.point(v));
-    let at = arr.mesh.centroid(t);
-    let probe = Point::Explicit(at);
-    let inside =
-        |c: &[Point; 3], s: Sign| (0..3).all(|i| orient2d(&c[i], &c[(i + 1) % 3], &probe, k) == s);
-    if !inside(&tri, facing) {
-        return None;
-    }
-    let pad = |x: f64| 1.0 + x.abs();
-    let (mut from, mut to) = (at, at);
-    from[k] = lo[k] - pad(lo[k]);
-    to[k] = hi[k] + pad(hi[k]);
-    if !from[k].is_finite() || !to[k].is_finite() {
-        return None;
-    }
-    let h = Point::lpi(from, to, plane[0], plane[1], plane[2]);
-    let mut beyond = 0i64;
-    for s in meeting(input, index, &[from, to]) {
-        let sc = input.corners(s as usize);
-        let pts = sc.map(Point::Explicit);
-        let o = orient2d(&pts[0], &pts[1], &pts[2], k);
-        let e: [Sign; 3] = std::array::from_fn(|i| orient2d(&pts[i], &pts[(i + 1) % 3], &probe, k));
-        if o == Sign::Zero {
-            // Parallel to the ray: not crossed. Where the ray runs in it, it leaves it
-            // (and the sheets coplanar with it) through an edge of a triangle that is not
-            // parallel, which the test below finds.
-            continue;
-        }
-        if e.contains(&o.reversed()) {
-            continue;
-        }
-        if e.contains(&Sign::Zero) {
-            return None;
-        }
-        match orient3d_plane(&sc[0], &sc[1], &sc[2], &h) {
-            // Through the point: t's own input triangle, else a sheet coincident with it
-            // or one crossing it (which the arrangement would have cut t along).
-            Sign::Zero if s as usize == parent => {}
-            Sign::Zero => return None,
-            // Beyond the point along the axis (the ray crosses it first), the sign of
-            // `h`'s side times the sign of the normal's axis component is negative;
-            // crossing it towards −axis goes from front to back where that component is
-            // positive.
-            sd if unit(sd) * unit(o) < 0 => beyond += unit(o),
-            _ => {}
-        }
-    }
+    let probe = Probe::new(&plane, &tri, arr.mesh.centroid(t), lo, hi)?;
+    let found = meeting(input, index, probe.span());
+    let beyond = probe.winding(
+        found
+            .iter()
+            .map(|&s| (s as usize, input.corners(s as usize))),
+        |s| s == parent,
+    )?;
     // `beyond`: the winding number on t's +axis side; its front is there when its normal
     // points up the axis, else past t (rising by one from its front to its back).
-    Some(if facing == Sign::Positive {
+    Some(if probe.facing == Sign::Positive {
         beyond
     } else {
         beyond - 1
