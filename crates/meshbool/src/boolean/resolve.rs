@@ -741,6 +741,23 @@ mod tests {
         assert!(own.parent.iter().all(|&t| (t as usize) < m.triangles.len()));
     }
 
+    /// Resolves `m` through the self-arrangement under each rule ([`FillRule::ALL`]'s
+    /// order): every triangle cut, the sides decided exactly, a closed manifold solid of
+    /// the rule's `volume`.
+    fn resolves_exactly(m: &Mesh, volume: [f64; 3]) {
+        let pairs = self_intersections(m);
+        let opts = PipelineOptions::default();
+        for (rule, volume) in FillRule::ALL.into_iter().zip(volume) {
+            let r = resolve_self(m, &pairs, rule, &opts, ResolveReport::default()).unwrap();
+            assert_eq!(r.report.failed_triangles, 0, "{rule:?}");
+            assert!(!r.report.winding_measured, "{rule:?}");
+            let s = mesh_stats(&r.mesh);
+            assert!(s.closed, "{rule:?} {s:?}");
+            assert_eq!((s.non_manifold_edges, s.inconsistent_edges), (0, 0));
+            assert_eq!(signed_volume(&r.mesh), volume, "{rule:?}");
+        }
+    }
+
     /// Two cubes overlapping with coplanar faces (a vertex of each on the other's edges and
     /// faces): the self-arrangement inserts those vertices into the features they lie on,
     /// so no triangle fails, and each fill rule gives its exact solid (coincident sheets
@@ -750,22 +767,9 @@ mod tests {
         let mut m = Mesh::cuboid([-1.0; 3], [1.0; 3]);
         m.append(&Mesh::cuboid([0.0, -1.0, -1.0], [2.0, 1.0, 1.0]))
             .unwrap();
-        let pairs = self_intersections(&m);
+        // Coincident faces sharing edges: decided exactly.
+        resolves_exactly(&m, [12.0, 12.0, 8.0]);
         let opts = PipelineOptions::default();
-        for (rule, volume) in [
-            (FillRule::Positive, 12.0),
-            (FillRule::NonZero, 12.0),
-            (FillRule::EvenOdd, 8.0),
-        ] {
-            let r = resolve_self(&m, &pairs, rule, &opts, ResolveReport::default()).unwrap();
-            assert_eq!(r.report.failed_triangles, 0, "{rule:?}");
-            // Coincident faces sharing edges: decided exactly.
-            assert!(!r.report.winding_measured, "{rule:?}");
-            let s = mesh_stats(&r.mesh);
-            assert!(s.closed, "{rule:?} {s:?}");
-            assert_eq!((s.non_manifold_edges, s.inconsistent_edges), (0, 0));
-            assert_eq!(signed_volume(&r.mesh), volume, "{rule:?}");
-        }
         // The same cube twice: one copy under positive and non-zero, nothing under
         // even-odd; a cube and its reversed copy (a zero-thickness membrane) cancel.
         let cube = Mesh::cuboid([0.0; 3], [1.0; 3]);
@@ -887,23 +891,9 @@ mod tests {
             .unwrap();
         m.append(&Mesh::cuboid([-0.5, -0.5, 0.0], [0.5, 0.5, 3.0]))
             .unwrap();
-        let pairs = self_intersections(&m);
-        let opts = PipelineOptions::default();
         // 8 + 8 + 3, less the pairs' overlaps (4, 1, 0.5), plus the triple's (0.5); odd
         // counts: singles − 2 · pairs + 4 · triple.
-        for (rule, volume) in [
-            (FillRule::Positive, 14.0),
-            (FillRule::NonZero, 14.0),
-            (FillRule::EvenOdd, 10.0),
-        ] {
-            let r = resolve_self(&m, &pairs, rule, &opts, ResolveReport::default()).unwrap();
-            assert_eq!(r.report.failed_triangles, 0, "{rule:?}");
-            assert!(!r.report.winding_measured, "{rule:?}");
-            let s = mesh_stats(&r.mesh);
-            assert!(s.closed, "{rule:?} {s:?}");
-            assert_eq!((s.non_manifold_edges, s.inconsistent_edges), (0, 0));
-            assert_eq!(signed_volume(&r.mesh), volume, "{rule:?}");
-        }
+        resolves_exactly(&m, [14.0, 14.0, 10.0]);
     }
 
     /// Pieces that cross nothing: the others' winding number at a point of each, by a ray
