@@ -643,4 +643,29 @@ mod tests {
         let answered = found.iter().filter(|(_, f)| *f == Some(0)).count();
         assert!(answered >= 20, "{found:?}");
     }
+
+    /// Offsets compose along chains joined in any order, a relation that agrees is
+    /// accepted and one that contradicts them is refused.
+    #[test]
+    fn offsets_compose_and_refuse_contradictions() {
+        let mut o = Offsets::new(6);
+        // value(1) = value(0) + 1, value(3) = value(2) − 4, then join the chains:
+        // value(2) = value(1) + 2.
+        assert!(o.relate(0, 1, 1));
+        assert!(o.relate(3, 2, 4));
+        assert!(o.relate(1, 2, 2));
+        assert!(o.relate(5, 4, -7));
+        for (x, want) in [(0, 0), (1, 1), (2, 3), (3, -1)] {
+            assert_eq!(o.find(x), (0, want), "{x}");
+        }
+        assert_eq!(o.find(4), (4, 0));
+        assert_eq!(o.find(5), (4, 7));
+        assert!(o.relate(3, 0, 1));
+        assert!(!o.relate(3, 0, 2));
+        assert!(!o.relate(1, 3, 0));
+        // Joining the two groups keeps both sides' offsets.
+        assert!(o.relate(3, 5, 10));
+        assert_eq!(o.find(5), (0, 9));
+        assert_eq!(o.find(4), (0, 2));
+    }
 }
