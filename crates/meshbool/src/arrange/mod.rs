@@ -17,6 +17,7 @@ mod local;
 mod own;
 
 pub use own::arrange_self;
+pub(crate) use own::coplanar;
 
 /// Why a cut triangle could not be re-triangulated (the inputs broke an assumption of the
 /// arrangement, as a self-intersecting mesh does); the triangle is then kept whole.
@@ -144,6 +145,16 @@ struct SeamPoints {
     on_edge: FxHashMap<(u32, u32), Vec<u32>>,
     /// For every seam point, its vertex.
     seam_vertex: Vec<u32>,
+}
+
+impl SeamPoints {
+    /// The exact point of vertex `v` (an input vertex of `mesh`, or an added one).
+    fn exact(&self, mesh: &Mesh, v: u32) -> Point {
+        match (v as usize).checked_sub(self.input_vertices) {
+            Some(i) => self.added[i].clone(),
+            None => Point::Explicit(mesh.positions[v as usize]),
+        }
+    }
 }
 
 /// Gives every seam point a vertex of `mesh` (side `side`): a seam point at an input

@@ -13,6 +13,7 @@ use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
 use super::{cut_triangle, cut_triangles, reassemble, seam_edges, Arranged, SeamPoints};
+use crate::edges::Roots;
 use crate::intersect::{Feature, Seam};
 use crate::kernel::{orient2d, orient3d_explicit, same_point, Enclosure, Point, Sign, Triangle};
 use crate::Mesh;
@@ -82,7 +83,7 @@ pub fn arrange_self(mesh: &Mesh, seam: &Seam) -> Arranged {
 }
 
 /// Whether triangles `t` and `o` of `mesh` lie in one plane (exact).
-fn coplanar(mesh: &Mesh, t: u32, o: u32) -> bool {
+pub(crate) fn coplanar(mesh: &Mesh, t: u32, o: u32) -> bool {
     let [a, b, c] = mesh.corners(t as usize);
     mesh.corners(o as usize)
         .iter()
@@ -98,7 +99,9 @@ fn coplanar(mesh: &Mesh, t: u32, o: u32) -> bool {
 fn merge_equal_points(mesh: &Mesh, points: &mut SeamPoints) -> impl Fn(u32) -> u32 {
     let n = points.positions.len();
     let first_added = points.input_vertices as u32;
-    // The input vertices that are seam points, and every added vertex.
+    // The input vertices that are seam points, and every added vertex, along x (the
+    // copies of an id next to each other).
+    let pos = &points.positions;
     let mut ids: Vec<u32> = points
         .seam_vertex
         .iter()
@@ -106,24 +109,17 @@ fn merge_equal_points(mesh: &Mesh, points: &mut SeamPoints) -> impl Fn(u32) -> u
         .filter(|&v| v < first_added)
         .chain(first_added..n as u32)
         .collect();
-    ids.par_sort_unstable();
-    ids.dedup();
-    let pos = &points.positions;
     ids.par_sort_unstable_by(|&a, &b| {
         pos[a as usize][0]
             .total_cmp(&pos[b as usize][0])
             .then(a.cmp(&b))
     });
-    let exact = |v: u32| -> Point {
-        match (v as usize).checked_sub(points.input_vertices) {
-            Some(i) => points.added[i].clone(),
-            None => Point::Explicit(mesh.positions[v as usize]),
-        }
-    };
+    ids.dedup();
     let near = |a: &[f64; 3], b: &[f64; 3], k: usize| {
         (a[k] - b[k]).abs() <= 1e-9 * (1.0 + a[k].abs().max(b[k].abs()))
     };
-    let mut canon: Vec<u32> = (0..n as u32).collect();
+    // The lowest id stays the root (an input vertex before any added one).
+    let mut roots = Roots::new(n);
     let mut merged = false;
     for i in 0..ids.len() {
         let a = ids[i];
@@ -133,24 +129,21 @@ fn merge_equal_points(mesh: &Mesh, points: &mut SeamPoints) -> impl Fn(u32) -> u
             if !near(&pa, &pb, 0) {
                 break;
             }
-            if near(&pa, &pb, 1) && near(&pa, &pb, 2) && same_point(&exact(a), &exact(b)) {
-                // The lower id stays the root (an input vertex before any added one).
-                let (ra, rb) = (root(&canon, a), root(&canon, b));
-                canon[ra.max(rb) as usize] = ra.min(rb);
-                merged |= ra != rb;
+            if near(&pa, &pb, 1)
+                && near(&pa, &pb, 2)
+                && same_point(&points.exact(mesh, a), &points.exact(mesh, b))
+            {
+                roots.join(a, b);
+                merged = true;
             }
         }
     }
-    fn root(canon: &[u32], mut v: u32) -> u32 {
-        while canon[v as usize] != v {
-            v = canon[v as usize];
-        }
-        v
-    }
+    let canon: Vec<u32> = if merged {
+        (0..n as u32).map(|v| roots.find(v)).collect()
+    } else {
+        Vec::new()
+    };
     if merged {
-        for v in 0..n as u32 {
-            canon[v as usize] = root(&canon, v);
-        }
         let map = |list: &mut Vec<u32>| {
             for v in list.iter_mut() {
                 *v = canon[*v as usize];
@@ -164,7 +157,7 @@ fn merge_equal_points(mesh: &Mesh, points: &mut SeamPoints) -> impl Fn(u32) -> u
             *v = canon[*v as usize];
         }
     }
-    move |v: u32| canon[v as usize]
+    move |v: u32| canon.get(v as usize).copied().unwrap_or(v)
 }
 
 /// Every seam point as a vertex: an input vertex as itself, any other point new, noted on
@@ -215,12 +208,7 @@ fn index_own_points(mesh: &Mesh, seam: &Seam) -> SeamPoints {
 /// each crossing becomes a three-plane point shared by the three triangles, inserted in
 /// their faces.
 fn add_crossings(mesh: &Mesh, points: &mut SeamPoints, cons: &Sourced) {
-    let exact = |v: u32| -> Point {
-        match (v as usize).checked_sub(points.input_vertices) {
-            Some(i) => points.added[i].clone(),
-            None => Point::Explicit(mesh.positions[v as usize]),
-        }
-    };
+    let exact = |v: u32| points.exact(mesh, v);
     let mut triples: Vec<[u32; 3]> = cons
         .par_iter()
         .filter(|(_, list)| list.len() > 1)

@@ -21,7 +21,6 @@ use crate::arrange::arrange_self;
 use crate::classify::{winding_number, winding_number_without, winding_term, FastWinding};
 use crate::edges::{EdgeKind, EdgeTopology};
 use crate::intersect::{self_intersections, self_seam};
-use crate::kernel::{orient3d_explicit, Sign};
 use crate::measure::signed_volume;
 use crate::repair::{split_nonmanifold, NonManifoldReport};
 use crate::{Aabb, Mesh};
@@ -52,6 +51,13 @@ impl FillRule {
             FillRule::NonZero => "nonzero",
             FillRule::EvenOdd => "evenodd",
         }
+    }
+
+    /// What becomes of a surface with winding number `front` in front of it and `behind`
+    /// behind it: `None` dropped (the rule's inside is the same on both sides), else kept,
+    /// `Some(true)` reversed (to face away from the inside).
+    fn kept(self, front: i64, behind: i64) -> Option<bool> {
+        (self.inside(behind) != self.inside(front)).then(|| !self.inside(behind))
     }
 
     /// Whether a point of winding number `w` is inside.
@@ -291,16 +297,19 @@ fn resolve_sheets(
     // Keep a piece where the rule's inside changes across it, facing away from the inside.
     let boxes: Vec<Option<Aabb>> = united.par_iter().map(|(p, _)| p.mesh.bounds()).collect();
     let meshes: Vec<&Mesh> = united.iter().map(|(p, _)| &p.mesh).collect();
+    let all = boxes.iter().flatten().fold(None, |a: Option<Aabb>, b| {
+        Some(a.map_or(*b, |a| a.grown(&b.min).grown(&b.max)))
+    });
     let decided: Vec<(Option<bool>, bool)> = (0..united.len())
         .into_par_iter()
         .map(|i| {
             let p = &united[i].0;
             // The others' winding number at a point of this piece, exactly (a ray), or
             // measured where every ray tried met an edge.
-            let exact = if united.len() == 1 {
-                Some(0)
-            } else {
-                others_by_ray(&meshes, &boxes, i)
+            let exact = match &all {
+                _ if united.len() == 1 => Some(0),
+                Some(all) => others_by_ray(&meshes, &boxes, all, i),
+                None => None,
             };
             let measured = exact.is_none();
             let others = exact.unwrap_or_else(|| {
@@ -317,8 +326,7 @@ fn resolve_sheets(
             } else {
                 (others, others + p.facing)
             };
-            let keep = (rule.inside(behind) != rule.inside(front)).then(|| !rule.inside(behind));
-            (keep, measured)
+            (rule.kept(front, behind), measured)
         })
         .collect();
     report.winding_measured = decided.iter().any(|&(_, m)| m);
@@ -360,17 +368,11 @@ fn resolve_sheets(
 /// The winding number of `pieces` other than `i` (closed, none touching piece `i`) at a
 /// point of piece `i`: a [`sides::Probe`] at one of its largest triangles, counting the
 /// triangles its ray crosses (exact) of the others whose boxes (`boxes`) hold the point;
-/// `None` where every triangle tried gives no answer (rays through edges).
-fn others_by_ray(pieces: &[&Mesh], boxes: &[Option<Aabb>], i: usize) -> Option<i64> {
+/// `None` where every triangle tried gives no answer (rays through edges). `all`: a box
+/// holding every piece.
+fn others_by_ray(pieces: &[&Mesh], boxes: &[Option<Aabb>], all: &Aabb, i: usize) -> Option<i64> {
     const TRIES: usize = 16;
     let m = pieces[i];
-    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    for b in boxes.iter().flatten() {
-        for k in 0..3 {
-            lo[k] = lo[k].min(b.min[k]);
-            hi[k] = hi[k].max(b.max[k]);
-        }
-    }
     let mut largest: Vec<(f64, usize)> = (0..m.triangles.len())
         .map(|t| (m.twice_area(t), t))
         .filter(|&(a, _)| a > 0.0)
@@ -380,24 +382,21 @@ fn others_by_ray(pieces: &[&Mesh], boxes: &[Option<Aabb>], i: usize) -> Option<i
         largest.truncate(TRIES);
     }
     largest.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
-    let meets =
-        |b: &Aabb, s: &[[f64; 3]; 2]| (0..3).all(|k| b.min[k] <= s[1][k] && s[0][k] <= b.max[k]);
     'tries: for (_, t) in largest {
         let plane = m.corners(t);
+        let at = m.centroid(t);
         let Some(probe) = sides::Probe::new(
             &plane,
             &plane.map(crate::kernel::Point::Explicit),
-            m.centroid(t),
-            &lo,
-            &hi,
+            at,
+            &all.min,
+            &all.max,
         ) else {
             continue;
         };
-        let span = *probe.span();
         // A closed piece winds around nothing outside its box: only the boxes that hold
         // the point count (the centroid, within a margin far above how far off the plane
         // rounding puts it).
-        let at = m.centroid(t);
         let margin = 1e-6 * (1.0 + at.iter().fold(0.0f64, |x, c| x.max(c.abs())));
         let holds =
             |b: &Aabb| (0..3).all(|k| b.min[k] - margin <= at[k] && at[k] <= b.max[k] + margin);
@@ -406,14 +405,9 @@ fn others_by_ray(pieces: &[&Mesh], boxes: &[Option<Aabb>], i: usize) -> Option<i
             if j == i || !boxes[j].as_ref().is_some_and(holds) {
                 continue;
             }
-            let crossed = (0..other.triangles.len()).filter_map(|s| {
-                let c = other.corners(s);
-                let b = Aabb {
-                    min: std::array::from_fn(|k| c[0][k].min(c[1][k]).min(c[2][k])),
-                    max: std::array::from_fn(|k| c[0][k].max(c[1][k]).max(c[2][k])),
-                };
-                meets(&b, &span).then_some((s, c))
-            });
+            let crossed = sides::meeting(other, None, probe.span())
+                .into_iter()
+                .map(|s| (s as usize, other.corners(s as usize)));
             match probe.winding(crossed, |_| false) {
                 Some(w) => total += w,
                 None => continue 'tries,
@@ -437,12 +431,7 @@ struct CoincidentPieces {
 
 impl CoincidentPieces {
     fn new(mesh: &Mesh, pairs: &[(u32, u32)], parent: &[u32]) -> Self {
-        let coplanar = |i: u32, j: u32| {
-            let [a, b, c] = mesh.corners(i as usize);
-            mesh.corners(j as usize)
-                .iter()
-                .all(|d| orient3d_explicit(&a, &b, &c, d) == Sign::Zero)
-        };
+        let coplanar = |i: u32, j: u32| crate::arrange::coplanar(mesh, i, j);
         let found: Vec<(u32, u32)> = pairs
             .par_iter()
             .copied()
@@ -609,8 +598,8 @@ fn exact_keep(s: &sides::PatchSides, best: &[(f64, usize)], rule: FillRule) -> V
     (0..best.len())
         .map(|p| {
             let (front, behind) = (s.front[p], s.front[p] + s.net[p]);
-            let changes = rule.inside(behind) != rule.inside(front);
-            (best[p].1 != usize::MAX && s.first[p] && changes).then(|| !rule.inside(behind))
+            rule.kept(front, behind)
+                .filter(|_| best[p].1 != usize::MAX && s.first[p])
         })
         .collect()
 }
@@ -672,8 +661,7 @@ fn measured_sides(
         let front = (rest - net as f64 / 2.0).round() as i64;
         let behind = front + net;
         let first = stack.iter().all(|&(u, _)| patch[u as usize] > patch[t]);
-        keep[patch[t] as usize] =
-            (first && rule.inside(behind) != rule.inside(front)).then(|| !rule.inside(behind));
+        keep[patch[t] as usize] = rule.kept(front, behind).filter(|_| first);
     }
     keep
 }
@@ -917,8 +905,12 @@ mod tests {
                 .collect();
             let refs: Vec<&Mesh> = pieces.iter().collect();
             let boxes: Vec<Option<Aabb>> = pieces.iter().map(Mesh::bounds).collect();
+            let all = boxes
+                .iter()
+                .flatten()
+                .fold(boxes[0].unwrap(), |a, b| a.grown(&b.min).grown(&b.max));
             let got: Vec<Option<i64>> = (0..pieces.len())
-                .map(|i| others_by_ray(&refs, &boxes, i))
+                .map(|i| others_by_ray(&refs, &boxes, &all, i))
                 .collect();
             assert_eq!(got, [0, 1, 2, 1, 0, 0].map(Some), "turned {turn}");
             for (i, p) in pieces.iter().enumerate() {

@@ -24,7 +24,7 @@ use rayon::prelude::*;
 use crate::arrange::Arranged;
 use crate::bvh::Bvh;
 use crate::edges::{EdgeTopology, Roots};
-use crate::kernel::{orient2d, orient3d_plane, Point, Sign};
+use crate::kernel::{orient2d, orient3d_plane, Point, Sign, Triangle};
 use crate::Mesh;
 
 /// The winding numbers on both sides of every patch.
@@ -75,27 +75,11 @@ impl Side {
     }
 }
 
-/// The axis whose projection keeps triangle `t` (explicit) non-degenerate, the largest
-/// normal component first; with the sign of that component. `None` for a degenerate
-/// triangle.
+/// The projection that keeps triangle `t` (explicit) non-degenerate ([`Triangle::new`]:
+/// the largest normal component first) and the triangle's orientation there (the sign of
+/// that normal component); `None` for a degenerate triangle.
 fn projection(t: &[[f64; 3]; 3]) -> Option<(usize, Sign)> {
-    let (u, v) = (sub(&t[1], &t[0]), sub(&t[2], &t[0]));
-    let n = [
-        u[1] * v[2] - u[2] * v[1],
-        u[2] * v[0] - u[0] * v[2],
-        u[0] * v[1] - u[1] * v[0],
-    ];
-    let mut axes = [0usize, 1, 2];
-    axes.sort_by(|&i, &j| n[j].abs().total_cmp(&n[i].abs()));
-    let pts = t.map(Point::Explicit);
-    axes.into_iter().find_map(|k| {
-        let s = orient2d(&pts[0], &pts[1], &pts[2], k);
-        (s != Sign::Zero).then_some((k, s))
-    })
-}
-
-fn sub(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+    Triangle::new(*t).map(|s| (s.axis(), s.sign()))
 }
 
 /// What a seam edge tells of one of its uses.
@@ -238,30 +222,24 @@ impl Offsets {
         }
     }
 
-    /// The root of `x` and `value(x) − value(root)`.
+    /// The root of `x` and `value(x) − value(root)`; every node on the way is pointed at
+    /// the root.
     fn find(&mut self, x: u32) -> (u32, i64) {
-        // Collect the path, then point every node on it at the root.
-        let mut path = Vec::new();
-        let mut r = x;
+        let (mut r, mut total) = (x, 0i64);
         while self.parent[r as usize] != r {
-            path.push(r);
+            total += self.offset[r as usize];
             r = self.parent[r as usize];
         }
-        // From the node nearest the root down: each offset becomes its offset to the root.
-        let mut acc = 0i64;
-        for &y in path.iter().rev() {
-            acc += self.offset[y as usize];
-            self.offset[y as usize] = acc;
+        // Down the path again: each node's offset to the root is what is left of the total.
+        let (mut y, mut left) = (x, total);
+        while y != r {
+            let (up, own) = (self.parent[y as usize], self.offset[y as usize]);
             self.parent[y as usize] = r;
+            self.offset[y as usize] = left;
+            left -= own;
+            y = up;
         }
-        (
-            r,
-            if path.is_empty() {
-                0
-            } else {
-                self.offset[x as usize]
-            },
-        )
+        (r, total)
     }
 
     /// Records `value(b) − value(a) = d`; false where that contradicts what is known.
@@ -438,7 +416,7 @@ fn ray(
 const FEW_RAYS: usize = 4;
 
 /// The input triangles whose boxes meet box `b`: through `index`, else by a pass over all.
-fn meeting(input: &Mesh, index: Option<&Bvh>, b: &[[f64; 3]; 2]) -> Vec<u32> {
+pub(super) fn meeting(input: &Mesh, index: Option<&Bvh>, b: &[[f64; 3]; 2]) -> Vec<u32> {
     match index {
         Some(bvh) => bvh.in_box(input, b),
         None => (0..input.triangles.len() as u32)
@@ -504,17 +482,17 @@ pub(super) fn patch_sides(
     }
     // One ray per group of patches, from the group's largest triangles down.
     let crate::Aabb { min: lo, max: hi } = input.bounds()?;
+    // Each patch's group (root) and offset to it.
+    let found: Vec<(u32, i64)> = (0..count as u32).map(|p| offsets.find(p)).collect();
     let mut members: Vec<Vec<u32>> = vec![Vec::new(); count];
-    for p in 0..count as u32 {
-        let (r, _) = offsets.find(p);
-        members[r as usize].push(p);
+    for (p, &(r, _)) in found.iter().enumerate() {
+        members[r as usize].push(p as u32);
     }
     let roots: Vec<u32> = (0..count as u32)
         .filter(|&r| !members[r as usize].is_empty())
         .collect();
     // A tree pays where there are many rays; a few are cheaper as passes over all.
     let bvh = (roots.len() > FEW_RAYS).then(|| Bvh::new(input));
-    let offsets_of: Vec<i64> = (0..count as u32).map(|p| offsets.find(p).1).collect();
     const TRIES: usize = 16;
     let root_values: Vec<Option<(u32, i64)>> = roots
         .par_iter()
@@ -534,7 +512,7 @@ pub(super) fn patch_sides(
             for &(_, _, p) in cands.iter().filter(|c| !c.0).take(TRIES) {
                 let t = largest[p as usize].1;
                 if let Some(front) = ray(arr, input, bvh.as_ref(), &lo, &hi, t) {
-                    return Some((r, front - offsets_of[p as usize]));
+                    return Some((r, front - found[p as usize].1));
                 }
             }
             None
@@ -546,11 +524,9 @@ pub(super) fn patch_sides(
         root_value[r as usize] = value;
     }
     let first = (0..count as u32).map(|p| stacks.find(p) == p).collect();
-    let front = (0..count as u32)
-        .map(|p| {
-            let (r, o) = (offsets.find(p).0, offsets_of[p as usize]);
-            root_value[r as usize] + o
-        })
+    let front = found
+        .iter()
+        .map(|&(r, o)| root_value[r as usize] + o)
         .collect();
     Some(PatchSides {
         front,
