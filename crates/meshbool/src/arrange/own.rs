@@ -28,6 +28,14 @@ type Sourced = FxHashMap<u32, Vec<([u32; 2], Option<u32>)>>;
 /// should; such triangles are kept uncut and listed in [`Arranged::failed`] when their
 /// re-triangulation fails.
 pub fn arrange_self(mesh: &Mesh, seam: &Seam) -> Arranged {
+    match weld_seam_vertices(mesh, seam) {
+        Some((welded, seam)) => arrange_welded(&welded, &seam),
+        None => arrange_welded(mesh, seam),
+    }
+}
+
+/// [`arrange_self`] of a mesh with no two seam vertices at one position.
+fn arrange_welded(mesh: &Mesh, seam: &Seam) -> Arranged {
     let mut points = index_own_points(mesh, seam);
     let seam_edges = seam_edges(seam, &points.seam_vertex);
     let mut with_other: Sourced = FxHashMap::default();
@@ -80,6 +88,82 @@ pub fn arrange_self(mesh: &Mesh, seam: &Seam) -> Arranged {
         .map(|&t| (t, cut_triangle(mesh, t, &points, &constraints)))
         .collect();
     Arranged::assemble(points, seam_edges, reassemble(mesh, results))
+}
+
+/// Input vertices of the seam at exactly the same position (the copies of a part given
+/// twice, parts touching at corners they do not share): each replaced by the lowest id
+/// among them in the triangles and in the seam, so that the arrangement gives the point
+/// one vertex and the sheets through it share their edges there, as the sheets of a
+/// crossing do. `None` where no two coincide (the usual case, nothing copied).
+fn weld_seam_vertices(mesh: &Mesh, seam: &Seam) -> Option<(Mesh, Seam)> {
+    let mut ids: Vec<u32> = Vec::new();
+    let mut add = |f: Feature| match f {
+        Feature::Vertex(v) => ids.push(v),
+        Feature::Edge(u, v) => ids.extend([u, v]),
+        Feature::Face(_) => {}
+    };
+    for l in &seam.points {
+        add(l.a);
+        add(l.b);
+    }
+    for &(v, f) in &seam.vertex_on {
+        add(Feature::Vertex(v));
+        add(f);
+    }
+    // The seam names a point by one of the vertices there: the corners of the triangles
+    // it cuts are the others.
+    for src in &seam.sources {
+        for t in [src.tri_a, src.tri_b] {
+            ids.extend(mesh.triangles[t as usize]);
+        }
+    }
+    // Adding zero makes -0.0 equal to 0.0 under the total order.
+    let key = |v: u32| mesh.positions[v as usize].map(|x| x + 0.0);
+    let order = |a: &u32, b: &u32| {
+        let (p, q) = (key(*a), key(*b));
+        (0..3)
+            .map(|k| p[k].total_cmp(&q[k]))
+            .find(|o| o.is_ne())
+            .unwrap_or(std::cmp::Ordering::Equal)
+            .then(a.cmp(b))
+    };
+    ids.par_sort_unstable_by(order);
+    ids.dedup();
+    let mut canon: FxHashMap<u32, u32> = FxHashMap::default();
+    let mut i = 0;
+    while i < ids.len() {
+        let mut j = i + 1;
+        while j < ids.len() && key(ids[j]) == key(ids[i]) {
+            canon.insert(ids[j], ids[i]);
+            j += 1;
+        }
+        i = j;
+    }
+    if canon.is_empty() {
+        return None;
+    }
+    let c = |v: u32| canon.get(&v).copied().unwrap_or(v);
+    let feature = |f: Feature| match f {
+        Feature::Vertex(v) => Feature::Vertex(c(v)),
+        Feature::Edge(u, v) => crate::intersect::tritri::edge(c(u), c(v)),
+        Feature::Face(t) => Feature::Face(t),
+    };
+    let mut welded = mesh.clone();
+    for t in &mut welded.triangles {
+        *t = t.map(c);
+    }
+    let mut seam = seam.clone();
+    for l in &mut seam.points {
+        l.a = feature(l.a);
+        l.b = feature(l.b);
+    }
+    for (v, f) in &mut seam.vertex_on {
+        *v = c(*v);
+        *f = feature(*f);
+    }
+    seam.vertex_on.sort_unstable();
+    seam.vertex_on.dedup();
+    Some((welded, seam))
 }
 
 /// Whether triangles `t` and `o` of `mesh` lie in one plane (exact).

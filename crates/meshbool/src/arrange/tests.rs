@@ -140,3 +140,28 @@ fn utm_offset_pair() {
     );
     check_closed_pair(&a, &b);
 }
+
+/// A part given twice, its copies sharing no vertex (the self-seam names each common
+/// corner by one copy's vertex): the arrangement gives each corner one vertex, so no
+/// triangle fails and both copies' triangles meet at every edge, four to an edge.
+#[test]
+fn self_arrangement_of_a_part_given_twice() {
+    let cube = rigid_motion(
+        &Mesh::cuboid([0.0; 3], [1.0; 3]),
+        [1.0, 2.0, 3.0],
+        0.7,
+        [0.5; 3],
+    );
+    for copy in [cube.clone(), cube.flipped()] {
+        let mut twice = cube.clone();
+        twice.append(&copy).unwrap();
+        let seam =
+            crate::intersect::self_seam(&twice, &crate::intersect::self_intersections(&twice));
+        let arr = arrange_self(&twice, &seam);
+        assert!(arr.failed.is_empty(), "{:?}", arr.failed);
+        assert_eq!(arr.mesh.triangles.len(), 24);
+        let topo = EdgeTopology::new(&arr.mesh);
+        assert_eq!(topo.edge_count(), 18);
+        assert!((0..18).all(|e| topo.uses_of(e).len() == 4));
+    }
+}

@@ -378,11 +378,12 @@ impl Probe {
     }
 }
 
-/// The winding number in front of triangle `t` of the arrangement, by a ray along an axis
-/// from beyond the mesh (`lo`, `hi`: the mesh's box) to the point of `t`'s plane over its
-/// rounded centroid, crossing the input triangles (exact tests); `None` where the point
-/// is not strictly inside `t`, the ray meets an edge, or another sheet coincides with `t`
-/// or crosses it there.
+/// The winding number in front of triangle `t` of the arrangement (beyond the sheets
+/// coincident with it, whose net facing is `net`), by a ray along an axis from beyond the
+/// mesh (`lo`, `hi`: the mesh's box) to the point of `t`'s plane over its rounded
+/// centroid, crossing the input triangles (exact tests; those in `t`'s plane are its
+/// stack and left out); `None` where the point is not strictly inside `t` or the ray
+/// meets an edge.
 fn ray(
     arr: &Arranged,
     input: &Mesh,
@@ -390,6 +391,7 @@ fn ray(
     lo: &[f64; 3],
     hi: &[f64; 3],
     t: usize,
+    net: i64,
 ) -> Option<i64> {
     let parent = arr.parent[t] as usize;
     let plane = input.corners(parent);
@@ -400,14 +402,14 @@ fn ray(
         found
             .iter()
             .map(|&s| (s as usize, input.corners(s as usize))),
-        |s| s == parent,
+        |s| s == parent || crate::arrange::coplanar(input, s as u32, parent as u32),
     )?;
     // `beyond`: the winding number on t's +axis side; its front is there when its normal
-    // points up the axis, else past t (rising by one from its front to its back).
+    // points up the axis, else past its stack (rising by `net` from front to back).
     Some(if probe.facing == Sign::Positive {
         beyond
     } else {
-        beyond - 1
+        beyond - net
     })
 }
 
@@ -507,11 +509,11 @@ pub(super) fn patch_sides(
                 return Some((r, 0));
             }
             cands.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)).then(a.2.cmp(&b.2)));
-            // A patch alone (no coincident sheet), where the ray's point is in front
-            // of it and of nothing else.
-            for &(_, _, p) in cands.iter().filter(|c| !c.0).take(TRIES) {
+            // Patches alone (no coincident sheet) first, then stacked ones.
+            for &(_, _, p) in cands.iter().take(TRIES) {
                 let t = largest[p as usize].1;
-                if let Some(front) = ray(arr, input, bvh.as_ref(), &lo, &hi, t) {
+                let n = net[p as usize].unwrap_or(1);
+                if let Some(front) = ray(arr, input, bvh.as_ref(), &lo, &hi, t, n) {
                     return Some((r, front - found[p as usize].1));
                 }
             }
@@ -542,20 +544,25 @@ mod tests {
     use crate::arrange::arrange_self;
     use crate::intersect::{self_intersections, self_seam};
 
-    /// The rays of each triangle of `m` (arranged along its own seam), with their
-    /// triangle's input triangle.
-    fn rays(m: &Mesh) -> Vec<(u32, Option<i64>)> {
+    /// The rays of each triangle of `m` (arranged along its own seam; `net`: the net
+    /// facing of the stack of sheets at each), with their triangle's input triangle.
+    fn rays_in_stacks(m: &Mesh, net: i64) -> Vec<(u32, Option<i64>)> {
         let seam = self_seam(m, &self_intersections(m));
         let arr = arrange_self(m, &seam);
         let b = m.bounds().unwrap();
         let bvh = Bvh::new(m);
         (0..arr.mesh.triangles.len())
             .map(|t| {
-                let direct = ray(&arr, m, None, &b.min, &b.max, t);
-                assert_eq!(direct, ray(&arr, m, Some(&bvh), &b.min, &b.max, t));
+                let direct = ray(&arr, m, None, &b.min, &b.max, t, net);
+                assert_eq!(direct, ray(&arr, m, Some(&bvh), &b.min, &b.max, t, net));
                 (arr.parent[t], direct)
             })
             .collect()
+    }
+
+    /// [`rays_in_stacks`] of sheets that coincide nowhere.
+    fn rays(m: &Mesh) -> Vec<(u32, Option<i64>)> {
+        rays_in_stacks(m, 1)
     }
 
     /// A box in a box: the winding number in front of the outer box's faces is 0, in
@@ -579,16 +586,24 @@ mod tests {
         }
     }
 
-    /// A box given twice (vertices not shared): every ray meets the other copy's face in
-    /// its own triangle's plane, and gives no answer.
+    /// A box given twice (vertices not shared), or with a reversed copy: every ray meets
+    /// the other copy's face in its own triangle's plane, the stack at the point, and
+    /// counts neither; in front of each stack is the outside (0), behind it 2 (`net` 2),
+    /// or 0 for the box and its reversed copy (`net` 0). Given the wrong `net`, the faces
+    /// whose back is up the ray's axis get it wrong.
     #[test]
-    fn rays_through_a_coincident_sheet_give_none() {
+    fn rays_through_a_coincident_sheet_count_the_stack() {
         let cube = Mesh::cuboid([0.0; 3], [1.0; 3]);
-        let mut twice = cube.clone();
-        twice.append(&cube).unwrap();
-        let found = rays(&twice);
-        assert!(!found.is_empty());
-        assert!(found.iter().all(|(_, f)| f.is_none()), "{found:?}");
+        let cube = crate::shapes::rigid_motion(&cube, [1.0, 2.0, 3.0], 0.7, [0.1, 0.2, 0.3]);
+        for (copy, net) in [(cube.clone(), 2), (cube.flipped(), 0)] {
+            let mut m = cube.clone();
+            m.append(&copy).unwrap();
+            let found = rays_in_stacks(&m, net);
+            assert_eq!(found.len(), 24);
+            assert!(found.iter().all(|(_, f)| *f == Some(0)), "{net} {found:?}");
+            let wrong = rays_in_stacks(&m, 1);
+            assert!(wrong.iter().any(|(_, f)| *f != Some(0)), "{net} {wrong:?}");
+        }
     }
 
     /// A ray through an edge (a box whose top and bottom are split along crossing
