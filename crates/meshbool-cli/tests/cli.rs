@@ -275,6 +275,47 @@ fn boolean_commands_give_exact_cube_volumes() {
     }
 }
 
+/// Three boxes (two sharing a face, a third crossing both), united and intersected by
+/// the pairwise tree and with `--one-arrangement`: the same exact volumes, closed, and the
+/// report's `combined` naming the route; two inputs have no `combined`.
+#[test]
+fn many_inputs_in_one_arrangement_or_the_tree() {
+    let a = write_cube("m1.stl", [0.0; 3], [1.0; 3]);
+    let b = write_cube("m2.stl", [1.0, 0.0, 0.0], [2.0, 1.0, 1.0]);
+    let c = write_cube("m3.obj", [0.5, 0.25, 0.5], [1.5, 0.75, 1.5]);
+    let (a, b, c) = (
+        a.to_str().unwrap(),
+        b.to_str().unwrap(),
+        c.to_str().unwrap(),
+    );
+    let out = tmp("many.ply");
+    let out = out.to_str().unwrap();
+    for (cmd, vol) in [("union", 2.25), ("intersection", 0.0625)] {
+        let c2 = write_cube("m4.stl", [0.75, 0.0, 0.0], [1.25, 1.0, 1.0]);
+        let c2 = c2.to_str().unwrap();
+        let inputs = if cmd == "union" {
+            [a, b, c]
+        } else {
+            [a, c2, c]
+        };
+        for (flag, combined) in [
+            (None, "pairwise_tree"),
+            (Some("--one-arrangement"), "one_arrangement"),
+        ] {
+            let mut args = vec![cmd];
+            args.extend(inputs);
+            args.extend(["-o", out, "--json"]);
+            args.extend(flag);
+            let r = report(&args);
+            assert_eq!(r["volume"], vol, "{cmd} {flag:?}");
+            assert_eq!(r["closed"], true, "{cmd} {flag:?}");
+            assert_eq!(r["combined"], combined, "{cmd} {flag:?}");
+        }
+    }
+    let r = report(&["union", a, b, "-o", out, "--json", "--one-arrangement"]);
+    assert_eq!((r["volume"].as_f64(), r.get("combined")), (Some(2.0), None));
+}
+
 #[test]
 fn timings_name_every_stage_and_add_up() {
     let a = write_cube("ta.stl", [0.0; 3], [1.0; 3]);

@@ -191,6 +191,7 @@ fn boolean<'py>(
         keep_seam_points,
         snap,
         run: run(threads),
+        ..BooleanOptions::default()
     };
     let out = py
         .detach(move || ops::boolean(&a, &b, op, &opts))
@@ -410,7 +411,7 @@ fn split(
 /// The union or intersection of several meshes in one call: the result's arrays, the
 /// input and triangle of each result triangle, the report.
 #[pyfunction]
-#[pyo3(signature = (meshes, op, force, self_check, resolve, orient, threads, keep_nonmanifold, snap=0.0, keep_seam_points=false))]
+#[pyo3(signature = (meshes, op, force, self_check, resolve, orient, threads, keep_nonmanifold, snap=0.0, keep_seam_points=false, one_arrangement=false))]
 #[allow(clippy::type_complexity, clippy::too_many_arguments)]
 fn boolean_many<'py>(
     py: Python<'py>,
@@ -424,6 +425,7 @@ fn boolean_many<'py>(
     keep_nonmanifold: bool,
     snap: f64,
     keep_seam_points: bool,
+    one_arrangement: bool,
 ) -> PyResult<(
     Bound<'py, PyArray2<f64>>,
     Bound<'py, PyArray2<u32>>,
@@ -441,6 +443,7 @@ fn boolean_many<'py>(
         keep_nonmanifold,
         keep_seam_points,
         snap,
+        one_arrangement,
         run: run(threads),
     };
     let (out, report) = py

@@ -355,6 +355,12 @@ def test_union_of_many_in_one_call():
     assert len(u.report["operands"]) == 3
     i = meshbool.boolean_many(cubes, "intersection", threads=1)
     assert i.volume == 0.25
+    assert u.report["combined"] == "pairwise_tree"
+    # In one arrangement of all three: the same exact solids.
+    for op, volume in [("union", 17.75), ("intersection", 0.25)]:
+        one = meshbool.boolean_many(cubes, op, one_arrangement=True)
+        assert one.is_closed and one.volume == volume
+        assert one.report["combined"] == "one_arrangement"
     with pytest.raises(ValueError, match="only union and intersection"):
         meshbool.boolean_many(cubes, "difference")
 

@@ -136,18 +136,69 @@ static TEN: std::sync::LazyLock<Vec<meshbool::Mesh>> = std::sync::LazyLock::new(
         .collect()
 });
 
-/// Union of the ten spheres in one call: pairwise in a balanced tree, a round in parallel.
-#[divan::bench(sample_count = 10)]
-fn union_10_spheres_tree() -> usize {
-    let parts = TEN
+/// Ten 20k-triangle spheres that all overlap one another (centres within 0.3 of the
+/// axis, a spiral): most of each sphere's crossings lie inside the union.
+static TEN_DENSE: std::sync::LazyLock<Vec<meshbool::Mesh>> = std::sync::LazyLock::new(|| {
+    use meshbool::shapes::uv_sphere;
+    (0..10)
+        .map(|k| {
+            let a = k as f64 * 2.4;
+            uv_sphere(
+                [0.3 * a.cos(), 0.3 * a.sin(), 0.05 * k as f64],
+                1.0,
+                142,
+                71,
+            )
+        })
+        .collect()
+});
+
+/// Meshes as parts of an n-ary boolean.
+fn parts_of(meshes: &[meshbool::Mesh]) -> Vec<meshbool::boolean::nary::Part> {
+    meshes
         .iter()
         .enumerate()
         .map(|(k, m)| meshbool::boolean::nary::Part {
             mesh: m.clone(),
             parent: vec![k as u32; m.triangle_count()],
         })
-        .collect();
-    meshbool::boolean::nary::reduce(parts, Op::Union, &Default::default())
+        .collect()
+}
+
+/// The dense ten united in one arrangement.
+#[divan::bench(sample_count = 10)]
+fn union_10_dense_spheres_one() -> usize {
+    let parts = parts_of(&TEN_DENSE);
+    let r = meshbool::boolean::nary::reduce_in_one(&parts, Op::Union, &Default::default());
+    r.expect("one arrangement").part.mesh.triangle_count()
+}
+
+/// The dense ten united pairwise in a balanced tree.
+#[divan::bench(sample_count = 10)]
+fn union_10_dense_spheres_tree() -> usize {
+    meshbool::boolean::nary::reduce(parts_of(&TEN_DENSE), Op::Union, &Default::default())
+        .part
+        .mesh
+        .triangle_count()
+}
+
+/// The ten spheres as parts of an n-ary boolean.
+fn ten_parts() -> Vec<meshbool::boolean::nary::Part> {
+    parts_of(&TEN)
+}
+
+/// Union of the ten spheres in one call: one arrangement of all of them.
+#[divan::bench(sample_count = 10)]
+fn union_10_spheres_one() -> usize {
+    let parts = ten_parts();
+    let r = meshbool::boolean::nary::reduce_in_one(&parts, Op::Union, &Default::default());
+    r.expect("one arrangement").part.mesh.triangle_count()
+}
+
+/// Union of the ten spheres in one call: pairwise in a balanced tree, a round in parallel.
+#[divan::bench(sample_count = 10)]
+fn union_10_spheres_tree() -> usize {
+    meshbool::boolean::nary::reduce(ten_parts(), Op::Union, &Default::default())
         .part
         .mesh
         .triangle_count()

@@ -496,3 +496,88 @@ fn split_of_a_glued_operand_gives_edge_manifold_groups_and_closed_picks() {
         assert_eq!(closed_manifold_volume(&p.mesh), want, "{op:?}");
     }
 }
+
+/// [`ops::boolean_many`] in one arrangement of all inputs, and by the pairwise tree.
+fn many_both_ways(inputs: &[&Mesh], op: Op) -> (ops::BooleanManyOutput, ops::BooleanManyOutput) {
+    let inputs: Vec<ops::Input> = inputs.iter().map(|&m| ops::Input::from(m)).collect();
+    let one = BooleanOptions {
+        one_arrangement: true,
+        ..BooleanOptions::default()
+    };
+    let in_one = ops::boolean_many(&inputs, op, &one).unwrap();
+    let tree = ops::boolean_many(&inputs, op, &BooleanOptions::default()).unwrap();
+    assert_eq!(tree.combined, ops::Combined::PairwiseTree);
+    (in_one, tree)
+}
+
+/// Overlapping spheres united and intersected in one arrangement (every sphere cut along
+/// all the others at once, pieces kept by exact winding numbers): the solid of the
+/// pairwise tree (volume to 1e-9), closed and manifold, every triangle traced to its
+/// input, and the report saying how it was combined.
+#[test]
+fn many_in_one_arrangement_equal_the_pairwise_tree() {
+    let spheres = random_spheres(10);
+    let three: Vec<Mesh> = [[0.0, 0.0, 0.0], [0.7, 0.1, 0.0], [0.3, 0.6, 0.2]]
+        .iter()
+        .map(|&c| uv_sphere(c, 1.0, 48, 24))
+        .collect();
+    for (meshes, op) in [(&spheres, Op::Union), (&three, Op::Intersection)] {
+        let refs: Vec<&Mesh> = meshes.iter().collect();
+        let (one, tree) = many_both_ways(&refs, op);
+        assert_eq!(one.combined, ops::Combined::OneArrangement, "{op:?}");
+        let (v, w) = (
+            closed_manifold_volume(&one.mesh),
+            closed_manifold_volume(&tree.mesh),
+        );
+        assert!((v - w).abs() <= 1e-9 * w, "{op:?}: {v} vs {w}");
+        assert!(v > 0.0, "{op:?}");
+        assert!(one.failed.is_empty() && one.rounding_flips == 0, "{op:?}");
+        assert_eq!(one.provenance.len(), one.mesh.triangles().len());
+        for &[i, t] in &one.provenance {
+            assert!((t as usize) < meshes[i as usize].triangles().len());
+        }
+        let json = serde_json::to_value(one.report()).unwrap();
+        assert_eq!(json["combined"], "one_arrangement");
+    }
+}
+
+/// Coincident and touching inputs in one arrangement: the same cube three times (one
+/// copy of each face kept), two cubes sharing a face with a third crossing it where they
+/// meet (the shared face cancels inside the union), cubes sharing only an edge (the result
+/// split there); each the pairwise tree's volume, closed and manifold. An open input is
+/// left to the tree.
+#[test]
+fn coincident_and_touching_inputs_in_one_arrangement() {
+    let cube = Mesh::unit_cube();
+    let next = Mesh::cuboid([1.0, 0.0, 0.0], [2.0, 1.0, 1.0]);
+    let across = Mesh::cuboid([0.5, 0.25, 0.5], [1.5, 0.75, 1.5]);
+    let on_edge = Mesh::cuboid([1.0, 1.0, 0.0], [2.0, 2.0, 1.0]);
+    for (meshes, op, volume) in [
+        (vec![&cube, &cube, &cube], Op::Union, 1.0),
+        (vec![&cube, &cube, &cube], Op::Intersection, 1.0),
+        (vec![&cube, &next, &across], Op::Union, 2.25),
+        (vec![&cube, &across, &on_edge], Op::Union, 2.375),
+        (vec![&cube, &across, &next], Op::Intersection, 0.0),
+    ] {
+        let (one, tree) = many_both_ways(&meshes, op);
+        assert_eq!(
+            one.combined,
+            ops::Combined::OneArrangement,
+            "{op:?} {volume}"
+        );
+        if volume > 0.0 {
+            assert_eq!(closed_manifold_volume(&tree.mesh), volume, "{op:?}");
+            assert_eq!(closed_manifold_volume(&one.mesh), volume, "{op:?}");
+        } else {
+            assert!(tree.mesh.is_empty() && one.mesh.is_empty(), "{op:?}");
+        }
+        assert!(one.failed.is_empty(), "{op:?} {volume}");
+    }
+    // The cube given three times keeps its twelve triangles.
+    let (one, _) = many_both_ways(&[&cube, &cube, &cube], Op::Union);
+    assert_eq!(one.mesh.triangles().len(), 12);
+    // An open surface has no winding number: the tree.
+    let sheet = meshbool::shapes::plane([0.5, 0.5, 0.5], 3.0, 3.0, 2, 2).unwrap();
+    let (one, _) = many_both_ways(&[&cube, &next, &sheet], Op::Union);
+    assert_eq!(one.combined, ops::Combined::PairwiseTree);
+}

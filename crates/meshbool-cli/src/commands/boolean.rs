@@ -41,6 +41,12 @@ pub struct ManyArgs {
     /// The meshes: A and B, or more (computed in one call, pairwise in a balanced tree).
     #[arg(num_args = 2.., required = true)]
     inputs: Vec<PathBuf>,
+    /// More than two closed inputs: cut all of them along one another in one arrangement
+    /// and keep each piece by the exact winding numbers on its sides. Exact to the end (no
+    /// intermediate result rounded); slower than the pairwise tree. The report's
+    /// `combined` says which was used.
+    #[arg(long)]
+    one_arrangement: bool,
     /// Output mesh file (its extension names the format).
     #[arg(short, long, value_parser = super::mesh_output)]
     output: PathBuf,
@@ -87,6 +93,7 @@ impl ManyArgs {
                 keep_nonmanifold: self.keep_nonmanifold,
                 keep_seam_points: self.keep_seam_points,
                 snap: self.snap.tolerance,
+                one_arrangement: self.one_arrangement,
                 run: flags.run(&spinner),
                 ..BooleanOptions::default()
             };

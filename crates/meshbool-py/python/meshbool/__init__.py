@@ -333,15 +333,21 @@ def boolean_many(
     keep_nonmanifold: bool = False,
     snap: float = 0.0,
     keep_seam_points: bool = False,
+    one_arrangement: bool = False,
 ) -> Mesh:
     """The union (``op="union"``) or intersection (``"intersection"``) of any number of
     meshes in one call: pairwise booleans in a balanced tree, in parallel, rather than a
     chain. Checks and options as for :func:`boolean`. The result's ``provenance`` has
-    ``input`` (position in ``meshes``) and ``triangle`` (in that input)."""
+    ``input`` (position in ``meshes``) and ``triangle`` (in that input).
+
+    ``one_arrangement=True``: more than two closed meshes are cut along one another all at
+    once and each piece is kept by the exact winding numbers on its sides, exact to the end
+    (no intermediate result rounded) but slower than the tree; ``report["combined"]``
+    says which was used."""
     parts = [_parts(m) for m in meshes]
     v, f, input, triangle, report = _native.boolean_many(
         parts, op, force, self_check, resolve, orient, threads, keep_nonmanifold,
-        float(snap), keep_seam_points,
+        float(snap), keep_seam_points, one_arrangement,
     )
     out = Mesh._from(v, f, report)
     out.provenance = {"input": input, "triangle": triangle}

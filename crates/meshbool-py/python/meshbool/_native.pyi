@@ -68,6 +68,8 @@ def boolean_many(
     threads: Optional[int],
     keep_nonmanifold: bool,
     snap: float = 0.0,
+    keep_seam_points: bool = False,
+    one_arrangement: bool = False,
 ) -> Tuple[F64, U32, U32, U32, str]: ...
 
 class Split:

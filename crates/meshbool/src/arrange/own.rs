@@ -39,6 +39,8 @@ fn arrange_welded(mesh: &Mesh, seam: &Seam) -> Arranged {
     let mut points = index_own_points(mesh, seam);
     let seam_edges = seam_edges(seam, &points.seam_vertex);
     let mut with_other: Sourced = FxHashMap::default();
+    // Each triangle's coplanar partners (sorted, unique).
+    let mut partners: FxHashMap<u32, Vec<u32>> = FxHashMap::default();
     for src in &seam.sources {
         let e = seam_edges[src.segment as usize];
         for (t, o) in [(src.tri_a, src.tri_b), (src.tri_b, src.tri_a)] {
@@ -46,6 +48,9 @@ fn arrange_welded(mesh: &Mesh, seam: &Seam) -> Arranged {
             // both by a coplanar pair and by a crossing one (an edge of a face shared
             // with `t`) crosses with the latter.
             let other = (!coplanar(mesh, t, o)).then_some(o);
+            if other.is_none() {
+                partners.entry(t).or_default().push(o);
+            }
             let list = with_other.entry(t).or_default();
             match list.iter_mut().find(|(x, _)| *x == e) {
                 Some(known) => {
@@ -56,6 +61,7 @@ fn arrange_welded(mesh: &Mesh, seam: &Seam) -> Arranged {
         }
     }
     add_crossings(mesh, &mut points, &with_other);
+    add_coplanar_edge_points(mesh, &mut points, partners);
     // One vertex per point: the same point named by different features (on a line where
     // two coplanar faces meet a third, on four planes) or made again as a three-plane
     // point.
@@ -288,6 +294,66 @@ fn index_own_points(mesh: &Mesh, seam: &Seam) -> SeamPoints {
     points
 }
 
+/// Inserts into the face of each triangle `t` the seam points on the edges of its coplanar
+/// `partners` that lie strictly inside it. Where such an edge runs inside `t` it bounds
+/// their overlap, a constraint of `t`; another constraint crosses it at the point where
+/// the edge meets the other's triangle, a seam point of that pair (no three-plane point
+/// names it, as no crossing triangle bounds the overlap), which `t` must have too.
+fn add_coplanar_edge_points(
+    mesh: &Mesh,
+    points: &mut SeamPoints,
+    partners: FxHashMap<u32, Vec<u32>>,
+) {
+    let found: Vec<(u32, Vec<u32>)> = partners
+        .into_par_iter()
+        .filter_map(|(t, mut others)| {
+            others.sort_unstable();
+            others.dedup();
+            let shape = Triangle::new(mesh.corners(t as usize))?;
+            let axis = shape.axis();
+            let corners = mesh.corners(t as usize).map(Point::Explicit);
+            let mut inside = Vec::new();
+            for o in others {
+                let [a, b, c] = mesh.triangles[o as usize];
+                for (u, v) in [(a, b), (b, c), (c, a)] {
+                    let Some(list) = points.on_edge.get(&(u.min(v), u.max(v))) else {
+                        continue;
+                    };
+                    for &p in list {
+                        let q = points.exact(mesh, p);
+                        let strictly = (0..3).all(|i| {
+                            orient2d(&corners[i], &corners[(i + 1) % 3], &q, axis) == shape.sign()
+                        });
+                        if strictly {
+                            inside.push(p);
+                        }
+                    }
+                }
+            }
+            (!inside.is_empty()).then_some((t, inside))
+        })
+        .collect();
+    for (t, inside) in found {
+        let list = points.on_face.entry(t).or_default();
+        list.extend(inside);
+        list.sort_unstable();
+        list.dedup();
+    }
+}
+
+/// A box that holds vertex `v`'s exact point: its position for an input vertex, its
+/// enclosure for an added one (everything where it has none).
+fn point_box(points: &SeamPoints, v: u32) -> [[f64; 2]; 3] {
+    let v = v as usize;
+    if v < points.input_vertices {
+        return points.positions[v].map(|c| [c, c]);
+    }
+    points.enclosed[v - points.input_vertices]
+        .as_ref()
+        .and_then(|e| e.bounds())
+        .unwrap_or([[f64::NEG_INFINITY, f64::INFINITY]; 3])
+}
+
 /// Finds, in every triangle, the constraints that cross each other in their interiors;
 /// each crossing becomes a three-plane point shared by the three triangles, inserted in
 /// their faces.
@@ -303,23 +369,45 @@ fn add_crossings(mesh: &Mesh, points: &mut SeamPoints, cons: &Sourced) {
             };
             let axis = shape.axis();
             let ends: Vec<[Point; 2]> = list.iter().map(|(e, _)| e.map(exact)).collect();
-            for i in 0..list.len() {
-                for j in i + 1..list.len() {
-                    let ((e, Some(u)), (f, Some(w))) = (list[i], list[j]) else {
-                        continue;
-                    };
-                    if u == w || e.iter().any(|v| f.contains(v)) {
-                        continue;
+            // Pairs whose boxes in the projection overlap (boxes certain to hold the exact
+            // points), by a sweep along the first of the two coordinates: a triangle
+            // crossed by thousands of constraints is not tested pair by pair.
+            let (x, y) = ((axis + 1) % 3, (axis + 2) % 3);
+            let boxes: Vec<[[f64; 2]; 2]> = list
+                .iter()
+                .map(|([a, b], _)| {
+                    let (p, q) = (point_box(points, *a), point_box(points, *b));
+                    [x, y].map(|k| [p[k][0].min(q[k][0]), p[k][1].max(q[k][1])])
+                })
+                .collect();
+            let mut order: Vec<usize> = (0..list.len()).collect();
+            order.sort_unstable_by(|&i, &j| boxes[i][0][0].total_cmp(&boxes[j][0][0]));
+            let mut candidates = Vec::new();
+            for (n, &i) in order.iter().enumerate() {
+                for &j in &order[n + 1..] {
+                    if boxes[j][0][0] > boxes[i][0][1] {
+                        break;
                     }
-                    let ([p, q], [r, s]) = (&ends[i], &ends[j]);
-                    let apart = |a: &Point, b: &Point, c: &Point, d: &Point| {
-                        orient2d(a, b, c, axis).times(orient2d(a, b, d, axis)) == Sign::Negative
-                    };
-                    if apart(p, q, r, s) && apart(r, s, p, q) {
-                        let mut tri = [t, u, w];
-                        tri.sort_unstable();
-                        found.push(tri);
+                    if boxes[j][1][0] <= boxes[i][1][1] && boxes[i][1][0] <= boxes[j][1][1] {
+                        candidates.push((i.min(j), i.max(j)));
                     }
+                }
+            }
+            for (i, j) in candidates {
+                let ((e, Some(u)), (f, Some(w))) = (list[i], list[j]) else {
+                    continue;
+                };
+                if u == w || e.iter().any(|v| f.contains(v)) {
+                    continue;
+                }
+                let ([p, q], [r, s]) = (&ends[i], &ends[j]);
+                let apart = |a: &Point, b: &Point, c: &Point, d: &Point| {
+                    orient2d(a, b, c, axis).times(orient2d(a, b, d, axis)) == Sign::Negative
+                };
+                if apart(p, q, r, s) && apart(r, s, p, q) {
+                    let mut tri = [t, u, w];
+                    tri.sort_unstable();
+                    found.push(tri);
                 }
             }
             found

@@ -1,15 +1,32 @@
-//! Booleans of many meshes: union or intersection, pairwise in a balanced tree.
+//! Booleans of many meshes: union or intersection, pairwise in a balanced tree or in one
+//! arrangement of all of them.
 //!
-//! Both operations are associative and commutative, so `k` meshes take `⌈log2 k⌉` rounds
-//! of pairwise booleans, the pairs of a round in parallel: `k − 1` booleans as a chain
-//! would do, but each mesh goes through `log2 k` of them instead of up to `k − 1`, and a
-//! round uses every core. Shared topology (solids touching along an edge or at a vertex)
-//! is kept between rounds and split once at the end.
+//! **The tree** ([`reduce`], the default): both operations are associative and
+//! commutative, so `k` meshes take `⌈log2 k⌉` rounds of pairwise booleans, the pairs of a
+//! round in parallel: `k − 1` booleans as a chain would do, but each mesh goes through
+//! `log2 k` of them instead of up to `k − 1`, and a round uses every core. Shared
+//! topology (solids touching along an edge or at a vertex) is kept between rounds and
+//! split once at the end. Each round's result has its seam points rounded to `f64`, and
+//! the next round takes them as exact input vertices.
+//!
+//! **One arrangement** ([`reduce_in_one`], on request; closed meshes): the meshes'
+//! triangles together are cut along every crossing at once
+//! ([`crate::arrange::arrange_self`] on their concatenation), and each patch of the
+//! result is kept where the operation's inside differs on its two sides, by the exact
+//! winding number of each mesh there (`boolean::sides`). Nothing is rounded before the
+//! result is written, and each triangle is cut once. It is not the default because it is
+//! slower: it cuts every crossing, also those deep inside a union that the tree's early
+//! rounds drop with the triangles around them (ten 20k-triangle spheres: 2× the tree's
+//! time in a ring, 5× when all overlap one another; BENCHMARKS.md).
 
 use rayon::prelude::*;
 
-use super::{boolean, CleanupReport, Op, PipelineOptions, Source};
-use crate::arrange::FailReason;
+use super::resolve::largest_pieces;
+use super::sides::{patch_sides, Inputs};
+use super::{boolean, cleanup, CleanupReport, Op, PipelineOptions, Provenance, Source};
+use crate::arrange::{arrange_self, FailReason};
+use crate::edges::{EdgeCounts, EdgeTopology};
+use crate::intersect::{crossings_between, self_seam};
 use crate::repair::{split_nonmanifold, NonManifoldReport};
 use crate::Mesh;
 
@@ -40,6 +57,161 @@ pub struct Reduced {
     pub nonmanifold: NonManifoldReport,
     /// What the exact clean-ups of all the pairwise booleans did, added up.
     pub cleanup: CleanupReport,
+    /// Whether the result came from one arrangement of all the parts ([`reduce_in_one`]),
+    /// else from the pairwise tree.
+    pub one_arrangement: bool,
+}
+
+/// Patches times meshes beyond which [`reduce_in_one`] leaves the parts to the tree (the
+/// winding numbers it keeps).
+const MOST_WINDINGS: usize = 1 << 24;
+
+/// `op` ([`Op::Union`] or [`Op::Intersection`]) of `parts` (at least two) in one
+/// arrangement of all of them (see the module's text); split where it is not manifold
+/// unless `opts.keep_nonmanifold`. A part must not cross itself (as the operands of a
+/// pairwise boolean): only pairs of triangles of different parts are cut.
+///
+/// `None`, for [`reduce`] to do it, where a part is not closed and edge-manifold, a
+/// triangle could not be cut, the winding numbers are not decided exactly, or a part
+/// winds around some point other than 0 or 1 times (its inside is then not what a
+/// pairwise boolean takes it to be).
+///
+/// # Panics
+/// When `op` is a difference.
+pub fn reduce_in_one(parts: &[Part], op: Op, opts: &PipelineOptions) -> Option<Reduced> {
+    assert!(matches!(op, Op::Union | Op::Intersection));
+    if parts.len() < 2 {
+        return None;
+    }
+    let clean = parts.par_iter().all(|p| {
+        let c = EdgeCounts::of(&p.mesh);
+        c.boundary == 0 && c.inconsistent == 0 && c.non_manifold == 0
+    });
+    if !clean {
+        return None;
+    }
+    let mut all = Mesh::default();
+    let mut starts = Vec::with_capacity(parts.len());
+    for p in parts {
+        starts.push(u32::try_from(all.triangles.len()).ok()?);
+        all.append(&p.mesh).ok()?;
+    }
+    let inputs = Inputs::starting_at(&starts[1..]);
+    let n = inputs.count();
+    // Pairs of different parts only: a part does not cross itself (a boolean's operands
+    // are checked, resolved where they do; a pairwise boolean takes the same).
+    let meshes: Vec<&Mesh> = parts.iter().map(|p| &p.mesh).collect();
+    let pairs = crossings_between(&meshes, &all, &starts);
+    let seam = self_seam(&all, &pairs);
+    let arr = arrange_self(&all, &seam);
+    if !arr.failed.is_empty() {
+        return None;
+    }
+    let m = &arr.mesh;
+    let topo = EdgeTopology::new(m);
+    // Patches: pieces joined across edges of exactly two triangles.
+    let (count, patch) = topo.components_across(|e| topo.uses_of(e).len() == 2);
+    if count.saturating_mul(n) > MOST_WINDINGS {
+        return None;
+    }
+    let best = largest_pieces(m, &patch, count);
+    let sides = patch_sides(&all, &inputs, &arr, &topo, &patch, count, &best)?;
+    let behind: Vec<i64> = sides
+        .front
+        .iter()
+        .zip(&sides.net)
+        .map(|(f, d)| f + d)
+        .collect();
+    if sides
+        .front
+        .iter()
+        .chain(&behind)
+        .any(|w| !(0..=1).contains(w))
+    {
+        return None;
+    }
+    let inside = |w: &[i64]| match op {
+        Op::Union => w.iter().any(|&x| x >= 1),
+        _ => w.iter().all(|&x| x >= 1),
+    };
+    // Per patch: None dropped, Some(flip) kept (the first of its stack only, where the
+    // inside differs on its two sides, facing away from the inside).
+    let keep: Vec<Option<bool>> = (0..count)
+        .map(|p| {
+            let (f, b) = (
+                inside(&sides.front[p * n..][..n]),
+                inside(&behind[p * n..][..n]),
+            );
+            (f != b && sides.first[p] && best[p].1 != usize::MAX).then_some(f)
+        })
+        .collect();
+    let mut mesh = Mesh {
+        positions: m.positions.clone(),
+        triangles: Vec::new(),
+    };
+    let mut provenance = Vec::new();
+    for (t, tri) in m.triangles.iter().enumerate() {
+        if let Some(flip) = keep[patch[t] as usize] {
+            let mut tri = *tri;
+            if flip {
+                tri.swap(1, 2);
+            }
+            mesh.triangles.push(tri);
+            provenance.push(Provenance {
+                source: Source::A,
+                triangle: arr.parent[t],
+                flipped: flip,
+            });
+        }
+    }
+    let rounding_flips = arr
+        .rounding_flips
+        .iter()
+        .filter(|&&t| keep[patch[t as usize] as usize].is_some())
+        .count();
+    let cleanup = if opts.cleanup {
+        let mut seam_vertices = arr.seam_vertex.clone();
+        seam_vertices.sort_unstable();
+        seam_vertices.dedup();
+        let added: Vec<u32> = seam_vertices
+            .iter()
+            .copied()
+            .filter(|&v| v as usize >= arr.input_vertices)
+            .collect();
+        cleanup::clean_up(
+            &mut mesh,
+            &mut provenance,
+            &mut seam_vertices,
+            &added,
+            [&all, &all],
+        )
+    } else {
+        CleanupReport::default()
+    };
+    let (mut mesh, _) = mesh.without_unreferenced();
+    let mut nonmanifold = NonManifoldReport::default();
+    if !opts.keep_nonmanifold {
+        let (split, r) = split_nonmanifold(&mesh);
+        mesh = split;
+        nonmanifold = r;
+    }
+    // Each triangle's part, and its input triangle there.
+    let parent = provenance
+        .iter()
+        .map(|p| {
+            let k = inputs.of(p.triangle) as usize;
+            parts[k].parent[(p.triangle - starts[k]) as usize]
+        })
+        .collect();
+    Some(Reduced {
+        part: Part { mesh, parent },
+        seam_points: seam.points.len(),
+        failed: Vec::new(),
+        rounding_flips,
+        nonmanifold,
+        cleanup,
+        one_arrangement: true,
+    })
 }
 
 /// `op` ([`Op::Union`] or [`Op::Intersection`]) of `parts`, pairwise in a balanced tree.

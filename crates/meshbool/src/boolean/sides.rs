@@ -27,13 +27,46 @@ use crate::edges::{EdgeTopology, Roots};
 use crate::kernel::{orient2d, orient3d_plane, Point, Sign, Triangle};
 use crate::Mesh;
 
-/// The winding numbers on both sides of every patch.
+/// Which of several meshes given together (their triangles concatenated) each input
+/// triangle belongs to, for a winding number per mesh; [`Inputs::one`] for one mesh.
+pub(super) struct Inputs<'a> {
+    /// The first triangle of each mesh after the first (ascending).
+    starts: &'a [u32],
+}
+
+impl<'a> Inputs<'a> {
+    /// One mesh: one winding number.
+    pub(super) fn one() -> Inputs<'static> {
+        Inputs { starts: &[] }
+    }
+
+    /// Meshes whose triangles start at `starts` (ascending, the first mesh's `0` left out).
+    pub(super) fn starting_at(starts: &'a [u32]) -> Inputs<'a> {
+        Inputs { starts }
+    }
+
+    /// How many meshes.
+    pub(super) fn count(&self) -> usize {
+        self.starts.len() + 1
+    }
+
+    /// The mesh of input triangle `t`.
+    pub(super) fn of(&self, t: u32) -> u32 {
+        self.starts.partition_point(|&s| s <= t) as u32
+    }
+}
+
+/// The winding numbers on both sides of every patch, one per input mesh ([`Inputs`]):
+/// patch `p`'s are `[p * n, (p + 1) * n)` for `n` meshes.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub(super) struct PatchSides {
+    /// Meshes given together (the winding numbers per patch).
+    pub(super) inputs: usize,
     /// Just in front of the patch (beyond the sheets coincident with it).
     pub(super) front: Vec<i64>,
-    /// Behind it minus in front of it: 1 for a patch alone; for a stack of coincident
-    /// patches, those facing as this one does less those facing the other way.
+    /// Behind it minus in front of it: 1 for a patch alone (in its own mesh's winding
+    /// number); for a stack of coincident patches, those facing as this one does less
+    /// those facing the other way, each in its own mesh's.
     pub(super) net: Vec<i64>,
     /// Whether the patch is the first (lowest id) of its stack of coincident patches (a
     /// patch alone is).
@@ -59,6 +92,8 @@ struct Side {
     far: Point,
     /// Its input triangle (the plane it lies in, oriented as it is).
     plane: [[f64; 3]; 3],
+    /// The mesh of its input triangle ([`Inputs`]).
+    input: u32,
 }
 
 impl Side {
@@ -86,23 +121,37 @@ fn projection(t: &[[f64; 3]; 3]) -> Option<(usize, Sign)> {
 #[derive(Clone, Copy, Debug)]
 struct Fact {
     patch: u32,
-    /// The winding number in front of it, relative to the others at the edge.
-    front: i64,
-    /// Its stack's net facing (1 alone).
-    net: i64,
     /// The uses at its angle (coincident sheets), counted from `0` at the edge.
     angle: u32,
     /// Whether another use shares that angle.
     coincident: bool,
 }
 
-type EdgeFacts = Vec<Fact>;
+/// What a seam edge tells of its uses: per use, the winding numbers in front of it
+/// relative to the others at the edge and its stack's net facing (1 alone), for each
+/// mesh with a triangle at the edge (the others' do not change around it).
+struct EdgeFacts {
+    /// The meshes with a triangle at the edge ([`Inputs`], ascending).
+    inputs: Vec<u32>,
+    facts: Vec<Fact>,
+    /// Per fact, the `front` then the `net` of each of `inputs`.
+    values: Vec<i64>,
+}
+
+impl EdgeFacts {
+    /// Fact `i`'s front and net, one value per mesh of [`EdgeFacts::inputs`].
+    fn values(&self, i: usize) -> (&[i64], &[i64]) {
+        let m = self.inputs.len();
+        self.values[2 * m * i..2 * m * (i + 1)].split_at(m)
+    }
+}
 
 /// The facts of seam edge `e`; `None` where a far vertex lies on the edge's line, or the
 /// winding numbers around it do not close (not closed sheets).
 fn edge_facts(
     arr: &Arranged,
     input: &Mesh,
+    inputs: &Inputs,
     topo: &EdgeTopology,
     patch: &[u32],
     e: usize,
@@ -120,6 +169,7 @@ fn edge_facts(
                 forward: u.forward,
                 far: arr.point(far),
                 plane: input.corners(arr.parent[t] as usize),
+                input: inputs.of(arr.parent[t]),
             }
         })
         .collect();
@@ -170,92 +220,139 @@ fn edge_facts(
             start = k;
         }
     }
-    // Winding numbers of the wedges, the wedge after group g at `after[g]`, relative to
-    // the wedge before the first group: crossing a side counter-clockwise goes from its
-    // back to its front (−1) when it runs p → q, else from its front to its back (+1).
-    let mut after = Vec::with_capacity(groups.len());
-    let mut w = 0i64;
+    // The meshes at the edge, and each side's among them.
+    let mut present: Vec<u32> = sides.iter().map(|s| s.input).collect();
+    present.sort_unstable();
+    present.dedup();
+    let m = present.len();
+    let slot = |s: &Side| {
+        if m == 1 {
+            0
+        } else {
+            present.partition_point(|&k| k < s.input)
+        }
+    };
+    // Winding numbers of the wedges, the wedge after group g at `after[g * m..]`,
+    // relative to the wedge before the first group: crossing a side counter-clockwise
+    // goes from its back to its front (−1) when it runs p → q, else from its front to its
+    // back (+1), in its own mesh's winding number.
+    let mut after = Vec::with_capacity(groups.len() * m);
+    let mut w = vec![0i64; m];
     for g in &groups {
-        w += g
-            .iter()
-            .map(|&i| if sides[i].forward { -1 } else { 1 })
-            .sum::<i64>();
-        after.push(w);
+        for &i in g.iter() {
+            w[slot(&sides[i])] += if sides[i].forward { -1 } else { 1 };
+        }
+        after.extend_from_slice(&w);
     }
-    if w != 0 {
+    if w.iter().any(|&x| x != 0) {
         return None;
     }
     let mut facts = Vec::with_capacity(sides.len());
+    let mut values = Vec::with_capacity(2 * m * sides.len());
     for (gi, g) in groups.iter().enumerate() {
-        let before = if gi == 0 { 0 } else { after[gi - 1] };
+        let before = if gi == 0 {
+            &w[..]
+        } else {
+            &after[(gi - 1) * m..gi * m]
+        };
         for &i in g.iter() {
             let s = &sides[i];
-            let front = if s.forward { after[gi] } else { before };
-            let net = g
-                .iter()
-                .map(|&j| if sides[j].forward == s.forward { 1 } else { -1 })
-                .sum();
+            values.extend_from_slice(if s.forward {
+                &after[gi * m..(gi + 1) * m]
+            } else {
+                before
+            });
+            let net = values.len();
+            values.resize(net + m, 0);
+            for &j in g.iter() {
+                values[net + slot(&sides[j])] += if sides[j].forward == s.forward { 1 } else { -1 };
+            }
             facts.push(Fact {
                 patch: s.patch,
-                front,
-                net,
                 angle: gi as u32,
                 coincident: g.len() > 1,
             });
         }
     }
-    Some(facts)
+    Some(EdgeFacts {
+        inputs: present,
+        facts,
+        values,
+    })
 }
 
-/// Offsets between patches: a union-find whose nodes keep their value less their
-/// parent's (the whole path pointed at the root on each find).
+/// Offsets between patches: a union-find whose nodes keep their value (a vector of `dims`
+/// integers) less their parent's, the whole path pointed at the root on each find.
 struct Offsets {
+    dims: usize,
     parent: Vec<u32>,
+    /// Node `x`'s at `[x * dims, (x + 1) * dims)`.
     offset: Vec<i64>,
+    /// What [`Offsets::find`] found last.
+    found: Vec<i64>,
+    /// What [`Offsets::relate`] found of its first node.
+    first: Vec<i64>,
+    /// What is left of `found` on the way down the path.
+    left: Vec<i64>,
 }
 
 impl Offsets {
-    fn new(n: usize) -> Self {
+    fn new(n: usize, dims: usize) -> Self {
         Offsets {
+            dims,
             parent: (0..n as u32).collect(),
-            offset: vec![0; n],
+            offset: vec![0; n * dims],
+            found: vec![0; dims],
+            first: vec![0; dims],
+            left: vec![0; dims],
         }
     }
 
-    /// The root of `x` and `value(x) − value(root)`; every node on the way is pointed at
-    /// the root.
-    fn find(&mut self, x: u32) -> (u32, i64) {
-        let (mut r, mut total) = (x, 0i64);
+    /// The root of `x`; `value(x) − value(root)` is left in `self.found`. Every node on
+    /// the way is pointed at the root.
+    fn find(&mut self, x: u32) -> u32 {
+        let d = self.dims;
+        self.found.fill(0);
+        let mut r = x;
         while self.parent[r as usize] != r {
-            total += self.offset[r as usize];
+            let own = &self.offset[r as usize * d..(r as usize + 1) * d];
+            self.found.iter_mut().zip(own).for_each(|(t, o)| *t += o);
             r = self.parent[r as usize];
         }
         // Down the path again: each node's offset to the root is what is left of the total.
-        let (mut y, mut left) = (x, total);
+        let mut left = std::mem::take(&mut self.left);
+        left.copy_from_slice(&self.found);
+        let mut y = x;
         while y != r {
-            let (up, own) = (self.parent[y as usize], self.offset[y as usize]);
+            let up = self.parent[y as usize];
+            let own = &mut self.offset[y as usize * d..(y as usize + 1) * d];
+            for (o, l) in own.iter_mut().zip(left.iter_mut()) {
+                let was = *o;
+                *o = *l;
+                *l -= was;
+            }
             self.parent[y as usize] = r;
-            self.offset[y as usize] = left;
-            left -= own;
             y = up;
         }
-        (r, total)
+        self.left = left;
+        r
     }
 
     /// Records `value(b) − value(a) = d`; false where that contradicts what is known.
-    fn relate(&mut self, a: u32, b: u32, d: i64) -> bool {
-        let ((ra, oa), (rb, ob)) = (self.find(a), self.find(b));
+    fn relate(&mut self, a: u32, b: u32, d: &[i64]) -> bool {
+        let ra = self.find(a);
+        std::mem::swap(&mut self.first, &mut self.found);
+        let rb = self.find(b);
+        // `first`: value(a) − value(ra); `found`: value(b) − value(rb).
         if ra == rb {
-            return ob - oa == d;
+            return (0..self.dims).all(|k| self.found[k] - self.first[k] == d[k]);
         }
         // value(rb) − value(ra) = d + oa − ob; the lower id stays the root.
-        let between = d + oa - ob;
-        if ra < rb {
-            self.parent[rb as usize] = ra;
-            self.offset[rb as usize] = between;
-        } else {
-            self.parent[ra as usize] = rb;
-            self.offset[ra as usize] = -between;
+        let (child, sign) = if ra < rb { (rb, 1) } else { (ra, -1) };
+        self.parent[child as usize] = ra.min(rb);
+        let row = &mut self.offset[child as usize * self.dims..(child as usize + 1) * self.dims];
+        for (k, o) in row.iter_mut().enumerate() {
+            *o = sign * (d[k] + self.first[k] - self.found[k]);
         }
         true
     }
@@ -360,16 +457,29 @@ impl Probe {
         tris: impl Iterator<Item = (usize, [[f64; 3]; 3])>,
         own: impl Fn(usize) -> bool,
     ) -> Option<i64> {
-        let mut before = 0i64;
+        let mut w = [0i64];
+        self.winding_into(tris, own, |_| 0, &mut w)?;
+        Some(w[0])
+    }
+
+    /// [`Probe::winding`] of each of several meshes: the triangles `tris` of mesh
+    /// `mesh(i)` count in `w[mesh(i)]` (added to what is there).
+    fn winding_into(
+        &self,
+        tris: impl Iterator<Item = (usize, [[f64; 3]; 3])>,
+        own: impl Fn(usize) -> bool,
+        mesh: impl Fn(usize) -> usize,
+        w: &mut [i64],
+    ) -> Option<()> {
         for (i, sc) in tris {
             match self.hit(&sc) {
                 Hit::Miss => {}
-                Hit::Before(d) => before += d,
+                Hit::Before(d) => w[mesh(i)] += d,
                 Hit::At if own(i) => {}
                 Hit::At | Hit::Edge => return None,
             }
         }
-        Some(before)
+        Some(())
     }
 
     /// The ray's box.
@@ -378,39 +488,43 @@ impl Probe {
     }
 }
 
-/// The winding number in front of triangle `t` of the arrangement (beyond the sheets
-/// coincident with it, whose net facing is `net`), by a ray along an axis from beyond the
-/// mesh (`lo`, `hi`: the mesh's box) to the point of `t`'s plane over its rounded
-/// centroid, crossing the input triangles (exact tests; those in `t`'s plane are its
-/// stack and left out); `None` where the point is not strictly inside `t` or the ray
-/// meets an edge.
+/// The winding numbers (one per mesh of `inputs`) in front of triangle `t` of the
+/// arrangement (beyond the sheets coincident with it, whose net facing is `net`), by a
+/// ray along an axis from beyond the mesh (`lo`, `hi`: the mesh's box) to the point of
+/// `t`'s plane over its rounded centroid, crossing the input triangles (exact tests;
+/// those in `t`'s plane are its stack and left out); `None` where the point is not
+/// strictly inside `t` or the ray meets an edge.
+#[allow(clippy::too_many_arguments)]
 fn ray(
     arr: &Arranged,
     input: &Mesh,
+    inputs: &Inputs,
     index: Option<&Bvh>,
     lo: &[f64; 3],
     hi: &[f64; 3],
     t: usize,
-    net: i64,
-) -> Option<i64> {
+    net: &[i64],
+) -> Option<Vec<i64>> {
     let parent = arr.parent[t] as usize;
     let plane = input.corners(parent);
     let tri = arr.mesh.triangles[t].map(|v| arr.point(v));
     let probe = Probe::new(&plane, &tri, arr.mesh.centroid(t), lo, hi)?;
     let found = meeting(input, index, probe.span());
-    let beyond = probe.winding(
+    let mut beyond = vec![0i64; inputs.count()];
+    probe.winding_into(
         found
             .iter()
             .map(|&s| (s as usize, input.corners(s as usize))),
         |s| s == parent || crate::arrange::coplanar(input, s as u32, parent as u32),
+        |s| inputs.of(s as u32) as usize,
+        &mut beyond,
     )?;
-    // `beyond`: the winding number on t's +axis side; its front is there when its normal
+    // `beyond`: the winding numbers on t's +axis side; its front is there when its normal
     // points up the axis, else past its stack (rising by `net` from front to back).
-    Some(if probe.facing == Sign::Positive {
-        beyond
-    } else {
-        beyond - net
-    })
+    if probe.facing != Sign::Positive {
+        beyond.iter_mut().zip(net).for_each(|(b, n)| *b -= n);
+    }
+    Some(beyond)
 }
 
 /// Rays up to which [`patch_sides`] passes over all input triangles for each, rather
@@ -429,15 +543,16 @@ pub(super) fn meeting(input: &Mesh, index: Option<&Bvh>, b: &[[f64; 3]; 2]) -> V
     }
 }
 
-/// The winding numbers on both sides of each of the `count` patches (`patch`: each
-/// triangle's) of `arr`, the self-arrangement of `input` (`topo`: its edges); patches
-/// whose largest triangle (`largest`: its twice area and id, `usize::MAX` for none of
-/// positive area) is none are left at 0. `None` where the exact
-/// route does not decide: triangles the arrangement failed to cut, a degenerate fan or
-/// ray, a patch on a sheet no seam edge tells of, or winding numbers that contradict one
-/// another (not closed sheets).
+/// The winding numbers (one per mesh of `inputs`, the meshes whose concatenation is
+/// `input`) on both sides of each of the `count` patches (`patch`: each triangle's) of
+/// `arr`, the self-arrangement of `input` (`topo`: its edges); patches whose largest
+/// triangle (`largest`: its twice area and id, `usize::MAX` for none of positive area) is
+/// none are left at 0. `None` where the exact route does not decide: triangles the
+/// arrangement failed to cut, a degenerate fan or ray, a patch on a sheet no seam edge
+/// tells of, or winding numbers that contradict one another (not closed sheets).
 pub(super) fn patch_sides(
     input: &Mesh,
+    inputs: &Inputs,
     arr: &Arranged,
     topo: &EdgeTopology,
     patch: &[u32],
@@ -447,6 +562,7 @@ pub(super) fn patch_sides(
     if !arr.failed.is_empty() {
         return None;
     }
+    let n = inputs.count();
     let seams: Vec<usize> = (0..topo.edge_count())
         .filter(|&e| topo.uses_of(e).len() != 2)
         .collect();
@@ -456,38 +572,70 @@ pub(super) fn patch_sides(
             if topo.uses_of(e).len() < 2 {
                 return None;
             }
-            edge_facts(arr, input, topo, patch, e)
+            edge_facts(arr, input, inputs, topo, patch, e)
         })
         .collect::<Option<_>>()?;
-    let mut offsets = Offsets::new(count);
-    let mut net: Vec<Option<i64>> = vec![None; count];
+    let mut offsets = Offsets::new(count, n);
+    let mut net = vec![0i64; count * n];
+    let mut known = vec![false; count];
     let mut stacked = vec![false; count];
     // Stacks: patches sharing an angle at some edge (the lowest id the root).
     let mut stacks = Roots::new(count);
+    let (mut d, mut dense) = (vec![0i64; n], vec![0i64; n]);
     for f in &facts {
-        let f0 = f[0];
-        for (i, x) in f.iter().enumerate() {
-            if !offsets.relate(f0.patch, x.patch, x.front - f0.front) {
+        let (front0, _) = f.values(0);
+        let p0 = f.facts[0].patch;
+        for (i, x) in f.facts.iter().enumerate() {
+            let (front, x_net) = f.values(i);
+            let p = x.patch as usize;
+            d.fill(0);
+            dense.fill(0);
+            for (j, &k) in f.inputs.iter().enumerate() {
+                d[k as usize] = front[j] - front0[j];
+                dense[k as usize] = x_net[j];
+            }
+            if !offsets.relate(p0, x.patch, &d) {
                 return None;
             }
-            match net[x.patch as usize] {
-                Some(m) if m != x.net => return None,
-                _ => net[x.patch as usize] = Some(x.net),
+            let row = &mut net[p * n..(p + 1) * n];
+            if known[p] {
+                if row != &dense[..] {
+                    return None;
+                }
+            } else {
+                row.copy_from_slice(&dense);
+                known[p] = true;
             }
             if x.coincident {
-                stacked[x.patch as usize] = true;
-                if let Some(y) = f[..i].iter().rev().find(|y| y.angle == x.angle) {
+                stacked[p] = true;
+                if let Some(y) = f.facts[..i].iter().rev().find(|y| y.angle == x.angle) {
                     stacks.join(y.patch, x.patch);
                 }
+            }
+        }
+    }
+    // A patch without seam edges is alone (its ray finds no coincident sheet): 1 in its
+    // own mesh's winding number.
+    if known.iter().any(|k| !k) {
+        for (t, &p) in patch.iter().enumerate() {
+            let p = p as usize;
+            if !known[p] {
+                net[p * n + inputs.of(arr.parent[t]) as usize] = 1;
+                known[p] = true;
             }
         }
     }
     // One ray per group of patches, from the group's largest triangles down.
     let crate::Aabb { min: lo, max: hi } = input.bounds()?;
     // Each patch's group (root) and offset to it.
-    let found: Vec<(u32, i64)> = (0..count as u32).map(|p| offsets.find(p)).collect();
+    let mut root_of = vec![0u32; count];
+    let mut offset = vec![0i64; count * n];
+    for p in 0..count {
+        root_of[p] = offsets.find(p as u32);
+        offset[p * n..(p + 1) * n].copy_from_slice(&offsets.found);
+    }
     let mut members: Vec<Vec<u32>> = vec![Vec::new(); count];
-    for (p, &(r, _)) in found.iter().enumerate() {
+    for (p, &r) in root_of.iter().enumerate() {
         members[r as usize].push(p as u32);
     }
     let roots: Vec<u32> = (0..count as u32)
@@ -496,7 +644,7 @@ pub(super) fn patch_sides(
     // A tree pays where there are many rays; a few are cheaper as passes over all.
     let bvh = (roots.len() > FEW_RAYS).then(|| Bvh::new(input));
     const TRIES: usize = 16;
-    let root_values: Vec<Option<(u32, i64)>> = roots
+    let root_values: Vec<Option<(u32, Vec<i64>)>> = roots
         .par_iter()
         .map(|&r| {
             let mut cands: Vec<(bool, f64, u32)> = members[r as usize]
@@ -506,34 +654,36 @@ pub(super) fn patch_sides(
                 .collect();
             if cands.is_empty() {
                 // Only zero-area pieces: dropped by the caller whatever their sides.
-                return Some((r, 0));
+                return Some((r, vec![0; n]));
             }
             cands.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)).then(a.2.cmp(&b.2)));
             // Patches alone (no coincident sheet) first, then stacked ones.
             for &(_, _, p) in cands.iter().take(TRIES) {
-                let t = largest[p as usize].1;
-                let n = net[p as usize].unwrap_or(1);
-                if let Some(front) = ray(arr, input, bvh.as_ref(), &lo, &hi, t, n) {
-                    return Some((r, front - found[p as usize].1));
+                let (t, p) = (largest[p as usize].1, p as usize);
+                let p_net = &net[p * n..(p + 1) * n];
+                if let Some(mut front) = ray(arr, input, inputs, bvh.as_ref(), &lo, &hi, t, p_net) {
+                    // value(root) = value(p) − (value(p) − value(root)).
+                    let o = &offset[p * n..(p + 1) * n];
+                    front.iter_mut().zip(o).for_each(|(f, o)| *f -= o);
+                    return Some((r, front));
                 }
             }
             None
         })
         .collect();
-    let mut root_value = vec![0i64; count];
+    let mut root_value = vec![0i64; count * n];
     for v in root_values {
         let (r, value) = v?;
-        root_value[r as usize] = value;
+        root_value[r as usize * n..(r as usize + 1) * n].copy_from_slice(&value);
     }
     let first = (0..count as u32).map(|p| stacks.find(p) == p).collect();
-    let front = found
-        .iter()
-        .map(|&(r, o)| root_value[r as usize] + o)
+    let front = (0..count * n)
+        .map(|i| root_value[root_of[i / n] as usize * n + i % n] + offset[i])
         .collect();
     Some(PatchSides {
+        inputs: n,
         front,
-        // A patch without seam edges is alone (its ray found no coincident sheet).
-        net: net.into_iter().map(|n| n.unwrap_or(1)).collect(),
+        net,
         first,
     })
 }
@@ -553,8 +703,11 @@ mod tests {
         let bvh = Bvh::new(m);
         (0..arr.mesh.triangles.len())
             .map(|t| {
-                let direct = ray(&arr, m, None, &b.min, &b.max, t, net);
-                assert_eq!(direct, ray(&arr, m, Some(&bvh), &b.min, &b.max, t, net));
+                let one = Inputs::one();
+                let direct = ray(&arr, m, &one, None, &b.min, &b.max, t, &[net]);
+                let by_tree = ray(&arr, m, &one, Some(&bvh), &b.min, &b.max, t, &[net]);
+                assert_eq!(direct, by_tree);
+                let direct = direct.map(|w| w[0]);
                 (arr.parent[t], direct)
             })
             .collect()
@@ -639,24 +792,29 @@ mod tests {
     /// accepted and one that contradicts them is refused.
     #[test]
     fn offsets_compose_and_refuse_contradictions() {
-        let mut o = Offsets::new(6);
+        // Values of two integers: the second is the first times −2, so that a mix-up of
+        // the two or of their signs shows.
+        let v = |x: i64| [x, -2 * x];
+        let mut o = Offsets::new(6, 2);
+        let find = |o: &mut Offsets, x: u32| (o.find(x), o.found.clone());
         // value(1) = value(0) + 1, value(3) = value(2) − 4, then join the chains:
         // value(2) = value(1) + 2.
-        assert!(o.relate(0, 1, 1));
-        assert!(o.relate(3, 2, 4));
-        assert!(o.relate(1, 2, 2));
-        assert!(o.relate(5, 4, -7));
+        assert!(o.relate(0, 1, &v(1)));
+        assert!(o.relate(3, 2, &v(4)));
+        assert!(o.relate(1, 2, &v(2)));
+        assert!(o.relate(5, 4, &v(-7)));
         for (x, want) in [(0, 0), (1, 1), (2, 3), (3, -1)] {
-            assert_eq!(o.find(x), (0, want), "{x}");
+            assert_eq!(find(&mut o, x), (0, v(want).to_vec()), "{x}");
         }
-        assert_eq!(o.find(4), (4, 0));
-        assert_eq!(o.find(5), (4, 7));
-        assert!(o.relate(3, 0, 1));
-        assert!(!o.relate(3, 0, 2));
-        assert!(!o.relate(1, 3, 0));
+        assert_eq!(find(&mut o, 4), (4, v(0).to_vec()));
+        assert_eq!(find(&mut o, 5), (4, v(7).to_vec()));
+        assert!(o.relate(3, 0, &v(1)));
+        assert!(!o.relate(3, 0, &v(2)));
+        assert!(!o.relate(3, 0, &[1, 0]));
+        assert!(!o.relate(1, 3, &v(0)));
         // Joining the two groups keeps both sides' offsets.
-        assert!(o.relate(3, 5, 10));
-        assert_eq!(o.find(5), (0, 9));
-        assert_eq!(o.find(4), (0, 2));
+        assert!(o.relate(3, 5, &v(10)));
+        assert_eq!(find(&mut o, 5), (0, v(9).to_vec()));
+        assert_eq!(find(&mut o, 4), (0, v(2).to_vec()));
     }
 }

@@ -466,6 +466,40 @@ pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
     found
 }
 
+/// The triangle pairs of `all`, the concatenation of `parts` in order (`starts`: each
+/// part's first triangle there), that meet and belong to different parts, as
+/// [`self_intersections`] of `all` names them (`(lo, hi)`, sorted); the parts' own pairs
+/// are left out (parts that do not cross themselves, as a boolean's operands). Parts
+/// whose boxes overlap are paired with the candidate search of [`intersect`] (large
+/// triangles through their pieces), a pair of parts and the candidates of each in
+/// parallel.
+pub(crate) fn crossings_between(parts: &[&Mesh], all: &Mesh, starts: &[u32]) -> Vec<(u32, u32)> {
+    let boxes: Vec<Option<crate::Aabb>> = parts.par_iter().map(|m| m.bounds()).collect();
+    let mut meeting = Vec::new();
+    for i in 0..parts.len() {
+        for j in i + 1..parts.len() {
+            if let (Some(a), Some(b)) = (&boxes[i], &boxes[j]) {
+                if (0..3).all(|k| a.min[k] <= b.max[k] && b.min[k] <= a.max[k]) {
+                    meeting.push((i, j));
+                }
+            }
+        }
+    }
+    let mut found: Vec<(u32, u32)> = meeting
+        .par_iter()
+        .flat_map_iter(|&(i, j)| {
+            let (a, b) = (parts[i], parts[j]);
+            candidate_pairs(a, b, a.triangles.len() + b.triangles.len() >= GRID_FROM)
+                .into_par_iter()
+                .map(|(x, y)| (x + starts[i], y + starts[j]))
+                .filter(|&(x, y)| meets_beyond_shared(all, x, y, 0))
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    found.par_sort_unstable();
+    found
+}
+
 /// Whether triangles `i` and `j` of `m`, which share `shared` (< 3) vertices, meet
 /// anywhere else than in those vertices and the edge between them. Exact.
 #[inline(never)]

@@ -747,6 +747,12 @@ impl Enclosure {
         };
         Enclosure { enclosure, coords }
     }
+
+    /// A box that holds the point: `[low, high]` per coordinate; `None` where the
+    /// enclosure of its `W` holds zero (no bound).
+    pub(crate) fn bounds(&self) -> Option<[[f64; 2]; 3]> {
+        self.coords.map(|c| c.map(|i| [i.lo(), i.hi()]))
+    }
 }
 
 impl Prepared {

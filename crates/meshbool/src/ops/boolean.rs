@@ -9,7 +9,7 @@ use rayon::prelude::*;
 
 use super::{with_threads, Checks, Input, Measures, Operand, OperandReport, RunOptions, SCHEMA};
 use crate::arrange::FailReason;
-use crate::boolean::nary::{reduce, Part};
+use crate::boolean::nary::{reduce, reduce_in_one, Part};
 use crate::boolean::{CleanupReport, FailedTriangle, Op, PipelineOptions, Provenance, Stage};
 use crate::repair::{NonManifoldReport, SnapOptions, SnapReport};
 use crate::{Error, Mesh, Result};
@@ -39,6 +39,12 @@ pub struct BooleanOptions {
     /// keeps flips off the edges between two inputs' parts but does not tell seam points
     /// from input vertices: it fixes every bad triangle.
     pub snap: f64,
+    /// [`boolean_many`] of more than two closed inputs in one arrangement of all of them
+    /// ([`Combined::OneArrangement`]): exact to the end (no intermediate result rounded),
+    /// slower than the pairwise tree (it cuts the crossings the union or intersection
+    /// buries too). Inputs it does not apply to go through the tree. Ignored by
+    /// [`boolean`].
+    pub one_arrangement: bool,
     /// Threads and progress.
     pub run: RunOptions,
 }
@@ -107,8 +113,25 @@ pub struct BooleanReport {
     /// What snapping did (only with a snap tolerance).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub snap: Option<SnapReport>,
+    /// How the inputs of [`boolean_many`] were combined; `None` for two inputs.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub combined: Option<Combined>,
     /// [`BooleanOutput::seconds`].
     pub seconds: f64,
+}
+
+/// How [`boolean_many`] combined its inputs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Combined {
+    /// Pairwise booleans in a balanced tree (the default; also where one arrangement was
+    /// asked for and does not apply: an open or non-manifold input, a triangle it could
+    /// not cut).
+    PairwiseTree,
+    /// In one arrangement ([`BooleanOptions::one_arrangement`]): every input cut along
+    /// all the others at once, each piece kept by the exact winding number of every input
+    /// on its two sides.
+    OneArrangement,
 }
 
 impl BooleanOutput {
@@ -152,6 +175,7 @@ impl BooleanOutput {
             operands: self.operands.to_vec(),
             cleanup: self.cleanup,
             snap: self.snap.clone(),
+            combined: None,
             seconds: self.seconds,
         }
     }
@@ -267,6 +291,8 @@ pub struct BooleanManyOutput {
     pub cleanup: CleanupReport,
     /// What snapping did ([`BooleanOptions::snap`]); `None` without it.
     pub snap: Option<SnapReport>,
+    /// How the inputs were combined.
+    pub combined: Combined,
     /// Time of the booleans (not of checking the inputs), in seconds.
     pub seconds: f64,
 }
@@ -294,14 +320,16 @@ impl BooleanManyOutput {
             operands: self.operands.clone(),
             cleanup: self.cleanup,
             snap: self.snap.clone(),
+            combined: Some(self.combined),
             seconds: self.seconds,
         }
     }
 }
 
-/// The union or intersection of any number of inputs (at least one), in one call: pairwise
-/// booleans in a balanced tree, a round's pairs in parallel (`boolean::nary`),
-/// rather than a chain. Inputs are meshes, checked as `opts.checks` say and named `1`,
+/// The union or intersection of any number of inputs (at least one), in one call:
+/// pairwise booleans in a balanced tree, a round's pairs in parallel, rather than a
+/// chain; or in one arrangement of all of them ([`BooleanOptions::one_arrangement`],
+/// `boolean::nary`, [`Combined`]). Inputs are meshes, checked as `opts.checks` say and named `1`,
 /// `2`, ..., or [`Operand`]s.
 ///
 /// Errors: a difference (not associative: use [`boolean`]), no input, an invalid mesh, an
@@ -352,7 +380,7 @@ pub fn boolean_many<'a>(
                 Error::InvalidParameter("more than 2^32 triangles in all".to_string())
             })?);
         }
-        let parts = operands
+        let parts: Vec<Part> = operands
             .iter()
             .zip(&offsets)
             .map(|(o, &first)| Part {
@@ -367,7 +395,12 @@ pub fn boolean_many<'a>(
             cleanup: !opts.keep_seam_points,
             ..opts.run.pipeline()
         };
-        let r = reduce(parts, op, &pipeline);
+        let in_one = if opts.one_arrangement {
+            reduce_in_one(&parts, op, &pipeline)
+        } else {
+            None
+        };
+        let r = in_one.unwrap_or_else(|| reduce(parts, op, &pipeline));
         let input_of = |g: u32| {
             let k = offsets.partition_point(|&o| o <= g) - 1;
             [k as u32, g - offsets[k]]
@@ -401,6 +434,11 @@ pub fn boolean_many<'a>(
             rounding_flips: r.rounding_flips,
             cleanup: r.cleanup,
             snap,
+            combined: if r.one_arrangement {
+                Combined::OneArrangement
+            } else {
+                Combined::PairwiseTree
+            },
             seconds: start.elapsed().as_secs_f64(),
         })
     })?

@@ -66,6 +66,7 @@ mod transform;
 pub use crate::boolean::FailedTriangle;
 pub use boolean::{
     boolean, boolean_many, BooleanManyOutput, BooleanOptions, BooleanOutput, BooleanReport,
+    Combined,
 };
 pub use curves::{curves, self_curves, CurvesOptions, CurvesOutput, CurvesReport, TaggedSegment};
 pub use cutfill::{cutfill, CutFillOptions, CutFillOutput, CutFillReport};
