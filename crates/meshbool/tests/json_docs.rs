@@ -122,6 +122,10 @@ fn samples() -> BTreeMap<&'static str, Vec<Value>> {
     s.entry("boolean")
         .or_default()
         .push(json(&resolved.report()));
+    // More than two inputs: the `combined` key.
+    let three = [&cube, &other, &far].map(ops::Input::from);
+    let many = ops::boolean_many(&three, Op::Union, &BooleanOptions::default()).unwrap();
+    s.entry("boolean").or_default().push(json(&many.report()));
     let r = ops::resolve(&two, &ops::ResolveOptions::default()).unwrap();
     s.entry("resolve").or_default().push(json(&r.report()));
     // Snapping at a tolerance: the `snap` keys.
