@@ -133,8 +133,10 @@ fn weld_seam_vertices(mesh: &Mesh, seam: &Seam) -> Option<(Mesh, Seam)> {
             .unwrap_or(std::cmp::Ordering::Equal)
             .then(a.cmp(b))
     };
+    // Each vertex once (most appear in many seam points and triangles), then by position.
+    let mut seen = vec![false; mesh.positions.len()];
+    ids.retain(|&v| !std::mem::replace(&mut seen[v as usize], true));
     ids.par_sort_unstable_by(order);
-    ids.dedup();
     let mut canon: FxHashMap<u32, u32> = FxHashMap::default();
     let mut i = 0;
     while i < ids.len() {
