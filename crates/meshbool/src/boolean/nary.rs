@@ -16,8 +16,8 @@
 //! winding number of each mesh there (`boolean::sides`). Nothing is rounded before the
 //! result is written, and each triangle is cut once. It is not the default because it is
 //! slower: it cuts every crossing, also those deep inside a union that the tree's early
-//! rounds drop with the triangles around them (ten 20k-triangle spheres: 2× the tree's
-//! time in a ring, 5× when all overlap one another; BENCHMARKS.md).
+//! rounds drop with the triangles around them (ten 20k-triangle spheres: 1.5× the
+//! tree's time in a ring, 4.5× when all overlap one another; BENCHMARKS.md).
 
 use rayon::prelude::*;
 
@@ -27,6 +27,7 @@ use super::{boolean, cleanup, CleanupReport, Op, PipelineOptions, Provenance, So
 use crate::arrange::{arrange_self, FailReason};
 use crate::edges::{EdgeCounts, EdgeTopology};
 use crate::intersect::{crossings_between, self_seam};
+use crate::repair::nonmanifold::split_at;
 use crate::repair::{split_nonmanifold, NonManifoldReport};
 use crate::Mesh;
 
@@ -169,15 +170,33 @@ pub fn reduce_in_one(parts: &[Part], op: Op, opts: &PipelineOptions) -> Option<R
         .iter()
         .filter(|&&t| keep[patch[t as usize] as usize].is_some())
         .count();
+    // Split where the parts meet (the only places the result can be non-manifold), the
+    // fans paired at the seam's exact points, as a pairwise boolean does; then the exact
+    // clean-up of the seam points the arrangement added (and their copies).
+    let mut seam_vertices = arr.seam_vertex.clone();
+    seam_vertices.sort_unstable();
+    seam_vertices.dedup();
+    let before = mesh.positions.len() as u32;
+    let (mut mesh, nonmanifold, copied) = if opts.keep_nonmanifold {
+        (mesh, NonManifoldReport::default(), Vec::new())
+    } else {
+        let exact = |i: usize| Some(arr.point(seam_vertices[i]));
+        split_at(mesh, &seam_vertices, Some(&exact))
+    };
+    let is_added = |v: u32| v as usize >= arr.input_vertices;
+    let mut added: Vec<u32> = seam_vertices
+        .iter()
+        .copied()
+        .filter(|&v| is_added(v))
+        .collect();
+    for (k, &original) in copied.iter().enumerate() {
+        let v = before + k as u32;
+        seam_vertices.push(v);
+        if is_added(original) {
+            added.push(v);
+        }
+    }
     let cleanup = if opts.cleanup {
-        let mut seam_vertices = arr.seam_vertex.clone();
-        seam_vertices.sort_unstable();
-        seam_vertices.dedup();
-        let added: Vec<u32> = seam_vertices
-            .iter()
-            .copied()
-            .filter(|&v| v as usize >= arr.input_vertices)
-            .collect();
         cleanup::clean_up(
             &mut mesh,
             &mut provenance,
@@ -188,13 +207,7 @@ pub fn reduce_in_one(parts: &[Part], op: Op, opts: &PipelineOptions) -> Option<R
     } else {
         CleanupReport::default()
     };
-    let (mut mesh, _) = mesh.without_unreferenced();
-    let mut nonmanifold = NonManifoldReport::default();
-    if !opts.keep_nonmanifold {
-        let (split, r) = split_nonmanifold(&mesh);
-        mesh = split;
-        nonmanifold = r;
-    }
+    let (mesh, _) = mesh.without_unreferenced();
     // Each triangle's part, and its input triangle there.
     let parent = provenance
         .iter()
