@@ -138,14 +138,8 @@ fn weld_seam_vertices(mesh: &Mesh, seam: &Seam) -> Option<(Mesh, Seam)> {
     ids.retain(|&v| !std::mem::replace(&mut seen[v as usize], true));
     ids.par_sort_unstable_by(order);
     let mut canon: FxHashMap<u32, u32> = FxHashMap::default();
-    let mut i = 0;
-    while i < ids.len() {
-        let mut j = i + 1;
-        while j < ids.len() && key(ids[j]) == key(ids[i]) {
-            canon.insert(ids[j], ids[i]);
-            j += 1;
-        }
-        i = j;
+    for same in ids.chunk_by(|&a, &b| key(a) == key(b)) {
+        canon.extend(same[1..].iter().map(|&v| (v, same[0])));
     }
     if canon.is_empty() {
         return None;

@@ -60,8 +60,6 @@ impl<'a> Inputs<'a> {
 /// patch `p`'s are `[p * n, (p + 1) * n)` for `n` meshes.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub(super) struct PatchSides {
-    /// Meshes given together (the winding numbers per patch).
-    pub(super) inputs: usize,
     /// Just in front of the patch (beyond the sheets coincident with it).
     pub(super) front: Vec<i64>,
     /// Behind it minus in front of it: 1 for a patch alone (in its own mesh's winding
@@ -680,12 +678,7 @@ pub(super) fn patch_sides(
     let front = (0..count * n)
         .map(|i| root_value[root_of[i / n] as usize * n + i % n] + offset[i])
         .collect();
-    Some(PatchSides {
-        inputs: n,
-        front,
-        net,
-        first,
-    })
+    Some(PatchSides { front, net, first })
 }
 
 #[cfg(test)]

@@ -479,7 +479,7 @@ pub(crate) fn crossings_between(parts: &[&Mesh], all: &Mesh, starts: &[u32]) -> 
     for i in 0..parts.len() {
         for j in i + 1..parts.len() {
             if let (Some(a), Some(b)) = (&boxes[i], &boxes[j]) {
-                if (0..3).all(|k| a.min[k] <= b.max[k] && b.min[k] <= a.max[k]) {
+                if crate::bvh::overlaps(&[a.min, a.max], &[b.min, b.max]) {
                     meeting.push((i, j));
                 }
             }
