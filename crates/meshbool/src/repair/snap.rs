@@ -403,8 +403,15 @@ fn snap_edit(mesh: &Mesh, opts: &SnapOptions) -> (SnapReport, Option<Edit>) {
         return (report, None);
     }
     let grid = Grid::new(mesh, d);
-    let (seam, [halo, next_to_halo]) = seam_and_halo(mesh, opts, &grid);
-    let scan = Scan::of(mesh, d, &grid, seam.as_deref(), [&halo, &next_to_halo]);
+    let (seam, [halo, next_to_halo], halo_box) = seam_and_halo(mesh, opts, &grid);
+    let scan = Scan::of(
+        mesh,
+        d,
+        &grid,
+        seam.as_deref(),
+        [&halo, &next_to_halo],
+        halo_box,
+    );
     report.found = scan.bad.len();
     if scan.bad.is_empty() {
         return (report, None);
@@ -425,11 +432,12 @@ fn snap_edit(mesh: &Mesh, opts: &SnapOptions) -> (SnapReport, Option<Edit>) {
 /// seam's points, whose triangles the scan keeps as the first gathering's candidates: no
 /// pass over all triangles unless the work leaves it) with the cells next to it (a
 /// triangle spanning at most two cells along each axis and touching the halo has all its
-/// corners there). Otherwise no seam and no halo.
-fn seam_and_halo(mesh: &Mesh, opts: &SnapOptions, grid: &Grid) -> (Option<Vec<bool>>, [Grid; 2]) {
+/// corners there), and a box that every triangle touching the halo meets (`None` where
+/// the halo is empty). Otherwise no seam and no halo.
+fn seam_and_halo(mesh: &Mesh, opts: &SnapOptions, grid: &Grid) -> SeamAndHalo {
     let (mut halo, mut next_to_halo) = (grid.empty(), grid.empty());
     if !opts.seam_only {
-        return (None, [halo, next_to_halo]);
+        return (None, [halo, next_to_halo], None);
     }
     let mut at = vec![false; mesh.positions.len()];
     let mut cells = Vec::with_capacity(opts.seam.len());
@@ -445,6 +453,7 @@ fn seam_and_halo(mesh: &Mesh, opts: &SnapOptions, grid: &Grid) -> (Option<Vec<bo
     cells.dedup();
     let margin = (Work::HALO + 1.0) * grid.size() + 4.0 * opts.tolerance;
     let r = (margin * grid.inv).ceil().min(Grid::AXIS as f64) as usize + 1;
+    let mut span: Option<[[usize; 3]; 2]> = None;
     for c in cells {
         let c = grid.coordinates(c);
         let around = |r: usize| {
@@ -453,11 +462,23 @@ fn seam_and_halo(mesh: &Mesh, opts: &SnapOptions, grid: &Grid) -> (Option<Vec<bo
                 std::array::from_fn(|k| (c[k] + r).min(grid.n[k] - 1)),
             ]
         };
-        halo.mark_range(&around(r));
+        let range = around(r);
+        halo.mark_range(&range);
         next_to_halo.mark_range(&around(r + 1));
+        span = Some(span.map_or(range, |s| {
+            [
+                std::array::from_fn(|k| s[0][k].min(range[0][k])),
+                std::array::from_fn(|k| s[1][k].max(range[1][k])),
+            ]
+        }));
     }
-    (Some(at), [halo, next_to_halo])
+    let halo_box = span.map(|s| grid.enclosing(&s));
+    (Some(at), [halo, next_to_halo], halo_box)
 }
+
+/// What [`seam_and_halo`] finds: the seam's vertices, the halo and the cells next to it,
+/// a box around the halo.
+type SeamAndHalo = (Option<Vec<bool>>, [Grid; 2], Option<Box3>);
 
 /// [`snap_unchecked`] carrying what is kept per triangle (`per_triangle`, one per
 /// triangle: provenance, parents) over to the snapped mesh. Returns the report and the
@@ -619,28 +640,46 @@ struct Scan {
     bad: Vec<(f64, u32)>,
     area: f64,
     candidates: Vec<(u32, u32)>,
-    /// Each vertex's cell ([`Grid::packed`]).
-    cells: Vec<u32>,
 }
 
 impl Scan {
-    /// `halos`: the halo, and the cells in it or next to it.
-    fn of(mesh: &Mesh, d: f64, grid: &Grid, seam: Option<&[bool]>, halos: [&Grid; 2]) -> Scan {
+    /// `halos`: the halo, and the cells in it or next to it; `halo_box`: a box around the
+    /// halo's cells (`None`: no halo).
+    fn of(
+        mesh: &Mesh,
+        d: f64,
+        grid: &Grid,
+        seam: Option<&[bool]>,
+        halos: [&Grid; 2],
+        halo_box: Option<Box3>,
+    ) -> Scan {
         const PIECE: usize = 1 << 13;
         let [halo, next_to_halo] = halos;
         let d2 = d * d;
-        // Each vertex's cell, with bit [`Grid::NEAR_BIT`] set where the cell is in or next to the
-        // halo: a triangle spanning at most two cells along each axis with no corner
+        // A corner's cell, with bit [`Grid::NEAR_BIT`] set where the cell is in or next to
+        // the halo: a triangle spanning at most two cells along each axis with no corner
         // there does not touch the halo.
-        let cells: Vec<u32> = mesh
-            .positions
-            .par_iter()
-            .with_min_len(PIECE)
-            .map(|p| {
-                let c = [0, 1, 2].map(|k| grid.cell(p[k], k));
-                grid.pack(c) | u32::from(next_to_halo.get(grid.index(c))) << Grid::NEAR_BIT
-            })
-            .collect();
+        let cell = |p: &[f64; 3]| {
+            let c = [0, 1, 2].map(|k| grid.cell(p[k], k));
+            grid.pack(c) | u32::from(next_to_halo.get(grid.index(c))) << Grid::NEAR_BIT
+        };
+        // Each vertex's sides of the halo's box it is beyond (a bit per side): a triangle
+        // whose corners are all beyond one side misses the box (an exact box test, on
+        // a byte per corner). Nothing is near without a halo.
+        let beyond: Vec<u8> = match halo_box {
+            Some(hb) => mesh
+                .positions
+                .par_iter()
+                .with_min_len(PIECE)
+                .map(|p| {
+                    (0..3).fold(0u8, |code, k| {
+                        code | u8::from(p[k] < hb[0][k]) << (2 * k)
+                            | u8::from(p[k] > hb[1][k]) << (2 * k + 1)
+                    })
+                })
+                .collect(),
+            None => Vec::new(),
+        };
         let pieces: Vec<ScanPiece> = mesh
             .triangles
             .par_chunks(PIECE)
@@ -650,29 +689,38 @@ impl Scan {
                 let pos = &mesh.positions;
                 for (i, tri) in tris.iter().enumerate() {
                     let t = (k * PIECE + i) as u32;
-                    let c = tri.map(|v| cells[v as usize]);
-                    let near_halo = (c[0] | c[1] | c[2]) >> Grid::NEAR_BIT != 0;
-                    let key = grid.key(c);
-                    let p = || {
-                        [
-                            pos[tri[0] as usize],
-                            pos[tri[1] as usize],
-                            pos[tri[2] as usize],
-                        ]
-                    };
-                    let in_halo = if key == Grid::WIDE {
-                        halo.touches(&tri_box(&p()))
-                    } else {
-                        near_halo && halo.key_touches(key)
-                    };
-                    if in_halo {
+                    // Outside the halo's box (most triangles, far from the seam) no cell is
+                    // needed, nor (with a seam) anything else. Else, with no corner near
+                    // the halo, only a triangle spanning more than two cells along an axis
+                    // may touch it.
+                    let in_box = !beyond.is_empty()
+                        && beyond[tri[0] as usize]
+                            & beyond[tri[1] as usize]
+                            & beyond[tri[2] as usize]
+                            == 0;
+                    if !in_box && seam.is_some() {
+                        continue;
+                    }
+                    let p = [
+                        pos[tri[0] as usize],
+                        pos[tri[1] as usize],
+                        pos[tri[2] as usize],
+                    ];
+                    let key = Some(()).filter(|_| in_box).and_then(|_| {
+                        let c = p.map(|q| cell(&q));
+                        if (c[0] | c[1] | c[2]) >> Grid::NEAR_BIT != 0 {
+                            Some(grid.key(c)).filter(|&key| halo.touches_key(key, &p))
+                        } else {
+                            Some(Grid::WIDE).filter(|_| grid.wide(c) && halo.touches(&tri_box(&p)))
+                        }
+                    });
+                    if let Some(key) = key {
                         near.push((t, key));
                     } else if seam.is_some() {
                         // Far from the seam: neither bad nor counted in the area (the
                         // area of the triangles near it bounds the whole from below).
                         continue;
                     }
-                    let p = p();
                     let (u, v, w) = (sub(&p[1], &p[0]), sub(&p[2], &p[0]), sub(&p[2], &p[1]));
                     let c = cross(&u, &v);
                     let twice2 = dot(&c, &c);
@@ -698,7 +746,6 @@ impl Scan {
             bad: Vec::new(),
             area: 0.0,
             candidates: Vec::new(),
-            cells,
         };
         for (bad, area, near) in pieces {
             scan.bad.extend(bad);
@@ -770,6 +817,7 @@ impl Ord for Item {
 /// the spatial index of the work is complete. A box's range of cells is monotone in its
 /// coordinates, so a triangle whose box meets a box whose cells are all marked has a
 /// marked cell in its own range.
+#[derive(Clone)]
 struct Grid {
     lo: [f64; 3],
     /// `1 / cell size` (0 for a mesh in one point).
@@ -792,8 +840,8 @@ impl Grid {
     /// take at most 27 bits, as there are at most 2^24 cells), which [`Grid::key`] and
     /// [`Grid::unpacked`] ignore: the scan's mark of a vertex near the halo.
     const NEAR_BIT: u32 = 31;
-    /// What a row's search costs in [`Grid::keyed_near`], in entries looked at.
-    const ROW_COST: usize = 32;
+    /// What a row's look-up costs in [`Grid::keyed_near`], in entries looked at.
+    const ROW_COST: usize = 8;
 
     /// A grid over the mesh's vertices, with cells about the size of its triangles (so
     /// that most span one or two along each axis) and at most [`Grid::CELLS`].
@@ -956,6 +1004,55 @@ impl Grid {
         (self.index(low) as u32) << 3 | span
     }
 
+    /// A box that a box meets if and only if the range of its cells meets `r` (the cells
+    /// are monotone: the range of a box's cells is that of its corners).
+    fn enclosing(&self, r: &[[usize; 3]; 2]) -> Box3 {
+        [
+            std::array::from_fn(|k| self.first_at_least(k, r[0][k])),
+            std::array::from_fn(|k| self.first_at_least(k, r[1][k] + 1)),
+        ]
+    }
+
+    /// The least coordinate along axis `k` whose cell is `c` or more (a bisection over the
+    /// doubles in order; `∞` where no cell is).
+    fn first_at_least(&self, k: usize, c: usize) -> f64 {
+        // The doubles in order as integers (an involution, as in `f64::total_cmp`).
+        let ord = |x: i64| x ^ (((x >> 63) as u64) >> 1) as i64;
+        let at = |i: i64| f64::from_bits(ord(i) as u64);
+        if c == 0 {
+            return f64::NEG_INFINITY;
+        }
+        if c >= self.n[k] {
+            return f64::INFINITY;
+        }
+        // cell(−∞) = 0 < c ≤ n − 1 = cell(∞).
+        let (mut below, mut above) = (
+            ord(f64::NEG_INFINITY.to_bits() as i64),
+            ord(f64::INFINITY.to_bits() as i64),
+        );
+        while below < above - 1 {
+            let mid = ((i128::from(below) + i128::from(above)) >> 1) as i64;
+            if self.cell(at(mid), k) >= c {
+                above = mid;
+            } else {
+                below = mid;
+            }
+        }
+        at(above)
+    }
+
+    /// Whether a triangle with corners in the [`Grid::packed`] cells `c` spans more than
+    /// two cells along an axis (its [`Grid::key`] is [`Grid::WIDE`]).
+    #[inline]
+    fn wide(&self, c: [u32; 3]) -> bool {
+        let mut wide = false;
+        for k in 0..3 {
+            let [a, b, d] = c.map(|x| x >> self.shift[k] & self.mask[k]);
+            wide |= a.max(b).max(d) - a.min(b).min(d) > 1;
+        }
+        wide
+    }
+
     /// The index of a [`Grid::packed`] cell.
     #[inline]
     fn unpacked(&self, c: u32) -> usize {
@@ -994,30 +1091,76 @@ impl Grid {
         false
     }
 
-    /// Calls `f` with the id of every entry of `keyed` ((key, id) sorted, no
-    /// [`Grid::WIDE`] key) whose cells meet those of box `b`, and perhaps a few more: a
-    /// superset of the triangles whose boxes meet `b`. Each once.
-    fn keyed_near(&self, keyed: &[(u32, u32)], b: &Box3, mut f: impl FnMut(u32)) {
+    /// The rows (along x) of a [`Grid::key`]-sorted list `keyed`: for each row that holds
+    /// a key's lowest cell, the run of `keyed` there (`start`, `end`).
+    fn rows_of_keys(&self, keyed: &[(u32, u32)]) -> FxHashMap<u32, (u32, u32)> {
+        let mut rows = FxHashMap::default();
+        for (run, i) in keyed
+            .chunk_by(|a, b| (a.0 >> 3) / self.n[0] as u32 == (b.0 >> 3) / self.n[0] as u32)
+            .scan(0u32, |i, run| {
+                let start = *i;
+                *i += run.len() as u32;
+                Some((run, start))
+            })
+        {
+            rows.insert(
+                (run[0].0 >> 3) / self.n[0] as u32,
+                (i, i + run.len() as u32),
+            );
+        }
+        rows
+    }
+
+    /// Calls `f` with the position in `keyed` ((key, id) sorted, no [`Grid::WIDE`] key,
+    /// its rows `rows` ([`Grid::rows_of_keys`])) of every entry whose cells meet those of
+    /// box `b`, and perhaps a few more: a superset of the triangles whose boxes meet `b`.
+    /// Each once.
+    fn keyed_near(
+        &self,
+        keyed: &[(u32, u32)],
+        rows: &FxHashMap<u32, (u32, u32)>,
+        b: &Box3,
+        mut f: impl FnMut(usize),
+    ) {
         let r = self.range(b);
         // A triangle's cells along an axis are its key's lowest cell and perhaps the next:
         // those meeting the range have their lowest cell in it or just below it. Row by
         // row (along x, one run of keys each), or all of them where the rows would cost
         // more.
         let [x0, y0, z0] = r[0].map(|c| c.saturating_sub(1));
-        let rows = (r[1][1] - y0 + 1) * (r[1][2] - z0 + 1);
-        if rows.saturating_mul(Self::ROW_COST) > keyed.len() {
-            keyed.iter().for_each(|&(_, t)| f(t));
+        let count = (r[1][1] - y0 + 1) * (r[1][2] - z0 + 1);
+        if count.saturating_mul(Self::ROW_COST) > keyed.len() {
+            (0..keyed.len()).for_each(f);
             return;
         }
         for z in z0..=r[1][2] {
             for y in y0..=r[1][1] {
+                let Some(&(start, end)) = rows.get(&((z * self.n[1] + y) as u32)) else {
+                    continue;
+                };
+                let run = &keyed[start as usize..end as usize];
                 let lo = (self.index([x0, y, z]) as u32) << 3;
                 let hi = (self.index([r[1][0], y, z]) as u32) << 3 | 7;
-                let first = keyed.partition_point(|&(k, _)| k < lo);
-                keyed[first..]
-                    .iter()
-                    .take_while(|&&(k, _)| k <= hi)
-                    .for_each(|&(_, t)| f(t));
+                let first = run.partition_point(|&(k, _)| k < lo);
+                let last = first + run[first..].partition_point(|&(k, _)| k <= hi);
+                (start as usize + first..start as usize + last).for_each(&mut f);
+            }
+        }
+    }
+
+    /// The blocks (of 4 × 4 × 4 cells) of the cells of a range, as a range.
+    fn blocks(&self, r: &[[usize; 3]; 2]) -> [[usize; 3]; 2] {
+        r.map(|c| c.map(|x| x / 4))
+    }
+
+    /// Calls `f` with the id of each block of the range of blocks `r`.
+    fn all_blocks(&self, r: &[[usize; 3]; 2], mut f: impl FnMut(u32)) {
+        let nb = self.n.map(|c| c.div_ceil(4));
+        for z in r[0][2]..=r[1][2] {
+            for y in r[0][1]..=r[1][1] {
+                for x in r[0][0]..=r[1][0] {
+                    f(Self::index_of(nb, [x, y, z]) as u32);
+                }
             }
         }
     }
@@ -1025,20 +1168,6 @@ impl Grid {
     /// The number of cells in a range.
     fn cells(r: &[[usize; 3]; 2]) -> usize {
         (0..3).map(|k| r[1][k] - r[0][k] + 1).product()
-    }
-
-    /// Visits the cells of `r` until `f` says stop; whether it went through all of them.
-    fn all(&self, r: &[[usize; 3]; 2], mut f: impl FnMut(usize) -> bool) -> bool {
-        for z in r[0][2]..=r[1][2] {
-            for y in r[0][1]..=r[1][1] {
-                for x in r[0][0]..=r[1][0] {
-                    if !f(self.index([x, y, z])) {
-                        return false;
-                    }
-                }
-            }
-        }
-        true
     }
 
     /// Calls `f(word, mask)` for the bits of every row (along x) of the cells of `r`, a
@@ -1072,6 +1201,22 @@ impl Grid {
         self.mark_range(&self.range(b))
     }
 
+    /// [`Grid::mark`], noting the bits it set: (word, bits).
+    fn mark_noting(&mut self, b: &Box3, set: &mut Vec<(usize, u64)>) -> bool {
+        let r = self.range(b);
+        let (bits, mut new) = (&mut self.bits, false);
+        Self::rows_of(self.n, &r, |w, mask| {
+            let fresh = mask & !bits[w];
+            if fresh != 0 {
+                new = true;
+                bits[w] |= fresh;
+                set.push((w, fresh));
+            }
+            true
+        });
+        new
+    }
+
     /// Marks the cells of the range `r`; whether any was new.
     fn mark_range(&mut self, r: &[[usize; 3]; 2]) -> bool {
         let (bits, mut new) = (&mut self.bits, false);
@@ -1103,6 +1248,10 @@ struct Near {
     /// The gathered triangles spanning at most two cells along each axis, as ([`Grid::key`],
     /// id), sorted.
     keyed: Vec<(u32, u32)>,
+    /// The boxes of the triangles of `keyed`, in its order, and its rows
+    /// ([`Grid::rows_of_keys`]).
+    boxes: Vec<Box3>,
+    rows: FxHashMap<u32, (u32, u32)>,
     /// The gathered triangles spanning more ([`Grid::WIDE`]).
     wide_in: Vec<u32>,
     /// Each vertex's id among the gathered triangles' vertices (`u32::MAX`: none), and
@@ -1112,12 +1261,14 @@ struct Near {
     /// The triangles (ids) around local vertex `l`: `around[start[l]..start[l + 1]]`.
     start: Vec<u32>,
     around: Vec<u32>,
-    /// Triangles made since, by the grid cells their boxes meet; those meeting many
-    /// cells in `wide`.
-    cells: FxHashMap<u32, Vec<u32>>,
+    /// The triangles indexed since (made, or gathered by [`Work::extend`]), in `later`
+    /// and by the blocks ([`Grid::blocks`]) their boxes meet, or in `wide` where they meet
+    /// many.
+    later: Vec<u32>,
+    blocks: FxHashMap<u32, Vec<u32>>,
     wide: Vec<u32>,
-    /// The first triangle made after the gathering.
-    first_made: u32,
+    /// Whether the index was built ([`Work::index`]).
+    built: bool,
 }
 
 /// The working mesh. Triangles are never edited, only killed and made anew (so the
@@ -1159,7 +1310,8 @@ struct Work<'a> {
     /// touching them at the last full pass (or the scan) with their [`Grid::key`]s.
     halo: Grid,
     candidates: Vec<(u32, u32)>,
-    /// Each vertex's cell ([`Grid::packed`]).
+    /// Each vertex's cell ([`Grid::packed`]), made at the first pass over all triangles
+    /// (empty before).
     cells: Vec<u32>,
     near: Near,
     budget: f64,
@@ -1190,8 +1342,8 @@ struct Defects {
 }
 
 impl<'a> Work<'a> {
-    /// Made triangles meeting at most this many cells are indexed by cell.
-    const FEW_CELLS: usize = 64;
+    /// Made triangles meeting at most this many blocks are indexed by block.
+    const FEW_BLOCKS: usize = 8;
     /// The halo's margin around the boxes marked at a full pass, in cells.
     const HALO: f64 = 3.0;
 
@@ -1217,7 +1369,7 @@ impl<'a> Work<'a> {
             max_changes: u32::try_from(16 * scan.bad.len() + 1024).unwrap_or(u32::MAX),
             touched: FxHashMap::default(),
             candidates: scan.candidates,
-            cells: scan.cells,
+            cells: Vec::new(),
             halo,
             grid,
             near: Near::default(),
@@ -1383,16 +1535,25 @@ impl<'a> Work<'a> {
                 .iter()
                 .map(|&s| grown(&tri_box(&self.corners(&self.tri(s))), 4.0 * self.d)),
         );
-        let mut marked = false;
+        let (mut marked, mut set) = (false, Vec::new());
         for b in &boxes {
-            marked |= self.grid.mark(b);
+            marked |= self.grid.mark_noting(b, &mut set);
         }
         if marked {
             // Within the halo the last full pass (or the scan) gathered its candidates
-            // from, a pass over those finds every triangle; else the halo grows and all
-            // are passed over.
+            // from, a pass over those finds every triangle (only those touching no cell
+            // marked before, once there is an index); else the halo grows and all are
+            // passed over.
             if boxes.iter().all(|b| self.halo.covers(b)) {
-                self.pass(false);
+                if self.near.built {
+                    let mut before = self.grid.clone();
+                    for (w, bits) in set {
+                        before.bits[w] &= !bits;
+                    }
+                    self.extend(&before);
+                } else {
+                    self.pass(false);
+                }
             } else {
                 let margin = Self::HALO * self.grid.size();
                 for b in &boxes {
@@ -1410,6 +1571,12 @@ impl<'a> Work<'a> {
     /// candidates (the marked cells are all in the halo).
     fn pass(&mut self, full: bool) {
         const PIECE: usize = 1 << 13;
+        if full && self.cells.is_empty() {
+            let grid = &self.grid;
+            self.cells = (self.mesh.positions.par_iter().with_min_len(PIECE))
+                .map(|p| grid.packed(p))
+                .collect();
+        }
         let w = &*self;
         let mut keyed: Vec<(u32, u32)> = if full {
             let pieces: Vec<(Keyed, Keyed)> = self
@@ -1452,10 +1619,71 @@ impl<'a> Work<'a> {
             let t = self.base + i as u32;
             let tri = self.made[i];
             if self.made_alive[i] && self.grid.touches(&tri_box(&self.corners(&tri))) {
-                keyed.push((t, self.grid.key(tri.map(|v| self.cells[v as usize]))));
+                keyed.push((
+                    t,
+                    self.grid.key(tri.map(|v| self.grid.packed(&self.pos(v)))),
+                ));
             }
         }
         self.index(keyed);
+    }
+
+    /// Adds to the index the live triangles touching the cells marked since `before` and
+    /// none marked in it (candidates: the marked cells are all in the halo). The vertices
+    /// in the newly marked cells get their stars: the triangles around them in the index
+    /// as built, and those indexed since ([`Near::later`]: made, or added here or by an
+    /// earlier extension). None of those vertices had one: a triangle around a vertex in
+    /// a cell marked before touches that cell, so it was indexed.
+    fn extend(&mut self, before: &Grid) {
+        const PIECE: usize = 1 << 13;
+        let w = &*self;
+        let newly =
+            |key: u32, p: &[[f64; 3]; 3]| w.grid.touches_key(key, p) && !before.touches_key(key, p);
+        // (Every live triangle made before the index was built touches a cell marked
+        // then: one of its corners is a changed vertex, whose star was known. So only
+        // the candidates are new.)
+        let added: Vec<u32> = self
+            .candidates
+            .par_iter()
+            .with_min_len(PIECE)
+            .filter(|&&(t, key)| {
+                w.alive(t) && newly(key, &w.corners(&w.mesh.triangles[t as usize]))
+            })
+            .map(|&(t, _)| t)
+            .collect();
+        for &t in &added {
+            self.index_later(t);
+        }
+        // The vertices in newly marked cells, with the triangles indexed since around
+        // them.
+        let is_new = |v: u32| {
+            let c = self.grid.unpacked(self.grid.packed(&self.pos(v)));
+            self.grid.get(c) && !before.get(c)
+        };
+        let mut new_around: Vec<(u32, u32)> = (self.near.later.iter())
+            .filter(|&&t| self.alive(t))
+            .flat_map(|&t| self.tri(t).map(|v| (v, t)))
+            .filter(|&(v, _)| is_new(v))
+            .collect();
+        new_around.sort_unstable();
+        new_around.dedup();
+        for run in new_around.chunk_by(|a, b| a.0 == b.0) {
+            let v = run[0].0;
+            let near = &self.near;
+            let mut star: Vec<u32> = match near.local.get(v as usize).filter(|&&l| l != u32::MAX) {
+                Some(&l) => near.around
+                    [near.start[l as usize] as usize..near.start[l as usize + 1] as usize]
+                    .to_vec(),
+                None => Vec::new(),
+            };
+            for &(_, t) in run {
+                if !star.contains(&t) {
+                    star.push(t);
+                }
+            }
+            debug_assert!(!self.stars.contains_key(&v));
+            self.stars.insert(v, star);
+        }
     }
 
     /// The index over the triangles `keyed` ((id, [`Grid::key`])): sorted by key, each
@@ -1507,7 +1735,7 @@ impl<'a> Work<'a> {
                 }
             }
         }
-        let wide_in = keyed
+        let wide_in: Vec<u32> = keyed
             .iter()
             .filter(|&&(_, key)| key == Grid::WIDE)
             .map(|&(t, _)| t)
@@ -1518,16 +1746,25 @@ impl<'a> Work<'a> {
             .map(|(t, key)| (key, t))
             .collect();
         keyed.par_sort_unstable();
+        let boxes = keyed
+            .par_iter()
+            .with_min_len(1 << 12)
+            .map(|&(_, t)| tri_box(&self.corners(&self.tri(t))))
+            .collect();
+        let rows = self.grid.rows_of_keys(&keyed);
         self.near = Near {
             keyed,
+            boxes,
+            rows,
             wide_in,
             local,
             verts,
             start,
             around,
-            cells: FxHashMap::default(),
+            later: Vec::new(),
+            blocks: FxHashMap::default(),
             wide: Vec::new(),
-            first_made: self.base + self.made.len() as u32,
+            built: true,
         };
         self.stars.clear();
     }
@@ -1536,25 +1773,26 @@ impl<'a> Work<'a> {
     fn near_triangles(&self, b: &Box3) -> Vec<u32> {
         let meets = |t: u32| self.alive(t) && overlap(&tri_box(&self.corners(&self.tri(t))), b);
         let mut out: Vec<u32> = Vec::new();
-        self.grid.keyed_near(&self.near.keyed, b, |t| {
-            if meets(t) {
+        let near = &self.near;
+        self.grid.keyed_near(&near.keyed, &near.rows, b, |i| {
+            let t = near.keyed[i].1;
+            if overlap(&near.boxes[i], b) && self.alive(t) {
                 out.push(t);
             }
         });
-        out.extend(self.near.wide_in.iter().copied().filter(|&t| meets(t)));
-        let r = self.grid.range(b);
-        let mut made: Vec<u32> = self.near.wide.clone();
-        if Grid::cells(&r) <= Self::FEW_CELLS {
-            self.grid.all(&r, |i| {
-                if let Some(ids) = self.near.cells.get(&(i as u32)) {
+        out.extend(near.wide_in.iter().copied().filter(|&t| meets(t)));
+        let r = self.grid.blocks(&self.grid.range(b));
+        let mut made: Vec<u32> = near.wide.clone();
+        if Grid::cells(&r) <= 4 * Self::FEW_BLOCKS {
+            self.grid.all_blocks(&r, |i| {
+                if let Some(ids) = near.blocks.get(&i) {
                     made.extend(ids);
                 }
-                true
             });
             made.sort_unstable();
             made.dedup();
         } else {
-            made = (self.near.first_made..self.base + self.made.len() as u32).collect();
+            made.clone_from(&near.later);
         }
         out.extend(made.into_iter().filter(|&t| meets(t)));
         out
@@ -1780,6 +2018,7 @@ impl<'a> Work<'a> {
             })
             .collect();
         let mut met = Vec::new();
+
         for i in 0..tris.len() {
             for &(t, m, pm, bm) in &near {
                 if overlap(&boxes[i], &bm) && meets(i, m, pm) {
@@ -1981,17 +2220,24 @@ impl<'a> Work<'a> {
         self.made_alive.push(true);
         self.made_slot.push(slot);
         self.in_slot.insert(slot, id);
-        let r = self.grid.range(&tri_box(&self.corners(&tri)));
-        if Grid::cells(&r) <= Self::FEW_CELLS {
-            let cells = &mut self.near.cells;
-            self.grid.all(&r, |i| {
-                cells.entry(i as u32).or_default().push(id);
-                true
-            });
-        } else {
-            self.near.wide.push(id);
-        }
+        self.index_later(id);
         id
+    }
+
+    /// Indexes triangle `t` after the gathering (in [`Near::later`]).
+    fn index_later(&mut self, t: u32) {
+        let r = self
+            .grid
+            .blocks(&self.grid.range(&tri_box(&self.corners(&self.tri(t)))));
+        let near = &mut self.near;
+        near.later.push(t);
+        if Grid::cells(&r) <= Self::FEW_BLOCKS {
+            let blocks = &mut near.blocks;
+            self.grid
+                .all_blocks(&r, |i| blocks.entry(i).or_default().push(t));
+        } else {
+            near.wide.push(t);
+        }
     }
 
     /// After a change: the stars of the vertices of the new triangles `made` take them in,
@@ -2004,8 +2250,13 @@ impl<'a> Work<'a> {
         for &m in made {
             for v in self.tri(m) {
                 self.touched.insert(v, self.changes);
-                // Only vertices whose triangles are all known keep a list.
-                if let Ok(mut s) = self.star(v) {
+                // Only vertices whose triangles are all known keep a list (the dead ones
+                // in it are dropped when it is read).
+                if let Some(s) = self.stars.get_mut(&v) {
+                    if !s.contains(&m) {
+                        s.push(m);
+                    }
+                } else if let Ok(mut s) = self.star(v) {
                     if !s.contains(&m) {
                         s.push(m);
                     }

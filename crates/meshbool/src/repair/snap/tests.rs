@@ -225,15 +225,16 @@ fn keyed_rows_find_every_triangle_whose_box_meets_a_box() {
     let n = m.triangles.len();
     assert!(keyed.len() > n * 9 / 10 && keyed.iter().all(|&(_, t)| (t as usize) < n - 3));
     keyed.sort_unstable();
+    let rows_of = grid.rows_of_keys(&keyed);
     let mut rng = crate::test_util::Rng(0x5eed);
     let mut unit = || rng.unit();
     let (mut by_rows, mut whole) = (0, 0);
     for round in 0..2000 {
         let c: [f64; 3] = std::array::from_fn(|_| 2.4 * unit() - 1.2);
-        let h = [0.0, 0.01, 0.05, 0.2, 1.5][round % 5] * unit();
+        let h = [0.0, 0.01, 0.05, 0.2, 1.5, 3.0][round % 6] * unit();
         let b: Box3 = [c.map(|x| x - h), c.map(|x| x + h)];
         let mut found = Vec::new();
-        grid.keyed_near(&keyed, &b, |t| found.push(t));
+        grid.keyed_near(&keyed, &rows_of, &b, |i| found.push(keyed[i].1));
         let r = grid.range(&b);
         let rows =
             (r[1][1] - r[0][1].saturating_sub(1) + 1) * (r[1][2] - r[0][2].saturating_sub(1) + 1);
@@ -258,63 +259,141 @@ fn keyed_rows_find_every_triangle_whose_box_meets_a_box() {
 /// The scan keeps as candidates exactly the triangles touching the halo (a box test of
 /// each against the marked cells): those with a corner near the seam, the long ones
 /// crossing it with no corner near it, and among 20,000 small ones scattered at random
-/// those reaching into it from the cells next to it.
+/// those reaching into it from the cells next to it; at unit size and UTM-shifted (the
+/// scan first drops the triangles outside a box around the halo).
 #[test]
 fn the_scan_keeps_every_triangle_touching_the_halo() {
-    let base = sphere_and_long_triangles();
-    let (mut p, mut t) = (base.positions.clone(), base.triangles.clone());
-    let mut rng = crate::test_util::Rng(0xca11);
-    let mut unit = || rng.unit();
-    for _ in 0..20_000 {
-        let c: [f64; 3] = std::array::from_fn(|_| 2.2 * unit() - 1.1);
-        let n = p.len() as u32;
-        for _ in 0..3 {
-            p.push(std::array::from_fn(|k| c[k] + 0.1 * unit() - 0.05));
+    for shift in [0.0, 5.3e6] {
+        let base = sphere_and_long_triangles();
+        let (mut p, mut t) = (base.positions.clone(), base.triangles.clone());
+        let mut rng = crate::test_util::Rng(0xca11);
+        let mut unit = || rng.unit();
+        for _ in 0..20_000 {
+            let c: [f64; 3] = std::array::from_fn(|_| 2.2 * unit() - 1.1);
+            let n = p.len() as u32;
+            for _ in 0..3 {
+                p.push(std::array::from_fn(|k| c[k] + 0.1 * unit() - 0.05));
+            }
+            t.push([n, n + 1, n + 2]);
         }
-        t.push([n, n + 1, n + 2]);
+        for q in &mut p {
+            q[0] += shift;
+            q[1] -= shift;
+        }
+        let m = Mesh::new_unchecked(p, t);
+        // The seam: the equator's points.
+        let seam: Vec<u32> = (0..m.positions.len() as u32)
+            .filter(|&v| {
+                m.positions[v as usize][2].abs() < 1e-9 && v < base.positions.len() as u32 - 9
+            })
+            .collect();
+        assert_eq!(seam.len(), 64);
+        let opts = SnapOptions {
+            tolerance: 1e-3,
+            seam: &seam,
+            seam_only: true,
+            ..SnapOptions::default()
+        };
+        let grid = Grid::new(&m, opts.tolerance);
+        let (at, [halo, next_to_halo], halo_box) = seam_and_halo(&m, &opts, &grid);
+        let scan = Scan::of(
+            &m,
+            opts.tolerance,
+            &grid,
+            at.as_deref(),
+            [&halo, &next_to_halo],
+            halo_box,
+        );
+        let mut kept: Vec<u32> = scan.candidates.iter().map(|&(t, _)| t).collect();
+        kept.sort_unstable();
+        let touching: Vec<u32> = (0..m.triangles.len() as u32)
+            .filter(|&t| halo.touches(&tri_box(&m.corners(t as usize))))
+            .collect();
+        let missed = touching
+            .iter()
+            .filter(|t| kept.binary_search(t).is_err())
+            .count();
+        assert!(
+            kept == touching,
+            "shift {shift}: {} kept, {} touching the halo, {missed} of those missed",
+            kept.len(),
+            touching.len()
+        );
+        let n = base.triangles.len() as u32;
+        assert!(kept.len() > 2000 && kept.len() < 15_000, "{}", kept.len());
+        assert!(
+            (n - 3..n).all(|t| kept.contains(&t)),
+            "the long triangles cross the halo"
+        );
+        // The box around the halo: most triangles are outside it.
+        let inside = (0..m.triangles.len())
+            .filter(|&t| overlap(&tri_box(&m.corners(t)), &halo_box.expect("a halo")))
+            .count();
+        assert!(inside < m.triangles.len() / 2, "{inside}");
     }
-    let m = Mesh::new_unchecked(p, t);
-    // The seam: the equator's points.
-    let seam: Vec<u32> = (0..m.positions.len() as u32)
-        .filter(|&v| m.positions[v as usize][2].abs() < 1e-9 && v < base.positions.len() as u32 - 9)
-        .collect();
-    assert_eq!(seam.len(), 64);
-    let opts = SnapOptions {
-        tolerance: 1e-3,
-        seam: &seam,
-        seam_only: true,
-        ..SnapOptions::default()
-    };
-    let grid = Grid::new(&m, opts.tolerance);
-    let (at, [halo, next_to_halo]) = seam_and_halo(&m, &opts, &grid);
-    let scan = Scan::of(
-        &m,
-        opts.tolerance,
-        &grid,
-        at.as_deref(),
-        [&halo, &next_to_halo],
-    );
-    let mut kept: Vec<u32> = scan.candidates.iter().map(|&(t, _)| t).collect();
-    kept.sort_unstable();
-    let touching: Vec<u32> = (0..m.triangles.len() as u32)
-        .filter(|&t| halo.touches(&tri_box(&m.corners(t as usize))))
-        .collect();
-    let missed = touching
-        .iter()
-        .filter(|t| kept.binary_search(t).is_err())
-        .count();
-    assert!(
-        kept == touching,
-        "{} kept, {} touching the halo, {missed} of those missed",
-        kept.len(),
-        touching.len()
-    );
-    let n = base.triangles.len() as u32;
-    assert!(kept.len() > 2000 && kept.len() < 15_000, "{}", kept.len());
-    assert!(
-        (n - 3..n).all(|t| kept.contains(&t)),
-        "the long triangles cross the halo"
-    );
+}
+
+/// The least coordinate of each cell ([`Grid::first_at_least`]) splits the coordinates
+/// exactly: below it the cell is less, from it on not; so a box meets [`Grid::enclosing`]
+/// of a range exactly when its cells meet the range. At unit size, UTM-shifted, and
+/// where the cells are finer than the coordinates' spacing.
+#[test]
+fn the_least_coordinate_of_a_cell_splits_exactly() {
+    let mut rng = crate::test_util::Rng(0xb0c5);
+    for (lo, extent, d) in [
+        (-1.0, 2.0, 1e-3),
+        (5.3e6, 1.5e3, 1e-2),
+        (1e15, 3.0, 1e-4),
+        (-7.0e-3, 1e-6, 1e-9),
+    ] {
+        let m = Mesh::new_unchecked(
+            vec![
+                [lo, lo, lo],
+                [lo + extent, lo, lo],
+                [lo, lo + extent, lo + extent],
+            ],
+            vec![[0, 1, 2]],
+        );
+        let grid = Grid::new(&m, d);
+        for _ in 0..300 {
+            let k = (rng.next() % 3) as usize;
+            let c = (rng.next() % (grid.n[k] as u64 + 1)) as usize;
+            let x = grid.first_at_least(k, c);
+            if c == 0 {
+                assert_eq!(x, f64::NEG_INFINITY);
+                continue;
+            }
+            if c >= grid.n[k] {
+                assert_eq!(x, f64::INFINITY);
+                continue;
+            }
+            assert!(grid.cell(x, k) >= c, "{lo} {c}");
+            assert!(grid.cell(x.next_down(), k) < c, "{lo} {c}");
+        }
+        // Random boxes against random ranges.
+        for _ in 0..300 {
+            let r: [[usize; 3]; 2] = {
+                let a: [usize; 3] = std::array::from_fn(|k| (rng.next() as usize) % grid.n[k]);
+                let b: [usize; 3] = std::array::from_fn(|k| (rng.next() as usize) % grid.n[k]);
+                [
+                    std::array::from_fn(|k| a[k].min(b[k])),
+                    std::array::from_fn(|k| a[k].max(b[k])),
+                ]
+            };
+            let e = grid.enclosing(&r);
+            let mut unit = || rng.unit();
+            let p: [[f64; 3]; 2] = std::array::from_fn(|_| {
+                std::array::from_fn(|_| lo + extent * (1.2 * unit() - 0.1))
+            });
+            let b: Box3 = [
+                std::array::from_fn(|k| p[0][k].min(p[1][k])),
+                std::array::from_fn(|k| p[0][k].max(p[1][k])),
+            ];
+            let cells = grid.range(&b);
+            let meets = (0..3).all(|k| cells[0][k] <= r[1][k] && r[0][k] <= cells[1][k]);
+            assert!(!meets || overlap(&b, &e), "{lo}: {b:?} {r:?}");
+        }
+    }
 }
 
 /// Compaction from the end: the dead go, the last live ones fill the holes below the new
@@ -348,4 +427,115 @@ fn filling_from_the_end_moves_only_the_last_ones() {
         assert_eq!(kept, live);
         assert!(moves.windows(2).all(|w| w[0].0 < w[1].0));
     }
+}
+
+/// A gathering that adds to an index built before ([`Work::extend`]) leaves it answering
+/// as a brute-force search does: the live triangles around every vertex in a marked cell
+/// ([`Work::star`]) and those whose boxes meet a box the marked cells cover
+/// ([`Work::near_triangles`]), before and after changes made between the gatherings and
+/// after them, each triangle once. The union of two spheres at a tolerance that makes
+/// many seam triangles bad: three seeds gathered and fixed first, then one half of the
+/// seam, then the other.
+#[test]
+fn an_extended_index_answers_as_a_search_of_every_triangle() {
+    use crate::boolean::{boolean, Op};
+    use crate::shapes::{rigid_motion, uv_sphere};
+    let a = uv_sphere([0.0; 3], 1.0, 48, 25);
+    let b = rigid_motion(&a, [0.0, 0.0, 1.0], 0.1, [0.5, 0.0, 0.0]);
+    let r = boolean(&a, &b, Op::Union, &Default::default());
+    let m = &r.mesh;
+    let opts = SnapOptions {
+        tolerance: 0.02,
+        seam: &r.seam_vertices,
+        seam_only: true,
+        ..SnapOptions::default()
+    };
+    let grid = Grid::new(m, opts.tolerance);
+    let (at, [halo, next_to_halo], halo_box) = seam_and_halo(m, &opts, &grid);
+    let scan = Scan::of(
+        m,
+        opts.tolerance,
+        &grid,
+        at.as_deref(),
+        [&halo, &next_to_halo],
+        halo_box,
+    );
+    let bad: Vec<u32> = scan.bad.iter().map(|&(_, t)| t).collect();
+    let mut w = Work::new(m, &opts, scan, grid, halo);
+    // By the side of the seam's plane (x = 0.25): two gatherings far apart.
+    let side = |w: &Work, t: u32| w.corners(&w.tri(t))[0][1] < 0.0;
+    let (first, second): (Vec<u32>, Vec<u32>) = bad.iter().partition(|&&t| side(&w, t));
+    assert!(
+        first.len() > 20 && second.len() > 20,
+        "{} {}",
+        first.len(),
+        second.len()
+    );
+    let check = |w: &Work, what: &str| {
+        let count = w.base + w.made.len() as u32;
+        let live: Vec<u32> = (0..count).filter(|&t| w.alive(t)).collect();
+        let mut checked = 0;
+        for v in 0..m.positions.len() as u32 {
+            if w.dead.contains(&v) {
+                continue;
+            }
+            let Ok(mut star) = w.star(v) else { continue };
+            star.sort_unstable();
+            let all: Vec<u32> = live
+                .iter()
+                .copied()
+                .filter(|&t| w.tri(t).contains(&v))
+                .collect();
+            assert_eq!(star, all, "{what}: the star of {v}");
+            checked += 1;
+        }
+        let mut rng = crate::test_util::Rng(0x9a7e);
+        let mut searched = 0;
+        for _ in 0..3000 {
+            let c = w.pos(rng.next() as u32 % m.positions.len() as u32);
+            let h = 0.05 * rng.unit();
+            let b: Box3 = [c.map(|x| x - h), c.map(|x| x + h)];
+            if !w.grid.covers(&b) {
+                continue;
+            }
+            let mut near = w.near_triangles(&b);
+            near.sort_unstable();
+            let all: Vec<u32> = live
+                .iter()
+                .copied()
+                .filter(|&t| overlap(&tri_box(&w.corners(&w.tri(t))), &b))
+                .collect();
+            assert_eq!(near, all, "{what}: near {b:?}");
+            searched += 1;
+        }
+        assert!(
+            checked > 100 && searched > 100,
+            "{what}: {checked} {searched}"
+        );
+    };
+    let fix_all = |w: &mut Work, ts: &[u32]| {
+        let mut fixed = 0;
+        for &t in ts {
+            if w.alive(t) && w.bad_key(t).is_some() && w.fix(t).is_ok() {
+                fixed += 1;
+            }
+        }
+        fixed
+    };
+    // A few seeds first: the changes at the border of their cells make triangles with
+    // corners in cells the next gathering marks.
+    assert!(w.gather(&first[..3]));
+    assert!(w.near.built);
+    check(&w, "first gathering");
+    assert!(fix_all(&mut w, &first) > 0);
+    check(&w, "first changes");
+    let extended = |w: &Work| w.near.later.iter().any(|&t| t < w.base);
+    for (round, seeds) in [&first, &second].into_iter().enumerate() {
+        assert!(w.gather(seeds));
+        assert!(extended(&w), "round {round}: extended, not built anew");
+        check(&w, "a later gathering");
+        assert!(fix_all(&mut w, seeds) > 10);
+        check(&w, "later changes");
+    }
+    check(&w, "second changes");
 }
