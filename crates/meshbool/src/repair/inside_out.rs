@@ -8,7 +8,7 @@
 
 use rayon::prelude::*;
 
-use crate::classify::winding_number;
+use crate::classify::{winding_number, winding_term, FastWinding};
 use crate::vec3::{cross, dot, sub};
 use crate::Mesh;
 
@@ -78,34 +78,81 @@ pub(crate) fn inward(mesh: &Mesh) -> Inward {
     Inward { comp, inward }
 }
 
+/// Inward components up to this many get the exact winding number of the rest of the
+/// mesh at their probe (a sum over every other triangle each, O(n) per component); more
+/// share one [`FastWinding`] hierarchy: the whole mesh's winding number at every probe at
+/// once, less the component's own exact terms (so the cost stays O(n log n) with
+/// thousands of them). Either way the decision is the rest's winding below ½, where the
+/// rest's is 0 (inside out) or 1 or more (a cavity); the hierarchy's far-field error is
+/// a few hundredths.
+const EXACT_UP_TO: usize = 8;
+
 impl Inward {
     /// [`inside_out`] of `mesh`, the mesh these components are of.
     pub(crate) fn inside_out(self, mesh: &Mesh) -> (Vec<u32>, usize) {
-        let Inward { comp, inward } = self;
-        if inward.is_empty() {
+        self.inside_out_with(mesh, EXACT_UP_TO)
+    }
+
+    /// [`Inward::inside_out`] with exact sums up to `exact_up_to` inward components.
+    fn inside_out_with(self, mesh: &Mesh, exact_up_to: usize) -> (Vec<u32>, usize) {
+        if self.inward.is_empty() {
             return (Vec::new(), 0);
         }
-        let reversed: Vec<u32> = inward
-            .par_iter()
-            .copied()
-            .filter(|&c| {
-                let (mine, rest): (Vec<u32>, Vec<u32>) =
-                    (0..mesh.triangles.len() as u32).partition(|&t| comp[t as usize] == c);
-                if rest.is_empty() {
-                    return true;
-                }
-                // The centroid of the component's largest triangle: on it, off the rest.
-                let at = mesh
-                    .probe(mine.iter().map(|&t| t as usize))
-                    .expect("a component has triangles");
-                winding_number(&mesh.subset(&rest), at).round() < 1.0
-            })
+        let rest = self.rest_windings(mesh, exact_up_to);
+        let Inward { comp, inward } = self;
+        let reversed: Vec<u32> = (inward.iter().zip(&rest))
+            .filter(|&(_, w)| w.round() < 1.0)
+            .map(|(&c, _)| c)
             .collect();
         let mut triangles: Vec<u32> = (0..mesh.triangles.len() as u32)
             .filter(|&t| reversed.binary_search(&comp[t as usize]).is_ok())
             .collect();
         triangles.sort_unstable();
         (triangles, reversed.len())
+    }
+
+    /// The winding number of the rest of the mesh at a point of each inward component
+    /// (the centroid of its largest triangle: on it, off the rest), in the order of
+    /// `inward`: exact sums up to `exact_up_to` components, else from one hierarchy.
+    fn rest_windings(&self, mesh: &Mesh, exact_up_to: usize) -> Vec<f64> {
+        let Inward { comp, inward } = self;
+        // Each inward component's triangles, in one pass.
+        let mut mine: Vec<Vec<u32>> = vec![Vec::new(); inward.len()];
+        for (t, c) in comp.iter().enumerate() {
+            if let Ok(i) = inward.binary_search(c) {
+                mine[i].push(t as u32);
+            }
+        }
+        let probes: Vec<[f64; 3]> = mine
+            .iter()
+            .map(|ts| {
+                mesh.probe(ts.iter().map(|&t| t as usize))
+                    .expect("a component has triangles")
+            })
+            .collect();
+        if inward.len() <= exact_up_to {
+            return (inward.iter().zip(&probes))
+                .map(|(&c, &at)| {
+                    let rest: Vec<u32> = (0..mesh.triangles.len() as u32)
+                        .filter(|&t| comp[t as usize] != c)
+                        .collect();
+                    winding_number(&mesh.subset(&rest), at)
+                })
+                .collect();
+        }
+        let total = FastWinding::new(mesh).at_many(&probes);
+        (mine.par_iter().zip(&probes).zip(total))
+            .map(|((ts, at), total)| {
+                let own: f64 = ts
+                    .iter()
+                    .map(|&t| {
+                        let [a, b, c] = mesh.corners(t as usize);
+                        winding_term(&a, &b, &c, at)
+                    })
+                    .sum();
+                total - own
+            })
+            .collect()
     }
 }
 
@@ -172,6 +219,75 @@ mod tests {
                 (want.clone(), 2),
                 "{threads}"
             );
+        }
+    }
+
+    /// Many inward components (past [`EXACT_UP_TO`]: one hierarchy for all) are told
+    /// apart as the exact sums tell them: 40 small inside-out cubes scattered around (some
+    /// with good cubes beside them), 45 cavities in two boxes; at unit size and
+    /// UTM-shifted. Both paths give the answer the construction says.
+    #[test]
+    fn many_inward_parts_share_one_hierarchy() {
+        let cube = |c: [f64; 3], h: f64| Mesh::cuboid(c.map(|x| x - h), c.map(|x| x + h));
+        for shift in [[0.0; 3], [5.0e5, 7.0e6, 120.0]] {
+            let mut parts: Vec<Mesh> = Vec::new();
+            let mut want_parts: Vec<usize> = Vec::new();
+            // Two big boxes with 5 × 5 cavities each (one row of the second box's are
+            // left out and put inside out in the open instead).
+            for (b, x0) in [0.0, 20.0].into_iter().enumerate() {
+                parts.push(cube([x0 + 5.0, 5.0, 5.0], 5.0));
+                for i in 0..5 {
+                    for j in 0..5 {
+                        if b == 1 && i == 4 {
+                            continue;
+                        }
+                        let c = [x0 + 1.0 + 2.0 * i as f64, 1.0 + 2.0 * j as f64, 5.0];
+                        parts.push(cube(c, 0.4).flipped());
+                    }
+                }
+            }
+            for i in 0..40 {
+                let c = [
+                    -30.0 + 3.0 * (i % 10) as f64,
+                    -10.0 - 3.0 * (i / 10) as f64,
+                    0.0,
+                ];
+                want_parts.push(parts.len());
+                parts.push(cube(c, 0.7).flipped());
+                if i % 4 == 0 {
+                    parts.push(cube([c[0], c[1], 10.0], 0.7));
+                }
+            }
+            let parts: Vec<Mesh> = parts
+                .iter()
+                .map(|p| crate::shapes::rigid_motion(p, [0.0, 0.0, 1.0], 0.0, shift))
+                .collect();
+            let m = joined(&parts);
+            let mut want: Vec<u32> = Vec::new();
+            let mut at = 0u32;
+            for (i, p) in parts.iter().enumerate() {
+                let n = p.triangles.len() as u32;
+                if want_parts.contains(&i) {
+                    want.extend(at..at + n);
+                }
+                at += n;
+            }
+            let fast = inward(&m).inside_out(&m);
+            assert_eq!(fast, (want.clone(), 40), "{shift:?}: the hierarchy");
+            // The rest's winding numbers themselves: whole, and the same both ways.
+            let (w_fast, w_exact) = (
+                inward(&m).rest_windings(&m, EXACT_UP_TO),
+                inward(&m).rest_windings(&m, usize::MAX),
+            );
+            assert_eq!(w_fast.len(), 85);
+            for (f, e) in w_fast.iter().zip(&w_exact) {
+                assert!(
+                    (f - e).abs() < 0.05 && (e - e.round()).abs() < 1e-6,
+                    "{f} {e}"
+                );
+            }
+            let exact = inward(&m).inside_out_with(&m, usize::MAX);
+            assert_eq!(exact, (want, 40), "{shift:?}: exact sums");
         }
     }
 }
