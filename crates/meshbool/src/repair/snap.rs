@@ -1457,7 +1457,10 @@ impl<'a> Work<'a> {
                 }
             }
         };
-        Ok(all.iter().copied().filter(|&t| self.alive(t)).collect())
+        // One allocation (a filter's `collect` would grow from nothing).
+        let mut live = Vec::with_capacity(all.len());
+        live.extend(all.iter().copied().filter(|&t| self.alive(t)));
+        Ok(live)
     }
 
     /// Fixes bad triangles in rounds, starting from `seeds`.
@@ -1772,7 +1775,7 @@ impl<'a> Work<'a> {
     /// The live triangles whose boxes meet `b`, which the grid must cover.
     fn near_triangles(&self, b: &Box3) -> Vec<u32> {
         let meets = |t: u32| self.alive(t) && overlap(&tri_box(&self.corners(&self.tri(t))), b);
-        let mut out: Vec<u32> = Vec::new();
+        let mut out: Vec<u32> = Vec::with_capacity(64);
         let near = &self.near;
         self.grid.keyed_near(&near.keyed, &near.rows, b, |i| {
             let t = near.keyed[i].1;
@@ -1781,20 +1784,21 @@ impl<'a> Work<'a> {
             }
         });
         out.extend(near.wide_in.iter().copied().filter(|&t| meets(t)));
+        // Those indexed since: by block where the box meets few, else all of them.
         let r = self.grid.blocks(&self.grid.range(b));
-        let mut made: Vec<u32> = near.wide.clone();
+        let mut later: Vec<u32> = near.wide.clone();
         if Grid::cells(&r) <= 4 * Self::FEW_BLOCKS {
             self.grid.all_blocks(&r, |i| {
                 if let Some(ids) = near.blocks.get(&i) {
-                    made.extend(ids);
+                    later.extend(ids);
                 }
             });
-            made.sort_unstable();
-            made.dedup();
+            later.sort_unstable();
+            later.dedup();
         } else {
-            made.clone_from(&near.later);
+            later.clone_from(&near.later);
         }
-        out.extend(made.into_iter().filter(|&t| meets(t)));
+        out.extend(later.into_iter().filter(|&t| meets(t)));
         out
     }
 
@@ -2007,16 +2011,13 @@ impl<'a> Work<'a> {
         });
         // (id, corners' ids, corners, box) of each live triangle near them.
         type Candidate = (u32, [u32; 3], [[f64; 3]; 3], Box3);
-        let near: Vec<Candidate> = self
-            .near_triangles(&all)
-            .into_iter()
-            .filter(|t| !skip.contains(t))
-            .map(|t| {
-                let m = self.tri(t);
-                let pm = self.corners(&m);
-                (t, m, pm, tri_box(&pm))
-            })
-            .collect();
+        let found = self.near_triangles(&all);
+        let mut near: Vec<Candidate> = Vec::with_capacity(found.len());
+        near.extend(found.into_iter().filter(|t| !skip.contains(t)).map(|t| {
+            let m = self.tri(t);
+            let pm = self.corners(&m);
+            (t, m, pm, tri_box(&pm))
+        }));
         let mut met = Vec::new();
 
         for i in 0..tris.len() {
