@@ -1204,25 +1204,24 @@ impl Grid {
     /// [`Grid::mark`], noting the bits it set: (word, bits).
     fn mark_noting(&mut self, b: &Box3, set: &mut Vec<(usize, u64)>) -> bool {
         let r = self.range(b);
-        let (bits, mut new) = (&mut self.bits, false);
-        Self::rows_of(self.n, &r, |w, mask| {
-            let fresh = mask & !bits[w];
-            if fresh != 0 {
-                new = true;
-                bits[w] |= fresh;
-                set.push((w, fresh));
-            }
-            true
-        });
-        new
+        self.mark_range_with(&r, |w, fresh| set.push((w, fresh)))
     }
 
     /// Marks the cells of the range `r`; whether any was new.
     fn mark_range(&mut self, r: &[[usize; 3]; 2]) -> bool {
+        self.mark_range_with(r, |_, _| {})
+    }
+
+    /// [`Grid::mark_range`], telling `note` the bits newly set in each word.
+    fn mark_range_with(&mut self, r: &[[usize; 3]; 2], mut note: impl FnMut(usize, u64)) -> bool {
         let (bits, mut new) = (&mut self.bits, false);
         Self::rows_of(self.n, r, |w, mask| {
-            new |= bits[w] & mask != mask;
-            bits[w] |= mask;
+            let fresh = mask & !bits[w];
+            if fresh != 0 {
+                new = true;
+                bits[w] |= fresh;
+                note(w, fresh);
+            }
             true
         });
         new
@@ -1269,6 +1268,19 @@ struct Near {
     wide: Vec<u32>,
     /// Whether the index was built ([`Work::index`]).
     built: bool,
+}
+
+impl Near {
+    /// The triangles around vertex `v` in the index as built (none where `v` is not a
+    /// corner of a gathered triangle).
+    fn indexed_around(&self, v: u32) -> &[u32] {
+        match self.local.get(v as usize).filter(|&&l| l != u32::MAX) {
+            Some(&l) => {
+                &self.around[self.start[l as usize] as usize..self.start[l as usize + 1] as usize]
+            }
+            None => &[],
+        }
+    }
 }
 
 /// The working mesh. Triangles are never edited, only killed and made anew (so the
@@ -1448,13 +1460,7 @@ impl<'a> Work<'a> {
                 {
                     return Err(Stop::Later);
                 }
-                match self.near.local.get(v as usize).filter(|&&l| l != u32::MAX) {
-                    Some(&l) => {
-                        let n = &self.near;
-                        &n.around[n.start[l as usize] as usize..n.start[l as usize + 1] as usize]
-                    }
-                    None => &[],
-                }
+                self.near.indexed_around(v)
             }
         };
         // One allocation (a filter's `collect` would grow from nothing).
@@ -1672,13 +1678,7 @@ impl<'a> Work<'a> {
         new_around.dedup();
         for run in new_around.chunk_by(|a, b| a.0 == b.0) {
             let v = run[0].0;
-            let near = &self.near;
-            let mut star: Vec<u32> = match near.local.get(v as usize).filter(|&&l| l != u32::MAX) {
-                Some(&l) => near.around
-                    [near.start[l as usize] as usize..near.start[l as usize + 1] as usize]
-                    .to_vec(),
-                None => Vec::new(),
-            };
+            let mut star = self.near.indexed_around(v).to_vec();
             for &(_, t) in run {
                 if !star.contains(&t) {
                     star.push(t);
@@ -1786,8 +1786,8 @@ impl<'a> Work<'a> {
         out.extend(near.wide_in.iter().copied().filter(|&t| meets(t)));
         // Those indexed since: by block where the box meets few, else all of them.
         let r = self.grid.blocks(&self.grid.range(b));
-        let mut later: Vec<u32> = near.wide.clone();
-        if Grid::cells(&r) <= 4 * Self::FEW_BLOCKS {
+        let later = if Grid::cells(&r) <= 4 * Self::FEW_BLOCKS {
+            let mut later = near.wide.clone();
             self.grid.all_blocks(&r, |i| {
                 if let Some(ids) = near.blocks.get(&i) {
                     later.extend(ids);
@@ -1795,9 +1795,10 @@ impl<'a> Work<'a> {
             });
             later.sort_unstable();
             later.dedup();
+            later
         } else {
-            later.clone_from(&near.later);
-        }
+            near.later.clone()
+        };
         out.extend(later.into_iter().filter(|&t| meets(t)));
         out
     }
