@@ -518,8 +518,8 @@ pub(crate) fn corners_meet_beyond_shared(
     shared: usize,
 ) -> bool {
     use crate::kernel::{
-        certainly_apart_beyond_corner, certainly_separated, certainly_unfolded, orient2d,
-        FloatPlane,
+        certainly_apart_beyond_corner, certainly_apart_projected, certainly_separated,
+        certainly_unfolded, orient2d, FloatPlane,
     };
     // The corners of `q` that `p` does not share, all strictly on one side of `p`'s plane
     // (and at least one of them): then the two meet at most in what they share. Decided
@@ -571,16 +571,22 @@ pub(crate) fn corners_meet_beyond_shared(
     let separated = |exact| {
         apart(&pi, &vi, &pj, &vj, exact) || (shared < 2 && apart(&pj, &vj, &pi, &vi, exact))
     };
-    // Sharing one corner: a separating axis through it.
-    let beyond_corner = || {
-        let Some((kj, ki)) =
-            (0..3).find_map(|kj| vi.iter().position(|&v| v == vj[kj]).map(|ki| (kj, ki)))
-        else {
-            return false;
-        };
-        pi[ki] == pj[kj] && certainly_apart_beyond_corner(&pi, ki, &pj, kj)
+    // Sharing one corner: the shared corner's place in each.
+    let corner = || {
+        (0..3)
+            .find_map(|kj| vi.iter().position(|&v| v == vj[kj]).map(|ki| (ki, kj)))
+            .filter(|&(ki, kj)| pi[ki] == pj[kj])
     };
+    // Then shadows apart in a plane (cheap; what settles the coplanar pairs), and a
+    // separating axis (through the shared corner).
+    let shadows = || match shared {
+        0 => certainly_apart_projected(&pi, &pj, None),
+        _ => corner().is_some_and(|c| certainly_apart_projected(&pi, &pj, Some(c))),
+    };
+    let beyond_corner =
+        || corner().is_some_and(|(ki, kj)| certainly_apart_beyond_corner(&pi, ki, &pj, kj));
     if separated(false)
+        || (shared < 2 && shadows())
         || (shared == 0 && certainly_separated(&pi, &pj))
         || (shared == 1 && beyond_corner())
         || separated(true)

@@ -703,6 +703,98 @@ fn separating_axis_filter_separates_coplanar_triangles_apart_in_their_plane() {
     );
 }
 
+/// The shadow filter never calls a pair apart that meets (beyond its shared corner): corners
+/// on a grid, in general position or all in one plane (the plane z = 0, or a tilted one
+/// through grid points: shared corners, corners on edges, overlaps, touching), with no
+/// shared corner or one, as given, shifted to UTM-like coordinates, scaled, or rotated
+/// (near-contacts, rounded differently in each triangle). And it calls most coplanar pairs
+/// that are apart apart, with or without a shared corner, which the planes cannot.
+#[test]
+fn shadow_filter_only_answers_apart_when_apart() {
+    use crate::kernel::certainly_apart_projected;
+    let mut rng = Rng(0x05ad_0f11_7e55);
+    // [coplanar, with a shared corner]: (apart, said apart)
+    let mut tally = [[(0usize, 0usize); 2]; 2];
+    let mut said_not_coplanar = 0;
+    for round in 0..60_000 {
+        let coplanar = round % 2 == 0;
+        let corner = (round / 2) % 2 == 1;
+        let mut next = || (rng.next() % 5) as f64;
+        let mut point = || -> [f64; 3] {
+            let (x, y, z) = (next(), next(), next());
+            match (coplanar, round % 3) {
+                (false, _) => [x, y, z],
+                (true, 0) => [x, y, 0.0],
+                // The plane x + 2y - z = 0 through grid points.
+                (true, _) => [x, y, x + 2.0 * y],
+            }
+        };
+        let mut pa: [[f64; 3]; 3] = std::array::from_fn(|_| point());
+        let mut pb: [[f64; 3]; 3] = std::array::from_fn(|_| point());
+        let (ka, kb) = ((round / 4) % 3, (round / 12) % 3);
+        let mut vb = [10, 11, 12];
+        if corner {
+            pb[kb] = pa[ka];
+            vb[kb] = ka as u32;
+        }
+        let how = (round / 36) % 4;
+        (pa, pb) = (moved(pa, how), moved(pb, how));
+        let (Some(a), Some(b)) = (Tri::new(0, [0, 1, 2], pa), Tri::new(1, vb, pb)) else {
+            continue;
+        };
+        let shared = pa.iter().filter(|p| pb.contains(p)).count();
+        if shared != usize::from(corner) {
+            continue;
+        }
+        let meets = meet_beyond_shared_points(&a, &b);
+        let says = certainly_apart_projected(&pa, &pb, corner.then_some((ka, kb)));
+        assert!(!(meets && says), "{pa:?} {pb:?} {corner}");
+        if how != 3 && !meets {
+            let t = &mut tally[usize::from(coplanar)][usize::from(corner)];
+            t.0 += 1;
+            t.1 += usize::from(says);
+            said_not_coplanar += usize::from(says && !coplanar);
+        }
+    }
+    for (corner, &(apart, said)) in tally[1].iter().enumerate() {
+        assert!(
+            apart > 1000 && said > apart * 9 / 10,
+            "corner {corner}: {apart} {said}"
+        );
+    }
+    // Shadows separate some pairs in general position too.
+    assert!(said_not_coplanar > 1000, "{said_not_coplanar} {tally:?}");
+    // Where plain floating point gets orientations wrong (near-collinear points whose
+    // rounded differences lose their offsets, as in Kettner et al.'s examples): a corner
+    // of one triangle on a 64 × 64 grid of ulps around a point of the other's edge, the
+    // rest of it clear of the other on the far side. It meets the other exactly when it
+    // is on that edge's line or over it, about half the grid, and the unguarded sign of
+    // the determinant calls 120 of those apart.
+    let pa = [[-5.0, -11.0, 0.0], [7.0, 12.0, 0.0], [20.0, -30.0, 0.0]];
+    let mut meeting = 0;
+    for i in 0..64 {
+        for j in 0..64 {
+            let c = [
+                0.4 + i as f64 * 2f64.powi(-54),
+                -0.65 + j as f64 * 2f64.powi(-53),
+                0.0,
+            ];
+            let pb = [c, [-20.0, 10.0, 0.0], [-10.0, 20.0, 0.0]];
+            let (a, b) = (
+                Tri::new(0, [0, 1, 2], pa).unwrap(),
+                Tri::new(1, [3, 4, 5], pb).unwrap(),
+            );
+            let meets = meet_beyond_shared_points(&a, &b);
+            assert!(
+                !(meets && certainly_apart_projected(&pa, &pb, None)),
+                "{c:?}"
+            );
+            meeting += usize::from(meets);
+        }
+    }
+    assert!(meeting > 1500, "{meeting}");
+}
+
 #[test]
 fn self_seam_points_lie_on_both_triangles_and_match_the_two_mesh_seam() {
     use crate::kernel::{orient3d_plane, Sign};

@@ -172,3 +172,87 @@ pub fn certainly_separated(p: &[[f64; 3]; 3], q: &[[f64; 3]; 3]) -> bool {
     }
     false
 }
+
+/// The sign of the orientation of `a b c` in the plane when the floating-point value is
+/// certain: the determinant of the rounded differences `(b − a) × (c − a)`, whose error
+/// is below 3.4e-16 times the sum of its two products' magnitudes (Shewchuk's
+/// `ccwerrboundA`); answered only when it exceeds 1e-12 times that sum, and not where
+/// that margin overflows or underflows.
+#[inline]
+fn certain_orient2d(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Option<Sign> {
+    let l = (b[0] - a[0]) * (c[1] - a[1]);
+    let r = (b[1] - a[1]) * (c[0] - a[0]);
+    let d = l - r;
+    let margin = 1e-12 * (l.abs() + r.abs());
+    if !(margin.is_finite() && margin > 1e-250) || d.abs() <= margin {
+        return None;
+    }
+    Some(if d > 0.0 {
+        Sign::Positive
+    } else {
+        Sign::Negative
+    })
+}
+
+/// Whether triangles `p` and `q` certainly meet at most in the shared corner `corner`
+/// (`(kp, kq)`: `p[kp]` and `q[kq]` are one point), or (`None`) not at all, judged from
+/// their shadows on the coordinate plane most square to `p`'s normal: an edge's line of
+/// one shadow (through the shared corner, when there is one) with that shadow on one side
+/// and the other's corners (but the shared one) certainly on the other. Shadows that meet
+/// at most there come from triangles that do (a meeting point's shadow is in both, and a
+/// triangle whose shadow is not flat is its shadow's only preimage of each point), for
+/// any plane of projection; the one most square to `p` keeps coplanar pairs as they are.
+/// Each orientation is trusted only where its floating-point determinant exceeds 1e-12
+/// times the sum of its two products (its error is below 3.4e-16 times that, Shewchuk's
+/// bound), and not where that margin overflows or underflows. For the pairs whose planes
+/// do not separate them that are coplanar or nearly: the pieces of one cut face, side by
+/// side.
+#[inline]
+pub fn certainly_apart_projected(
+    p: &[[f64; 3]; 3],
+    q: &[[f64; 3]; 3],
+    corner: Option<(usize, usize)>,
+) -> bool {
+    let n = cross(&sub(&p[1], &p[0]), &sub(&p[2], &p[0]));
+    let drop = if n[0].abs() >= n[1].abs() && n[0].abs() >= n[2].abs() {
+        0
+    } else if n[1].abs() >= n[2].abs() {
+        1
+    } else {
+        2
+    };
+    let (u, v) = ((drop + 1) % 3, (drop + 2) % 3);
+    let (p, q) = (p.map(|x| [x[u], x[v]]), q.map(|x| [x[u], x[v]]));
+    // Each shadow's orientation, once: the exact sign is that of every rotation of it.
+    let (Some(sp), Some(sq)) = (
+        certain_orient2d(p[0], p[1], p[2]),
+        certain_orient2d(q[0], q[1], q[2]),
+    ) else {
+        return false;
+    };
+    // Edge `a b` of a shadow oriented `s` (its third corner on side `s` of the line)
+    // separates the `others` when they lie certainly on side `-s`.
+    let beyond = |a: [f64; 2], b: [f64; 2], s: Sign, others: &[[f64; 2]]| {
+        let opposite = s.reversed();
+        others
+            .iter()
+            .all(|&x| certain_orient2d(a, b, x) == Some(opposite))
+    };
+    match corner {
+        None => {
+            (0..3).any(|k| beyond(p[k], p[(k + 1) % 3], sp, &q))
+                || (0..3).any(|k| beyond(q[k], q[(k + 1) % 3], sq, &p))
+        }
+        Some((kp, kq)) => {
+            // The edges through the shared corner `o`: `o → next` has the third corner on
+            // the shadow's side, `o → previous` on the other.
+            let o = p[kp];
+            let (p1, p2) = (p[(kp + 1) % 3], p[(kp + 2) % 3]);
+            let (q1, q2) = (q[(kq + 1) % 3], q[(kq + 2) % 3]);
+            beyond(o, p1, sp, &[q1, q2])
+                || beyond(o, p2, sp.reversed(), &[q1, q2])
+                || beyond(o, q1, sq, &[p1, p2])
+                || beyond(o, q2, sq.reversed(), &[p1, p2])
+        }
+    }
+}

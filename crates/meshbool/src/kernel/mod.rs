@@ -27,7 +27,8 @@ mod triangle;
 use bounded::Bounded;
 use exact::Dyadic;
 pub use filter::{
-    certainly_apart_beyond_corner, certainly_separated, certainly_unfolded, FloatPlane,
+    certainly_apart_beyond_corner, certainly_apart_projected, certainly_separated,
+    certainly_unfolded, FloatPlane,
 };
 use interval::Interval;
 pub use triangle::{planes_line_axis, Triangle};

@@ -1113,8 +1113,8 @@ impl Grid {
 
     /// Calls `f` with the position in `keyed` ((key, id) sorted, no [`Grid::WIDE`] key,
     /// its rows `rows` ([`Grid::rows_of_keys`])) of every entry whose cells meet those of
-    /// box `b`, and perhaps a few more: a superset of the triangles whose boxes meet `b`.
-    /// Each once.
+    /// box `b` (a superset of the triangles whose boxes meet `b`), each once; of every
+    /// entry where the rows would cost more than the whole list.
     fn keyed_near(
         &self,
         keyed: &[(u32, u32)],
@@ -1124,9 +1124,9 @@ impl Grid {
     ) {
         let r = self.range(b);
         // A triangle's cells along an axis are its key's lowest cell and perhaps the next:
-        // those meeting the range have their lowest cell in it or just below it. Row by
-        // row (along x, one run of keys each), or all of them where the rows would cost
-        // more.
+        // those meeting the range have their lowest cell in it, or just below it and the
+        // key's bit for that axis set. Row by row (along x, one run of keys each), or all
+        // of them where the rows would cost more.
         let [x0, y0, z0] = r[0].map(|c| c.saturating_sub(1));
         let count = (r[1][1] - y0 + 1) * (r[1][2] - z0 + 1);
         if count.saturating_mul(Self::ROW_COST) > keyed.len() {
@@ -1139,11 +1139,20 @@ impl Grid {
                     continue;
                 };
                 let run = &keyed[start as usize..end as usize];
+                // The bits a key of this row must have.
+                let need = u32::from(y < r[0][1]) << 1 | u32::from(z < r[0][2]) << 2;
                 let lo = (self.index([x0, y, z]) as u32) << 3;
+                let mid = (self.index([r[0][0], y, z]) as u32) << 3;
                 let hi = (self.index([r[1][0], y, z]) as u32) << 3 | 7;
                 let first = run.partition_point(|&(k, _)| k < lo);
                 let last = first + run[first..].partition_point(|&(k, _)| k <= hi);
-                (start as usize + first..start as usize + last).for_each(&mut f);
+                let from = start as usize + first;
+                for (i, &(k, _)) in (from..).zip(&run[first..last]) {
+                    let need = need | u32::from(k < mid);
+                    if k & need == need {
+                        f(i);
+                    }
+                }
             }
         }
     }
@@ -1253,8 +1262,9 @@ struct Near {
     rows: FxHashMap<u32, (u32, u32)>,
     /// The gathered triangles spanning more ([`Grid::WIDE`]).
     wide_in: Vec<u32>,
-    /// Each vertex's id among the gathered triangles' vertices (`u32::MAX`: none), and
-    /// those vertices (to clear `local` for the next gathering without a new buffer).
+    /// Each vertex's id among the gathered triangles' vertices plus one (0: none; zeroed
+    /// memory, whose pages the system maps only where written), and those vertices (to
+    /// clear `local` for the next gathering without a new buffer).
     local: Vec<u32>,
     verts: Vec<u32>,
     /// The triangles (ids) around local vertex `l`: `around[start[l]..start[l + 1]]`.
@@ -1274,8 +1284,9 @@ impl Near {
     /// The triangles around vertex `v` in the index as built (none where `v` is not a
     /// corner of a gathered triangle).
     fn indexed_around(&self, v: u32) -> &[u32] {
-        match self.local.get(v as usize).filter(|&&l| l != u32::MAX) {
+        match self.local.get(v as usize).filter(|&&l| l != 0) {
             Some(&l) => {
+                let l = l - 1;
                 &self.around[self.start[l as usize] as usize..self.start[l as usize + 1] as usize]
             }
             None => &[],
@@ -1696,10 +1707,10 @@ impl<'a> Work<'a> {
         let mut local = old.local;
         if local.len() == self.mesh.positions.len() {
             for &v in &old.verts {
-                local[v as usize] = u32::MAX;
+                local[v as usize] = 0;
             }
         } else {
-            local = vec![u32::MAX; self.mesh.positions.len()];
+            local = vec![0; self.mesh.positions.len()];
         }
         let mut verts = old.verts;
         verts.clear();
@@ -1708,11 +1719,11 @@ impl<'a> Work<'a> {
             .map(|&(t, _)| {
                 self.tri(t).map(|v| {
                     let l = &mut local[v as usize];
-                    if *l == u32::MAX {
-                        *l = verts.len() as u32;
+                    if *l == 0 {
                         verts.push(v);
+                        *l = verts.len() as u32;
                     }
-                    *l
+                    *l - 1
                 })
             })
             .collect();

@@ -209,7 +209,8 @@ fn sphere_and_long_triangles() -> Mesh {
 
 /// The row-by-row search of the gathered triangles by grid key finds every triangle
 /// whose box meets the query box, once, on both of its paths (rows of small boxes, all
-/// entries for large ones): boxes from a point to the whole sphere, at random places.
+/// entries for large ones), and on rows only those whose cells meet the box's: boxes from
+/// a point to the whole sphere, at random places.
 #[test]
 fn keyed_rows_find_every_triangle_whose_box_meets_a_box() {
     let m = sphere_and_long_triangles();
@@ -242,6 +243,12 @@ fn keyed_rows_find_every_triangle_whose_box_meets_a_box() {
             whole += 1;
         } else {
             by_rows += 1;
+            // Row by row, only those whose cells meet the box's.
+            for &t in &found {
+                let c = grid.range(&tri_box(&m.corners(t as usize)));
+                let meets = (0..3).all(|k| c[0][k] <= r[1][k] && r[0][k] <= c[1][k]);
+                assert!(meets, "round {round}: {t} {c:?} {r:?}");
+            }
         }
         let n = found.len();
         found.sort_unstable();
