@@ -28,7 +28,7 @@ pub(crate) fn overlaps(a: &Box3, b: &Box3) -> bool {
 }
 
 #[inline]
-fn overlaps_f(a: &Box3f, b: &Box3f) -> bool {
+pub(crate) fn overlaps_f(a: &Box3f, b: &Box3f) -> bool {
     // Without short-circuits: six comparisons and no branch between them (about half of
     // the leaf pairs overlap, so branches would mispredict often).
     (a[0][0] <= b[1][0])

@@ -969,6 +969,97 @@ fn only_meshes_whose_large_triangles_matter_are_covered() {
     assert_eq!(found, brute);
 }
 
+/// A mesh of slivers through their pieces: bundles of slivers side by side, running the
+/// same way and the other way (pieces in opposite orders), crossing at angles and
+/// through each other, a few large triangles cut into rows of pieces under small ones.
+/// The pairs of triangles that pairs of first pieces stand for are all those that any
+/// pair of pieces stands for, from a few times fewer pairs; the self-intersection check
+/// finds what the pair-by-pair test finds.
+#[test]
+fn first_pairs_of_pieces_stand_for_every_pair_of_triangles() {
+    let mut rng = Rng(0x5111_7e55_f1a5);
+    let mut m = Mesh::default();
+    let add = |m: &mut Mesh, t: [[f64; 3]; 3]| {
+        let v = m.positions.len() as u32;
+        m.positions.extend(t);
+        m.triangles.push([v, v + 1, v + 2]);
+    };
+    for bundle in 0..6 {
+        // A direction and a place for the bundle; slivers 10 long, 1e-3 to 1e-2 wide,
+        // 0.02 apart (their pieces' boxes meet those of the next few), every other one
+        // the other way.
+        let dir = [1.0, 0.3 * bundle as f64 - 0.7, 0.2 * rng.unit() - 0.1];
+        let o = [rng.unit(), rng.unit(), 0.5 * rng.unit()];
+        for k in 0..30 {
+            let y = 0.02 * k as f64 + 0.003 * rng.unit();
+            let w = 1e-3 + 9e-3 * rng.unit();
+            let at = |s: f64, dy: f64, dz: f64| -> [f64; 3] {
+                [
+                    o[0] + s * dir[0],
+                    o[1] + y + dy + s * dir[1],
+                    o[2] + dz + s * dir[2],
+                ]
+            };
+            let t = if k % 2 == 0 {
+                [at(0.0, 0.0, 0.0), at(10.0, w, 0.0), at(10.0, 0.0, w)]
+            } else {
+                [at(10.0, 0.0, 0.0), at(0.0, w, 0.0), at(0.0, 0.0, w)]
+            };
+            add(&mut m, t);
+        }
+    }
+    // Large triangles with small ones scattered over them, some crossing them.
+    for k in 0..3 {
+        let z = 0.3 * k as f64;
+        add(&mut m, [[0.0, 0.0, z], [8.0, 0.5, z], [1.0, 7.0, z + 0.2]]);
+    }
+    for _ in 0..400 {
+        let c = [8.0 * rng.unit(), 7.0 * rng.unit(), 0.7 * rng.unit()];
+        let mut r = || 0.1 * (rng.unit() - 0.5);
+        let t = [
+            c,
+            [c[0] + r(), c[1] + r(), c[2] + r()],
+            [c[0] + r(), c[1] + r(), c[2] + r()],
+        ];
+        add(&mut m, t);
+    }
+    let typical = crate::broad::typical_size(&m, &m);
+    let (stand_in, parent) = crate::broad::cover_large(&m, typical).expect("slivers");
+    let bvh = Bvh::new(&stand_in);
+    let unique = |mut p: Vec<(u32, u32)>| {
+        p.sort_unstable();
+        p.dedup();
+        p
+    };
+    let every = piece_pairs(&bvh, &stand_in, &parent, false);
+    let first = piece_pairs(&bvh, &stand_in, &parent, true);
+    let want = unique(every.clone());
+    assert_eq!(unique(first.clone()), want);
+    // Of the slivers' pairs with each other, about one pair of pieces each.
+    let slivers = 6 * 30;
+    let of_slivers = |p: &[(u32, u32)]| p.iter().filter(|&&(_, j)| j < slivers).count();
+    let distinct = of_slivers(&want);
+    assert!(distinct > 500, "{distinct}");
+    assert!(
+        of_slivers(&every) > 8 * distinct,
+        "{} {distinct}",
+        of_slivers(&every)
+    );
+    assert!(
+        2 * of_slivers(&first) < 3 * distinct,
+        "{} {distinct}",
+        of_slivers(&first)
+    );
+    assert!(
+        2 * first.len() < every.len(),
+        "{} {}",
+        first.len(),
+        every.len()
+    );
+    assert!(!self_intersections(&m).is_empty());
+    assert_eq!(self_intersections(&m), self_intersections_brute(&m));
+}
+
 /// Coplanar triangles on either side of an edge's line: the shortcut gives exactly what
 /// the clipping of every edge gives, and it is taken for most such pairs. Corners on a
 /// 0..=4 grid of one plane (shared corners, corners on edges and on edge lines, collinear
