@@ -969,6 +969,54 @@ fn only_meshes_whose_large_triangles_matter_are_covered() {
     assert_eq!(found, brute);
 }
 
+/// The pair test with all its filters (planes, shadows, separating axes, the shared
+/// corner's or edge's shortcuts) answers as the exact intersection of the two triangles:
+/// pairs sharing no corner, one or two, on a grid in general position and in one plane
+/// (z = 0 and a tilted plane; touching, overlapping, corners on edges), as given,
+/// shifted to UTM-like coordinates, scaled and rotated.
+#[test]
+fn pair_test_answers_as_the_exact_intersection() {
+    let mut rng = Rng(0x9a1e_7e57_5a4e);
+    let mut counts = [[0usize; 2]; 3];
+    for round in 0..90_000 {
+        let shared = round % 3;
+        let plane = (round / 3) % 3;
+        let mut next = || (rng.next() % 5) as f64;
+        let mut point = || -> [f64; 3] {
+            let (x, y, z) = (next(), next(), next());
+            match plane {
+                0 => [x, y, z],
+                1 => [x, y, 0.0],
+                _ => [x, y, x + 2.0 * y],
+            }
+        };
+        let mut pa: [[f64; 3]; 3] = std::array::from_fn(|_| point());
+        let mut pb: [[f64; 3]; 3] = std::array::from_fn(|_| point());
+        let mut vb = [10, 11, 12];
+        let ka = (round / 9) % 3;
+        let kb = (round / 27) % 3;
+        for s in 0..shared {
+            let (i, j) = ((ka + s) % 3, (kb + 2 * s) % 3);
+            pb[j] = pa[i];
+            vb[j] = i as u32;
+        }
+        let how = (round / 81) % 4;
+        (pa, pb) = (moved(pa, how), moved(pb, how));
+        let (Some(a), Some(b)) = (Tri::new(0, [0, 1, 2], pa), Tri::new(1, vb, pb)) else {
+            continue;
+        };
+        if pa.iter().filter(|p| pb.contains(p)).count() != shared {
+            continue;
+        }
+        let exact = meet_beyond_shared_points(&a, &b);
+        let got = corners_meet_beyond_shared([(0, [0, 1, 2], pa), (1, vb, pb)], shared);
+        assert_eq!(got, exact, "{pa:?} {pb:?} {vb:?}");
+        counts[shared][usize::from(exact)] += 1;
+    }
+    // Each kind of sharing, met and apart, many times.
+    assert!(counts.iter().flatten().all(|&c| c > 1000), "{counts:?}");
+}
+
 /// A mesh of slivers through their pieces: bundles of slivers side by side, running the
 /// same way and the other way (pieces in opposite orders), crossing at angles and
 /// through each other, a few large triangles cut into rows of pieces under small ones.
