@@ -471,9 +471,9 @@ pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
 /// (pieces taken in the stand-in's order, the piece of the triangle of lower id first)
 /// is a candidate too: the piece before either, of the same triangle, against the other
 /// or one of its neighbours along its triangle, found by the boxes as the tree rounds
-/// them. The first candidate pair of pieces of two triangles has
-/// none before it and always stays; those of pieces side by side along two slivers,
-/// running either way, are left out but for a few.
+/// them. The first candidate pair of pieces of two triangles has none before it and
+/// always stays; those of pieces side by side along two slivers, running either way,
+/// are left out but for a few.
 fn piece_pairs(bvh: &Bvh, stand_in: &Mesh, parent: &[u32], first_only: bool) -> Vec<(u32, u32)> {
     let n = stand_in.triangles.len() as u32;
     // The pieces' boxes as the tree rounds them: two meet here exactly when the tree

@@ -40,15 +40,10 @@ impl FloatPlane {
     pub fn side(&self, q: &[f64; 3]) -> Option<Sign> {
         let d: [f64; 3] = std::array::from_fn(|k| q[k] - self.a[k]);
         let s = self.n[0] * d[0] + self.n[1] * d[1] + self.n[2] * d[2];
-        let bound = 1e-12 * self.scale * (d[0].abs() + d[1].abs() + d[2].abs());
-        if !(bound.is_finite() && bound > 1e-250) || s.abs() <= bound {
-            return None;
-        }
-        Some(if s > 0.0 {
-            Sign::Positive
-        } else {
-            Sign::Negative
-        })
+        certain_sign(
+            s,
+            1e-12 * self.scale * (d[0].abs() + d[1].abs() + d[2].abs()),
+        )
     }
 
     /// The exact side of `q` relative to the plane through `t` (this plane's triangle).
@@ -182,16 +177,16 @@ pub fn certainly_separated(p: &[[f64; 3]; 3], q: &[[f64; 3]; 3]) -> bool {
 fn certain_orient2d(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Option<Sign> {
     let l = (b[0] - a[0]) * (c[1] - a[1]);
     let r = (b[1] - a[1]) * (c[0] - a[0]);
-    let d = l - r;
-    let margin = 1e-12 * (l.abs() + r.abs());
-    if !(margin.is_finite() && margin > 1e-250) || d.abs() <= margin {
-        return None;
-    }
-    Some(if d > 0.0 {
-        Sign::Positive
-    } else {
-        Sign::Negative
-    })
+    certain_sign(l - r, 1e-12 * (l.abs() + r.abs()))
+}
+
+/// The sign of a floating-point `value` whose error is known to be far below `margin`,
+/// when its magnitude exceeds the margin; `None` otherwise, and where the margin
+/// overflows or underflows (below 1e-250, where subnormal products lose their relative
+/// accuracy).
+#[inline]
+fn certain_sign(value: f64, margin: f64) -> Option<Sign> {
+    (margin.is_finite() && margin > 1e-250 && value.abs() > margin).then(|| Sign::of_f64(value))
 }
 
 /// Whether triangles `p` and `q` certainly meet at most in the shared corner `corner`
