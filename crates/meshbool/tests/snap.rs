@@ -628,3 +628,42 @@ fn snapping_a_result_out_of_order_makes_the_ordered_mesh() {
         assert!(filled.seam_vertices.windows(2).all(|w| w[0] < w[1]));
     }
 }
+
+/// `boolean::snap_result` labels every triangle by the input it comes from (read from
+/// its provenance), so that no edge is flipped across the seam: the same snap as
+/// `repair::snap_with` given those labels, on a case whose snap depends on them (flips
+/// across the seam refused; without labels the snap differs).
+#[test]
+fn a_boolean_snap_labels_its_triangles_by_input() {
+    use meshbool::boolean::Source;
+    use meshbool::repair::{snap_with, SnapOptions};
+    let a = meshbool::shapes::uv_sphere([0.0; 3], 1.0, 100, 31);
+    let b = rigid_motion(&a, [0.0, 0.0, 1.0], 0.1, [0.5, 0.0, 0.0]);
+    let r = meshbool::boolean::boolean(&a, &b, Op::Union, &Default::default());
+    let by_input: Vec<u32> = r
+        .provenance
+        .iter()
+        .map(|p| u32::from(p.source == Source::B))
+        .collect();
+    let snapped = |labels: Option<&[u32]>| {
+        let opts = SnapOptions {
+            tolerance: D,
+            seam: &r.seam_vertices,
+            labels,
+            seam_only: true,
+            sheets: None,
+        };
+        snap_with(&r.mesh, &opts).unwrap()
+    };
+    let (with, without) = (snapped(Some(&by_input)), snapped(None));
+    assert!(
+        with.report.refused_seam > 0 && without.report != with.report,
+        "the case must depend on the labels: {:?}",
+        with.report
+    );
+    let mut s = r.clone();
+    let report = meshbool::boolean::snap_result(&mut s, D).unwrap();
+    assert_eq!(report, with.report);
+    assert_eq!(s.mesh.triangle_count(), with.mesh.triangle_count());
+    assert_eq!(s.mesh.vertex_count(), with.mesh.vertex_count());
+}

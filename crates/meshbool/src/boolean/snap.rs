@@ -20,15 +20,16 @@ use crate::{Mesh, Result};
 /// mesh has finite coordinates, as every boolean's result of valid meshes does.
 pub fn snap_result(r: &mut BooleanResult, tolerance: f64) -> Result<SnapReport> {
     check_tolerance(tolerance)?;
-    let labels = by_source(&r.provenance);
     let opts = SnapOptions {
         tolerance,
         seam: &r.seam_vertices,
-        labels: Some(&labels),
+        labels: None,
         seam_only: true,
         sheets: None,
     };
-    let (report, filled) = snap_filling(&mut r.mesh, &opts, &mut r.provenance);
+    // Each triangle labelled by its input, read from its provenance where asked.
+    let source = |p: &Provenance| u32::from(p.source == Source::B);
+    let (report, filled) = snap_filling(&mut r.mesh, &opts, &mut r.provenance, Some(source));
     if report.vertices_removed > 0 {
         r.seam_vertices = r
             .seam_vertices

@@ -263,7 +263,7 @@ pub(crate) struct Removed {
 
 /// [`snap_in_place`] of options known to be valid.
 pub(crate) fn snap_unchecked(mesh: &mut Mesh, opts: &SnapOptions) -> (SnapReport, Removed) {
-    let (report, edit) = snap_edit(mesh, opts);
+    let (report, edit) = snap_edit(mesh, opts, Labels::Given(opts.labels));
     let Some(edit) = edit else {
         return (report, Removed::default());
     };
@@ -279,13 +279,25 @@ pub(crate) fn snap_unchecked(mesh: &mut Mesh, opts: &SnapOptions) -> (SnapReport
 /// [`snap_unchecked`] without keeping the order (for a boolean's result, whose order the
 /// clean-up does not keep either): the slots of removed triangles and vertices below the
 /// new counts take the last ones, so nothing else moves; `per_triangle` (provenance)
-/// follows. Returns the report and what became of the vertices.
-pub(crate) fn snap_filling<T: Copy>(
+/// follows. `label`: each triangle's label read from what is kept for it, in place of
+/// `opts.labels` (no array of labels for a whole large result, of which only the
+/// triangles near the seam are ever asked). Returns the report and what became of the
+/// vertices.
+pub(crate) fn snap_filling<T: Copy + Sync>(
     mesh: &mut Mesh,
     opts: &SnapOptions,
     per_triangle: &mut Vec<T>,
+    label: Option<fn(&T) -> u32>,
 ) -> (SnapReport, Filled) {
-    let (report, edit) = snap_edit(mesh, opts);
+    let (report, edit) = {
+        let kept: &[T] = per_triangle;
+        let of = label.map(|l| move |t: u32| l(&kept[t as usize]));
+        let labels = match &of {
+            Some(f) => Labels::Of(f),
+            None => Labels::Given(opts.labels),
+        };
+        snap_edit(mesh, opts, labels)
+    };
     let Some(edit) = edit else {
         return (report, Filled::default());
     };
@@ -393,7 +405,7 @@ fn filled_from_end(dead: &[u32], len: usize) -> (usize, Vec<(u32, u32)>) {
 }
 
 /// The work of a snap: the report (without the removal counts) and the changes, if any.
-fn snap_edit(mesh: &Mesh, opts: &SnapOptions) -> (SnapReport, Option<Edit>) {
+fn snap_edit(mesh: &Mesh, opts: &SnapOptions, labels: Labels) -> (SnapReport, Option<Edit>) {
     let d = opts.tolerance;
     let mut report = SnapReport {
         tolerance: d,
@@ -417,7 +429,7 @@ fn snap_edit(mesh: &Mesh, opts: &SnapOptions) -> (SnapReport, Option<Edit>) {
         return (report, None);
     }
     let seeds = scan.bad.iter().map(|&(_, t)| t).collect();
-    let mut w = Work::new(mesh, opts, scan, grid, halo);
+    let mut w = Work::new(mesh, opts, labels, scan, grid, halo);
     w.report = report;
     w.run(seeds);
     let report = w.finish_report();
@@ -754,6 +766,15 @@ impl Scan {
         }
         scan
     }
+}
+
+/// Each triangle's label ([`SnapOptions::labels`]), by its id in the input.
+#[derive(Clone, Copy)]
+enum Labels<'a> {
+    /// As given in an array (or none: all alike).
+    Given(Option<&'a [u32]>),
+    /// Read from what is kept per triangle ([`snap_filling`]).
+    Of(&'a (dyn Fn(u32) -> u32 + Sync)),
 }
 
 /// Why a change was refused: the first gate that refused it.
@@ -1302,7 +1323,7 @@ struct Work<'a> {
     mesh: &'a Mesh,
     d: f64,
     seam: &'a [u32],
-    labels: Option<&'a [u32]>,
+    labels: Labels<'a>,
     sheets: Option<&'a [u32]>,
     /// The input's triangle count: the first made triangle's id.
     base: u32,
@@ -1370,13 +1391,20 @@ impl<'a> Work<'a> {
     /// The halo's margin around the boxes marked at a full pass, in cells.
     const HALO: f64 = 3.0;
 
-    fn new(mesh: &'a Mesh, opts: &SnapOptions<'a>, scan: Scan, grid: Grid, halo: Grid) -> Self {
+    fn new(
+        mesh: &'a Mesh,
+        opts: &SnapOptions<'a>,
+        labels: Labels<'a>,
+        scan: Scan,
+        grid: Grid,
+        halo: Grid,
+    ) -> Self {
         let n = mesh.triangles.len();
         Work {
             mesh,
             d: opts.tolerance,
             seam: opts.seam,
-            labels: opts.labels,
+            labels,
             sheets: opts.sheets,
             base: n as u32,
             killed: vec![false; n],
@@ -1440,7 +1468,11 @@ impl<'a> Work<'a> {
     }
 
     fn label(&self, t: u32) -> Option<u32> {
-        self.labels.map(|l| l[self.slot(t) as usize])
+        let slot = self.slot(t);
+        match self.labels {
+            Labels::Given(l) => l.map(|l| l[slot as usize]),
+            Labels::Of(f) => Some(f(slot)),
+        }
     }
 
     fn sheet(&self, t: u32) -> u32 {

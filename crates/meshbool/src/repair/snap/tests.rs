@@ -468,7 +468,7 @@ fn an_extended_index_answers_as_a_search_of_every_triangle() {
         halo_box,
     );
     let bad: Vec<u32> = scan.bad.iter().map(|&(_, t)| t).collect();
-    let mut w = Work::new(m, &opts, scan, grid, halo);
+    let mut w = Work::new(m, &opts, Labels::Given(opts.labels), scan, grid, halo);
     // By the side of the seam's plane (x = 0.25): two gatherings far apart.
     let side = |w: &Work, t: u32| w.corners(&w.tri(t))[0][1] < 0.0;
     let (first, second): (Vec<u32>, Vec<u32>) = bad.iter().partition(|&&t| side(&w, t));
