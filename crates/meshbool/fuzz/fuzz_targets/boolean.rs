@@ -258,14 +258,17 @@ fn mesh_is_tetrahedron(m: &Mesh) -> bool {
     m.vertex_count() == 4 && m.triangle_count() == 4
 }
 
-/// `m` with every coordinate multiplied by 2^e (in two steps where 2^e alone is not a
-/// normal `f64`).
+/// `x` times 2^e, in two steps (2^e alone is not a normal `f64` for every `e` used here).
+fn times_pow2(x: f64, e: i32) -> f64 {
+    x * 2f64.powi(e / 2) * 2f64.powi(e - e / 2)
+}
+
+/// `m` with every coordinate multiplied by 2^e ([`times_pow2`]).
 fn scaled(m: &Mesh, e: i32) -> Mesh {
-    let (f, g) = (2f64.powi(e / 2), 2f64.powi(e - e / 2));
     let mut m = m.clone();
     for p in m.positions_mut() {
         for x in p.iter_mut() {
-            *x = *x * f * g;
+            *x = times_pow2(*x, e);
         }
     }
     m
@@ -278,7 +281,7 @@ fn scaled(m: &Mesh, e: i32) -> Mesh {
 /// `d` × the exact result's area (at scales whose volumes `f64` holds).
 fn snapped(a: &Mesh, b: &Mesh, op: Op, d: f64, e: i32, exact: &Measures, v: f64) {
     let options = BooleanOptions {
-        snap: d * 2f64.powi(e / 2) * 2f64.powi(e - e / 2),
+        snap: times_pow2(d, e),
         ..BooleanOptions::default()
     };
     if !(options.snap.is_normal()) {
@@ -308,10 +311,9 @@ fn snapped(a: &Mesh, b: &Mesh, op: Op, d: f64, e: i32, exact: &Measures, v: f64)
     if e.abs() > 300 {
         return;
     }
-    let f = 2f64.powi(-e / 2) * 2f64.powi(-(e - e / 2));
     let change = signed_volume(&scaled(&out.mesh, -e)) - v;
-    let reported = report.volume_change * f * f * f;
-    let area = exact.area * f * f;
+    let reported = times_pow2(report.volume_change, -3 * e);
+    let area = times_pow2(exact.area, -2 * e);
     let slack = 1e-9 * (v.abs() + d * area);
     assert!(
         (change - reported).abs() <= slack,

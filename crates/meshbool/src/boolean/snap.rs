@@ -29,7 +29,7 @@ pub fn snap_result(r: &mut BooleanResult, tolerance: f64) -> Result<SnapReport> 
     };
     // Each triangle labelled by its input, read from its provenance where asked.
     let source = |p: &Provenance| u32::from(p.source == Source::B);
-    let (report, filled) = snap_filling(&mut r.mesh, &opts, &mut r.provenance, Some(source));
+    let (report, filled) = snap_filling(&mut r.mesh, &opts, &mut r.provenance, source);
     if report.vertices_removed > 0 {
         r.seam_vertices = r
             .seam_vertices

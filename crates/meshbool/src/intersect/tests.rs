@@ -715,6 +715,32 @@ fn grid_point(rng: &mut Rng, plane: usize) -> [f64; 3] {
     }
 }
 
+/// What [`grid_pair`] gives: corners of A and B, B's vertex ids, the two triangles.
+type GridPair = ([[f64; 3]; 3], [[f64; 3]; 3], [u32; 3], Tri, Tri);
+
+/// A pair of triangles for the pair tests, from corners `pa` and `pb`: `pb` takes `shared`
+/// corners of `pa` (corner `ka + s` of `pa` as corner `kb + 2s` of `pb`, with its vertex
+/// id), then both are moved by `how` ([`moved`]). The corners, `pb`'s vertex ids (`pa`'s
+/// are 0, 1, 2) and both triangles; `None` where one is degenerate or, moved, they share
+/// more corners or fewer.
+fn grid_pair(
+    pa: [[f64; 3]; 3],
+    mut pb: [[f64; 3]; 3],
+    (ka, kb): (usize, usize),
+    shared: usize,
+    how: usize,
+) -> Option<GridPair> {
+    let mut vb = [10, 11, 12];
+    for s in 0..shared {
+        let (i, j) = ((ka + s) % 3, (kb + 2 * s) % 3);
+        pb[j] = pa[i];
+        vb[j] = i as u32;
+    }
+    let (pa, pb) = (moved(pa, how), moved(pb, how));
+    let (a, b) = (Tri::new(0, [0, 1, 2], pa)?, Tri::new(1, vb, pb)?);
+    (pa.iter().filter(|p| pb.contains(p)).count() == shared).then_some((pa, pb, vb, a, b))
+}
+
 /// The shadow filter never calls a pair apart that meets (beyond its shared corner): corners
 /// on a grid, in general position or all in one plane (the plane z = 0, or a tilted one
 /// through grid points: shared corners, corners on edges, overlaps, touching), with no
@@ -737,23 +763,13 @@ fn shadow_filter_only_answers_apart_when_apart() {
             (true, _) => 2,
         };
         let mut point = || grid_point(&mut rng, plane);
-        let mut pa: [[f64; 3]; 3] = std::array::from_fn(|_| point());
-        let mut pb: [[f64; 3]; 3] = std::array::from_fn(|_| point());
+        let pa: [[f64; 3]; 3] = std::array::from_fn(|_| point());
+        let pb: [[f64; 3]; 3] = std::array::from_fn(|_| point());
         let (ka, kb) = ((round / 4) % 3, (round / 12) % 3);
-        let mut vb = [10, 11, 12];
-        if corner {
-            pb[kb] = pa[ka];
-            vb[kb] = ka as u32;
-        }
         let how = (round / 36) % 4;
-        (pa, pb) = (moved(pa, how), moved(pb, how));
-        let (Some(a), Some(b)) = (Tri::new(0, [0, 1, 2], pa), Tri::new(1, vb, pb)) else {
+        let Some((pa, pb, _, a, b)) = grid_pair(pa, pb, (ka, kb), usize::from(corner), how) else {
             continue;
         };
-        let shared = pa.iter().filter(|p| pb.contains(p)).count();
-        if shared != usize::from(corner) {
-            continue;
-        }
         let meets = meet_beyond_shared_points(&a, &b);
         let says = certainly_apart_projected(&pa, &pb, corner.then_some((ka, kb)));
         assert!(!(meets && says), "{pa:?} {pb:?} {corner}");
@@ -990,24 +1006,13 @@ fn pair_test_answers_as_the_exact_intersection() {
         let shared = round % 3;
         let plane = (round / 3) % 3;
         let mut point = || grid_point(&mut rng, plane);
-        let mut pa: [[f64; 3]; 3] = std::array::from_fn(|_| point());
-        let mut pb: [[f64; 3]; 3] = std::array::from_fn(|_| point());
-        let mut vb = [10, 11, 12];
-        let ka = (round / 9) % 3;
-        let kb = (round / 27) % 3;
-        for s in 0..shared {
-            let (i, j) = ((ka + s) % 3, (kb + 2 * s) % 3);
-            pb[j] = pa[i];
-            vb[j] = i as u32;
-        }
+        let pa: [[f64; 3]; 3] = std::array::from_fn(|_| point());
+        let pb: [[f64; 3]; 3] = std::array::from_fn(|_| point());
+        let (ka, kb) = ((round / 9) % 3, (round / 27) % 3);
         let how = (round / 81) % 4;
-        (pa, pb) = (moved(pa, how), moved(pb, how));
-        let (Some(a), Some(b)) = (Tri::new(0, [0, 1, 2], pa), Tri::new(1, vb, pb)) else {
+        let Some((pa, pb, vb, a, b)) = grid_pair(pa, pb, (ka, kb), shared, how) else {
             continue;
         };
-        if pa.iter().filter(|p| pb.contains(p)).count() != shared {
-            continue;
-        }
         let exact = meet_beyond_shared_points(&a, &b);
         let got = corners_meet_beyond_shared([(0, [0, 1, 2], pa), (1, vb, pb)], shared);
         assert_eq!(got, exact, "{pa:?} {pb:?} {vb:?}");

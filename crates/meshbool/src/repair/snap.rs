@@ -279,24 +279,19 @@ pub(crate) fn snap_unchecked(mesh: &mut Mesh, opts: &SnapOptions) -> (SnapReport
 /// [`snap_unchecked`] without keeping the order (for a boolean's result, whose order the
 /// clean-up does not keep either): the slots of removed triangles and vertices below the
 /// new counts take the last ones, so nothing else moves; `per_triangle` (provenance)
-/// follows. `label`: each triangle's label read from what is kept for it, in place of
-/// `opts.labels` (no array of labels for a whole large result, of which only the
-/// triangles near the seam are ever asked). Returns the report and what became of the
-/// vertices.
+/// follows. `label`: each triangle's label, read from what is kept for it, in place of
+/// `opts.labels` (which is not read: no array of labels for a whole large result, of
+/// which only the triangles near the seam are ever asked). Returns the report and what
+/// became of the vertices.
 pub(crate) fn snap_filling<T: Copy + Sync>(
     mesh: &mut Mesh,
     opts: &SnapOptions,
     per_triangle: &mut Vec<T>,
-    label: Option<fn(&T) -> u32>,
+    label: fn(&T) -> u32,
 ) -> (SnapReport, Filled) {
     let (report, edit) = {
         let kept: &[T] = per_triangle;
-        let of = label.map(|l| move |t: u32| l(&kept[t as usize]));
-        let labels = match &of {
-            Some(f) => Labels::Of(f),
-            None => Labels::Given(opts.labels),
-        };
-        snap_edit(mesh, opts, labels)
+        snap_edit(mesh, opts, Labels::Of(&|t| label(&kept[t as usize])))
     };
     let Some(edit) = edit else {
         return (report, Filled::default());
