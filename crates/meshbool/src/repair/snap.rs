@@ -716,7 +716,7 @@ impl Scan {
                     let key = Some(()).filter(|_| in_box).and_then(|_| {
                         let c = p.map(|q| cell(&q));
                         if (c[0] | c[1] | c[2]) >> Grid::NEAR_BIT != 0 {
-                            Some(grid.key(c)).filter(|&key| halo.touches_key(key, &p))
+                            Some(grid.key(c)).filter(|&key| halo.touches_key(key, || p))
                         } else {
                             Some(Grid::WIDE).filter(|_| grid.wide(c) && halo.touches(&tri_box(&p)))
                         }
@@ -940,11 +940,12 @@ impl Grid {
         }
     }
 
-    /// Whether a triangle with corners `p` and [`Grid::key`] `key` touches a marked cell.
+    /// Whether a triangle with [`Grid::key`] `key` touches a marked cell; `p` gives its
+    /// corners, asked only for a triangle spanning many cells.
     #[inline]
-    fn touches_key(&self, key: u32, p: &[[f64; 3]; 3]) -> bool {
+    fn touches_key(&self, key: u32, p: impl FnOnce() -> [[f64; 3]; 3]) -> bool {
         if key == Self::WIDE {
-            self.touches(&tri_box(p))
+            self.touches(&tri_box(&p()))
         } else {
             self.key_touches(key)
         }
@@ -1635,11 +1636,11 @@ impl<'a> Work<'a> {
                     let (mut ids, mut halo) = (Vec::new(), Vec::new());
                     for (i, tri) in tris.iter().enumerate() {
                         let t = (k * PIECE + i) as u32;
-                        let p = w.corners(tri);
+                        let p = || w.corners(tri);
                         let key = w.grid.key(tri.map(|v| w.cells[v as usize]));
-                        if w.halo.touches_key(key, &p) && w.alive(t) {
+                        if w.halo.touches_key(key, p) && w.alive(t) {
                             halo.push((t, key));
-                            if w.grid.touches_key(key, &p) {
+                            if w.grid.touches_key(key, p) {
                                 ids.push((t, key));
                             }
                         }
@@ -1655,9 +1656,11 @@ impl<'a> Work<'a> {
                 .par_iter()
                 .with_min_len(PIECE)
                 .filter(|&&(t, key)| {
-                    w.alive(t)
-                        && w.grid
-                            .touches_key(key, &w.corners(&w.mesh.triangles[t as usize]))
+                    // The corners only for a triangle spanning many cells (read at
+                    // random, they would cost more than the rest).
+                    w.grid
+                        .touches_key(key, || w.corners(&w.mesh.triangles[t as usize]))
+                        && w.alive(t)
                 })
                 .copied()
                 .collect()
@@ -1684,8 +1687,12 @@ impl<'a> Work<'a> {
     fn extend(&mut self, before: &Grid) {
         const PIECE: usize = 1 << 13;
         let w = &*self;
-        let newly =
-            |key: u32, p: &[[f64; 3]; 3]| w.grid.touches_key(key, p) && !before.touches_key(key, p);
+        // The corners only for a triangle spanning many cells (read at random, they would
+        // cost more than the rest).
+        let newly = |key: u32, t: u32| {
+            let p = || w.corners(&w.mesh.triangles[t as usize]);
+            w.grid.touches_key(key, p) && !before.touches_key(key, p)
+        };
         // (Every live triangle made before the index was built touches a cell marked
         // then: one of its corners is a changed vertex, whose star was known. So only
         // the candidates are new.)
@@ -1693,9 +1700,7 @@ impl<'a> Work<'a> {
             .candidates
             .par_iter()
             .with_min_len(PIECE)
-            .filter(|&&(t, key)| {
-                w.alive(t) && newly(key, &w.corners(&w.mesh.triangles[t as usize]))
-            })
+            .filter(|&&(t, key)| newly(key, t) && w.alive(t))
             .map(|&(t, _)| t)
             .collect();
         for &t in &added {
