@@ -19,6 +19,7 @@ mod fans;
 pub mod tritri;
 
 pub use curves::{chain, Polyline, PolylineXyz};
+use tritri::Piece;
 pub use tritri::{Feature, Label, TriTri};
 
 /// One of the two input meshes: the first (A) or the second (B) of a seam, boolean or
@@ -177,14 +178,21 @@ pub(crate) fn intersect_with(a: &Mesh, b: &Mesh, grid_from: usize) -> Seam {
     fn find<'t>(ids: &[u32], tris: &'t [Option<tritri::Tri>], t: u32) -> Option<&'t tritri::Tri> {
         ids.binary_search(&t).ok().and_then(|k| tris[k].as_ref())
     }
-    let results: Vec<(u32, u32, TriTri)> = pairs
-        .par_iter()
-        .filter_map(|&(i, j)| {
-            let (x, y) = (find(&ids_a, &tris_a, i)?, find(&ids_b, &tris_b, j)?);
-            match tritri::intersect(x, y) {
-                TriTri::None => None,
-                r => Some((i, j, r)),
+    // The pieces each pair shares, a block of pairs at a time (in pair order: the seam's
+    // points are numbered in the order they are first met). Coplanar pairs' pieces are
+    // made in place, with no allocation per pair.
+    let results: Vec<Vec<(u32, u32, Piece)>> = pairs
+        .par_chunks(1 << 10)
+        .map(|block| {
+            let mut out = Vec::new();
+            for &(i, j) in block {
+                let (Some(x), Some(y)) = (find(&ids_a, &tris_a, i), find(&ids_b, &tris_b, j))
+                else {
+                    continue;
+                };
+                tritri::meet(x, y, |p| out.push((i, j, p)));
             }
+            out
         })
         .collect();
     let (da, db) = (
@@ -192,7 +200,7 @@ pub(crate) fn intersect_with(a: &Mesh, b: &Mesh, grid_from: usize) -> Seam {
         tris_b.iter().filter(|t| t.is_none()).count(),
     );
 
-    let mut seam = assemble(&results, |l| l);
+    let mut seam = assemble(results.iter().flatten().copied(), |l| l);
     seam.degenerate = [da, db];
     seam.candidate_pairs = pairs.len();
     seam.from_grid = from_grid;
@@ -263,10 +271,14 @@ fn candidate_pairs(a: &Mesh, b: &Mesh, from_grid: bool) -> Vec<(u32, u32)> {
     crate::bvh::sort_pairs(pairs, a.triangles.len(), true)
 }
 
-/// A seam from the triangle pairs' intersections: points named by `name(label)` (one
-/// point per name), distinct segments with every pair they were found in, touching
-/// points. Exact constructions and positions are left to the caller.
-fn assemble(results: &[(u32, u32, TriTri)], name: impl Fn(Label) -> Label) -> Seam {
+/// A seam from the pieces of the triangle pairs' intersections (`(i, j, piece)`, in pair
+/// order): points named by `name(label)` (one point per name), distinct segments with
+/// every pair they were found in, touching points. Exact constructions and positions are
+/// left to the caller.
+fn assemble(
+    results: impl Iterator<Item = (u32, u32, Piece)>,
+    name: impl Fn(Label) -> Label,
+) -> Seam {
     let mut seam = Seam::default();
     let mut point_ids: FxHashMap<Label, u32> = FxHashMap::default();
     let mut seg_ids: FxHashMap<[u32; 2], u32> = FxHashMap::default();
@@ -277,7 +289,7 @@ fn assemble(results: &[(u32, u32, TriTri)], name: impl Fn(Label) -> Label) -> Se
             (seam.points.len() - 1) as u32
         })
     };
-    for (i, j, r) in results {
+    for (i, j, piece) in results {
         let mut add_segment = |s: [Label; 2], coplanar: bool, seam: &mut Seam| {
             let (x, y) = (id_of(s[0], seam), id_of(s[1], seam));
             if x == y {
@@ -291,20 +303,13 @@ fn assemble(results: &[(u32, u32, TriTri)], name: impl Fn(Label) -> Label) -> Se
             seam.segments[id as usize].coplanar &= coplanar;
             seam.sources.push(SegmentSource {
                 segment: id,
-                tri_a: *i,
-                tri_b: *j,
+                tri_a: i,
+                tri_b: j,
             });
         };
-        match r {
-            TriTri::None => {}
-            TriTri::Point(l) => touching.push(*l),
-            TriTri::Segment(s) => add_segment(*s, false, &mut seam),
-            TriTri::Coplanar { segments, points } => {
-                for s in segments {
-                    add_segment(*s, true, &mut seam);
-                }
-                touching.extend(points);
-            }
+        match piece {
+            Piece::Point(l) => touching.push(l),
+            Piece::Segment(s, coplanar) => add_segment(s, coplanar, &mut seam),
         }
     }
     let mut on_segment = vec![false; seam.points.len()];
@@ -379,8 +384,12 @@ pub fn self_seam(m: &Mesh, pairs: &[(u32, u32)]) -> Seam {
             }
         })
         .collect();
-    let mut seam = assemble(&results, own_label);
-    seam.vertex_on = vertices_on_features(&results);
+    let mut pieces = Vec::with_capacity(results.len());
+    for (i, j, r) in &results {
+        tritri::pieces_of(r, |p| pieces.push((*i, *j, p)));
+    }
+    let mut seam = assemble(pieces.iter().copied(), own_label);
+    seam.vertex_on = vertices_on_features(pieces.iter().copied());
     seam.candidate_pairs = pairs.len();
     seam.exact = seam
         .points
@@ -392,23 +401,19 @@ pub fn self_seam(m: &Mesh, pairs: &[(u32, u32)]) -> Seam {
 }
 
 /// The vertices that lie on another triangle's edge or face, from the raw labels of the
-/// self-intersection results (before [`own_label`] names such points by the vertex).
-fn vertices_on_features(results: &[(u32, u32, TriTri)]) -> Vec<(u32, Feature)> {
+/// self-intersection results' pieces (before [`own_label`] names such points by the
+/// vertex).
+fn vertices_on_features(results: impl Iterator<Item = (u32, u32, Piece)>) -> Vec<(u32, Feature)> {
     let mut found = Vec::new();
     let mut note = |l: &Label| match (l.a, l.b) {
         (Feature::Vertex(v), f @ (Feature::Edge(..) | Feature::Face(_)))
         | (f @ (Feature::Edge(..) | Feature::Face(_)), Feature::Vertex(v)) => found.push((v, f)),
         _ => {}
     };
-    for (_, _, r) in results {
-        match r {
-            TriTri::None => {}
-            TriTri::Point(l) => note(l),
-            TriTri::Segment(s) => s.iter().for_each(&mut note),
-            TriTri::Coplanar { segments, points } => {
-                segments.iter().flatten().for_each(&mut note);
-                points.iter().for_each(&mut note);
-            }
+    for (_, _, piece) in results {
+        match piece {
+            Piece::Point(l) => note(&l),
+            Piece::Segment(s, _) => s.iter().for_each(&mut note),
         }
     }
     found.sort_unstable();
@@ -668,15 +673,14 @@ pub(crate) fn corners_meet_beyond_shared(
 /// exact intersection, every point of it labelled: a label naming the same vertex on
 /// both sides is a shared corner).
 fn meet_beyond_shared_points(x: &tritri::Tri, y: &tritri::Tri) -> bool {
-    let labels: Vec<Label> = match tritri::intersect(x, y) {
-        TriTri::None => vec![],
-        TriTri::Point(l) => vec![l],
-        TriTri::Segment(s) => s.to_vec(),
-        TriTri::Coplanar { segments, points } => {
-            segments.into_iter().flatten().chain(points).collect()
+    let mut beyond = false;
+    tritri::meet(x, y, |p| {
+        beyond |= match p {
+            Piece::Point(l) => l.a != l.b,
+            Piece::Segment(s, _) => s.iter().any(|l| l.a != l.b),
         }
-    };
-    labels.iter().any(|l| l.a != l.b)
+    });
+    beyond
 }
 
 #[cfg(test)]

@@ -191,11 +191,21 @@ impl OnPlane {
 
 /// The points of `t` on the plane of `o`, given the sides `s` of `t`'s corners: corners on
 /// the plane and crossings of edges whose ends are on opposite sides.
-fn on_plane(t: &Tri, s: [Sign; 3], o: &Tri) -> Vec<OnPlane> {
-    let mut out = Vec::with_capacity(2);
+fn on_plane(t: &Tri, s: [Sign; 3], o: &Tri) -> [Option<OnPlane>; 2] {
+    // At most two (in place): two corners on the plane (then the third is off it and no
+    // edge crosses), or one and the crossing of the opposite edge, or two crossings.
+    let mut out = [None, None];
+    let mut push = |x: OnPlane| {
+        let free = usize::from(out[0].is_some());
+        debug_assert!(
+            out[free].is_none(),
+            "a triangle meets a plane in two points"
+        );
+        out[free] = Some(x);
+    };
     for (i, side) in s.iter().enumerate() {
         if *side == Sign::Zero {
-            out.push(OnPlane {
+            push(OnPlane {
                 point: Prepared::new(t.corner(i)),
                 own: Feature::Vertex(t.v[i]),
                 crossing: None,
@@ -205,7 +215,7 @@ fn on_plane(t: &Tri, s: [Sign; 3], o: &Tri) -> Vec<OnPlane> {
     for i in 0..3 {
         let j = (i + 1) % 3;
         if s[i].times(s[j]) == Sign::Negative {
-            out.push(OnPlane {
+            push(OnPlane {
                 point: Prepared::new(Point::lpi(
                     t.corners()[i],
                     t.corners()[j],
@@ -234,8 +244,53 @@ pub(super) fn intersect_filtered(a: &Tri, b: &Tri, line_test: bool) -> TriTri {
         return TriTri::None;
     }
     if sa == [Sign::Zero; 3] {
-        return coplanar(a, b);
+        return coplanar_filtered(a, b, true).0;
     }
+    crossing(a, b, sa, line_test)
+}
+
+/// One piece of what two triangles share: a point where they only touch, or a segment
+/// between two distinct points (coplanar or not).
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Piece {
+    Point(Label),
+    Segment([Label; 2], bool),
+}
+
+/// The pieces of `r`, in order: a coplanar pair's segments, then its points.
+pub(super) fn pieces_of(r: &TriTri, mut f: impl FnMut(Piece)) {
+    match r {
+        TriTri::None => {}
+        TriTri::Point(l) => f(Piece::Point(*l)),
+        TriTri::Segment(s) => f(Piece::Segment(*s, false)),
+        TriTri::Coplanar { segments, points } => {
+            for &s in segments {
+                f(Piece::Segment(s, true));
+            }
+            for &l in points {
+                f(Piece::Point(l));
+            }
+        }
+    }
+}
+
+/// The pieces of [`intersect`]`(a, b)`, in the same order ([`pieces_of`]), given to `f`
+/// one by one: a coplanar pair's are made in place, with no allocation.
+pub(super) fn meet(a: &Tri, b: &Tri, mut f: impl FnMut(Piece)) {
+    let sa = orient3d_sides(b.corners(), a.corners());
+    if sa[0] != Sign::Zero && sa[0] == sa[1] && sa[1] == sa[2] {
+        return;
+    }
+    if sa == [Sign::Zero; 3] {
+        coplanar_pieces(a, b, true, &mut f);
+        return;
+    }
+    pieces_of(&crossing(a, b, sa, true), f);
+}
+
+/// Triangles `a` and `b` that are not coplanar, with `a`'s corners' sides `sa` of `b`'s
+/// plane (not all one non-zero side).
+fn crossing(a: &Tri, b: &Tri, sa: [Sign; 3], line_test: bool) -> TriTri {
     let sb = orient3d_sides(a.corners(), b.corners());
     if sb[0] != Sign::Zero && sb[0] == sb[1] && sb[1] == sb[2] {
         return TriTri::None;
@@ -248,16 +303,24 @@ pub(super) fn intersect_filtered(a: &Tri, b: &Tri, line_test: bool) -> TriTri {
     let Some(axis) = planes_line_axis(a.corners(), b.corners()) else {
         return TriTri::None; // parallel distinct planes cannot get here; stay safe
     };
-    let sorted = |mut v: Vec<OnPlane>| {
-        v.sort_by(|x, y| cmp_coord_prepared(&x.point, &y.point, axis));
-        v
-    };
-    let ia = sorted(on_plane(a, sa, b));
-    let ib = sorted(on_plane(b, sb, a));
-    let (Some(a_lo), Some(b_lo)) = (ia.first(), ib.first()) else {
+    // Each triangle's points on the other's plane, the first and the last along L.
+    fn ends(v: &[Option<OnPlane>; 2], axis: usize) -> Option<(&OnPlane, &OnPlane)> {
+        match v {
+            [Some(x), Some(y)] => Some(
+                if cmp_coord_prepared(&y.point, &x.point, axis) == Ordering::Less {
+                    (y, x)
+                } else {
+                    (x, y)
+                },
+            ),
+            [Some(x), None] => Some((x, x)),
+            _ => None,
+        }
+    }
+    let (pa, pb) = (on_plane(a, sa, b), on_plane(b, sb, a));
+    let (Some((a_lo, a_hi)), Some((b_lo, b_hi))) = (ends(&pa, axis), ends(&pb, axis)) else {
         return TriTri::None;
     };
-    let (a_hi, b_hi) = (ia.last().unwrap_or(a_lo), ib.last().unwrap_or(b_lo));
     // Overlap of the two collinear intervals: [later start, earlier end].
     let lo_from_a = cmp_coord_prepared(&a_lo.point, &b_lo.point, axis) != Ordering::Less;
     let hi_from_a = cmp_coord_prepared(&a_hi.point, &b_hi.point, axis) != Ordering::Greater;
@@ -346,15 +409,26 @@ pub(super) fn apart_on_line(
         || orient3d_explicit(&p1, &p2, &r1, &r2) == Sign::Positive
 }
 
-/// Coplanar triangles: each edge clipped to the other triangle.
-fn coplanar(a: &Tri, b: &Tri) -> TriTri {
-    coplanar_filtered(a, b, true).0
+/// Coplanar triangles, each edge clipped to the other triangle, with the shortcut for
+/// triangles on either side of the line of one of their edges ([`beside`]) on or off (off
+/// only in the tests that check it against the clipping); also whether the shortcut gave
+/// the answer.
+pub(super) fn coplanar_filtered(a: &Tri, b: &Tri, shortcut: bool) -> (TriTri, bool) {
+    let (mut segments, mut points) = (Vec::new(), Vec::new());
+    let short = coplanar_pieces(a, b, shortcut, &mut |p| match p {
+        Piece::Segment(s, _) => segments.push(s),
+        Piece::Point(l) => points.push(l),
+    });
+    let r = if segments.is_empty() && points.is_empty() {
+        TriTri::None
+    } else {
+        TriTri::Coplanar { segments, points }
+    };
+    (r, short)
 }
 
-/// [`coplanar`], with the shortcut for triangles on either side of the line of one of
-/// their edges ([`beside`]) on or off (off only in the tests that check it against the
-/// clipping); also whether the shortcut gave the answer.
-pub(super) fn coplanar_filtered(a: &Tri, b: &Tri, shortcut: bool) -> (TriTri, bool) {
+/// [`coplanar_filtered`]'s pieces given to `f` (segments, then points), made in place.
+fn coplanar_pieces(a: &Tri, b: &Tri, shortcut: bool, f: &mut impl FnMut(Piece)) -> bool {
     // Every orientation the clipping needs, once: `a`'s edges against `b`'s corners and
     // `b`'s edges against `a`'s corners, in the projection along `b`'s axis (for clipping
     // `a`'s edges) and along `a`'s (for `b`'s). When both triangles project along the
@@ -369,7 +443,8 @@ pub(super) fn coplanar_filtered(a: &Tri, b: &Tri, shortcut: bool) -> (TriTri, bo
     for m in 0..3 {
         for_a.other_edges[m] = std::array::from_fn(|k| side(b, m, a, k));
         if shortcut && beyond(for_a.other_edges[m], b.sign()) {
-            return (beside(b, m, a, for_a.other_edges[m], false), true);
+            beside(b, m, a, for_a.other_edges[m], false).map(f);
+            return true;
         }
     }
     let mut sign_a = None;
@@ -386,7 +461,8 @@ pub(super) fn coplanar_filtered(a: &Tri, b: &Tri, shortcut: bool) -> (TriTri, bo
                 }
             });
             if beyond(for_a.own_edges[i], inward) {
-                return (beside(a, i, b, for_a.own_edges[i], true), true);
+                beside(a, i, b, for_a.own_edges[i], true).map(f);
+                return true;
             }
         }
     }
@@ -402,8 +478,9 @@ pub(super) fn coplanar_filtered(a: &Tri, b: &Tri, shortcut: bool) -> (TriTri, bo
             own_edges: std::array::from_fn(|i| std::array::from_fn(|m| side(b, i, a, m))),
         }
     };
-    let mut segments: Vec<[Label; 2]> = Vec::new();
-    let mut points: Vec<Label> = Vec::new();
+    // At most one clip per edge: six segments and six points at most.
+    let mut segments = Six::new([FILLER; 2]);
+    let mut points = Six::new(FILLER);
     for (own, other, own_is_a, o) in [(a, b, true, &for_a), (b, a, false, &for_b)] {
         for i in 0..3 {
             match clip_edge(own, i, other, own_is_a, o) {
@@ -416,17 +493,73 @@ pub(super) fn coplanar_filtered(a: &Tri, b: &Tri, shortcut: bool) -> (TriTri, bo
             }
         }
     }
-    segments.sort();
-    segments.dedup();
-    points.sort();
-    points.dedup();
-    points.retain(|p| !segments.iter().any(|s| s.contains(p)));
-    let r = if segments.is_empty() && points.is_empty() {
-        TriTri::None
-    } else {
-        TriTri::Coplanar { segments, points }
-    };
-    (r, false)
+    segments.sort_dedup();
+    points.sort_dedup();
+    points.retain(|p| !segments.as_slice().iter().any(|s| s.contains(p)));
+    for &s in segments.as_slice() {
+        f(Piece::Segment(s, true));
+    }
+    for &l in points.as_slice() {
+        f(Piece::Point(l));
+    }
+    false
+}
+
+/// At most six items in place: the segments or the points of one coplanar pair (each
+/// triangle's three edges clipped to the other give at most one of either each).
+struct Six<T: Copy> {
+    len: usize,
+    items: [T; 6],
+}
+
+/// A label to fill the unused places of [`Six`].
+const FILLER: Label = Label {
+    a: Feature::Face(0),
+    b: Feature::Face(0),
+};
+
+impl<T: Copy + Ord> Six<T> {
+    fn new(filler: T) -> Self {
+        Six {
+            len: 0,
+            items: [filler; 6],
+        }
+    }
+
+    fn push(&mut self, x: T) {
+        // Never more than six: see the type's comment.
+        self.items[self.len] = x;
+        self.len += 1;
+    }
+
+    fn as_slice(&self) -> &[T] {
+        &self.items[..self.len]
+    }
+
+    /// Sorted, each item once.
+    fn sort_dedup(&mut self) {
+        let items = &mut self.items[..self.len];
+        items.sort_unstable();
+        let mut kept = 0;
+        for r in 0..items.len() {
+            if kept == 0 || items[r] != items[kept - 1] {
+                items[kept] = items[r];
+                kept += 1;
+            }
+        }
+        self.len = kept;
+    }
+
+    fn retain(&mut self, keep: impl Fn(&T) -> bool) {
+        let mut kept = 0;
+        for r in 0..self.len {
+            if keep(&self.items[r]) {
+                self.items[kept] = self.items[r];
+                kept += 1;
+            }
+        }
+        self.len = kept;
+    }
 }
 
 /// Whether the corners of a triangle, with orientations `sides` against an edge of a
@@ -443,7 +576,7 @@ fn beyond(sides: [Sign; 3], inward: Sign) -> bool {
 /// surface, most coplanar candidate pairs of meshes that share faces) meet only on that
 /// line, where the edge overlaps `other`'s corners or edge there. That overlap, from input
 /// coordinates along the line, is the whole answer. `s_is_a`: `s` is the triangle of A.
-fn beside(s: &Tri, e: usize, other: &Tri, sides: [Sign; 3], s_is_a: bool) -> TriTri {
+fn beside(s: &Tri, e: usize, other: &Tri, sides: [Sign; 3], s_is_a: bool) -> Option<Piece> {
     // Positions along the line by the coordinate in which the edge is longest (exact:
     // every point here is an input point on the line, where that coordinate is monotone).
     let (e0, e1) = (e, (e + 1) % 3);
@@ -467,11 +600,11 @@ fn beside(s: &Tri, e: usize, other: &Tri, sides: [Sign; 3], s_is_a: bool) -> Tri
             at(other, k).min(at(other, l)),
             at(other, k).max(at(other, l)),
         ),
-        _ => return TriTri::None,
+        _ => return None,
     };
     let (lo, hi) = (s_lo.max(z_lo), s_hi.min(z_hi));
     if lo > hi {
-        return TriTri::None;
+        return None;
     }
     // The point at `x` on the overlap: a corner of each triangle there, else its edge
     // on the line.
@@ -490,18 +623,12 @@ fn beside(s: &Tri, e: usize, other: &Tri, sides: [Sign; 3], s_is_a: bool) -> Tri
             Label { a: there, b: own }
         }
     };
-    if lo == hi {
-        TriTri::Coplanar {
-            segments: Vec::new(),
-            points: vec![label(lo)],
-        }
+    Some(if lo == hi {
+        Piece::Point(label(lo))
     } else {
         let (x, y) = (label(lo), label(hi));
-        TriTri::Coplanar {
-            segments: vec![[x.min(y), x.max(y)]],
-            points: Vec::new(),
-        }
-    }
+        Piece::Segment([x.min(y), x.max(y)], true)
+    })
 }
 
 /// The orientation, projected along `other`'s axis, of corner `k` of triangle `x`
