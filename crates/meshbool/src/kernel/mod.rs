@@ -340,7 +340,9 @@ fn sub_exact(a: f64, b: f64) -> Option<f64> {
 fn in_safe_range(x: f64) -> bool {
     const LO: f64 = 6.223_015_277_861_142e-61; // 2^-200
     const HI: f64 = 1.606_938_044_258_990_3e60; // 2^200
-    x == 0.0 || (LO..=HI).contains(&x.abs())
+                                                // Without branches: the checks of many coordinates then run side by side.
+    let m = x.abs();
+    (x == 0.0) | (LO..=HI).contains(&m)
 }
 
 /// `a · b` when it is exact in `f64`: operands and product in [`in_safe_range`] and the
@@ -475,10 +477,11 @@ pub fn orient3d_plane(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &Point) -> Si
 /// `[2^-200, 2^200]`, all differences and their error terms are multiples of `2^-252` and
 /// below `2^201`, so products of three stay in the normal range.
 pub(crate) fn robust_safe(points: &[&[f64; 3]]) -> bool {
-    points
-        .iter()
-        .flat_map(|p| p.iter())
-        .all(|&x| in_safe_range(x))
+    // Every coordinate checked (no early exit: almost all pass, and the checks of a point's
+    // three run side by side).
+    points.iter().fold(true, |ok, p| {
+        ok & p.iter().fold(true, |ok, &x| ok & in_safe_range(x))
+    })
 }
 
 fn plane_side_explicit<T: Num>(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> T {
