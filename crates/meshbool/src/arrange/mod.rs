@@ -286,12 +286,6 @@ fn cut_triangle(
     let Some(shape) = Triangle::new(corners) else {
         return Err(local::Failed(FailReason::DegenerateTriangle));
     };
-    let mut lt = local::Local::new(corners, shape.axis(), shape.sign());
-    let mut to_local: FxHashMap<u32, u32> = FxHashMap::default();
-    for (k, &v) in tri.iter().enumerate() {
-        to_local.insert(v, k as u32);
-    }
-    let mut ids: Vec<u32> = tri.to_vec();
     // Seam points with the outer edge they lie on, if any.
     let mut mine: Vec<(u32, Option<usize>)> = points
         .on_face
@@ -310,6 +304,12 @@ fn cut_triangle(
     if mine.is_empty() && cons_t.iter().all(|c| c.iter().all(|v| tri.contains(v))) {
         return Ok((vec![tri], vec![false]));
     }
+    let mut lt = local::Local::new(corners, shape.axis(), shape.sign());
+    let mut to_local: FxHashMap<u32, u32> = FxHashMap::default();
+    for (k, &v) in tri.iter().enumerate() {
+        to_local.insert(v, k as u32);
+    }
+    let mut ids: Vec<u32> = tri.to_vec();
     chain_order(&mut mine, cons_t);
     for (g, on_edge) in mine {
         // An input vertex here is one of the mesh's own lying on this triangle (the
