@@ -249,11 +249,12 @@ pub(super) fn intersect_filtered(a: &Tri, b: &Tri, line_test: bool) -> TriTri {
     crossing(a, b, sa, line_test)
 }
 
-/// One piece of what two triangles share: a point where they only touch, or a segment
-/// between two distinct points (coplanar or not).
+/// One piece of what two triangles share, as the seam takes it in.
 #[derive(Clone, Copy, Debug)]
 pub(super) enum Piece {
+    /// A point where they only touch.
     Point(Label),
+    /// A segment between two distinct points, and whether the triangles are coplanar.
     Segment([Label; 2], bool),
 }
 
