@@ -28,8 +28,7 @@ pub fn snap_result(r: &mut BooleanResult, tolerance: f64) -> Result<SnapReport> 
         sheets: None,
     };
     // Each triangle labelled by its input, read from its provenance where asked.
-    let source = |p: &Provenance| u32::from(p.source == Source::B);
-    let (report, filled) = snap_filling(&mut r.mesh, &opts, &mut r.provenance, source);
+    let (report, filled) = snap_filling(&mut r.mesh, &opts, &mut r.provenance, source_label);
     if report.vertices_removed > 0 {
         r.seam_vertices = r
             .seam_vertices
@@ -96,10 +95,12 @@ pub(super) fn groups_of(m: &Mesh, provenance: &[Provenance], labels: &[u32]) -> 
 
 /// Each triangle's input as a label: 0 for A, 1 for B.
 fn by_source(provenance: &[Provenance]) -> Vec<u32> {
-    provenance
-        .par_iter()
-        .map(|p| u32::from(p.source == Source::B))
-        .collect()
+    provenance.par_iter().map(source_label).collect()
+}
+
+/// A triangle's label by the input it comes from: 0 for A, 1 for B.
+fn source_label(p: &Provenance) -> u32 {
+    u32::from(p.source == Source::B)
 }
 
 /// The triangles `ids` of `m` as a mesh of the vertices they use, in `m`'s order.

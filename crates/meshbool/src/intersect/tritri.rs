@@ -264,14 +264,17 @@ pub(super) fn pieces_of(r: &TriTri, mut f: impl FnMut(Piece)) {
         TriTri::None => {}
         TriTri::Point(l) => f(Piece::Point(*l)),
         TriTri::Segment(s) => f(Piece::Segment(*s, false)),
-        TriTri::Coplanar { segments, points } => {
-            for &s in segments {
-                f(Piece::Segment(s, true));
-            }
-            for &l in points {
-                f(Piece::Point(l));
-            }
-        }
+        TriTri::Coplanar { segments, points } => coplanar_to(segments, points, f),
+    }
+}
+
+/// A coplanar pair's pieces given to `f` in their order: its segments, then its points.
+fn coplanar_to(segments: &[[Label; 2]], points: &[Label], mut f: impl FnMut(Piece)) {
+    for &s in segments {
+        f(Piece::Segment(s, true));
+    }
+    for &l in points {
+        f(Piece::Point(l));
     }
 }
 
@@ -497,12 +500,7 @@ fn coplanar_pieces(a: &Tri, b: &Tri, shortcut: bool, f: &mut impl FnMut(Piece)) 
     segments.sort_dedup();
     points.sort_dedup();
     points.retain(|p| !segments.as_slice().iter().any(|s| s.contains(p)));
-    for &s in segments.as_slice() {
-        f(Piece::Segment(s, true));
-    }
-    for &l in points.as_slice() {
-        f(Piece::Point(l));
-    }
+    coplanar_to(segments.as_slice(), points.as_slice(), f);
     false
 }
 

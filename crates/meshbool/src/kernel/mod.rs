@@ -336,13 +336,12 @@ fn sub_exact(a: f64, b: f64) -> Option<f64> {
 
 /// Whether `x` is zero or of magnitude in `[2^-200, 2^200]` ([`robust_safe`]'s range):
 /// products of two such numbers are multiples of `2^-504`, so a fused residual that is
-/// not exactly zero cannot round to zero.
+/// not exactly zero cannot round to zero. Without branches, so that the checks of many
+/// coordinates run side by side.
 fn in_safe_range(x: f64) -> bool {
     const LO: f64 = 6.223_015_277_861_142e-61; // 2^-200
     const HI: f64 = 1.606_938_044_258_990_3e60; // 2^200
-                                                // Without branches: the checks of many coordinates then run side by side.
-    let m = x.abs();
-    (x == 0.0) | (LO..=HI).contains(&m)
+    (x == 0.0) | (LO..=HI).contains(&x.abs())
 }
 
 /// `a · b` when it is exact in `f64`: operands and product in [`in_safe_range`] and the
