@@ -753,11 +753,13 @@ fn bucket_by_lower<T: Copy + Default>(
 }
 
 /// The half-edges bucketed as [`bucket_by_lower`] buckets them, for every range of
-/// `step` vertices (`[p · step, (p + 1) · step)`, the last one clipped), on all threads:
-/// per chunk of triangles, each range's half-edges are counted, then written in place
-/// (each chunk into its own slice of every range's list: no list grows); then per range,
-/// its list is bucketed by lower vertex. Each range's `(v0, v1, start, half)` is what
-/// `bucket_by_lower(mesh, v0, v1, entry)` gives.
+/// vertices (`[p · step, (p + 1) · step)`, the last one clipped; `step` rounded down to
+/// a power of two, so that a vertex's range is a shift), on all threads: per chunk of
+/// triangles, each range's half-edges are counted, then listed in place (each chunk into
+/// its own slice of every range's list: no list grows), one word each: the lower vertex's
+/// offset in its range above the corner; then per range, its list is bucketed by lower
+/// vertex, each entry made from its corner's triangle. Each range's `(v0, v1, start,
+/// half)` is what `bucket_by_lower(mesh, v0, v1, entry)` gives.
 fn bucket_ranges<T: Copy + Default + Send + Sync>(
     mesh: &Mesh,
     step: u32,
@@ -767,8 +769,10 @@ fn bucket_ranges<T: Copy + Default + Send + Sync>(
     use rayon::prelude::*;
     const CHUNK: usize = 1 << 15;
     let nv = mesh.positions.len() as u32;
-    let step = step.max(1);
-    let parts = nv.div_ceil(step).max(1) as usize;
+    // The largest power of two not above `step` (at most 2^31).
+    let shift = 31 - step.max(1).leading_zeros();
+    let mask = (1u32 << shift) - 1;
+    let parts = nv.div_ceil(1 << shift).max(1) as usize;
     // The lower vertex of each half-edge of triangle `tri` that is not a loop, with the
     // half-edge's corner.
     let lower = |tri: [u32; 3]| {
@@ -784,28 +788,27 @@ fn bucket_ranges<T: Copy + Default + Send + Sync>(
             let mut c = vec![0u32; parts];
             for &tri in tris {
                 for (lo, _) in lower(tri) {
-                    c[(lo / step) as usize] += 1;
+                    c[(lo >> shift) as usize] += 1;
                 }
             }
             c
         })
         .collect();
-    // Per range, the lower vertices and entries of its half-edges, chunk after chunk.
-    let mut lists: Vec<(Vec<u32>, Vec<T>)> = (0..parts)
+    let bounds = |p: usize| {
+        let at = |p: u64| (p << shift).min(u64::from(nv)) as u32;
+        (at(p as u64), at(p as u64 + 1))
+    };
+    // Per range, its half-edges chunk after chunk: the lower vertex's offset in the range
+    // (below 2^31) in the high half of a word, the corner (`3t + k`) in the low half.
+    let mut lists: Vec<Vec<u64>> = (0..parts)
         .into_par_iter()
-        .map(|p| {
-            let n = counts.iter().map(|c| c[p] as usize).sum();
-            (vec![0u32; n], vec![T::default(); n])
-        })
+        .map(|p| vec![0u64; counts.iter().map(|c| c[p] as usize).sum()])
         .collect();
-    let mut slices: Vec<Vec<(&mut [u32], &mut [T])>> =
+    let mut slices: Vec<Vec<&mut [u64]>> =
         counts.iter().map(|_| Vec::with_capacity(parts)).collect();
-    for (p, (los, entries)) in lists.iter_mut().enumerate() {
+    for (p, words) in lists.iter_mut().enumerate() {
         let lengths: Vec<usize> = counts.iter().map(|c| c[p] as usize).collect();
-        let pieces = split_by(los, &lengths)
-            .into_iter()
-            .zip(split_by(entries, &lengths));
-        for (chunk, piece) in slices.iter_mut().zip(pieces) {
+        for (chunk, piece) in slices.iter_mut().zip(split_by(words, &lengths)) {
             chunk.push(piece);
         }
     }
@@ -818,10 +821,8 @@ fn bucket_ranges<T: Copy + Default + Send + Sync>(
             for (i, &tri) in tris.iter().enumerate() {
                 let t = (c * CHUNK + i) as u32;
                 for (lo, k) in lower(tri) {
-                    let p = (lo / step) as usize;
-                    let (los, entries) = &mut slices[p];
-                    los[at[p]] = lo;
-                    entries[at[p]] = entry(tri[k], tri[(k + 1) % 3], 3 * t + k as u32);
+                    let p = (lo >> shift) as usize;
+                    slices[p][at[p]] = (u64::from(lo & mask) << 32) | u64::from(3 * t + k as u32);
                     at[p] += 1;
                 }
             }
@@ -829,22 +830,23 @@ fn bucket_ranges<T: Copy + Default + Send + Sync>(
     lists
         .into_par_iter()
         .enumerate()
-        .map(|(p, (los, entries))| {
-            let v0 = (p as u32).saturating_mul(step).min(nv);
-            let v1 = (p as u32 + 1).saturating_mul(step).min(nv);
+        .map(|(p, words)| {
+            let (v0, v1) = bounds(p);
             let n = (v1 - v0) as usize;
             let mut start = vec![0u32; n + 1];
-            for &lo in &los {
-                start[(lo - v0) as usize + 1] += 1;
+            for &w in &words {
+                start[(w >> 32) as usize + 1] += 1;
             }
             for i in 0..n {
                 start[i + 1] += start[i];
             }
             let mut fill = start.clone();
-            let mut half = vec![T::default(); los.len()];
-            for (&lo, &e) in los.iter().zip(&entries) {
-                let i = (lo - v0) as usize;
-                half[fill[i] as usize] = e;
+            let mut half = vec![T::default(); words.len()];
+            for &w in &words {
+                let (i, h) = ((w >> 32) as usize, w as u32);
+                let tri = mesh.triangles[(h / 3) as usize];
+                let k = (h % 3) as usize;
+                half[fill[i] as usize] = entry(tri[k], tri[(k + 1) % 3], h);
                 fill[i] += 1;
             }
             (v0, v1, start, half)
@@ -977,13 +979,26 @@ mod tests {
         let want = EdgeTopology::new(&m).kind_counts();
         assert!(want.boundary > 0 && want.inconsistent > 0 && want.non_manifold > 0);
         assert_eq!(EdgeCounts::of(&m), want);
+        // The same mesh with its vertices numbered far from their triangles' order.
+        let nv = m.positions.len() as u64;
+        assert!(nv % 7919 != 0);
+        let mut spread = m.clone();
+        for t in &mut spread.triangles {
+            *t = t.map(|v| (u64::from(v) * 7919 % nv) as u32);
+        }
         let cube = EdgeCounts::of(&Mesh::unit_cube());
         assert_eq!((cube.manifold, cube.boundary), (18, 0));
         assert_eq!(EdgeCounts::of(&Mesh::default()), EdgeCounts::default());
         for threads in [1, 3, 7] {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build();
-            let got = pool.expect("pool").install(|| EdgeCounts::of(&m));
-            assert_eq!(got, want, "{threads} threads");
+            let pool = pool.expect("pool");
+            assert_eq!(
+                pool.install(|| EdgeCounts::of(&m)),
+                want,
+                "{threads} threads"
+            );
+            let got = pool.install(|| EdgeCounts::of(&spread));
+            assert_eq!(got, want, "{threads} threads, spread");
         }
     }
 
@@ -1153,23 +1168,43 @@ mod tests {
             })
             .map(|(_, &[u, v])| [v, u])
             .collect();
-        let on = |threads| {
+        let on = |m: &Mesh, seam: &[[u32; 2]], threads| {
             rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
                 .build()
                 .unwrap()
-                .install(|| SeamTopology::new(&m, &seam))
+                .install(|| SeamTopology::new(m, seam))
         };
-        let one = on(1);
+        let one = on(&m, &seam, 1);
         assert!(one.patches > 4, "{}", one.patches);
         assert!(one.is_closed());
+        // Vertices numbered far from their triangles' order too: each vertex range's
+        // half-edges then come from every chunk of triangles.
+        let nv = m.positions.len() as u64;
+        assert!(nv % 7919 != 0);
+        let spread = |v: u32| (u64::from(v) * 7919 % nv) as u32;
+        let mut spread_m = m.clone();
+        for (v, p) in m.positions.iter().enumerate() {
+            spread_m.positions[spread(v as u32) as usize] = *p;
+        }
+        for t in &mut spread_m.triangles {
+            *t = t.map(spread);
+        }
+        let spread_seam: Vec<[u32; 2]> = seam.iter().map(|e| e.map(spread)).collect();
+        let spread_one = on(&spread_m, &spread_seam, 1);
+        assert_eq!(
+            (spread_one.patches, &spread_one.patch),
+            (one.patches, &one.patch)
+        );
         for threads in [3, 8] {
-            let many = on(threads);
-            assert_eq!(many.edges, one.edges);
-            assert_eq!(many.offsets, one.offsets);
-            assert_eq!(many.uses, one.uses);
-            assert_eq!((many.patches, &many.patch), (one.patches, &one.patch));
-            assert_eq!(many.closed, one.closed);
+            for (m, seam, one) in [(&m, &seam, &one), (&spread_m, &spread_seam, &spread_one)] {
+                let many = on(m, seam, threads);
+                assert_eq!(many.edges, one.edges);
+                assert_eq!(many.offsets, one.offsets);
+                assert_eq!(many.uses, one.uses);
+                assert_eq!((many.patches, &many.patch), (one.patches, &one.patch));
+                assert_eq!(many.closed, one.closed);
+            }
         }
     }
 
