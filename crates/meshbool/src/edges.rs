@@ -343,14 +343,14 @@ struct SeamPiece {
 impl SeamPiece {
     /// Scans the edges whose lower vertex is in `v0..v1`: those on the `seam` (sorted;
     /// `on_seam` marks their lower vertices) are listed with their uses, and the triangles
-    /// around every other edge are handed to `join`.
+    /// around every other edge are handed to `join`, pair by pair (consecutive uses).
     fn scan(
         mesh: &Mesh,
         v0: u32,
         v1: u32,
         seam: &[[u32; 2]],
         on_seam: &[bool],
-        join: impl FnMut(&[EdgeUse]),
+        join: impl FnMut(u32, u32),
     ) -> SeamPiece {
         let (start, half) = bucket_by_lower(mesh, v0, v1, seam_word);
         SeamPiece::of_buckets(mesh, v0, &start, half, seam, on_seam, join)
@@ -365,7 +365,7 @@ impl SeamPiece {
         mut half: Vec<u64>,
         seam: &[[u32; 2]],
         on_seam: &[bool],
-        mut join: impl FnMut(&[EdgeUse]),
+        mut join: impl FnMut(u32, u32),
     ) -> SeamPiece {
         let mut out = SeamPiece {
             edges: Vec::new(),
@@ -383,19 +383,28 @@ impl SeamPiece {
             while let Some(&first) = rest.first() {
                 let hi = (first >> 32) as u32;
                 let n = rest.iter().take_while(|&&w| (w >> 32) as u32 == hi).count();
+                let edge = [lo as u32, hi];
+                let on = on_seam[lo] && seam.binary_search(&edge).is_ok();
+                if n == 2 && !on {
+                    // Most edges: two triangles joined, whichever way they run (closed).
+                    join(rest[0] as u32 / 3, rest[1] as u32 / 3);
+                    rest = &rest[n..];
+                    continue;
+                }
                 run.clear();
                 run.extend(rest[..n].iter().map(|&w| EdgeUse::of(mesh, lo, w as u32)));
                 // Two uses, or more in as many pairs of opposite directions (closed
                 // parts glued along the edge): the winding number is an integer.
                 out.closed &=
                     n == 2 || (n > 2 && 2 * run.iter().filter(|u| u.forward).count() == n);
-                let edge = [lo as u32, hi];
-                if on_seam[lo] && seam.binary_search(&edge).is_ok() {
+                if on {
                     out.edges.push(edge);
                     out.offsets.push(out.uses.len() as u32);
                     out.uses.extend_from_slice(&run);
                 } else {
-                    join(&run);
+                    for w in run.windows(2) {
+                        join(w[0].triangle, w[1].triangle);
+                    }
                 }
                 rest = &rest[n..];
             }
@@ -437,13 +446,6 @@ impl SharedRoots {
                 let _ = self.parent[x as usize].compare_exchange_weak(p, g, Relaxed, Relaxed);
             }
             x = g;
-        }
-    }
-
-    /// Puts the triangles of all `uses` into one component.
-    fn join_all(&self, uses: &[EdgeUse]) {
-        for w in uses.windows(2) {
-            self.join(w[0].triangle, w[1].triangle);
         }
     }
 
@@ -546,9 +548,8 @@ impl SeamTopology {
         let threads = rayon::current_num_threads();
         let (pieces, (patches, patch)) = if threads <= 2 || mesh.triangles.len() < 1 << 16 {
             let mut roots = Roots::new(mesh.triangles.len());
-            let piece = SeamPiece::scan(mesh, 0, nv as u32, &seam, &on_seam, |run| {
-                roots.join_all(run)
-            });
+            let piece =
+                SeamPiece::scan(mesh, 0, nv as u32, &seam, &on_seam, |a, b| roots.join(a, b));
             (vec![piece], roots.labels())
         } else {
             // Vertex ranges side by side, joining into one shared union-find.
@@ -557,8 +558,8 @@ impl SeamTopology {
             let pieces = bucket_ranges(mesh, step, seam_word)
                 .into_par_iter()
                 .map(|(v0, _, start, half)| {
-                    SeamPiece::of_buckets(mesh, v0, &start, half, &seam, &on_seam, |run| {
-                        roots.join_all(run)
+                    SeamPiece::of_buckets(mesh, v0, &start, half, &seam, &on_seam, |a, b| {
+                        roots.join(a, b)
                     })
                 })
                 .collect();
