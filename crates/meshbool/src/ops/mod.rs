@@ -178,10 +178,27 @@ pub fn with_threads<R: Send>(threads: Option<usize>, f: impl FnOnce() -> R + Sen
 /// The exponent `e` that brings the meshes' largest magnitude into `[1, 2)`, when outside
 /// the safe range; `None` when they are computed as given.
 fn extreme_scale(meshes: &[&Mesh]) -> Option<i32> {
-    let largest = meshes
+    use rayon::prelude::*;
+    // The largest magnitude, from the bits without the sign: for non-negative floats the
+    // order of the bit patterns is the numeric one (infinity and NaN above every finite
+    // one). Chunks side by side on large meshes.
+    let most = |ps: &[[f64; 3]]| {
+        ps.iter()
+            .flatten()
+            .map(|x| x.to_bits() & !(1 << 63))
+            .max()
+            .unwrap_or(0)
+    };
+    let bits = meshes
         .iter()
-        .flat_map(|m| m.positions.iter().flatten())
-        .fold(0.0f64, |a, &x| a.max(x.abs()));
+        .map(|m| match m.positions.len() {
+            n if n >= 1 << 16 => m.positions.par_chunks(1 << 14).map(most).max(),
+            _ => Some(most(&m.positions)),
+        })
+        .max()
+        .flatten()
+        .unwrap_or(0);
+    let largest = f64::from_bits(bits);
     if !(largest.is_finite() && largest > 0.0) {
         return None;
     }

@@ -783,6 +783,33 @@ fn tiny_and_huge_inputs_give_the_unit_result_scaled_bit_for_bit() {
     }
 }
 
+/// The largest magnitude is found on large meshes too (read in chunks side by side),
+/// wherever it lies and whatever its sign, and with a small mesh beside.
+#[test]
+fn extreme_scale_reads_every_coordinate_of_large_meshes() {
+    let n = 70_000;
+    let big = |last: [f64; 3]| {
+        let mut positions: Vec<[f64; 3]> = (0..n)
+            .map(|i| [f64::from(i) * 2f64.powi(230), 1.0, -2.0])
+            .collect();
+        positions[n as usize - 1] = last;
+        Mesh::new_unchecked(positions, vec![[0, 1, 2]])
+    };
+    let huge = big([1.0, -1.5 * 2f64.powi(300), 0.0]);
+    assert!(huge.positions.len() >= 1 << 16);
+    assert_eq!(extreme_scale(&[&huge]), Some(-300));
+    let small = Mesh::new_unchecked(vec![[0.0, 0.0, 2f64.powi(301)]; 3], vec![[0, 1, 2]]);
+    assert_eq!(extreme_scale(&[&huge, &small]), Some(-301));
+    assert_eq!(extreme_scale(&[&small, &huge]), Some(-301));
+    // The largest among the first coordinates (69,998 · 2^230, about 2^246).
+    assert_eq!(extreme_scale(&[&big([0.0; 3])]), Some(-246));
+    let tiny: Vec<[f64; 3]> = (0..n)
+        .map(|i| [f64::from(i + 1) * 2f64.powi(-300), 0.0, 0.0])
+        .collect();
+    let tiny = Mesh::new_unchecked(tiny, vec![[0, 1, 2]]);
+    assert_eq!(extreme_scale(&[&tiny]), Some(284));
+}
+
 #[test]
 fn closing_and_cut_fill_at_extreme_scales_are_the_unit_results_scaled() {
     // Before: capping an open box at 2^300 reversed the cap (a float product of its
