@@ -295,7 +295,7 @@ impl Operand {
         // Triangles reversed at the door (orientation, inside-out components).
         let mut flipped = vec![false; mesh.triangles.len()];
         let mut counts = found_counts;
-        let mut reoriented_triangles = 0;
+        let (mut reoriented_triangles, mut reoriented) = (0, false);
         if checks.orient && found_counts.is_some_and(|c| c.inconsistent > 0) {
             let (oriented, r) = crate::repair::orient(&mesh, crate::repair::Facing::Majority);
             let after = EdgeCounts::of(&oriented);
@@ -306,6 +306,7 @@ impl Operand {
                     *f = oriented.triangles[t] != mesh.triangles[t];
                 }
                 reoriented_triangles = r.flipped;
+                reoriented = true;
                 mesh = oriented;
                 inward = None;
                 counts = Some(after);
@@ -338,9 +339,14 @@ impl Operand {
             mesh.triangles[t as usize].swap(1, 2);
             flipped[t as usize] ^= true;
         }
-        let reversed: Vec<u32> = (0..flipped.len() as u32)
-            .filter(|&t| flipped[t as usize])
-            .collect();
+        // Listed from the flags only where any were set (a scan of every triangle).
+        let reversed: Vec<u32> = if reoriented || !reversed.is_empty() {
+            (0..flipped.len() as u32)
+                .filter(|&t| flipped[t as usize])
+                .collect()
+        } else {
+            Vec::new()
+        };
         // Edges of more than two triangles (closed parts glued along edges, a part given
         // twice) are separated into sheets by the resolve.
         let glued_input = counts.is_some_and(|c| c.inconsistent == 0 && c.non_manifold > 0);
