@@ -795,10 +795,6 @@ fn bucket_ranges<T: Copy + Default + Send + Sync>(
             c
         })
         .collect();
-    let bounds = |p: usize| {
-        let at = |p: u64| (p << shift).min(u64::from(nv)) as u32;
-        (at(p as u64), at(p as u64 + 1))
-    };
     // Per range, its half-edges chunk after chunk: the lower vertex's offset in the range
     // (below 2^31) in the high half of a word, the corner (`3t + k`) in the low half.
     let mut lists: Vec<Vec<u64>> = (0..parts)
@@ -832,7 +828,8 @@ fn bucket_ranges<T: Copy + Default + Send + Sync>(
         .into_par_iter()
         .enumerate()
         .map(|(p, words)| {
-            let (v0, v1) = bounds(p);
+            let v0 = ((p as u64) << shift).min(u64::from(nv)) as u32;
+            let v1 = ((p as u64 + 1) << shift).min(u64::from(nv)) as u32;
             let n = (v1 - v0) as usize;
             let mut start = vec![0u32; n + 1];
             for &w in &words {

@@ -192,11 +192,10 @@ fn extreme_scale(meshes: &[&Mesh]) -> Option<i32> {
     let bits = meshes
         .iter()
         .map(|m| match m.positions.len() {
-            n if n >= 1 << 16 => m.positions.par_chunks(1 << 14).map(most).max(),
-            _ => Some(most(&m.positions)),
+            n if n >= 1 << 16 => m.positions.par_chunks(1 << 14).map(most).max().unwrap_or(0),
+            _ => most(&m.positions),
         })
         .max()
-        .flatten()
         .unwrap_or(0);
     let largest = f64::from_bits(bits);
     if !(largest.is_finite() && largest > 0.0) {

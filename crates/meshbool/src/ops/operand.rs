@@ -295,7 +295,7 @@ impl Operand {
         // Triangles reversed at the door (orientation, inside-out components).
         let mut flipped = vec![false; mesh.triangles.len()];
         let mut counts = found_counts;
-        let (mut reoriented_triangles, mut reoriented) = (0, false);
+        let mut reoriented_triangles = 0;
         if checks.orient && found_counts.is_some_and(|c| c.inconsistent > 0) {
             let (oriented, r) = crate::repair::orient(&mesh, crate::repair::Facing::Majority);
             let after = EdgeCounts::of(&oriented);
@@ -306,7 +306,6 @@ impl Operand {
                     *f = oriented.triangles[t] != mesh.triangles[t];
                 }
                 reoriented_triangles = r.flipped;
-                reoriented = true;
                 mesh = oriented;
                 inward = None;
                 counts = Some(after);
@@ -339,8 +338,9 @@ impl Operand {
             mesh.triangles[t as usize].swap(1, 2);
             flipped[t as usize] ^= true;
         }
-        // Listed from the flags only where any were set (a scan of every triangle).
-        let reversed: Vec<u32> = if reoriented || !reversed.is_empty() {
+        // Listed from the flags only where any were set (a scan of every triangle): none
+        // is when no triangle was reoriented or reversed.
+        let reversed: Vec<u32> = if reoriented_triangles > 0 || !reversed.is_empty() {
             (0..flipped.len() as u32)
                 .filter(|&t| flipped[t as usize])
                 .collect()
