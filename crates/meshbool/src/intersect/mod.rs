@@ -9,7 +9,7 @@
 use rayon::prelude::*;
 use rustc_hash::{FxHashMap, FxHashSet};
 
-use crate::bvh::Bvh;
+use crate::bvh::{Bvh, KeptTree};
 use crate::kernel::{cross_sign, Enclosure, Point, Sign};
 use crate::Mesh;
 
@@ -154,14 +154,20 @@ fn tri(m: &Mesh, t: usize) -> Option<tritri::Tri> {
 /// at the same position would name one point twice and break the curves there.
 /// Degenerate triangles are left out and counted in [`Seam::degenerate`].
 pub fn intersect(a: &Mesh, b: &Mesh) -> Seam {
-    intersect_with(a, b, GRID_FROM)
+    intersect_with(a, b, GRID_FROM, [None, None])
 }
 
 /// [`intersect`], with candidate pairs from the grid from `grid_from` triangles in both
-/// meshes together ([`GRID_FROM`] by default; tests set it to force either path).
-pub(crate) fn intersect_with(a: &Mesh, b: &Mesh, grid_from: usize) -> Seam {
+/// meshes together ([`GRID_FROM`] by default; tests set it to force either path), and
+/// below from the whole trees `kept` keeps of `a` and `b` where they have them.
+pub(crate) fn intersect_with(
+    a: &Mesh,
+    b: &Mesh,
+    grid_from: usize,
+    kept: [Option<&KeptTree>; 2],
+) -> Seam {
     let from_grid = a.triangles.len() + b.triangles.len() >= grid_from;
-    let pairs = candidate_pairs(a, b, from_grid);
+    let pairs = candidate_pairs(a, b, from_grid, kept);
     // Set up every candidate triangle once (sorted ids, looked up by binary search); the
     // degenerate ones are left out of the test and counted. Degenerate triangles elsewhere
     // cannot touch the other mesh and change nothing.
@@ -215,10 +221,29 @@ pub(crate) fn intersect_with(a: &Mesh, b: &Mesh, grid_from: usize) -> Seam {
 
 /// The triangle pairs of `a` and `b` whose boxes overlap, sorted; large triangles are
 /// looked at through the smaller boxes of their pieces ([`crate::broad::cover_large`]).
-fn candidate_pairs(a: &Mesh, b: &Mesh, from_grid: bool) -> Vec<(u32, u32)> {
-    let pairs_of = |a: &Mesh, b: &Mesh| {
+/// Of two trees, a mesh used whole takes the one `kept` keeps of it, where it has one
+/// ([`KeptTree`]).
+fn candidate_pairs(
+    a: &Mesh,
+    b: &Mesh,
+    from_grid: bool,
+    kept: [Option<&KeptTree>; 2],
+) -> Vec<(u32, u32)> {
+    let pairs_of = |a: &Mesh, b: &Mesh, kept: [Option<&Bvh>; 2]| {
         if from_grid {
             crate::broad::overlapping_pairs(a, b)
+        } else if let [Some(ta), Some(tb)] = kept {
+            ta.overlapping_pairs(a, tb, b)
+        } else if let [Some(ta), None] = kept {
+            let Some(box_a) = ta.bounds() else {
+                return Vec::new();
+            };
+            ta.overlapping_pairs(a, &Bvh::new_within(b, &box_a), b)
+        } else if let [None, Some(tb)] = kept {
+            let Some(box_b) = tb.bounds() else {
+                return Vec::new();
+            };
+            Bvh::new_within(a, &box_b).overlapping_pairs(a, tb, b)
         } else {
             // Each tree holds only the triangles that can meet the other mesh at all. Of
             // meshes of unlike sizes (a terrain and a pit shell), the larger is indexed
@@ -254,12 +279,18 @@ fn candidate_pairs(a: &Mesh, b: &Mesh, from_grid: bool) -> Vec<(u32, u32)> {
         || crate::broad::cover_large(a, typical),
         || crate::broad::cover_large(b, typical),
     );
+    // Only a mesh used whole has its tree kept.
+    let whole = [(a, ca.is_none()), (b, cb.is_none())];
+    let trees = std::array::from_fn(|k| {
+        let (m, whole) = whole[k];
+        kept[k].filter(|_| whole && !from_grid)?.get(m)
+    });
     if ca.is_none() && cb.is_none() {
-        return pairs_of(a, b);
+        return pairs_of(a, b, trees);
     }
     let (ma, pa) = ca.as_ref().map_or((a, None), |(m, p)| (m, Some(p)));
     let (mb, pb) = cb.as_ref().map_or((b, None), |(m, p)| (m, Some(p)));
-    let mut pairs = pairs_of(ma, mb);
+    let mut pairs = pairs_of(ma, mb, trees);
     pairs.par_iter_mut().for_each(|(i, j)| {
         if let Some(p) = pa {
             *i = p[*i as usize];
@@ -544,7 +575,8 @@ pub(crate) fn crossings_between(parts: &[&Mesh], all: &Mesh, starts: &[u32]) -> 
         .par_iter()
         .flat_map_iter(|&(i, j)| {
             let (a, b) = (parts[i], parts[j]);
-            candidate_pairs(a, b, a.triangles.len() + b.triangles.len() >= GRID_FROM)
+            let from_grid = a.triangles.len() + b.triangles.len() >= GRID_FROM;
+            candidate_pairs(a, b, from_grid, [None, None])
                 .into_par_iter()
                 .map(|(x, y)| (x + starts[i], y + starts[j]))
                 .filter(|&(x, y)| meets_beyond_shared(all, x, y, 0))

@@ -935,8 +935,20 @@ fn large_triangles_are_covered_by_their_pieces() {
         .collect();
     assert!(meets.len() > 500, "{}", meets.len());
     let boxes = crate::broad::overlapping_pairs(&a, &b).len();
+    // A's whole tree, kept and built, is not taken: A is looked at through its pieces.
+    let (kept_a, kept_b) = (KeptTree::default(), KeptTree::default());
+    for _ in 0..2 {
+        kept_a.get(&a);
+        kept_b.get(&b);
+    }
+    assert!(kept_a.is_built() && kept_b.is_built());
+    let without = candidate_pairs(&a, &b, false, [None, None]);
+    assert_eq!(
+        candidate_pairs(&a, &b, false, [Some(&kept_a), Some(&kept_b)]),
+        without
+    );
     for grid in [false, true] {
-        let pairs = candidate_pairs(&a, &b, grid);
+        let pairs = candidate_pairs(&a, &b, grid, [None, None]);
         for p in &meets {
             assert!(
                 pairs.binary_search(p).is_ok(),
@@ -1210,6 +1222,20 @@ fn meshes_of_unlike_sizes_give_every_overlapping_pair() {
         );
         let want = Bvh::new(a).overlapping_pairs(a, &Bvh::new(b), b);
         assert!(!want.is_empty());
-        assert_eq!(candidate_pairs(a, b, false), want);
+        assert_eq!(candidate_pairs(a, b, false, [None, None]), want);
+        // With the whole tree kept of either mesh or both: built on the second request.
+        let (kept_a, kept_b) = (KeptTree::default(), KeptTree::default());
+        for kept in [[Some(&kept_a), None], [None, Some(&kept_b)]] {
+            assert_eq!(candidate_pairs(a, b, false, kept), want);
+        }
+        assert!(!kept_a.is_built() && !kept_b.is_built());
+        for kept in [
+            [Some(&kept_a), None],
+            [None, Some(&kept_b)],
+            [Some(&kept_a), Some(&kept_b)],
+        ] {
+            assert_eq!(candidate_pairs(a, b, false, kept), want);
+        }
+        assert!(kept_a.is_built() && kept_b.is_built());
     }
 }

@@ -11,6 +11,7 @@ use serde::{Deserialize, Serialize};
 
 use super::{with_threads, RunOptions};
 use crate::boolean::{resolve, FillRule, PipelineOptions, ResolveReport, Stage};
+use crate::bvh::KeptTree;
 use crate::edges::EdgeCounts;
 use crate::intersect::self_intersections;
 use crate::{weld_exact, Error, Mesh, Result};
@@ -230,6 +231,9 @@ pub struct Operand {
     /// Whether `mesh` is not manifold (a resolved operand whose parts touch along edges
     /// or at vertices, kept welded there).
     glued: bool,
+    /// The whole tree of `mesh`'s triangles, built when a second boolean asks for it and
+    /// kept for the later ones.
+    tree: KeptTree,
 }
 
 impl Operand {
@@ -394,6 +398,7 @@ impl Operand {
             parent,
             reversed,
             glued: glued_result,
+            tree: KeptTree::default(),
         })
     }
 
@@ -402,6 +407,12 @@ impl Operand {
     pub(crate) fn scale(&mut self, e: i32) {
         super::scale_points(&mut self.mesh.positions, e);
         self.report.scale_back(e);
+        self.tree = KeptTree::default();
+    }
+
+    /// The whole tree of [`Operand::mesh`]'s triangles that booleans keep between calls.
+    pub(crate) fn kept_tree(&self) -> &KeptTree {
+        &self.tree
     }
 
     /// The input triangle that triangle `t` of [`Operand::mesh`] is part of: `t` itself

@@ -11,7 +11,7 @@ use std::str::FromStr;
 use serde::{Deserialize, Serialize};
 
 use super::{Checks, Input, Operand, OperandReport, RunOptions, SCHEMA};
-use crate::boolean::{CleanupReport, Group, Keep, Op, Provenance, Stage};
+use crate::boolean::{CleanupReport, Group, Keep, Op, PipelineOptions, Provenance, Stage};
 use crate::edges::components_merged;
 use crate::measure::{area, mesh_stats, signed_volume, MeshStats};
 use crate::repair::{split_nonmanifold, NonManifoldReport, SnapReport};
@@ -151,7 +151,11 @@ pub fn split<'a>(
         return out;
     }
     let run = |a: &Operand, b: &Operand| {
-        let s = crate::boolean::split(a.mesh(), b.mesh(), &opts.run.pipeline());
+        let pipeline = PipelineOptions {
+            kept_trees: [Some(a.kept_tree()), Some(b.kept_tree())],
+            ..opts.run.pipeline()
+        };
+        let s = crate::boolean::split(a.mesh(), b.mesh(), &pipeline);
         let (exact, snap, cleanup) = if opts.snap > 0.0 {
             opts.run.stage(Stage::Snap);
             // The tolerance was checked above: never an error here.

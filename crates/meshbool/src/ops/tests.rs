@@ -196,6 +196,61 @@ fn operands_are_welded_and_reusable() {
     );
 }
 
+/// An operand met in a second boolean builds the whole tree of its triangles and keeps
+/// it; every boolean and split of reused operands is the one of fresh meshes: spheres of
+/// equal sizes, of unlike sizes (the larger's tree over the triangles near the smaller, or
+/// kept whole), a cube whose large triangles the broad phase looks at through pieces
+/// (its kept tree not taken), one operand as both inputs, and operands apart.
+#[test]
+fn reused_operands_keep_their_trees_and_give_the_same_results() {
+    let sphere = |c: [f64; 3], r: f64, n: u32| crate::shapes::sphere(c, r, 2 * n, n).unwrap();
+    let cases = [
+        (sphere([0.0; 3], 1.0, 16), sphere([0.3, 0.2, 0.1], 0.9, 14)),
+        (sphere([0.0; 3], 1.0, 40), sphere([0.9, 0.0, 0.0], 0.3, 6)),
+        (Mesh::cuboid([-0.5; 3], [0.5; 3]), sphere([0.4; 3], 0.5, 24)),
+        (sphere([0.0; 3], 1.0, 12), sphere([0.0; 3], 1.0, 12)),
+        (sphere([0.0; 3], 1.0, 12), sphere([5.0; 3], 1.0, 12)),
+    ];
+    let checks = Checks::default();
+    let opts = BooleanOptions::default();
+    for (k, (a, b)) in cases.iter().enumerate() {
+        let (oa, ob) = (
+            Operand::new("A", a, &checks).unwrap(),
+            Operand::new("B", b, &checks).unwrap(),
+        );
+        for (round, op) in [Op::Union, Op::Difference, Op::Intersection]
+            .into_iter()
+            .enumerate()
+        {
+            let fresh = boolean(a, b, op, &opts).unwrap();
+            let reused = boolean(&oa, &ob, op, &opts).unwrap();
+            assert_eq!(reused.mesh, fresh.mesh, "case {k}, {op}");
+            assert_eq!(reused.provenance, fresh.provenance, "case {k}, {op}");
+            assert_eq!(reused.seam_points, fresh.seam_points, "case {k}, {op}");
+            let built = [oa.kept_tree().is_built(), ob.kept_tree().is_built()];
+            // The cube (case 2) is looked at through pieces: its tree is never asked for.
+            assert_eq!(built, [round > 0 && k != 2, round > 0], "case {k}, {op}");
+        }
+        let fresh = split(a, b, &SplitOptions::default()).unwrap();
+        let reused = split(&oa, &ob, &SplitOptions::default()).unwrap();
+        assert_eq!(reused.groups.len(), fresh.groups.len(), "case {k}");
+        for (r, f) in reused.groups.iter().zip(&fresh.groups) {
+            assert_eq!(r.mesh, f.mesh, "case {k}");
+        }
+    }
+    // One operand as both inputs: its tree is asked for twice in the first boolean.
+    let (a, _) = &cases[0];
+    let oa = Operand::new("A", a, &checks).unwrap();
+    let fresh = boolean(a, a, Op::Union, &opts).unwrap();
+    let reused = boolean(&oa, &oa, Op::Union, &opts).unwrap();
+    assert!(oa.kept_tree().is_built());
+    assert_eq!(reused.mesh, fresh.mesh);
+    assert_eq!(
+        boolean(&oa, &oa, Op::Union, &opts).unwrap().mesh,
+        fresh.mesh
+    );
+}
+
 #[test]
 fn thread_counts_out_of_range_are_errors() {
     let (a, b) = cubes();
