@@ -168,32 +168,35 @@ pub(crate) fn intersect_with(
 ) -> Seam {
     let from_grid = a.triangles.len() + b.triangles.len() >= grid_from;
     let pairs = candidate_pairs(a, b, from_grid, kept);
-    // Set up every candidate triangle once (sorted ids, looked up by binary search); the
+    // Set up every candidate triangle once (`slot[t]`: where triangle `t` is set up); the
     // degenerate ones are left out of the test and counted. Degenerate triangles elsewhere
     // cannot touch the other mesh and change nothing.
     let prepare = |m: &Mesh, mut ids: Vec<u32>| -> (Vec<u32>, Vec<Option<tritri::Tri>>) {
         ids.par_sort_unstable();
         ids.dedup();
         let tris = ids.par_iter().map(|&t| tri(m, t as usize)).collect();
-        (ids, tris)
+        let mut slot = crate::par::filled(u32::MAX, m.triangles.len());
+        for (k, &t) in ids.iter().enumerate() {
+            slot[t as usize] = k as u32;
+        }
+        (slot, tris)
     };
-    let ((ids_a, tris_a), (ids_b, tris_b)) = rayon::join(
+    let ((slot_a, tris_a), (slot_b, tris_b)) = rayon::join(
         || prepare(a, pairs.iter().map(|p| p.0).collect()),
         || prepare(b, pairs.iter().map(|p| p.1).collect()),
     );
-    fn find<'t>(ids: &[u32], tris: &'t [Option<tritri::Tri>], t: u32) -> Option<&'t tritri::Tri> {
-        ids.binary_search(&t).ok().and_then(|k| tris[k].as_ref())
-    }
     // The pieces each pair shares, a block of pairs at a time (in pair order: the seam's
     // points are numbered in the order they are first met). Coplanar pairs' pieces are
     // made in place, with no allocation per pair.
     let results: Vec<Vec<(u32, u32, Piece)>> = pairs
         .par_chunks(1 << 10)
         .map(|block| {
-            let mut out = Vec::new();
+            let mut out = Vec::with_capacity(2 * block.len());
             for &(i, j) in block {
-                let (Some(x), Some(y)) = (find(&ids_a, &tris_a, i), find(&ids_b, &tris_b, j))
-                else {
+                let (Some(x), Some(y)) = (
+                    &tris_a[slot_a[i as usize] as usize],
+                    &tris_b[slot_b[j as usize] as usize],
+                ) else {
                     continue;
                 };
                 tritri::meet(x, y, |p| out.push((i, j, p)));
