@@ -432,45 +432,6 @@ impl Bvh {
     }
 }
 
-/// A mesh's whole tree, kept between calls by what is used in many booleans (an
-/// [`crate::ops::Operand`]). A boolean of meshes under [`crate::intersect::GRID_FROM`]
-/// triangles builds trees over the triangles near the other mesh, about a tenth of a small
-/// boolean; an operand met again builds its whole tree once, on its second request, and
-/// later booleans take it as it is (a terrain against many pit shells, a Python loop). The
-/// first request gets nothing, so a one-off boolean (the command line) pays nothing for it.
-#[derive(Debug, Default)]
-pub struct KeptTree {
-    asked: std::sync::atomic::AtomicBool,
-    tree: std::sync::OnceLock<Bvh>,
-}
-
-impl Clone for KeptTree {
-    fn clone(&self) -> Self {
-        KeptTree {
-            asked: self.asked.load(std::sync::atomic::Ordering::Relaxed).into(),
-            tree: self.tree.clone(),
-        }
-    }
-}
-
-impl KeptTree {
-    /// The whole tree of `mesh` ([`Bvh::new`]), built on the second request and kept;
-    /// `None` on the first. `mesh` must be the same mesh at every request.
-    pub fn get(&self, mesh: &Mesh) -> Option<&Bvh> {
-        if let Some(t) = self.tree.get() {
-            return Some(t);
-        }
-        self.asked
-            .swap(true, std::sync::atomic::Ordering::Relaxed)
-            .then(|| self.tree.get_or_init(|| Bvh::new(mesh)))
-    }
-
-    /// Whether the tree has been built.
-    pub fn is_built(&self) -> bool {
-        self.tree.get().is_some()
-    }
-}
-
 impl Bvh {
     /// Every pair `(i, j)`, `i < j`, of triangles of `mesh` (the mesh this tree was built
     /// from) whose exact boxes overlap, in no particular order. Each node pair is visited

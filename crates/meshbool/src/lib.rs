@@ -91,6 +91,7 @@ mod error;
 mod format;
 pub mod intersect;
 pub mod io;
+pub mod kept;
 #[doc(hidden)]
 pub mod kernel;
 pub mod measure;

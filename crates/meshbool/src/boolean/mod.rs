@@ -27,11 +27,11 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::arrange::{arrange, Arranged, FailReason};
-use crate::bvh::KeptTree;
 use crate::classify::{classify, Class, Classified, CutMesh};
 use crate::edges::SeamTopology;
 pub use crate::intersect::Source;
 use crate::intersect::{intersect_with, Seam};
+use crate::kept::Keeps;
 use crate::par::{exclusive_sums, filled, split_by};
 use crate::repair::nonmanifold::split_at;
 use crate::repair::NonManifoldReport;
@@ -385,11 +385,11 @@ pub struct PipelineOptions<'p> {
     /// door whose parts touch along an edge or at a vertex). Ignored with
     /// `keep_nonmanifold`.
     pub split_everywhere: bool,
-    /// Whole trees of A's and B's triangles kept between calls ([`KeptTree`]; an
-    /// operand's), taken by the broad phase below [`crate::intersect::GRID_FROM`]
-    /// triangles in place of trees over the triangles near the other mesh. Each must be
-    /// kept for the very mesh it is given with.
-    pub kept_trees: [Option<&'p KeptTree>; 2],
+    /// What A and B keep between calls ([`Keeps`]; an operand's): the broad phase takes
+    /// a mesh's whole tree below [`crate::intersect::GRID_FROM`] triangles, in place of a
+    /// tree of its triangles near the other mesh. Each must be kept for the very mesh it
+    /// is given with.
+    pub kept: [Option<&'p Keeps>; 2],
 }
 
 impl Default for PipelineOptions<'_> {
@@ -401,7 +401,7 @@ impl Default for PipelineOptions<'_> {
             exact_winding_up_to: crate::classify::EXACT_WINDING_UP_TO,
             keep_nonmanifold: false,
             cleanup: true,
-            kept_trees: [None, None],
+            kept: [None, None],
         }
     }
 }
@@ -418,7 +418,7 @@ impl PipelineOptions<'_> {
 /// exactly welded; see [`crate::weld_exact`]).
 pub fn split(a: &Mesh, b: &Mesh, opts: &PipelineOptions) -> Split {
     opts.stage(Stage::Intersect);
-    let seam = intersect_with(a, b, opts.grid_from, opts.kept_trees);
+    let seam = intersect_with(a, b, opts.grid_from, opts.kept.map(|k| Some(&k?.tree)));
     opts.stage(Stage::Arrange);
     let (arr_a, arr_b) = rayon::join(
         || arrange(a, &seam, Source::A),

@@ -9,7 +9,8 @@
 use rayon::prelude::*;
 use rustc_hash::{FxHashMap, FxHashSet};
 
-use crate::bvh::{Bvh, KeptTree};
+use crate::bvh::Bvh;
+use crate::kept::Kept;
 use crate::kernel::{cross_sign, Enclosure, Point, Sign};
 use crate::Mesh;
 
@@ -164,7 +165,7 @@ pub(crate) fn intersect_with(
     a: &Mesh,
     b: &Mesh,
     grid_from: usize,
-    kept: [Option<&KeptTree>; 2],
+    kept: [Option<&Kept<Bvh>>; 2],
 ) -> Seam {
     let from_grid = a.triangles.len() + b.triangles.len() >= grid_from;
     let pairs = candidate_pairs(a, b, from_grid, kept);
@@ -225,12 +226,12 @@ pub(crate) fn intersect_with(
 /// The triangle pairs of `a` and `b` whose boxes overlap, sorted; large triangles are
 /// looked at through the smaller boxes of their pieces ([`crate::broad::cover_large`]).
 /// Of two trees, a mesh used whole takes the one `kept` keeps of it, where it has one
-/// ([`KeptTree`]).
+/// ([`Kept`]).
 fn candidate_pairs(
     a: &Mesh,
     b: &Mesh,
     from_grid: bool,
-    kept: [Option<&KeptTree>; 2],
+    kept: [Option<&Kept<Bvh>>; 2],
 ) -> Vec<(u32, u32)> {
     let pairs_of = |a: &Mesh, b: &Mesh, kept: [Option<&Bvh>; 2]| {
         if from_grid {
@@ -286,7 +287,7 @@ fn candidate_pairs(
     let whole = [(a, ca.is_none()), (b, cb.is_none())];
     let trees = std::array::from_fn(|k| {
         let (m, whole) = whole[k];
-        kept[k].filter(|_| whole && !from_grid)?.get(m)
+        kept[k].filter(|_| whole && !from_grid)?.get(|| Bvh::new(m))
     });
     if ca.is_none() && cb.is_none() {
         return pairs_of(a, b, trees);

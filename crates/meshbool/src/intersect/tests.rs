@@ -936,10 +936,10 @@ fn large_triangles_are_covered_by_their_pieces() {
     assert!(meets.len() > 500, "{}", meets.len());
     let boxes = crate::broad::overlapping_pairs(&a, &b).len();
     // A's whole tree, kept and built, is not taken: A is looked at through its pieces.
-    let (kept_a, kept_b) = (KeptTree::default(), KeptTree::default());
+    let (kept_a, kept_b) = (Kept::default(), Kept::default());
     for _ in 0..2 {
-        kept_a.get(&a);
-        kept_b.get(&b);
+        kept_a.get(|| Bvh::new(&a));
+        kept_b.get(|| Bvh::new(&b));
     }
     assert!(kept_a.is_built() && kept_b.is_built());
     let without = candidate_pairs(&a, &b, false, [None, None]);
@@ -1224,7 +1224,7 @@ fn meshes_of_unlike_sizes_give_every_overlapping_pair() {
         assert!(!want.is_empty());
         assert_eq!(candidate_pairs(a, b, false, [None, None]), want);
         // With the whole tree kept of either mesh or both: built on the second request.
-        let (kept_a, kept_b) = (KeptTree::default(), KeptTree::default());
+        let (kept_a, kept_b) = (Kept::default(), Kept::default());
         for kept in [[Some(&kept_a), None], [None, Some(&kept_b)]] {
             assert_eq!(candidate_pairs(a, b, false, kept), want);
         }

@@ -229,7 +229,7 @@ pub fn boolean<'a>(
             keep_nonmanifold: opts.keep_nonmanifold,
             cleanup: !opts.keep_seam_points,
             split_everywhere: a.glued() || b.glued(),
-            kept_trees: [Some(a.kept_tree()), Some(b.kept_tree())],
+            kept: [Some(a.keeps()), Some(b.keeps())],
             ..opts.run.pipeline()
         };
         let mut r = crate::boolean::boolean(a.mesh(), b.mesh(), op, &pipeline);

@@ -11,9 +11,9 @@ use serde::{Deserialize, Serialize};
 
 use super::{with_threads, RunOptions};
 use crate::boolean::{resolve, FillRule, PipelineOptions, ResolveReport, Stage};
-use crate::bvh::KeptTree;
 use crate::edges::EdgeCounts;
 use crate::intersect::self_intersections;
+use crate::kept::Keeps;
 use crate::{weld_exact, Error, Mesh, Result};
 
 /// What to check of an operand, and what to do when a check finds a problem.
@@ -233,7 +233,7 @@ pub struct Operand {
     glued: bool,
     /// The whole tree of `mesh`'s triangles, built when a second boolean asks for it and
     /// kept for the later ones.
-    tree: KeptTree,
+    keeps: Keeps,
 }
 
 impl Operand {
@@ -398,7 +398,7 @@ impl Operand {
             parent,
             reversed,
             glued: glued_result,
-            tree: KeptTree::default(),
+            keeps: Keeps::default(),
         })
     }
 
@@ -407,12 +407,12 @@ impl Operand {
     pub(crate) fn scale(&mut self, e: i32) {
         super::scale_points(&mut self.mesh.positions, e);
         self.report.scale_back(e);
-        self.tree = KeptTree::default();
+        self.keeps = Keeps::default();
     }
 
-    /// The whole tree of [`Operand::mesh`]'s triangles that booleans keep between calls.
-    pub(crate) fn kept_tree(&self) -> &KeptTree {
-        &self.tree
+    /// What booleans keep of [`Operand::mesh`] between calls.
+    pub(crate) fn keeps(&self) -> &Keeps {
+        &self.keeps
     }
 
     /// The input triangle that triangle `t` of [`Operand::mesh`] is part of: `t` itself

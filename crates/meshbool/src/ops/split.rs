@@ -152,7 +152,7 @@ pub fn split<'a>(
     }
     let run = |a: &Operand, b: &Operand| {
         let pipeline = PipelineOptions {
-            kept_trees: [Some(a.kept_tree()), Some(b.kept_tree())],
+            kept: [Some(a.keeps()), Some(b.keeps())],
             ..opts.run.pipeline()
         };
         let s = crate::boolean::split(a.mesh(), b.mesh(), &pipeline);

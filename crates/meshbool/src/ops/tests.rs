@@ -227,7 +227,7 @@ fn reused_operands_keep_their_trees_and_give_the_same_results() {
             assert_eq!(reused.mesh, fresh.mesh, "case {k}, {op}");
             assert_eq!(reused.provenance, fresh.provenance, "case {k}, {op}");
             assert_eq!(reused.seam_points, fresh.seam_points, "case {k}, {op}");
-            let built = [oa.kept_tree().is_built(), ob.kept_tree().is_built()];
+            let built = [oa.keeps().tree.is_built(), ob.keeps().tree.is_built()];
             // The cube (case 2) is looked at through pieces: its tree is never asked for.
             assert_eq!(built, [round > 0 && k != 2, round > 0], "case {k}, {op}");
         }
@@ -243,7 +243,7 @@ fn reused_operands_keep_their_trees_and_give_the_same_results() {
     let oa = Operand::new("A", a, &checks).unwrap();
     let fresh = boolean(a, a, Op::Union, &opts).unwrap();
     let reused = boolean(&oa, &oa, Op::Union, &opts).unwrap();
-    assert!(oa.kept_tree().is_built());
+    assert!(oa.keeps().tree.is_built());
     assert_eq!(reused.mesh, fresh.mesh);
     assert_eq!(
         boolean(&oa, &oa, Op::Union, &opts).unwrap().mesh,
