@@ -233,22 +233,23 @@ fn candidate_pairs(
     from_grid: bool,
     kept: [Option<&Kept<Bvh>>; 2],
 ) -> Vec<(u32, u32)> {
-    let pairs_of = |a: &Mesh, b: &Mesh, kept: [Option<&Bvh>; 2]| {
-        if from_grid {
-            crate::broad::overlapping_pairs(a, b)
-        } else if let [Some(ta), Some(tb)] = kept {
-            ta.overlapping_pairs(a, tb, b)
-        } else if let [Some(ta), None] = kept {
+    let pairs_of = |a: &Mesh, b: &Mesh, kept: [Option<&Bvh>; 2]| match kept {
+        _ if from_grid => crate::broad::overlapping_pairs(a, b),
+        [Some(ta), Some(tb)] => ta.overlapping_pairs(a, tb, b),
+        // One whole tree kept: the other mesh's tree holds what meets its box.
+        [Some(ta), None] => {
             let Some(box_a) = ta.bounds() else {
                 return Vec::new();
             };
             ta.overlapping_pairs(a, &Bvh::new_within(b, &box_a), b)
-        } else if let [None, Some(tb)] = kept {
+        }
+        [None, Some(tb)] => {
             let Some(box_b) = tb.bounds() else {
                 return Vec::new();
             };
             Bvh::new_within(a, &box_b).overlapping_pairs(a, tb, b)
-        } else {
+        }
+        [None, None] => {
             // Each tree holds only the triangles that can meet the other mesh at all. Of
             // meshes of unlike sizes (a terrain and a pit shell), the larger is indexed
             // within the smaller's box first, and the smaller within what that kept:
