@@ -10,7 +10,7 @@ use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
 use crate::intersect::{Feature, Seam, Source};
-use crate::kernel::{orient2d, Enclosure, Point, Prepared, Triangle};
+use crate::kernel::{orient2d_inputs, robust_safe, Enclosure, Point, Prepared, Triangle};
 use crate::Mesh;
 
 mod local;
@@ -377,8 +377,9 @@ fn turned_by_rounding(pieces: &[[u32; 3]], points: &SeamPoints, parent: &Triangl
         .iter()
         .map(|p| {
             p.iter().any(|&v| v as usize >= points.input_vertices) && {
-                let [a, b, c] = p.map(|v| Point::Explicit(points.positions[v as usize]));
-                orient2d(&a, &b, &c, parent.axis()) != parent.sign()
+                let [a, b, c] = p.map(|v| points.positions[v as usize]);
+                let safe = robust_safe(&[&a, &b, &c]);
+                orient2d_inputs(&a, &b, &c, parent.axis(), safe) != parent.sign()
             }
         })
         .collect()
