@@ -285,11 +285,10 @@ fn candidate_pairs(
         || crate::broad::cover_large(b, typical),
     );
     // Only a mesh used whole has its tree kept.
-    let whole = [(a, ca.is_none()), (b, cb.is_none())];
-    let trees = std::array::from_fn(|k| {
-        let (m, whole) = whole[k];
+    let tree = |k: usize, m: &Mesh, whole: bool| {
         kept[k].filter(|_| whole && !from_grid)?.get(|| Bvh::new(m))
-    });
+    };
+    let trees = [tree(0, a, ca.is_none()), tree(1, b, cb.is_none())];
     if ca.is_none() && cb.is_none() {
         return pairs_of(a, b, trees);
     }
