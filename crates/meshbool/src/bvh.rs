@@ -689,12 +689,19 @@ impl Query<'_> {
 /// (130k pairs of 2M triangles: 47 ms on one thread, 19 ms on 16).
 pub(crate) fn sort_pairs(pairs: Vec<(u32, u32)>, n: usize, unique: bool) -> Vec<(u32, u32)> {
     if pairs.len() < (1 << 14).max(n / 2) {
-        let mut pairs = pairs;
-        pairs.par_sort_unstable();
+        // As single `u64` keys: one comparison per step instead of two.
+        let mut keys: Vec<u64> = pairs
+            .into_iter()
+            .map(|(i, j)| u64::from(i) << 32 | u64::from(j))
+            .collect();
+        keys.par_sort_unstable();
         if unique {
-            pairs.dedup();
+            keys.dedup();
         }
-        return pairs;
+        return keys
+            .into_iter()
+            .map(|k| ((k >> 32) as u32, k as u32))
+            .collect();
     }
     let mut start = vec![0usize; n + 1];
     for &(i, _) in &pairs {

@@ -18,6 +18,9 @@ pub(crate) struct Local {
     /// Per vertex, bit `k` set when it lies on the outer triangle's edge `k` (known from
     /// the seam labels): three vertices sharing a bit are collinear, no predicate needed.
     on: Vec<u8>,
+    /// Bit `k` set while the outer triangle's edge `k` holds no vertex but its ends: a
+    /// point on it then splits the one triangle along it, found without a predicate.
+    whole: u8,
     /// Triangles as local vertex indices, counter-clockwise in the normalised frame.
     pub(crate) tris: Vec<[u32; 3]>,
     /// Neighbour across edge k (from corner k to k+1), or NONE on the outer boundary.
@@ -45,25 +48,39 @@ fn rot<T: Copy>(a: [T; 3], k: usize) -> [T; 3] {
 
 impl Local {
     /// The triangle `corners` (counter-clockwise when `sign` is positive in the projection
-    /// dropping `axis`; `sign` must be non-zero).
-    pub(crate) fn new(corners: [[f64; 3]; 3], axis: usize, sign: Sign) -> Local {
+    /// dropping `axis`; `sign` must be non-zero), with room for `points` more vertices.
+    pub(crate) fn new(corners: [[f64; 3]; 3], axis: usize, sign: Sign, points: usize) -> Local {
+        // Each point adds a vertex and at most two triangles.
+        let (n, t) = (3 + points, 1 + 2 * points);
+        fn with<T: Copy>(first: &[T], n: usize) -> Vec<T> {
+            let mut v = Vec::with_capacity(n);
+            v.extend_from_slice(first);
+            v
+        }
+        let mut pts = Vec::with_capacity(n);
+        pts.extend(corners.iter().map(|&p| Prepared::new(Point::Explicit(p))));
         Local {
-            pts: corners
-                .iter()
-                .map(|&p| Prepared::new(Point::Explicit(p)))
-                .collect(),
-            approx: corners.to_vec(),
-            on: vec![0b101, 0b011, 0b110],
-            tris: vec![[0, 1, 2]],
-            nbr: vec![[NONE; 3]],
-            fixed: vec![[true; 3]],
-            vt: vec![0; 3],
+            pts,
+            approx: with(&corners, n),
+            on: with(&[0b101, 0b011, 0b110], n),
+            whole: 0b111,
+            tris: with(&[[0, 1, 2]], t),
+            nbr: with(&[[NONE; 3]], t),
+            fixed: with(&[[true; 3]], t),
+            vt: with(&[0; 3], n),
             sides: Vec::new(),
             stamp: 0,
             axis,
             sign,
             last: 0,
         }
+    }
+
+    /// Locates every later point by the walk, also those on an outer edge not split
+    /// before (the tests compare the two ways).
+    #[cfg(test)]
+    pub(crate) fn walk_only(&mut self) {
+        self.whole = 0;
     }
 
     fn orient(&self, a: u32, b: u32, c: u32) -> Sign {
@@ -136,6 +153,32 @@ impl Local {
         on_edge: Option<usize>,
     ) -> Result<u32, Failed> {
         let x_on = on_edge.map_or(0, |k| 1u8 << k);
+        let first_on_edge = self.whole & x_on != 0;
+        self.whole &= !x_on;
+        if let Some(k) = on_edge.filter(|_| first_on_edge) {
+            // Strictly inside an outer edge not split before (a seam point on an edge is
+            // not one of its ends): it splits the one triangle along that edge, where the
+            // walk below would end, and nothing else.
+            let (p, q) = (k as u32, (k as u32 + 1) % 3);
+            if let Some((t, s)) = self.tris.iter().enumerate().find_map(|(t, v)| {
+                (0..3)
+                    .find(|&s| v[s] == p && v[(s + 1) % 3] == q)
+                    .map(|s| (t as u32, s))
+            }) {
+                debug_assert!((1..3).all(|d| {
+                    let v = rot(self.tris[t as usize], (s + d) % 3);
+                    self.orient_pt(v[0], v[1], &x, x_on) == Sign::Positive
+                }));
+                let id = self.pts.len() as u32;
+                self.pts.push(x);
+                self.approx.push(approx);
+                self.on.push(x_on);
+                self.vt.push(t);
+                self.split_edge(t, s, id);
+                self.last = t;
+                return Ok(id);
+            }
+        }
         let mut t = self.last.min(self.tris.len() as u32 - 1);
         let mut steps = 0usize;
         let mut turn = 0usize;

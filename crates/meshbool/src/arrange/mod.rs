@@ -105,7 +105,11 @@ pub fn arrange(mesh: &Mesh, seam: &Seam, side: Source) -> Arranged {
     let points = index_seam_points(mesh, seam, side);
     let seam_edges = seam_edges(seam, &points.seam_vertex);
     let constraints = constraints(seam, side, &seam_edges);
-    let cut = cut_triangles(mesh, &points, &constraints);
+    let near = seam.near.as_ref().map(|n| match side {
+        Source::A => &n[0][..],
+        Source::B => &n[1][..],
+    });
+    let cut = cut_triangles(mesh, &points, &constraints, near);
     let results: Vec<(u32, CutResult)> = cut
         .par_iter()
         .map(|&t| (t, cut_triangle(mesh, t, &points, &constraints)))
@@ -236,11 +240,13 @@ fn constraints(
 }
 
 /// The input triangles to re-triangulate, sorted: those with a seam point in their face
-/// or on one of their edges, or a seam edge.
+/// or on one of their edges, or a seam edge. `near`: where known, triangles among which
+/// are all those with a seam point on an edge (the seam's broad-phase candidates).
 fn cut_triangles(
     mesh: &Mesh,
     points: &SeamPoints,
     cons: &FxHashMap<u32, Vec<[u32; 2]>>,
+    near: Option<&[u32]>,
 ) -> Vec<u32> {
     let mut cut: Vec<u32> = points.on_face.keys().chain(cons.keys()).copied().collect();
     if !points.on_edge.is_empty() {
@@ -250,18 +256,22 @@ fn cut_triangles(
             ends[u as usize] = true;
             ends[v as usize] = true;
         }
-        cut.par_extend(
-            (0..mesh.triangles.len() as u32)
-                .into_par_iter()
-                .filter(|&t| {
-                    let tri = mesh.triangles[t as usize];
-                    tri.iter().filter(|&&v| ends[v as usize]).count() >= 2
-                        && (0..3).any(|k| {
-                            let (u, v) = (tri[k], tri[(k + 1) % 3]);
-                            points.on_edge.contains_key(&(u.min(v), u.max(v)))
-                        })
-                }),
-        );
+        let holds = |&t: &u32| {
+            let tri = mesh.triangles[t as usize];
+            tri.iter().filter(|&&v| ends[v as usize]).count() >= 2
+                && (0..3).any(|k| {
+                    let (u, v) = (tri[k], tri[(k + 1) % 3]);
+                    points.on_edge.contains_key(&(u.min(v), u.max(v)))
+                })
+        };
+        match near {
+            Some(near) => cut.par_extend(near.par_iter().copied().filter(holds)),
+            None => cut.par_extend(
+                (0..mesh.triangles.len() as u32)
+                    .into_par_iter()
+                    .filter(holds),
+            ),
+        }
     }
     cut.par_sort_unstable();
     cut.dedup();
@@ -304,12 +314,13 @@ fn cut_triangle(
     if mine.is_empty() && cons_t.iter().all(|c| c.iter().all(|v| tri.contains(v))) {
         return Ok((vec![tri], vec![false]));
     }
-    let mut lt = local::Local::new(corners, shape.axis(), shape.sign());
-    let mut to_local: FxHashMap<u32, u32> = FxHashMap::default();
-    for (k, &v) in tri.iter().enumerate() {
-        to_local.insert(v, k as u32);
-    }
-    let mut ids: Vec<u32> = tri.to_vec();
+    let mut lt = local::Local::new(corners, shape.axis(), shape.sign(), mine.len());
+    // Mesh vertex to local vertex, as pairs sorted once all are in (a few per triangle,
+    // thousands under a fine mesh): where a vertex is named twice, the later pair holds.
+    let mut to_local: Vec<(u32, u32)> = Vec::with_capacity(3 + mine.len());
+    to_local.extend(tri.iter().enumerate().map(|(k, &v)| (v, k as u32)));
+    let mut ids: Vec<u32> = Vec::with_capacity(3 + mine.len());
+    ids.extend_from_slice(&tri);
     chain_order(&mut mine, cons_t);
     for (g, on_edge) in mine {
         // An input vertex here is one of the mesh's own lying on this triangle (the
@@ -325,10 +336,18 @@ fn cut_triangle(
         if l as usize == ids.len() {
             ids.push(g);
         }
-        to_local.insert(g, l);
+        to_local.push((g, l));
     }
+    to_local.sort_by_key(|&(g, _)| g);
+    let local_of = |g: u32| {
+        let end = to_local.partition_point(|&(h, _)| h <= g);
+        to_local[..end]
+            .last()
+            .filter(|&&(h, _)| h == g)
+            .map(|&(_, l)| l)
+    };
     for c in cons_t {
-        let (Some(&p), Some(&q)) = (to_local.get(&c[0]), to_local.get(&c[1])) else {
+        let (Some(p), Some(q)) = (local_of(c[0]), local_of(c[1])) else {
             return Err(local::Failed(FailReason::ConstraintEndOutside));
         };
         lt.constrain(p, q)?;
@@ -346,27 +365,38 @@ fn chain_order(mine: &mut [(u32, Option<usize>)], cons: &[[u32; 2]]) {
     if mine.len() < 3 || cons.is_empty() {
         return;
     }
-    let mut next: FxHashMap<u32, Vec<u32>> = FxHashMap::default();
+    // Each end's neighbours along the constraints, in the constraints' order (a stable
+    // sort by end), and each end's rank in a depth-first walk of that graph.
+    let mut next: Vec<(u32, u32)> = Vec::with_capacity(2 * cons.len());
     for &[a, b] in cons {
-        next.entry(a).or_default().push(b);
-        next.entry(b).or_default().push(a);
+        next.extend([(a, b), (b, a)]);
     }
-    let mut rank: FxHashMap<u32, u32> = FxHashMap::default();
+    next.sort_by_key(|&(v, _)| v);
+    let mut ends: Vec<u32> = next.iter().map(|&(v, _)| v).collect();
+    ends.dedup();
+    let at = |v: u32| ends.binary_search(&v).ok();
+    let mut rank = vec![u32::MAX; ends.len()];
+    let mut ranked = 0;
     let mut stack = Vec::new();
     for &[a, _] in cons {
-        if rank.contains_key(&a) {
-            continue;
-        }
         stack.push(a);
         while let Some(v) = stack.pop() {
-            if rank.contains_key(&v) {
+            let Some(i) = at(v).filter(|&i| rank[i] == u32::MAX) else {
                 continue;
-            }
-            rank.insert(v, rank.len() as u32);
-            stack.extend(next[&v].iter().filter(|w| !rank.contains_key(w)));
+            };
+            rank[i] = ranked;
+            ranked += 1;
+            let from = next.partition_point(|&(u, _)| u < v);
+            let to = next.partition_point(|&(u, _)| u <= v);
+            stack.extend(
+                next[from..to]
+                    .iter()
+                    .map(|&(_, w)| w)
+                    .filter(|&w| at(w).is_some_and(|j| rank[j] == u32::MAX)),
+            );
         }
     }
-    mine.sort_by_key(|&(g, _)| rank.get(&g).copied().unwrap_or(u32::MAX));
+    mine.sort_by_key(|&(g, _)| at(g).map_or(u32::MAX, |i| rank[i]));
 }
 
 /// Per piece of `parent`, whether it holds a seam point and, with the seam points rounded

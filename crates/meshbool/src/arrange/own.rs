@@ -88,7 +88,7 @@ fn arrange_welded(mesh: &Mesh, seam: &Seam) -> Arranged {
             (t, cons)
         })
         .collect();
-    let cut = cut_triangles(mesh, &points, &constraints);
+    let cut = cut_triangles(mesh, &points, &constraints, None);
     let results: Vec<_> = cut
         .par_iter()
         .map(|&t| (t, cut_triangle(mesh, t, &points, &constraints)))

@@ -38,7 +38,84 @@ fn check_closed_pair(a: &Mesh, b: &Mesh) {
             assert!(edges.contains(e), "{side:?}: seam edge {e:?} missing");
         }
         assert_eq!(arr.parent.len(), arr.mesh.triangles.len());
+        // The seam's candidate triangles stand in for a pass over all triangles.
+        let unknown = Seam {
+            near: None,
+            ..seam.clone()
+        };
+        let full = arrange(m, &unknown, side);
+        assert_eq!(arr.mesh.triangles, full.mesh.triangles, "{side:?}");
+        assert_eq!(arr.parent, full.parent, "{side:?}");
     }
+}
+
+/// Points on the outer edges (exact binary coordinates on a tilted plane), inserted in
+/// many orders, some constrained: the first point on each edge, placed without a walk,
+/// gives the triangulation the walk gives.
+#[test]
+fn points_on_whole_edges_go_where_the_walk_takes_them() {
+    let plane = |x: f64, y: f64| [x, y, 0.5 * x + 2.0 * y];
+    let corners = [plane(0.0, 0.0), plane(8.0, 0.0), plane(0.0, 8.0)];
+    // (x, y, outer edge): edge 0 from corner 0 to 1, 1 from 1 to 2, 2 from 2 to 0.
+    let points = [
+        (1.0, 0.0, Some(0)),
+        (3.0, 0.0, Some(0)),
+        (6.0, 0.0, Some(0)),
+        (5.0, 3.0, Some(1)),
+        (2.0, 6.0, Some(1)),
+        (0.0, 2.0, Some(2)),
+        (0.0, 7.0, Some(2)),
+        (1.0, 1.0, None),
+        (2.0, 3.0, None),
+        (4.0, 2.0, None),
+    ];
+    let shape = Triangle::new(corners).unwrap();
+    let mut rng = Rng(0x5eed_0fed_9e00);
+    let mut fast_ones = 0;
+    for round in 0..200 {
+        let mut order: Vec<usize> = (0..points.len()).collect();
+        for i in (1..order.len()).rev() {
+            order.swap(i, (rng.next() % (i as u64 + 1)) as usize);
+        }
+        order.truncate(2 + round % (points.len() - 1));
+        let run = |walk_only: bool| {
+            let mut lt = local::Local::new(corners, shape.axis(), shape.sign(), order.len());
+            if walk_only {
+                lt.walk_only();
+            }
+            let ids: Vec<u32> = order
+                .iter()
+                .map(|&k| {
+                    let (x, y, on) = points[k];
+                    let p = plane(x, y);
+                    lt.insert(Prepared::new(Point::Explicit(p)), p, on).unwrap()
+                })
+                .collect();
+            // Two polylines across the triangle and three spurs (none cross), where both
+            // ends are in.
+            let local = |k: usize| order.iter().position(|&o| o == k).map(|i| ids[i]);
+            for (k, l) in [
+                (5, 7),
+                (7, 8),
+                (8, 4),
+                (1, 9),
+                (9, 3),
+                (0, 7),
+                (2, 3),
+                (6, 4),
+            ] {
+                if let (Some(p), Some(q)) = (local(k), local(l)) {
+                    lt.constrain(p, q).unwrap();
+                }
+            }
+            lt.improve();
+            lt.tris
+        };
+        let fast = run(false);
+        assert_eq!(fast, run(true), "order {order:?}");
+        fast_ones += usize::from(order.iter().any(|&k| points[k].2.is_some()));
+    }
+    assert!(fast_ones > 150);
 }
 
 #[test]

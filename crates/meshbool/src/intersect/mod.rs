@@ -86,6 +86,9 @@ pub struct Seam {
     /// labels name such a point by the vertex alone; the arrangement inserts the vertex
     /// into those features. Empty for the seam of two meshes.
     pub vertex_on: Vec<(u32, Feature)>,
+    /// The triangles of A and of B among the broad-phase candidates (sorted, unique),
+    /// where known: every triangle with a seam point in its closure is one of them.
+    pub(crate) near: Option<[Vec<u32>; 2]>,
 }
 
 impl Seam {
@@ -172,7 +175,8 @@ pub(crate) fn intersect_with(
     // Set up every candidate triangle once (`slot[t]`: where triangle `t` is set up); the
     // degenerate ones are left out of the test and counted. Degenerate triangles elsewhere
     // cannot touch the other mesh and change nothing.
-    let prepare = |m: &Mesh, mut ids: Vec<u32>| -> (Vec<u32>, Vec<Option<tritri::Tri>>) {
+    type Prepared = (Vec<u32>, Vec<Option<tritri::Tri>>, Vec<u32>);
+    let prepare = |m: &Mesh, mut ids: Vec<u32>| -> Prepared {
         ids.par_sort_unstable();
         ids.dedup();
         let tris = ids.par_iter().map(|&t| tri(m, t as usize)).collect();
@@ -180,9 +184,9 @@ pub(crate) fn intersect_with(
         for (k, &t) in ids.iter().enumerate() {
             slot[t as usize] = k as u32;
         }
-        (slot, tris)
+        (slot, tris, ids)
     };
-    let ((slot_a, tris_a), (slot_b, tris_b)) = rayon::join(
+    let ((slot_a, tris_a, near_a), (slot_b, tris_b, near_b)) = rayon::join(
         || prepare(a, pairs.iter().map(|p| p.0).collect()),
         || prepare(b, pairs.iter().map(|p| p.1).collect()),
     );
@@ -214,6 +218,7 @@ pub(crate) fn intersect_with(
     seam.degenerate = [da, db];
     seam.candidate_pairs = pairs.len();
     seam.from_grid = from_grid;
+    seam.near = Some([near_a, near_b]);
     seam.exact = seam
         .points
         .par_iter()
