@@ -86,8 +86,8 @@ pub struct Seam {
     /// labels name such a point by the vertex alone; the arrangement inserts the vertex
     /// into those features. Empty for the seam of two meshes.
     pub vertex_on: Vec<(u32, Feature)>,
-    /// The triangles of A and of B among the broad-phase candidates (sorted, unique),
-    /// where known: every triangle with a seam point in its closure is one of them.
+    /// The triangles of A and of B among the broad-phase candidates (each once), where
+    /// known: every triangle with a seam point in its closure is one of them.
     pub(crate) near: Option<[Vec<u32>; 2]>,
 }
 
@@ -177,13 +177,28 @@ pub(crate) fn intersect_with(
     // cannot touch the other mesh and change nothing.
     type Prepared = (Vec<u32>, Vec<Option<tritri::Tri>>, Vec<u32>);
     let prepare = |m: &Mesh, mut ids: Vec<u32>| -> Prepared {
-        ids.par_sort_unstable();
-        ids.dedup();
-        let tris = ids.par_iter().map(|&t| tri(m, t as usize)).collect();
         let mut slot = crate::par::filled(u32::MAX, m.triangles.len());
-        for (k, &t) in ids.iter().enumerate() {
-            slot[t as usize] = k as u32;
+        if ids.len() < 1 << 16 {
+            // Few: each triangle once, in the order first met, told by its slot (a pass
+            // where a sort would be the larger part of this step).
+            let mut k = 0;
+            ids.retain(|&t| {
+                let s = &mut slot[t as usize];
+                let first = *s == u32::MAX;
+                if first {
+                    *s = k;
+                    k += 1;
+                }
+                first
+            });
+        } else {
+            ids.par_sort_unstable();
+            ids.dedup();
+            for (k, &t) in ids.iter().enumerate() {
+                slot[t as usize] = k as u32;
+            }
         }
+        let tris = ids.par_iter().map(|&t| tri(m, t as usize)).collect();
         (slot, tris, ids)
     };
     let ((slot_a, tris_a, near_a), (slot_b, tris_b, near_b)) = rayon::join(

@@ -1239,3 +1239,20 @@ fn meshes_of_unlike_sizes_give_every_overlapping_pair() {
         assert!(kept_a.is_built() && kept_b.is_built());
     }
 }
+
+/// A zero-area triangle whose box meets several of the other mesh's triangles is left
+/// out of the test and counted once, and the seam is the one without it.
+#[test]
+fn a_degenerate_candidate_is_counted_once() {
+    let b = Mesh::cuboid([0.3; 3], [1.3; 3]);
+    let clean = intersect(&Mesh::unit_cube(), &b);
+    let mut a = Mesh::unit_cube();
+    let n = a.positions.len() as u32;
+    a.positions.extend([[0.2; 3], [0.8; 3], [0.5; 3]]);
+    a.triangles.push([n, n + 1, n + 2]);
+    let seam = intersect(&a, &b);
+    assert!(seam.candidate_pairs > clean.candidate_pairs + 1);
+    assert_eq!(seam.degenerate, [1, 0]);
+    assert_eq!(seam.points, clean.points);
+    assert_eq!(seam.segments, clean.segments);
+}
