@@ -229,7 +229,8 @@ pub(crate) fn intersect_with(
         tris_b.iter().filter(|t| t.is_none()).count(),
     );
 
-    let mut seam = assemble(results.iter().flatten().copied(), |l| l);
+    let blocks: Vec<&[(u32, u32, Piece)]> = results.iter().map(Vec::as_slice).collect();
+    let mut seam = assemble(&blocks, |l| l);
     seam.degenerate = [da, db];
     seam.candidate_pairs = pairs.len();
     seam.from_grid = from_grid;
@@ -326,46 +327,115 @@ fn candidate_pairs(
     crate::bvh::sort_pairs(pairs, a.triangles.len(), true)
 }
 
+/// A run of blocks of pieces with its points and segments numbered on their own, each in
+/// the order first met ([`assemble`]).
+#[derive(Default)]
+struct Part {
+    /// The names of the run's segment ends, each once.
+    points: Vec<Label>,
+    /// The run's distinct segments, as indices into `points` (smaller first), each with
+    /// whether all its pieces in the run are coplanar ones.
+    segments: Vec<([u32; 2], bool)>,
+    /// Per segment piece, in order: its index in `segments` and its triangle pair.
+    sources: Vec<(u32, u32, u32)>,
+    /// The names of the run's touching points, each once.
+    touching: Vec<Label>,
+}
+
+impl Part {
+    fn of(blocks: &[&[(u32, u32, Piece)]], name: &impl Fn(Label) -> Label) -> Part {
+        let mut part = Part::default();
+        let mut point_ids: FxHashMap<Label, u32> = FxHashMap::default();
+        let mut seg_ids: FxHashMap<[u32; 2], u32> = FxHashMap::default();
+        let mut touched: FxHashSet<Label> = FxHashSet::default();
+        for &(i, j, piece) in blocks.iter().copied().flatten() {
+            match piece {
+                Piece::Point(l) => {
+                    let l = name(l);
+                    if touched.insert(l) {
+                        part.touching.push(l);
+                    }
+                }
+                Piece::Segment(s, coplanar) => {
+                    let [x, y] = s.map(|l| {
+                        let l = name(l);
+                        *point_ids.entry(l).or_insert_with(|| {
+                            part.points.push(l);
+                            (part.points.len() - 1) as u32
+                        })
+                    });
+                    if x == y {
+                        continue;
+                    }
+                    let ends = [x.min(y), x.max(y)];
+                    let k = *seg_ids.entry(ends).or_insert_with(|| {
+                        part.segments.push((ends, coplanar));
+                        (part.segments.len() - 1) as u32
+                    });
+                    part.segments[k as usize].1 &= coplanar;
+                    part.sources.push((k, i, j));
+                }
+            }
+        }
+        part
+    }
+}
+
 /// A seam from the pieces of the triangle pairs' intersections (`(i, j, piece)`, in pair
-/// order): points named by `name(label)` (one point per name), distinct segments with
-/// every pair they were found in, touching points. Exact constructions and positions are
-/// left to the caller.
-fn assemble(
-    results: impl Iterator<Item = (u32, u32, Piece)>,
-    name: impl Fn(Label) -> Label,
-) -> Seam {
+/// order, in blocks): points named by `name(label)` (one point per name), distinct
+/// segments with every pair they were found in, touching points; points and segments
+/// numbered in the order first met. Exact constructions and positions are left to the
+/// caller.
+///
+/// Runs of consecutive blocks are numbered on their own, side by side ([`Part`]); then the
+/// runs in order give their points and segments the next free numbers where they have
+/// none yet. A name first met in run `k` is first met there in the whole order too, and
+/// each run keeps its own order of first meetings: the numbers are those of one pass over
+/// all pieces, but the one pass left looks at each run's distinct points and segments
+/// only (neighbouring pairs meet the same points many times). A few runs per thread; one
+/// on one thread, where the second pass would only add work.
+fn assemble(blocks: &[&[(u32, u32, Piece)]], name: impl Fn(Label) -> Label + Sync) -> Seam {
+    let runs = match rayon::current_num_threads() {
+        1 => 1,
+        n => 4 * n,
+    };
+    let parts: Vec<Part> = blocks
+        .par_chunks(blocks.len().div_ceil(runs).max(1))
+        .map(|run| Part::of(run, &name))
+        .collect();
     let mut seam = Seam::default();
     let mut point_ids: FxHashMap<Label, u32> = FxHashMap::default();
     let mut seg_ids: FxHashMap<[u32; 2], u32> = FxHashMap::default();
-    let mut touching = Vec::new();
     let mut id_of = |l: Label, seam: &mut Seam| -> u32 {
-        *point_ids.entry(name(l)).or_insert_with(|| {
-            seam.points.push(name(l));
+        *point_ids.entry(l).or_insert_with(|| {
+            seam.points.push(l);
             (seam.points.len() - 1) as u32
         })
     };
-    for (i, j, piece) in results {
-        let mut add_segment = |s: [Label; 2], coplanar: bool, seam: &mut Seam| {
-            let (x, y) = (id_of(s[0], seam), id_of(s[1], seam));
-            if x == y {
-                return;
-            }
-            let ends = [x.min(y), x.max(y)];
-            let id = *seg_ids.entry(ends).or_insert_with(|| {
-                seam.segments.push(SeamSegment { ends, coplanar });
-                (seam.segments.len() - 1) as u32
-            });
-            seam.segments[id as usize].coplanar &= coplanar;
-            seam.sources.push(SegmentSource {
-                segment: id,
+    seam.sources
+        .reserve(parts.iter().map(|p| p.sources.len()).sum());
+    for part in &parts {
+        let ids: Vec<u32> = part.points.iter().map(|&l| id_of(l, &mut seam)).collect();
+        let segment_ids: Vec<u32> = part
+            .segments
+            .iter()
+            .map(|&([x, y], coplanar)| {
+                let (x, y) = (ids[x as usize], ids[y as usize]);
+                let ends = [x.min(y), x.max(y)];
+                let id = *seg_ids.entry(ends).or_insert_with(|| {
+                    seam.segments.push(SeamSegment { ends, coplanar });
+                    (seam.segments.len() - 1) as u32
+                });
+                seam.segments[id as usize].coplanar &= coplanar;
+                id
+            })
+            .collect();
+        seam.sources
+            .extend(part.sources.iter().map(|&(k, i, j)| SegmentSource {
+                segment: segment_ids[k as usize],
                 tri_a: i,
                 tri_b: j,
-            });
-        };
-        match piece {
-            Piece::Point(l) => touching.push(l),
-            Piece::Segment(s, coplanar) => add_segment(s, coplanar, &mut seam),
-        }
+            }));
     }
     let mut on_segment = vec![false; seam.points.len()];
     for s in &seam.segments {
@@ -373,10 +443,12 @@ fn assemble(
         on_segment[s.ends[1] as usize] = true;
     }
     let mut listed = FxHashSet::default();
-    for l in touching {
-        let id = id_of(l, &mut seam);
-        if on_segment.get(id as usize) != Some(&true) && listed.insert(id) {
-            seam.touching.push(id);
+    for part in &parts {
+        for &l in &part.touching {
+            let id = id_of(l, &mut seam);
+            if on_segment.get(id as usize) != Some(&true) && listed.insert(id) {
+                seam.touching.push(id);
+            }
         }
     }
     seam
@@ -443,7 +515,8 @@ pub fn self_seam(m: &Mesh, pairs: &[(u32, u32)]) -> Seam {
     for (i, j, r) in &results {
         tritri::pieces_of(r, |p| pieces.push((*i, *j, p)));
     }
-    let mut seam = assemble(pieces.iter().copied(), own_label);
+    let blocks: Vec<&[(u32, u32, Piece)]> = pieces.chunks(1 << 12).collect();
+    let mut seam = assemble(&blocks, own_label);
     seam.vertex_on = vertices_on_features(pieces.iter().copied());
     seam.candidate_pairs = pairs.len();
     seam.exact = seam

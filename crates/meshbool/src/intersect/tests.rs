@@ -1256,3 +1256,107 @@ fn a_degenerate_candidate_is_counted_once() {
     assert_eq!(seam.points, clean.points);
     assert_eq!(seam.segments, clean.segments);
 }
+
+/// [`assemble`] in one pass over all pieces, as it was written before it numbered blocks
+/// side by side: the oracle for the numbering.
+fn assemble_in_one_pass(pieces: &[(u32, u32, Piece)], name: impl Fn(Label) -> Label) -> Seam {
+    let mut seam = Seam::default();
+    let mut point_ids: FxHashMap<Label, u32> = FxHashMap::default();
+    let mut seg_ids: FxHashMap<[u32; 2], u32> = FxHashMap::default();
+    let mut touching = Vec::new();
+    let mut id_of = |l: Label, seam: &mut Seam| -> u32 {
+        *point_ids.entry(name(l)).or_insert_with(|| {
+            seam.points.push(name(l));
+            (seam.points.len() - 1) as u32
+        })
+    };
+    for &(i, j, piece) in pieces {
+        match piece {
+            Piece::Point(l) => touching.push(l),
+            Piece::Segment(s, coplanar) => {
+                let (x, y) = (id_of(s[0], &mut seam), id_of(s[1], &mut seam));
+                if x == y {
+                    continue;
+                }
+                let ends = [x.min(y), x.max(y)];
+                let id = *seg_ids.entry(ends).or_insert_with(|| {
+                    seam.segments.push(SeamSegment { ends, coplanar });
+                    (seam.segments.len() - 1) as u32
+                });
+                seam.segments[id as usize].coplanar &= coplanar;
+                seam.sources.push(SegmentSource {
+                    segment: id,
+                    tri_a: i,
+                    tri_b: j,
+                });
+            }
+        }
+    }
+    let on_segment: FxHashSet<u32> = seam.segments.iter().flat_map(|s| s.ends).collect();
+    let mut listed = FxHashSet::default();
+    for l in touching {
+        let id = id_of(l, &mut seam);
+        if !on_segment.contains(&id) && listed.insert(id) {
+            seam.touching.push(id);
+        }
+    }
+    seam
+}
+
+/// Blocks of pieces numbered side by side, then merged in order, give the numbers of one
+/// pass over all pieces: points, segments (with their coplanar flags), sources and
+/// touching points, for blocks of 1, 7, 1000 and all pieces on 1 to 5 threads (one run of
+/// blocks per call on one thread, four per thread on more), on shared faces (a grid with
+/// itself and with a shifted copy; cubes sharing faces, whose shared faces' edges are
+/// found by coplanar and by crossing pairs), crossing spheres, meshes touching at a point,
+/// and a self seam's names.
+#[test]
+fn blocks_numbered_side_by_side_give_the_numbers_of_one_pass() {
+    let pieces_of = |a: &Mesh, b: &Mesh| {
+        let mut out = Vec::new();
+        for (i, j) in candidate_pairs(a, b, false, [None, None]) {
+            if let (Some(x), Some(y)) = (tri(a, i as usize), tri(b, j as usize)) {
+                tritri::meet(&x, &y, |p| out.push((i, j, p)));
+            }
+        }
+        out
+    };
+    let grid = crate::shapes::plane([0.0; 3], 1.0, 1.0, 6, 6).unwrap();
+    let shifted = crate::shapes::plane([0.25, 0.1, 0.0], 1.0, 1.0, 6, 6).unwrap();
+    let sphere = uv_sphere([0.0; 3], 1.0, 24, 12);
+    let moved = rigid_motion(&sphere, [1.0, 2.0, 3.0], 0.7, [0.3, 0.1, 0.05]);
+    // Corner to corner: the cubes touch at one point only.
+    let apart = Mesh::cuboid([1.0; 3], [2.0; 3]);
+    let cases = [
+        (pieces_of(&grid, &grid), false),
+        (pieces_of(&grid, &shifted), false),
+        (pieces_of(&sphere, &moved), false),
+        (pieces_of(&Mesh::unit_cube(), &apart), false),
+        (
+            pieces_of(
+                &Mesh::unit_cube(),
+                &Mesh::cuboid([0.5, 0.0, 0.0], [1.5, 1.0, 1.0]),
+            ),
+            false,
+        ),
+        (pieces_of(&grid, &grid), true),
+    ];
+    for (k, (pieces, own)) in cases.iter().enumerate() {
+        assert!(!pieces.is_empty(), "case {k}");
+        let name = |l: Label| if *own { own_label(l) } else { l };
+        let want = assemble_in_one_pass(pieces, name);
+        assert!(k != 3 || want.touching.len() == 1, "case {k}");
+        for (size, threads) in [(1, 1), (1, 3), (7, 2), (7, 5), (1000, 2), (pieces.len(), 2)] {
+            let blocks: Vec<&[(u32, u32, Piece)]> = pieces.chunks(size).collect();
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let got = pool.install(|| assemble(&blocks, name));
+            assert_eq!(got.points, want.points, "case {k}, blocks of {size}");
+            assert_eq!(got.segments, want.segments, "case {k}, blocks of {size}");
+            assert_eq!(got.sources, want.sources, "case {k}, blocks of {size}");
+            assert_eq!(got.touching, want.touching, "case {k}, blocks of {size}");
+        }
+    }
+}
