@@ -76,8 +76,8 @@ impl FanFace {
 /// The other mesh's fan around a seam edge, and whether the wedge of a two-face fan is
 /// convex (the sign of the second face's far vertex against the first face's plane),
 /// found when first needed and kept for the edge's other uses.
-struct Fan {
-    faces: Vec<FanFace>,
+struct Fan<'a> {
+    faces: &'a [FanFace],
     convex: OnceCell<Sign>,
 }
 
@@ -90,10 +90,10 @@ fn local_class(
     w: &Point,
     e: [&Point; 2],
     near: [f64; 3],
-    fan: &Fan,
+    fan: &Fan<'_>,
 ) -> Option<Class> {
-    let [f0, f1] = &fan.faces[..] else {
-        return glued_class(own, w, e, near, &fan.faces);
+    let [f0, f1] = fan.faces else {
+        return glued_class(own, w, e, near, fan.faces);
     };
     let s = [f0, f1].map(|f| orient3d_plane(&f.plane[0], &f.plane[1], &f.plane[2], w));
     for (k, f) in [f0, f1].iter().enumerate() {
@@ -277,49 +277,46 @@ fn seam_votes(x: &CutMesh, y: &CutMesh) -> Vec<Vote> {
         .enumerate()
         .map(|(s, &v)| (v, s as u32))
         .collect();
-    (0..topo.edges.len())
+    // Each task's votes in one vector, and one vector of fan faces reused edge by edge.
+    let votes: Vec<Vec<Vote>> = (0..topo.edges.len())
         .into_par_iter()
-        .flat_map_iter(|e| {
-            let [u, v] = topo.edges[e];
-            let (su, sv) = (seam_of_vertex[&u], seam_of_vertex[&v]);
-            let (yu, yv) = (y.seam_vertex[su as usize], y.seam_vertex[sv as usize]);
-            let faces: Vec<FanFace> = ytopo
-                .edges
-                .binary_search(&[yu.min(yv), yu.max(yv)])
-                .map(|ye| {
-                    ytopo
-                        .uses_of(ye)
-                        .iter()
-                        .map(|use_| {
-                            let tri = y.mesh.triangles[use_.triangle as usize];
-                            FanFace {
-                                plane: y_in.corners(y.parent[use_.triangle as usize] as usize),
-                                far: y.point(tri[(use_.corner as usize + 2) % 3]),
-                                forward: tri[use_.corner as usize] == yu,
-                                triangle: OnceCell::new(),
-                            }
-                        })
-                        .collect()
-                })
-                .unwrap_or_default();
-            let fan = Fan {
-                faces,
-                convex: OnceCell::new(),
-            };
-            let (pu, pv) = (x.point(u), x.point(v));
-            let ends = [&pu, &pv];
-            topo.uses_of(e)
-                .iter()
-                .map(|use_| {
+        .fold(
+            || (Vec::new(), Vec::new()),
+            |(mut votes, mut faces): (Vec<Vote>, Vec<FanFace>), e| {
+                let [u, v] = topo.edges[e];
+                let (su, sv) = (seam_of_vertex[&u], seam_of_vertex[&v]);
+                let (yu, yv) = (y.seam_vertex[su as usize], y.seam_vertex[sv as usize]);
+                faces.clear();
+                if let Ok(ye) = ytopo.edges.binary_search(&[yu.min(yv), yu.max(yv)]) {
+                    faces.extend(ytopo.uses_of(ye).iter().map(|use_| {
+                        let tri = y.mesh.triangles[use_.triangle as usize];
+                        FanFace {
+                            plane: y_in.corners(y.parent[use_.triangle as usize] as usize),
+                            far: y.point(tri[(use_.corner as usize + 2) % 3]),
+                            forward: tri[use_.corner as usize] == yu,
+                            triangle: OnceCell::new(),
+                        }
+                    }));
+                }
+                let fan = Fan {
+                    faces: &faces,
+                    convex: OnceCell::new(),
+                };
+                let (pu, pv) = (x.point(u), x.point(v));
+                let ends = [&pu, &pv];
+                votes.extend(topo.uses_of(e).iter().map(|use_| {
                     let t = use_.triangle as usize;
                     let w = &x.point(x.mesh.triangles[t][(use_.corner as usize + 2) % 3]);
                     let own = x_in.corners(x.parent[t] as usize);
                     let near = x.mesh.positions[u as usize];
                     (patch[t], t as u32, local_class(&own, w, ends, near, &fan))
-                })
-                .collect::<Vec<_>>()
-        })
-        .collect()
+                }));
+                (votes, faces)
+            },
+        )
+        .map(|(votes, _)| votes)
+        .collect();
+    votes.concat()
 }
 
 /// What the seam decided ([`resolve_patches`]), and what is left to winding numbers.
