@@ -169,11 +169,7 @@ impl Local {
                     let v = rot(self.tris[t as usize], (s + d) % 3);
                     self.orient_pt(v[0], v[1], &x, x_on) == Sign::Positive
                 }));
-                let id = self.pts.len() as u32;
-                self.pts.push(x);
-                self.approx.push(approx);
-                self.on.push(x_on);
-                self.vt.push(t);
+                let id = self.add_vertex(x, approx, x_on, t);
                 self.split_edge(t, s, id);
                 self.last = t;
                 return Ok(id);
@@ -208,17 +204,11 @@ impl Local {
             let id = self.pts.len() as u32;
             match zeros.as_slice() {
                 [] => {
-                    self.pts.push(x);
-                    self.approx.push(approx);
-                    self.on.push(x_on);
-                    self.vt.push(t);
+                    self.add_vertex(x, approx, x_on, t);
                     self.split_face(t, id);
                 }
                 [k] => {
-                    self.pts.push(x);
-                    self.approx.push(approx);
-                    self.on.push(x_on);
-                    self.vt.push(t);
+                    self.add_vertex(x, approx, x_on, t);
                     self.split_edge(t, *k, id);
                 }
                 // On two edges: it is their shared corner.
@@ -230,6 +220,16 @@ impl Local {
             self.last = t;
             return Ok(id);
         }
+    }
+
+    /// Adds vertex `x` (held by triangle `t`, which the caller splits next) and returns
+    /// its index.
+    fn add_vertex(&mut self, x: Prepared, approx: [f64; 3], x_on: u8, t: u32) -> u32 {
+        self.pts.push(x);
+        self.approx.push(approx);
+        self.on.push(x_on);
+        self.vt.push(t);
+        (self.pts.len() - 1) as u32
     }
 
     fn split_face(&mut self, t: u32, x: u32) {

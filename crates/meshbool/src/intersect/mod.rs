@@ -175,8 +175,8 @@ pub(crate) fn intersect_with(
     // Set up every candidate triangle once (`slot[t]`: where triangle `t` is set up); the
     // degenerate ones are left out of the test and counted. Degenerate triangles elsewhere
     // cannot touch the other mesh and change nothing.
-    type Prepared = (Vec<u32>, Vec<Option<tritri::Tri>>, Vec<u32>);
-    let prepare = |m: &Mesh, mut ids: Vec<u32>| -> Prepared {
+    type SetUp = (Vec<u32>, Vec<Option<tritri::Tri>>, Vec<u32>);
+    let prepare = |m: &Mesh, mut ids: Vec<u32>| -> SetUp {
         let mut slot = crate::par::filled(u32::MAX, m.triangles.len());
         if ids.len() < 1 << 16 {
             // Few: each triangle once, in the order first met, told by its slot (a pass
@@ -327,6 +327,21 @@ fn candidate_pairs(
     crate::bvh::sort_pairs(pairs, a.triangles.len(), true)
 }
 
+/// `key`'s number in `ids`; a key not numbered before gets the next number, and `item()`
+/// goes to the end of `list` (the list of numbered things, in the order first met).
+#[inline]
+fn number<K: std::hash::Hash + Eq, T>(
+    ids: &mut FxHashMap<K, u32>,
+    key: K,
+    list: &mut Vec<T>,
+    item: impl FnOnce() -> T,
+) -> u32 {
+    *ids.entry(key).or_insert_with(|| {
+        list.push(item());
+        (list.len() - 1) as u32
+    })
+}
+
 /// A run of blocks of pieces with its points and segments numbered on their own, each in
 /// the order first met ([`assemble`]).
 #[derive(Default)]
@@ -359,19 +374,13 @@ impl Part {
                 Piece::Segment(s, coplanar) => {
                     let [x, y] = s.map(|l| {
                         let l = name(l);
-                        *point_ids.entry(l).or_insert_with(|| {
-                            part.points.push(l);
-                            (part.points.len() - 1) as u32
-                        })
+                        number(&mut point_ids, l, &mut part.points, || l)
                     });
                     if x == y {
                         continue;
                     }
                     let ends = [x.min(y), x.max(y)];
-                    let k = *seg_ids.entry(ends).or_insert_with(|| {
-                        part.segments.push((ends, coplanar));
-                        (part.segments.len() - 1) as u32
-                    });
+                    let k = number(&mut seg_ids, ends, &mut part.segments, || (ends, coplanar));
                     part.segments[k as usize].1 &= coplanar;
                     part.sources.push((k, i, j));
                 }
@@ -406,25 +415,23 @@ fn assemble(blocks: &[&[(u32, u32, Piece)]], name: impl Fn(Label) -> Label + Syn
     let mut seam = Seam::default();
     let mut point_ids: FxHashMap<Label, u32> = FxHashMap::default();
     let mut seg_ids: FxHashMap<[u32; 2], u32> = FxHashMap::default();
-    let mut id_of = |l: Label, seam: &mut Seam| -> u32 {
-        *point_ids.entry(l).or_insert_with(|| {
-            seam.points.push(l);
-            (seam.points.len() - 1) as u32
-        })
-    };
     seam.sources
         .reserve(parts.iter().map(|p| p.sources.len()).sum());
     for part in &parts {
-        let ids: Vec<u32> = part.points.iter().map(|&l| id_of(l, &mut seam)).collect();
+        let ids: Vec<u32> = part
+            .points
+            .iter()
+            .map(|&l| number(&mut point_ids, l, &mut seam.points, || l))
+            .collect();
         let segment_ids: Vec<u32> = part
             .segments
             .iter()
             .map(|&([x, y], coplanar)| {
                 let (x, y) = (ids[x as usize], ids[y as usize]);
                 let ends = [x.min(y), x.max(y)];
-                let id = *seg_ids.entry(ends).or_insert_with(|| {
-                    seam.segments.push(SeamSegment { ends, coplanar });
-                    (seam.segments.len() - 1) as u32
+                let id = number(&mut seg_ids, ends, &mut seam.segments, || SeamSegment {
+                    ends,
+                    coplanar,
                 });
                 seam.segments[id as usize].coplanar &= coplanar;
                 id
@@ -445,7 +452,7 @@ fn assemble(blocks: &[&[(u32, u32, Piece)]], name: impl Fn(Label) -> Label + Syn
     let mut listed = FxHashSet::default();
     for part in &parts {
         for &l in &part.touching {
-            let id = id_of(l, &mut seam);
+            let id = number(&mut point_ids, l, &mut seam.points, || l);
             if on_segment.get(id as usize) != Some(&true) && listed.insert(id) {
                 seam.touching.push(id);
             }
