@@ -45,8 +45,8 @@ impl<T> Kept<T> {
     }
 }
 
-/// What one mesh keeps for booleans: the whole tree of its triangles ([`Bvh::new`]), of
-/// the mesh it is given with.
+/// What one mesh keeps for booleans: the whole tree of its triangles, built for queries
+/// ([`Bvh::new_for_queries`]), of the mesh it is given with.
 #[derive(Clone, Debug, Default)]
 pub struct Keeps {
     /// The tree, taken by the broad phase where the mesh is used whole.

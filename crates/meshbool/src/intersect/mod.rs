@@ -307,7 +307,9 @@ fn candidate_pairs(
     );
     // Only a mesh used whole has its tree kept.
     let tree = |k: usize, m: &Mesh, whole: bool| {
-        kept[k].filter(|_| whole && !from_grid)?.get(|| Bvh::new(m))
+        kept[k]
+            .filter(|_| whole && !from_grid)?
+            .get(|| Bvh::new_for_queries(m))
     };
     let trees = [tree(0, a, ca.is_none()), tree(1, b, cb.is_none())];
     if ca.is_none() && cb.is_none() {
