@@ -9,6 +9,7 @@
 use std::sync::atomic::{AtomicBool, Ordering::Relaxed};
 use std::sync::OnceLock;
 
+use crate::broad::Slivers;
 use crate::bvh::Bvh;
 
 /// One structure kept between calls: built on its second request, then kept.
@@ -45,10 +46,13 @@ impl<T> Kept<T> {
     }
 }
 
-/// What one mesh keeps for booleans: the whole tree of its triangles, built for queries
-/// ([`Bvh::new_for_queries`]), of the mesh it is given with.
+/// What one mesh keeps for booleans, of the mesh it is given with: the whole tree of its
+/// triangles, built for queries ([`Bvh::new_for_queries`]), and its slivers
+/// ([`Slivers`]).
 #[derive(Clone, Debug, Default)]
 pub struct Keeps {
     /// The tree, taken by the broad phase where the mesh is used whole.
     pub tree: Kept<Bvh>,
+    /// Its slivers and the sums the broad phase weighs them against.
+    pub slivers: Kept<Slivers>,
 }

@@ -418,7 +418,7 @@ impl PipelineOptions<'_> {
 /// exactly welded; see [`crate::weld_exact`]).
 pub fn split(a: &Mesh, b: &Mesh, opts: &PipelineOptions) -> Split {
     opts.stage(Stage::Intersect);
-    let seam = intersect_with(a, b, opts.grid_from, opts.kept.map(|k| Some(&k?.tree)));
+    let seam = intersect_with(a, b, opts.grid_from, opts.kept);
     opts.stage(Stage::Arrange);
     let (arr_a, arr_b) = rayon::join(
         || arrange(a, &seam, Source::A),

@@ -9,8 +9,9 @@
 use rayon::prelude::*;
 use rustc_hash::{FxHashMap, FxHashSet};
 
+use crate::broad::Slivers;
 use crate::bvh::Bvh;
-use crate::kept::Kept;
+use crate::kept::Keeps;
 use crate::kernel::{cross_sign, Enclosure, Point, Sign};
 use crate::Mesh;
 
@@ -163,12 +164,13 @@ pub fn intersect(a: &Mesh, b: &Mesh) -> Seam {
 
 /// [`intersect`], with candidate pairs from the grid from `grid_from` triangles in both
 /// meshes together ([`GRID_FROM`] by default; tests set it to force either path), and
-/// below from the whole trees `kept` keeps of `a` and `b` where they have them.
+/// below from the whole trees `kept` keeps of `a` and `b` where they have them (and with
+/// their slivers, [`crate::broad::Slivers`], where they keep those).
 pub(crate) fn intersect_with(
     a: &Mesh,
     b: &Mesh,
     grid_from: usize,
-    kept: [Option<&Kept<Bvh>>; 2],
+    kept: [Option<&Keeps>; 2],
 ) -> Seam {
     let from_grid = a.triangles.len() + b.triangles.len() >= grid_from;
     let pairs = candidate_pairs(a, b, from_grid, kept);
@@ -252,7 +254,7 @@ fn candidate_pairs(
     a: &Mesh,
     b: &Mesh,
     from_grid: bool,
-    kept: [Option<&Kept<Bvh>>; 2],
+    kept: [Option<&Keeps>; 2],
 ) -> Vec<(u32, u32)> {
     let pairs_of = |a: &Mesh, b: &Mesh, kept: [Option<&Bvh>; 2]| match kept {
         _ if from_grid => crate::broad::overlapping_pairs(a, b),
@@ -301,14 +303,16 @@ fn candidate_pairs(
         }
     };
     let typical = crate::broad::typical_size(a, b);
+    let slivers = |k: usize, m: &Mesh| kept[k]?.slivers.get(|| Slivers::of(m));
     let (ca, cb) = rayon::join(
-        || crate::broad::cover_large(a, typical),
-        || crate::broad::cover_large(b, typical),
+        || crate::broad::cover_large(a, typical, slivers(0, a)),
+        || crate::broad::cover_large(b, typical, slivers(1, b)),
     );
     // Only a mesh used whole has its tree kept.
     let tree = |k: usize, m: &Mesh, whole: bool| {
         kept[k]
             .filter(|_| whole && !from_grid)?
+            .tree
             .get(|| Bvh::new_for_queries(m))
     };
     let trees = [tree(0, a, ca.is_none()), tree(1, b, cb.is_none())];
@@ -565,7 +569,7 @@ fn vertices_on_features(results: impl Iterator<Item = (u32, u32, Piece)>) -> Vec
 /// vertex ids; the rest by the exact pair test.
 pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
     // Large triangles are looked at through their pieces ([`crate::broad::cover_large`]).
-    let cover = crate::broad::cover_large(m, crate::broad::typical_size(m, m));
+    let cover = crate::broad::cover_large(m, crate::broad::typical_size(m, m), None);
     let (fan_ok, bvh) = rayon::join(
         || fans::certified(m),
         || Bvh::new(cover.as_ref().map_or(m, |c| &c.0)),

@@ -922,7 +922,7 @@ fn large_triangles_are_covered_by_their_pieces() {
         }
     }
     let typical = crate::broad::typical_size(&a, &b);
-    assert!(crate::broad::cover_large(&a, typical).is_some());
+    assert!(crate::broad::cover_large(&a, typical, None).is_some());
     let meets: Vec<(u32, u32)> = (0..a.triangles.len())
         .flat_map(|i| (0..b.triangles.len()).map(move |j| (i, j)))
         .filter(|&(i, j)| {
@@ -936,12 +936,12 @@ fn large_triangles_are_covered_by_their_pieces() {
     assert!(meets.len() > 500, "{}", meets.len());
     let boxes = crate::broad::overlapping_pairs(&a, &b).len();
     // A's whole tree, kept and built, is not taken: A is looked at through its pieces.
-    let (kept_a, kept_b) = (Kept::default(), Kept::default());
+    let (kept_a, kept_b) = (Keeps::default(), Keeps::default());
     for _ in 0..2 {
-        kept_a.get(|| Bvh::new(&a));
-        kept_b.get(|| Bvh::new(&b));
+        kept_a.tree.get(|| Bvh::new(&a));
+        kept_b.tree.get(|| Bvh::new(&b));
     }
-    assert!(kept_a.is_built() && kept_b.is_built());
+    assert!(kept_a.tree.is_built() && kept_b.tree.is_built());
     let without = candidate_pairs(&a, &b, false, [None, None]);
     assert_eq!(
         candidate_pairs(&a, &b, false, [Some(&kept_a), Some(&kept_b)]),
@@ -968,7 +968,7 @@ fn large_triangles_are_covered_by_their_pieces() {
 fn only_meshes_whose_large_triangles_matter_are_covered() {
     let sphere = uv_sphere([0.0; 3], 1.0, 1000, 500);
     let typical = crate::broad::typical_size(&sphere, &sphere);
-    assert!(crate::broad::cover_large(&sphere, typical).is_none());
+    assert!(crate::broad::cover_large(&sphere, typical, None).is_none());
     // A flat fan of long slivers around the origin, and a copy of it lifted by 1e-3.
     let mut fan = Mesh::default();
     let n = 800;
@@ -984,7 +984,7 @@ fn only_meshes_whose_large_triangles_matter_are_covered() {
         }
     }
     let typical = crate::broad::typical_size(&fan, &fan);
-    let (stand_in, parent) = crate::broad::cover_large(&fan, typical).expect("slivers");
+    let (stand_in, parent) = crate::broad::cover_large(&fan, typical, None).expect("slivers");
     assert!(stand_in.triangles.len() > 4 * fan.triangles.len());
     assert_eq!(stand_in.triangles.len(), parent.len());
     assert!(self_intersections(&fan).is_empty());
@@ -1089,7 +1089,7 @@ fn first_pairs_of_pieces_stand_for_every_pair_of_triangles() {
         add(&mut m, t);
     }
     let typical = crate::broad::typical_size(&m, &m);
-    let (stand_in, parent) = crate::broad::cover_large(&m, typical).expect("slivers");
+    let (stand_in, parent) = crate::broad::cover_large(&m, typical, None).expect("slivers");
     let bvh = Bvh::new(&stand_in);
     let unique = |mut p: Vec<(u32, u32)>| {
         p.sort_unstable();
@@ -1224,11 +1224,11 @@ fn meshes_of_unlike_sizes_give_every_overlapping_pair() {
         assert!(!want.is_empty());
         assert_eq!(candidate_pairs(a, b, false, [None, None]), want);
         // With the whole tree kept of either mesh or both: built on the second request.
-        let (kept_a, kept_b) = (Kept::default(), Kept::default());
+        let (kept_a, kept_b) = (Keeps::default(), Keeps::default());
         for kept in [[Some(&kept_a), None], [None, Some(&kept_b)]] {
             assert_eq!(candidate_pairs(a, b, false, kept), want);
         }
-        assert!(!kept_a.is_built() && !kept_b.is_built());
+        assert!(!kept_a.tree.is_built() && !kept_b.tree.is_built());
         for kept in [
             [Some(&kept_a), None],
             [None, Some(&kept_b)],
@@ -1236,7 +1236,8 @@ fn meshes_of_unlike_sizes_give_every_overlapping_pair() {
         ] {
             assert_eq!(candidate_pairs(a, b, false, kept), want);
         }
-        assert!(kept_a.is_built() && kept_b.is_built());
+        assert!(kept_a.tree.is_built() && kept_b.tree.is_built());
+        assert!(kept_a.slivers.is_built() && kept_b.slivers.is_built());
     }
 }
 
