@@ -191,44 +191,36 @@ impl OnPlane {
 
 /// The points of `t` on the plane of `o`, given the sides `s` of `t`'s corners: corners on
 /// the plane and crossings of edges whose ends are on opposite sides.
-fn on_plane(t: &Tri, s: [Sign; 3], o: &Tri) -> [Option<OnPlane>; 2] {
+fn on_plane(t: &Tri, s: [Sign; 3], o: &Tri, out: &mut [Option<OnPlane>; 2]) {
     // At most two (in place): two corners on the plane (then the third is off it and no
     // edge crosses), or one and the crossing of the opposite edge, or two crossings.
-    let mut out = [None, None];
-    let mut push = |x: OnPlane| {
-        let free = usize::from(out[0].is_some());
-        debug_assert!(
-            out[free].is_none(),
-            "a triangle meets a plane in two points"
-        );
-        out[free] = Some(x);
-    };
+    // Written where the caller keeps them (a point is a few hundred bytes).
+    let mut free = 0;
     for (i, side) in s.iter().enumerate() {
         if *side == Sign::Zero {
-            push(OnPlane {
+            debug_assert!(free < 2, "a triangle meets a plane in two points");
+            out[free] = Some(OnPlane {
                 point: Prepared::new(t.corner(i)),
                 own: Feature::Vertex(t.v[i]),
                 crossing: None,
             });
+            free += 1;
         }
     }
     for i in 0..3 {
         let j = (i + 1) % 3;
         if s[i].times(s[j]) == Sign::Negative {
-            push(OnPlane {
-                point: Prepared::new(Point::lpi(
-                    t.corners()[i],
-                    t.corners()[j],
-                    o.corners()[0],
-                    o.corners()[1],
-                    o.corners()[2],
-                )),
+            debug_assert!(free < 2, "a triangle meets a plane in two points");
+            let (p, q) = (t.corners()[i], t.corners()[j]);
+            let [x, y, z] = *o.corners();
+            out[free] = Some(OnPlane {
+                point: Prepared::new(Point::lpi(p, q, x, y, z)),
                 own: edge(t.v[i], t.v[j]),
-                crossing: Some((t.corners()[i], t.corners()[j], s[i])),
+                crossing: Some((p, q, s[i])),
             });
+            free += 1;
         }
     }
-    out
 }
 
 /// Intersects triangles `a` (mesh A) and `b` (mesh B) exactly.
@@ -321,7 +313,9 @@ fn crossing(a: &Tri, b: &Tri, sa: [Sign; 3], line_test: bool) -> TriTri {
             _ => None,
         }
     }
-    let (pa, pb) = (on_plane(a, sa, b), on_plane(b, sb, a));
+    let (mut pa, mut pb) = ([None, None], [None, None]);
+    on_plane(a, sa, b, &mut pa);
+    on_plane(b, sb, a, &mut pb);
     let (Some((a_lo, a_hi)), Some((b_lo, b_hi))) = (ends(&pa, axis), ends(&pb, axis)) else {
         return TriTri::None;
     };
