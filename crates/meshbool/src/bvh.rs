@@ -392,7 +392,7 @@ impl Bvh {
 
     /// The hierarchy of `mesh` built for many queries: splits chosen by the surface-area
     /// heuristic ([`Bvh::build_sah`]) instead of at the middle of the Morton order. Costs
-    /// about five times [`Bvh::new`]'s build and gives tighter boxes, so that a traversal
+    /// four to five times [`Bvh::new`]'s build and gives tighter boxes, so that a traversal
     /// visits fewer node pairs: for a tree kept between booleans (two 5k spheres' pairs
     /// in a third of the time) or an index queried again and again.
     pub fn new_for_queries(mesh: &Mesh) -> Self {
