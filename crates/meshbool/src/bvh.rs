@@ -391,10 +391,10 @@ impl Bvh {
     }
 
     /// The hierarchy of `mesh` built for many queries: splits chosen by the surface-area
-    /// heuristic ([`Bvh::build_sah`]) instead of at the middle of the Morton order. Costs
-    /// four to five times [`Bvh::new`]'s build and gives tighter boxes, so that a traversal
-    /// visits fewer node pairs: for a tree kept between booleans (two 5k spheres' pairs
-    /// in a third of the time) or an index queried again and again.
+    /// heuristic (binned, at whole leaves) instead of at the middle of the Morton order.
+    /// Costs four to five times [`Bvh::new`]'s build and gives tighter boxes, so that a
+    /// traversal visits fewer node pairs: for a tree kept between booleans (two 5k
+    /// spheres' pairs in a third of the time) or an index queried again and again.
     pub fn new_for_queries(mesh: &Mesh) -> Self {
         Self::new_by_area(mesh, SAH_DEPTH)
     }
