@@ -10,7 +10,7 @@ use rustc_hash::FxHashSet;
 use serde::Serialize;
 
 use crate::edges::EdgeTopology;
-use crate::kernel::{orient2d, Point, Sign};
+use crate::kernel::{orient2d_inputs, robust_safe, Sign};
 use crate::vec3::{cross, dot, norm, sub};
 use crate::Aabb;
 use crate::Mesh;
@@ -106,9 +106,10 @@ pub fn projected_area(mesh: &Mesh, plane: Plane) -> f64 {
 /// Exactly whether three points are collinear (the triangle has zero area).
 pub fn is_degenerate(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
     // The normal's components are the three 2D orientations of the projections; the
-    // triangle has zero area exactly when all three are zero.
-    let [a, b, c] = [a, b, c].map(Point::Explicit);
-    (0..3).all(|axis| orient2d(&a, &b, &c, axis) == Sign::Zero)
+    // triangle has zero area exactly when all three are zero. On the corners as they
+    // are (the adaptive predicate where they allow it), without wrapping them as points.
+    let safe = robust_safe(&[&a, &b, &c]);
+    (0..3).all(|axis| orient2d_inputs(&a, &b, &c, axis, safe) == Sign::Zero)
 }
 
 /// Number of degenerate triangles: a repeated vertex index or three collinear corners (exact).
@@ -354,6 +355,21 @@ mod tests {
             [2.0, 2.0, 2.0 + 4.0 * f64::EPSILON]
         ));
         assert!(is_degenerate([0.0; 3], [1.0, 1.0, 1.0], [2.0, 2.0, 2.0]));
+        // Beyond the range of the adaptive predicate (the exact path): huge and tiny.
+        for s in [1e250, 1e-250] {
+            let p = |x: f64, y: f64, z: f64| [s * x, s * y, s * z];
+            assert!(is_degenerate(
+                p(1.0, 1.0, 1.0),
+                p(2.0, 2.0, 2.0),
+                p(3.0, 3.0, 3.0)
+            ));
+            let off = 3.0 + 4.0 * f64::EPSILON;
+            assert!(!is_degenerate(
+                p(1.0, 1.0, 1.0),
+                p(2.0, 2.0, 2.0),
+                p(3.0, 3.0, off)
+            ));
+        }
     }
 
     #[test]
