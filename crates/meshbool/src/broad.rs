@@ -165,13 +165,21 @@ impl Slivers {
         let n = m.triangles.len() as u32;
         let long = |t: u32| longest_side(&tri_box(m, t));
         let step = (n / SAMPLE).max(1);
+        // The longest side and the swept sum in one pass over the triangles.
+        let (longest, swept_all) = (0..n)
+            .into_par_iter()
+            .map(|t| {
+                let l = long(t);
+                (l, l.powi(2))
+            })
+            .reduce(|| (0.0, 0.0), |x, y| (x.0.max(y.0), x.1 + y.1));
         Slivers {
             ids: (0..n)
                 .into_par_iter()
                 .filter(|&t| piece_width(m, t, f64::INFINITY).is_some())
                 .collect(),
-            longest: (0..n).into_par_iter().map(long).reduce(|| 0.0, f64::max),
-            swept_all: (0..n).into_par_iter().map(|t| long(t).powi(2)).sum(),
+            longest,
+            swept_all,
             swept_sample: (0..n)
                 .step_by(step as usize)
                 .fold(0.0, |sum, t| sum + long(t).powi(2)),

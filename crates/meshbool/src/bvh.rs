@@ -518,14 +518,8 @@ impl Bvh {
     /// returns its box. Leaf boxes are unions of the outward-rounded triangle boxes, which
     /// is the outward rounding of the exact union (rounding is monotone).
     fn build(nodes: &mut [Node], base: usize, offset: usize, boxes: &[Box3f]) -> Box3f {
-        let union = |b: Box3f, c: &Box3f| -> Box3f {
-            [
-                std::array::from_fn(|k| b[0][k].min(c[0][k])),
-                std::array::from_fn(|k| b[1][k].max(c[1][k])),
-            ]
-        };
         if boxes.len() <= LEAF {
-            let bbox = boxes[1..].iter().fold(boxes[0], union);
+            let bbox = boxes[1..].iter().fold(boxes[0], |b, c| union(&b, c));
             nodes[0] = Node {
                 bbox,
                 start: offset as u32,
@@ -549,10 +543,7 @@ impl Bvh {
                 Self::build(right, right_base, offset + mid, hi),
             )
         };
-        let bbox = [
-            std::array::from_fn(|k| bl[0][k].min(br[0][k])),
-            std::array::from_fn(|k| bl[1][k].max(br[1][k])),
-        ];
+        let bbox = union(&bl, &br);
         head[0] = Node {
             bbox,
             start: right_base as u32,
