@@ -612,7 +612,9 @@ fn shared_corner_filter_only_answers_apart_when_apart() {
 /// The early test of crossing pairs (each triangle with one corner alone on its side of
 /// the other's plane, no corner on it) is exact: in that configuration it calls a pair
 /// apart exactly when the full test finds nothing (touching at one point is not apart),
-/// and it leaves every other configuration to the full test. Corners on a 0..=3 grid
+/// and it leaves every other configuration to the full test. Pairs it does not call
+/// apart get their overlap from orientations of corners alone, which must give the full
+/// test's point or segment, ends labelled and in order, pair by pair. Corners on a 0..=3 grid
 /// (corners on planes, touching, shared corners), random in the unit cube, and both moved
 /// to UTM-like coordinates or rotated (near-contacts rounded differently).
 #[test]

@@ -291,14 +291,21 @@ fn crossing(a: &Tri, b: &Tri, sa: [Sign; 3], line_test: bool) -> TriTri {
     if sb[0] != Sign::Zero && sb[0] == sb[1] && sb[1] == sb[2] {
         return TriTri::None;
     }
-    if line_test && apart_on_line(a.corners(), sa, b.corners(), sb) {
-        return TriTri::None;
+    let general = if line_test { lone_first(sa, sb) } else { None };
+    if let Some((ia, ib)) = general {
+        let (ca, cb) = (a.corners(), b.corners());
+        if apart_ordered(&ia.map(|k| ca[k]), &ib.map(|k| cb[k])) {
+            return TriTri::None;
+        }
     }
     // Both triangles meet the line L where the planes cross; order points along an axis
     // in which L's direction is (exactly) non-zero.
-    let Some(axis) = planes_line_axis(a.corners(), b.corners()) else {
+    let Some((axis, along)) = planes_line_axis(a.corners(), b.corners()) else {
         return TriTri::None; // parallel distinct planes cannot get here; stay safe
     };
+    if let Some(order) = general {
+        return general_overlap(a, b, (sa, sb), order, along);
+    }
     // Each triangle's points on the other's plane, the first and the last along L.
     fn ends(v: &[Option<OnPlane>; 2], axis: usize) -> Option<(&OnPlane, &OnPlane)> {
         match v {
@@ -369,42 +376,110 @@ fn crossing(a: &Tri, b: &Tri, sa: [Sign; 3], line_test: bool) -> TriTri {
 /// other's plane and two strictly on the other side (`st`, `su`: the sides, none zero),
 /// are certainly apart: their segments on the line where the planes meet do not overlap.
 /// Decided from input corners alone (two `orient3d`, the test of Devillers and Guigue,
-/// "Faster triangle-triangle intersection tests", 2002), so that the intersection points,
-/// implicit and costly, are only built for pairs that may meet. `false` in every other
+/// "Faster triangle-triangle intersection tests", 2002); pairs that meet then get their
+/// overlap from orientations too ([`general_overlap`]). `false` in every other
 /// configuration (a corner on a plane, touching, crossing): then the full test decides.
+/// (The intersection test runs it in two steps, [`lone_first`] and [`apart_ordered`].)
+#[cfg(test)]
 pub(super) fn apart_on_line(
     t: &[[f64; 3]; 3],
     st: [Sign; 3],
     u: &[[f64; 3]; 3],
     su: [Sign; 3],
 ) -> bool {
+    lone_first(st, su).is_some_and(|(i, j)| apart_ordered(&i.map(|k| t[k]), &j.map(|k| u[k])))
+}
+
+/// The corners of two crossing triangles as Devillers and Guigue order them, given their
+/// sides of the other's plane (`st`, `su`): the corner alone on its side first, the
+/// other two after it in cyclic order, swapped where needed so that each lone corner lies
+/// on the positive side of the other's plane as ordered (swapping two corners reverses a
+/// plane and leaves the other's sides alone). `None` unless each triangle has a corner
+/// alone on its side and none on the other's plane.
+fn lone_first(st: [Sign; 3], su: [Sign; 3]) -> Option<([usize; 3], [usize; 3])> {
     /// The corner alone on its side, first, the others in cyclic order, and its side.
-    fn lone(s: [Sign; 3]) -> Option<(usize, Sign)> {
+    fn lone(s: [Sign; 3]) -> Option<([usize; 3], Sign)> {
         if s.contains(&Sign::Zero) {
             return None;
         }
         (0..3)
             .find(|&i| s[i] != s[(i + 1) % 3] && s[i] != s[(i + 2) % 3])
-            .map(|i| (i, s[i]))
+            .map(|i| ([i, (i + 1) % 3, (i + 2) % 3], s[i]))
     }
-    let (Some((i, si)), Some((j, sj))) = (lone(st), lone(su)) else {
-        return false;
-    };
-    let (p1, mut q1, mut r1) = (t[i], t[(i + 1) % 3], t[(i + 2) % 3]);
-    let (p2, mut q2, mut r2) = (u[j], u[(j + 1) % 3], u[(j + 2) % 3]);
-    // Orient each plane so that the other triangle's lone corner lies on its positive
-    // side (swapping two corners reverses a plane and leaves the other's sides alone).
+    let ((mut t, si), (mut u, sj)) = (lone(st)?, lone(su)?);
     if si == Sign::Negative {
-        std::mem::swap(&mut q2, &mut r2);
+        u.swap(1, 2);
     }
     if sj == Sign::Negative {
-        std::mem::swap(&mut q1, &mut r1);
+        t.swap(1, 2);
     }
-    // Each segment runs from the edge p q to the edge p r of its triangle; the two tests
-    // compare their ends along the line. Positive: one segment ends before the other
-    // starts.
-    orient3d_explicit(&q1, &p2, &p1, &q2) == Sign::Positive
-        || orient3d_explicit(&p1, &p2, &r1, &r2) == Sign::Positive
+    Some((t, u))
+}
+
+/// [`apart_on_line`] of corners ordered by [`lone_first`]. On the planes' line, the first
+/// triangle's segment runs from its crossing on edge `p₁ r₁` to its crossing on `p₁ q₁`,
+/// the second's from `p₂ q₂` to `p₂ r₂`, in one direction; `orient3d(p₁, x, p₂, y)` is
+/// positive exactly when the second triangle's crossing on
+/// edge `p₂ y` lies beyond the first's on edge `p₁ x`, zero when they are one point.
+fn apart_ordered([p1, q1, r1]: &[[f64; 3]; 3], [p2, q2, r2]: &[[f64; 3]; 3]) -> bool {
+    // The second segment starts (edge p₂ q₂) beyond the first's end (edge p₁ q₁), or the
+    // first starts (edge p₁ r₁) beyond the second's end (edge p₂ r₂).
+    orient3d_explicit(p1, q1, p2, q2) == Sign::Positive
+        || orient3d_explicit(p1, r1, p2, r2) == Sign::Negative
+}
+
+/// What crossing triangles `a` and `b` share when [`lone_first`] ordered their corners
+/// (`ia`, `ib`) and [`apart_ordered`] did not call them apart: the overlap of their
+/// segments on the planes' line, its ends chosen by two more `orient3d` of input corners
+/// and located by [`Tri::locate_crossing`], so that no intersection point is built.
+/// The ends are given in increasing coordinate `axis`, along which the planes' line runs
+/// in direction `along` (the sign of that component of `a`'s normal × `b`'s), as the
+/// general path gives them.
+fn general_overlap(
+    a: &Tri,
+    b: &Tri,
+    (sa, sb): ([Sign; 3], [Sign; 3]),
+    (ia, ib): ([usize; 3], [usize; 3]),
+    along: Sign,
+) -> TriTri {
+    let (ca, cb) = (a.corners(), b.corners());
+    let ([p1, q1, r1], [p2, q2, r2]) = (ia.map(|k| &ca[k]), ib.map(|k| &cb[k]));
+    // The overlap starts at the later start (a's on edge p₁ r₁, b's on edge p₂ q₂) and
+    // ends at the earlier end (a's on p₁ q₁, b's on p₂ r₂); ties go to `a`, one point.
+    let start_from_a = orient3d_explicit(p1, r1, p2, q2) != Sign::Positive;
+    let end_from_a = orient3d_explicit(p1, q1, p2, r2) != Sign::Negative;
+    // The crossing of edge (lone corner, `k`) of `a` or of `b`, labelled.
+    let on_a = |k: usize| -> Option<Label> {
+        let (p, q) = (ia[0], k);
+        Some(Label {
+            a: edge(a.v[p], a.v[q]),
+            b: b.locate_crossing(&ca[p], &ca[q], sa[p])?,
+        })
+    };
+    let on_b = |k: usize| -> Option<Label> {
+        let (p, q) = (ib[0], k);
+        Some(Label {
+            a: a.locate_crossing(&cb[p], &cb[q], sb[p])?,
+            b: edge(b.v[p], b.v[q]),
+        })
+    };
+    let start = if start_from_a {
+        on_a(ia[2])
+    } else {
+        on_b(ib[1])
+    };
+    let end = if end_from_a { on_a(ia[1]) } else { on_b(ib[2]) };
+    let (Some(l0), Some(l1)) = (start, end) else {
+        // Only non-finite corners (a public caller's unvalidated mesh) get here.
+        return TriTri::None;
+    };
+    if l0 == l1 {
+        return TriTri::Point(l0);
+    }
+    // The segments run from start to end in the direction of a's normal × b's as the
+    // corners were ordered: each swap above reversed one normal.
+    let reversed = sa[ia[0]].times(sb[ib[0]]).times(along) == Sign::Negative;
+    TriTri::Segment(if reversed { [l1, l0] } else { [l0, l1] })
 }
 
 /// Coplanar triangles, each edge clipped to the other triangle, with the shortcut for

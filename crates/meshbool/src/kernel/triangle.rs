@@ -77,11 +77,13 @@ fn approx_normal(p: &[[f64; 3]; 3]) -> [f64; 3] {
 /// An axis in which the direction of the line where the planes of triangles `t` and `u`
 /// meet is exactly non-zero ([`normals_cross_sign`]), so that points on that line are
 /// ordered along it by that coordinate. Axes are tried from the largest component of the
-/// approximate direction to the smallest. `None` for parallel (or degenerate) planes.
-pub fn planes_line_axis(t: &[[f64; 3]; 3], u: &[[f64; 3]; 3]) -> Option<usize> {
+/// approximate direction to the smallest; with the axis, the sign of that component.
+/// `None` for parallel (or degenerate) planes.
+pub fn planes_line_axis(t: &[[f64; 3]; 3], u: &[[f64; 3]; 3]) -> Option<(usize, Sign)> {
     let d = cross(&approx_normal(t), &approx_normal(u));
     let mut axes = [0, 1, 2];
     axes.sort_by(|&i, &j| d[j].abs().total_cmp(&d[i].abs()));
     axes.into_iter()
-        .find(|&k| normals_cross_sign(t, u, k) != Sign::Zero)
+        .map(|k| (k, normals_cross_sign(t, u, k)))
+        .find(|&(_, s)| s != Sign::Zero)
 }
