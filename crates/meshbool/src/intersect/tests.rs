@@ -609,20 +609,19 @@ fn shared_corner_filter_only_answers_apart_when_apart() {
     );
 }
 
-/// The early test of crossing pairs (each triangle with one corner alone on its side of
-/// the other's plane, no corner on it) is exact: in that configuration it calls a pair
-/// apart exactly when the full test finds nothing (touching at one point is not apart),
-/// and it leaves every other configuration to the full test. Pairs it does not call
-/// apart get their overlap from orientations of corners alone, which must give the full
-/// test's point or segment, ends labelled and in order, pair by pair. Corners on a 0..=3 grid
-/// (corners on planes, touching, shared corners), random in the unit cube, and both moved
-/// to UTM-like coordinates or rotated (near-contacts rounded differently).
+/// Triangles that are not coplanar get what they share from orientations of their
+/// corners alone, pair by pair the same (points or segments, ends labelled and in
+/// order) as from their points on each other's planes built and compared along the
+/// planes' line. Corners on a 0..=3 grid (corners on planes, edges in planes, touching,
+/// shared corners) and random in the unit cube (general position: mostly apart or
+/// crossing), both as given, moved to UTM-like coordinates or rotated (near-contacts
+/// rounded differently).
 #[test]
-fn line_test_calls_crossing_pairs_apart_exactly_when_apart() {
+fn orientations_decide_crossing_pairs_as_their_points_do() {
     use crate::kernel::orient3d_sides;
-    use tritri::{apart_on_line, intersect_filtered};
+    use tritri::intersect_by_points;
     let mut rng = Rng(0x5eed_0f11_7e57);
-    let (mut general, mut apart, mut touching) = (0, 0, 0);
+    let (mut general, mut apart, mut touching, mut on_plane, mut met) = (0, 0, 0, 0, 0);
     for round in 0..40_000 {
         let grid = round % 2 == 0;
         let mut next = || {
@@ -640,23 +639,25 @@ fn line_test_calls_crossing_pairs_apart_exactly_when_apart() {
         let (Some(a), Some(b)) = (Tri::new(0, [0, 1, 2], pa), Tri::new(0, [10, 11, 12], pb)) else {
             continue;
         };
-        let full = intersect_filtered(&a, &b, false);
-        assert_eq!(tt(&a, &b), full, "{pa:?} {pb:?}");
+        let by_points = intersect_by_points(&a, &b);
+        assert_eq!(tt(&a, &b), by_points, "{pa:?} {pb:?}");
         let (sa, sb) = (orient3d_sides(&pb, &pa), orient3d_sides(&pa, &pb));
-        let says = apart_on_line(&pa, sa, &pb, sb);
         let crossing = |s: [Sign; 3]| !s.contains(&Sign::Zero) && s.iter().any(|&x| x != s[0]);
         if crossing(sa) && crossing(sb) {
             general += 1;
-            assert_eq!(says, full == TriTri::None, "{pa:?} {pb:?}");
-            apart += usize::from(says);
-            touching += usize::from(matches!(full, TriTri::Point(_)));
-        } else {
-            assert!(!says, "{pa:?} {pb:?}");
+            apart += usize::from(by_points == TriTri::None);
+            touching += usize::from(matches!(by_points, TriTri::Point(_)));
+        } else if (sa.contains(&Sign::Zero) || sb.contains(&Sign::Zero))
+            && sa != [Sign::Zero; 3]
+            && sb != [Sign::Zero; 3]
+        {
+            on_plane += 1;
+            met += usize::from(by_points != TriTri::None);
         }
     }
     assert!(
-        general > 10_000 && apart > 4000 && touching > 300,
-        "{general} {apart} {touching}"
+        general > 10_000 && apart > 4000 && touching > 300 && on_plane > 5000 && met > 2000,
+        "{general} {apart} {touching} {on_plane} {met}"
     );
 }
 

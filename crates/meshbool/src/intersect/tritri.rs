@@ -85,6 +85,7 @@ impl Tri {
         self.tri.sign()
     }
 
+    #[cfg(test)]
     fn corner(&self, k: usize) -> Point {
         Point::Explicit(self.corners()[k])
     }
@@ -99,15 +100,20 @@ impl Tri {
     /// the three orientations).
     fn locate_prepared(&self, x: &Prepared) -> Option<Feature> {
         if let Some(p) = x.explicit() {
-            // An input point (a corner on the other's plane): orientations of input points.
-            let (c, safe) = (self.corners(), self.tri.robust_safe() && robust_safe(&[&p]));
-            return self.locate_by(std::array::from_fn(|k| {
-                orient2d_inputs(&c[k], &c[(k + 1) % 3], &p, self.axis(), safe)
-            }));
+            return self.locate_corner(&p);
         }
         let c = self.corners().map(|p| Prepared::new(Point::Explicit(p)));
         self.locate_by(std::array::from_fn(|k| {
             orient2d_prepared(&c[k], &c[(k + 1) % 3], x, self.axis())
+        }))
+    }
+
+    /// [`Tri::locate`] of an input point (a corner of another triangle, on this one's
+    /// plane): orientations of input points.
+    fn locate_corner(&self, p: &[f64; 3]) -> Option<Feature> {
+        let (c, safe) = (self.corners(), self.tri.robust_safe() && robust_safe(&[p]));
+        self.locate_by(std::array::from_fn(|k| {
+            orient2d_inputs(&c[k], &c[(k + 1) % 3], p, self.axis(), safe)
         }))
     }
 
@@ -170,6 +176,7 @@ pub enum TriTri {
 
 /// A point on the other triangle's plane, with the feature of its own triangle it lies on.
 /// Prepared: it is compared along the planes' line and located several times.
+#[cfg(test)]
 struct OnPlane {
     point: Prepared,
     own: Feature,
@@ -178,6 +185,7 @@ struct OnPlane {
     crossing: Option<([f64; 3], [f64; 3], Sign)>,
 }
 
+#[cfg(test)]
 impl OnPlane {
     /// The smallest feature of `t` (the triangle whose plane the point lies on) that
     /// contains the point.
@@ -191,6 +199,7 @@ impl OnPlane {
 
 /// The points of `t` on the plane of `o`, given the sides `s` of `t`'s corners: corners on
 /// the plane and crossings of edges whose ends are on opposite sides.
+#[cfg(test)]
 fn on_plane(t: &Tri, s: [Sign; 3], o: &Tri, out: &mut [Option<OnPlane>; 2]) {
     // At most two (in place): two corners on the plane (then the third is off it and no
     // edge crosses), or one and the crossing of the opposite edge, or two crossings.
@@ -225,20 +234,45 @@ fn on_plane(t: &Tri, s: [Sign; 3], o: &Tri, out: &mut [Option<OnPlane>; 2]) {
 
 /// Intersects triangles `a` (mesh A) and `b` (mesh B) exactly.
 pub fn intersect(a: &Tri, b: &Tri) -> TriTri {
-    intersect_filtered(a, b, true)
+    match against(a, b) {
+        Against::Apart => TriTri::None,
+        Against::Coplanar => coplanar_filtered(a, b, true).0,
+        Against::Sides(sa) => crossing(a, b, sa),
+    }
 }
 
-/// [`intersect`], with the early test of crossing pairs ([`apart_on_line`]) on or off
-/// (off only in the tests that check that test against the full one).
-pub(super) fn intersect_filtered(a: &Tri, b: &Tri, line_test: bool) -> TriTri {
+/// [`intersect`] with the points where each triangle meets the other's plane built and
+/// compared along the planes' line ([`crossing_by_points`]): the tests' reference for
+/// the orientations that decide it in [`crossing`].
+#[cfg(test)]
+pub(super) fn intersect_by_points(a: &Tri, b: &Tri) -> TriTri {
+    match against(a, b) {
+        Against::Apart => TriTri::None,
+        Against::Coplanar => coplanar_filtered(a, b, true).0,
+        Against::Sides(sa) => crossing_by_points(a, b, sa),
+    }
+}
+
+/// How triangle `a` lies against the plane of `b`.
+enum Against {
+    /// Every corner strictly on one side.
+    Apart,
+    /// Every corner on the plane.
+    Coplanar,
+    /// Otherwise: the corners' sides.
+    Sides([Sign; 3]),
+}
+
+/// How `a` lies against `b`'s plane, from the exact sides of its corners.
+fn against(a: &Tri, b: &Tri) -> Against {
     let sa = orient3d_sides(b.corners(), a.corners());
     if sa[0] != Sign::Zero && sa[0] == sa[1] && sa[1] == sa[2] {
-        return TriTri::None;
+        Against::Apart
+    } else if sa == [Sign::Zero; 3] {
+        Against::Coplanar
+    } else {
+        Against::Sides(sa)
     }
-    if sa == [Sign::Zero; 3] {
-        return coplanar_filtered(a, b, true).0;
-    }
-    crossing(a, b, sa, line_test)
 }
 
 /// One piece of what two triangles share, as the seam takes it in.
@@ -273,39 +307,237 @@ fn coplanar_to(segments: &[[Label; 2]], points: &[Label], mut f: impl FnMut(Piec
 /// The pieces of [`intersect`]`(a, b)`, in the same order ([`pieces_of`]), given to `f`
 /// one by one: a coplanar pair's are made in place, with no allocation.
 pub(super) fn meet(a: &Tri, b: &Tri, mut f: impl FnMut(Piece)) {
-    let sa = orient3d_sides(b.corners(), a.corners());
-    if sa[0] != Sign::Zero && sa[0] == sa[1] && sa[1] == sa[2] {
-        return;
+    match against(a, b) {
+        Against::Apart => {}
+        Against::Coplanar => {
+            coplanar_pieces(a, b, true, &mut f);
+        }
+        Against::Sides(sa) => pieces_of(&crossing(a, b, sa), f),
     }
-    if sa == [Sign::Zero; 3] {
-        coplanar_pieces(a, b, true, &mut f);
-        return;
-    }
-    pieces_of(&crossing(a, b, sa, true), f);
 }
 
 /// Triangles `a` and `b` that are not coplanar, with `a`'s corners' sides `sa` of `b`'s
-/// plane (not all one non-zero side).
-fn crossing(a: &Tri, b: &Tri, sa: [Sign; 3], line_test: bool) -> TriTri {
+/// plane (not all one non-zero side): each meets the line `L` where the planes cross in
+/// a segment or a point, and they share the overlap of the two. The ends of each are
+/// corners on the other's plane or crossings of edges with it, compared along `L` by
+/// orientations of input corners alone ([`Line::cmp`]): no intersection point is built.
+/// Pairs in general position cost four `orient3d` beyond the corners' sides, two of
+/// them for pairs that are apart (the test of Devillers and Guigue, "Faster
+/// triangle-triangle intersection tests", 2002, is this one in that configuration).
+fn crossing(a: &Tri, b: &Tri, sa: [Sign; 3]) -> TriTri {
     let sb = orient3d_sides(a.corners(), b.corners());
     if sb[0] != Sign::Zero && sb[0] == sb[1] && sb[1] == sb[2] {
         return TriTri::None;
     }
-    let general = if line_test { lone_first(sa, sb) } else { None };
-    if let Some((ia, ib)) = general {
-        let (ca, cb) = (a.corners(), b.corners());
-        if apart_ordered(&ia.map(|k| ca[k]), &ib.map(|k| cb[k])) {
+    let line = Line {
+        tris: [a, b],
+        sides: [sa, sb],
+        axis: std::cell::Cell::new(None),
+    };
+    line.overlap()
+}
+
+/// A point where a triangle meets the other's plane: on the line where the planes cross.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum OnLine {
+    /// Corner `k` of triangle `t` (0: `a`, 1: `b`), on the other's plane.
+    Corner { t: usize, k: usize },
+    /// The crossing of the other's plane by edge `k l` of triangle `t`, whose ends are
+    /// strictly on either side of it.
+    Crossing { t: usize, k: usize, l: usize },
+}
+
+/// Two triangles that are not coplanar and both meet the other's plane ([`crossing`]).
+/// Points on the line `L` where the planes cross are ordered along the direction
+/// `d = n_a × n_b` (`n`: a triangle's normal `(c₁ − c₀) × (c₂ − c₀)`).
+struct Line<'t> {
+    tris: [&'t Tri; 2],
+    /// The sides of each triangle's corners of the other's plane.
+    sides: [[Sign; 3]; 2],
+    /// An axis in which `d` is non-zero and the sign of `d` in it ([`planes_line_axis`]),
+    /// found when first needed; `Some(None)` only for non-finite corners.
+    axis: std::cell::Cell<Option<Option<(usize, Sign)>>>,
+}
+
+impl Line<'_> {
+    fn axis(&self) -> Option<(usize, Sign)> {
+        if let Some(a) = self.axis.get() {
+            return a;
+        }
+        let a = planes_line_axis(self.tris[0].corners(), self.tris[1].corners());
+        self.axis.set(Some(a));
+        a
+    }
+
+    fn corner(&self, t: usize, k: usize) -> &[f64; 3] {
+        &self.tris[t].corners()[k]
+    }
+
+    /// Triangle `t`'s points on the other's plane, ordered along `d`: two, or one twice.
+    fn ends(&self, t: usize) -> Option<[OnLine; 2]> {
+        let s = self.sides[t];
+        let mut found = [None; 2];
+        let mut push = |p: OnLine| {
+            debug_assert!(found[1].is_none(), "a triangle meets a plane in two points");
+            let free = usize::from(found[0].is_some());
+            found[free] = Some(p);
+        };
+        for k in 0..3 {
+            let l = (k + 1) % 3;
+            if s[k] == Sign::Zero {
+                push(OnLine::Corner { t, k });
+            } else if s[k].times(s[l]) == Sign::Negative {
+                push(OnLine::Crossing { t, k, l });
+            }
+        }
+        match found {
+            [Some(x), Some(y)] if self.cmp(x, y) == Sign::Negative => Some([y, x]),
+            [Some(x), Some(y)] => Some([x, y]),
+            [Some(x), None] => Some([x, x]),
+            _ => None,
+        }
+    }
+
+    /// The sign of `y − x` along `d`: positive when `y` lies beyond `x`, zero when they
+    /// are one point.
+    fn cmp(&self, x: OnLine, y: OnLine) -> Sign {
+        match (x, y) {
+            (OnLine::Crossing { t, k, l }, _) => self.beyond_crossing(t, k, l, y),
+            (_, OnLine::Crossing { t, k, l }) => self.beyond_crossing(t, k, l, x).reversed(),
+            (OnLine::Corner { t, k }, OnLine::Corner { t: u, k: m }) => {
+                // Both on L, so their coordinates along an axis in which `d` is non-zero
+                // come in the order of `d`'s sign there.
+                let Some((axis, along)) = self.axis() else {
+                    return Sign::Zero; // non-finite corners only
+                };
+                let (p, q) = (self.corner(t, k)[axis], self.corner(u, m)[axis]);
+                let s = match q.partial_cmp(&p) {
+                    Some(Ordering::Greater) => Sign::Positive,
+                    Some(Ordering::Less) => Sign::Negative,
+                    _ => Sign::Zero,
+                };
+                s.times(along)
+            }
+        }
+    }
+
+    /// [`Line::cmp`] of the crossing `x` of the other's plane by edge `k l` (`p q`) of
+    /// triangle `t` and a point `z` on L. In `t`'s plane, `z` lies on the side of the line
+    /// `p q` that `d` points to from `x` exactly when it lies beyond `x`: for `t = a`,
+    /// the side `sign(n_a · ((q − p) × d)) = sign((q − p) · n_b)`, `q`'s side of `b`'s
+    /// plane, and the opposite for `t = b` (`d` is `−n_b × n_a`). The side of `z` comes
+    /// from `orient2d` for a corner (an input point in `t`'s plane), from `t`'s own
+    /// orientation for its own points (they lie beyond the edge's third corner's side),
+    /// and for the crossing of `t`'s plane by edge `r s` of the other triangle from
+    /// `orient3d(p, q, r, s)`, which is minus the side of `z` times `r`'s side of `t`'s
+    /// plane.
+    fn beyond_crossing(&self, t: usize, k: usize, l: usize, z: OnLine) -> Sign {
+        let tri = self.tris[t];
+        let (p, q) = (self.corner(t, k), self.corner(t, l));
+        // The side of edge k → l its third corner lies on: that of the triangle's own
+        // points.
+        let own = if l == (k + 1) % 3 {
+            Sign::Positive
+        } else {
+            Sign::Negative
+        };
+        let side = match z {
+            OnLine::Corner { t: u, .. } | OnLine::Crossing { t: u, .. } if u == t => own,
+            OnLine::Corner { t: u, k: m } => {
+                let z = self.corner(u, m);
+                let safe = tri.tri.robust_safe() && robust_safe(&[z]);
+                orient2d_inputs(p, q, z, tri.axis(), safe).times(tri.sign())
+            }
+            OnLine::Crossing { t: u, k: r, l: s } => {
+                let (r_at, s_at) = (self.corner(u, r), self.corner(u, s));
+                orient3d_explicit(p, q, r_at, s_at)
+                    .times(self.sides[u][r])
+                    .reversed()
+            }
+        };
+        let side = side.times(self.sides[t][l]);
+        if t == 0 {
+            side
+        } else {
+            side.reversed()
+        }
+    }
+
+    /// The label of a point on L.
+    fn label(&self, x: OnLine) -> Option<Label> {
+        // The point's own feature in its triangle, and the feature of the other it lies in.
+        let (t, own, other) = match x {
+            OnLine::Corner { t, k } => {
+                let at = self.corner(t, k);
+                (
+                    t,
+                    Feature::Vertex(self.tris[t].v[k]),
+                    self.tris[1 - t].locate_corner(at)?,
+                )
+            }
+            OnLine::Crossing { t, k, l } => {
+                let tri = self.tris[t];
+                let (p, q) = (self.corner(t, k), self.corner(t, l));
+                let other = self.tris[1 - t].locate_crossing(p, q, self.sides[t][k])?;
+                (t, edge(tri.v[k], tri.v[l]), other)
+            }
+        };
+        Some(if t == 0 {
+            Label { a: own, b: other }
+        } else {
+            Label { a: other, b: own }
+        })
+    }
+
+    /// The overlap of the two triangles' segments on L: nothing, a point or a segment,
+    /// its ends in increasing coordinate along [`planes_line_axis`]'s axis.
+    fn overlap(&self) -> TriTri {
+        let (Some([a_lo, a_hi]), Some([b_lo, b_hi])) = (self.ends(0), self.ends(1)) else {
+            return TriTri::None;
+        };
+        // Apart: one segment starts beyond the other's end.
+        if self.cmp(a_hi, b_lo) == Sign::Positive || self.cmp(b_hi, a_lo) == Sign::Positive {
             return TriTri::None;
         }
+        // The later start and the earlier end; ties (one point) go to `a`.
+        let lo = if self.cmp(a_lo, b_lo) == Sign::Positive {
+            b_lo
+        } else {
+            a_lo
+        };
+        let hi = if self.cmp(a_hi, b_hi) == Sign::Negative {
+            b_hi
+        } else {
+            a_hi
+        };
+        let (Some(l0), Some(l1)) = (self.label(lo), self.label(hi)) else {
+            // Only non-finite corners (a public caller's unvalidated mesh) get here.
+            return TriTri::None;
+        };
+        if l0 == l1 {
+            return TriTri::Point(l0);
+        }
+        match self.axis() {
+            Some((_, Sign::Negative)) => TriTri::Segment([l1, l0]),
+            Some(_) => TriTri::Segment([l0, l1]),
+            None => TriTri::None,
+        }
+    }
+}
+
+/// [`crossing`] with each triangle's points on the other's plane built as implicit
+/// points and compared by their coordinates: the reference the tests hold it to.
+#[cfg(test)]
+fn crossing_by_points(a: &Tri, b: &Tri, sa: [Sign; 3]) -> TriTri {
+    let sb = orient3d_sides(a.corners(), b.corners());
+    if sb[0] != Sign::Zero && sb[0] == sb[1] && sb[1] == sb[2] {
+        return TriTri::None;
     }
     // Both triangles meet the line L where the planes cross; order points along an axis
     // in which L's direction is (exactly) non-zero.
-    let Some((axis, along)) = planes_line_axis(a.corners(), b.corners()) else {
+    let Some((axis, _)) = planes_line_axis(a.corners(), b.corners()) else {
         return TriTri::None; // parallel distinct planes cannot get here; stay safe
     };
-    if let Some(order) = general {
-        return general_overlap(a, b, (sa, sb), order, along);
-    }
     // Each triangle's points on the other's plane, the first and the last along L.
     fn ends(v: &[Option<OnPlane>; 2], axis: usize) -> Option<(&OnPlane, &OnPlane)> {
         match v {
@@ -370,116 +602,6 @@ fn crossing(a: &Tri, b: &Tri, sa: [Sign; 3], line_test: bool) -> TriTri {
     } else {
         TriTri::Segment([l0, l1])
     }
-}
-
-/// True when triangles `t` and `u`, each with one corner strictly on one side of the
-/// other's plane and two strictly on the other side (`st`, `su`: the sides, none zero),
-/// are certainly apart: their segments on the line where the planes meet do not overlap.
-/// Decided from input corners alone (two `orient3d`, the test of Devillers and Guigue,
-/// "Faster triangle-triangle intersection tests", 2002); pairs that meet then get their
-/// overlap from orientations too ([`general_overlap`]). `false` in every other
-/// configuration (a corner on a plane, touching, crossing): then the full test decides.
-/// (The intersection test runs it in two steps, [`lone_first`] and [`apart_ordered`].)
-#[cfg(test)]
-pub(super) fn apart_on_line(
-    t: &[[f64; 3]; 3],
-    st: [Sign; 3],
-    u: &[[f64; 3]; 3],
-    su: [Sign; 3],
-) -> bool {
-    lone_first(st, su).is_some_and(|(i, j)| apart_ordered(&i.map(|k| t[k]), &j.map(|k| u[k])))
-}
-
-/// The corners of two crossing triangles as Devillers and Guigue order them, given their
-/// sides of the other's plane (`st`, `su`): the corner alone on its side first, the
-/// other two after it in cyclic order, swapped where needed so that each lone corner lies
-/// on the positive side of the other's plane as ordered (swapping two corners reverses a
-/// plane and leaves the other's sides alone). `None` unless each triangle has a corner
-/// alone on its side and none on the other's plane.
-fn lone_first(st: [Sign; 3], su: [Sign; 3]) -> Option<([usize; 3], [usize; 3])> {
-    /// The corner alone on its side, first, the others in cyclic order, and its side.
-    fn lone(s: [Sign; 3]) -> Option<([usize; 3], Sign)> {
-        if s.contains(&Sign::Zero) {
-            return None;
-        }
-        (0..3)
-            .find(|&i| s[i] != s[(i + 1) % 3] && s[i] != s[(i + 2) % 3])
-            .map(|i| ([i, (i + 1) % 3, (i + 2) % 3], s[i]))
-    }
-    let ((mut t, si), (mut u, sj)) = (lone(st)?, lone(su)?);
-    if si == Sign::Negative {
-        u.swap(1, 2);
-    }
-    if sj == Sign::Negative {
-        t.swap(1, 2);
-    }
-    Some((t, u))
-}
-
-/// [`apart_on_line`] of corners ordered by [`lone_first`]. On the planes' line, the first
-/// triangle's segment runs from its crossing on edge `p₁ r₁` to its crossing on `p₁ q₁`,
-/// the second's from `p₂ q₂` to `p₂ r₂`, in one direction; `orient3d(p₁, x, p₂, y)` is
-/// positive exactly when the second triangle's crossing on
-/// edge `p₂ y` lies beyond the first's on edge `p₁ x`, zero when they are one point.
-fn apart_ordered([p1, q1, r1]: &[[f64; 3]; 3], [p2, q2, r2]: &[[f64; 3]; 3]) -> bool {
-    // The second segment starts (edge p₂ q₂) beyond the first's end (edge p₁ q₁), or the
-    // first starts (edge p₁ r₁) beyond the second's end (edge p₂ r₂).
-    orient3d_explicit(p1, q1, p2, q2) == Sign::Positive
-        || orient3d_explicit(p1, r1, p2, r2) == Sign::Negative
-}
-
-/// What crossing triangles `a` and `b` share when [`lone_first`] ordered their corners
-/// (`ia`, `ib`) and [`apart_ordered`] did not call them apart: the overlap of their
-/// segments on the planes' line, its ends chosen by two more `orient3d` of input corners
-/// and located by [`Tri::locate_crossing`], so that no intersection point is built.
-/// The ends are given in increasing coordinate `axis`, along which the planes' line runs
-/// in direction `along` (the sign of that component of `a`'s normal × `b`'s), as the
-/// general path gives them.
-fn general_overlap(
-    a: &Tri,
-    b: &Tri,
-    (sa, sb): ([Sign; 3], [Sign; 3]),
-    (ia, ib): ([usize; 3], [usize; 3]),
-    along: Sign,
-) -> TriTri {
-    let (ca, cb) = (a.corners(), b.corners());
-    let ([p1, q1, r1], [p2, q2, r2]) = (ia.map(|k| &ca[k]), ib.map(|k| &cb[k]));
-    // The overlap starts at the later start (a's on edge p₁ r₁, b's on edge p₂ q₂) and
-    // ends at the earlier end (a's on p₁ q₁, b's on p₂ r₂); ties go to `a`, one point.
-    let start_from_a = orient3d_explicit(p1, r1, p2, q2) != Sign::Positive;
-    let end_from_a = orient3d_explicit(p1, q1, p2, r2) != Sign::Negative;
-    // The crossing of edge (lone corner, `k`) of `a` or of `b`, labelled.
-    let on_a = |k: usize| -> Option<Label> {
-        let (p, q) = (ia[0], k);
-        Some(Label {
-            a: edge(a.v[p], a.v[q]),
-            b: b.locate_crossing(&ca[p], &ca[q], sa[p])?,
-        })
-    };
-    let on_b = |k: usize| -> Option<Label> {
-        let (p, q) = (ib[0], k);
-        Some(Label {
-            a: a.locate_crossing(&cb[p], &cb[q], sb[p])?,
-            b: edge(b.v[p], b.v[q]),
-        })
-    };
-    let start = if start_from_a {
-        on_a(ia[2])
-    } else {
-        on_b(ib[1])
-    };
-    let end = if end_from_a { on_a(ia[1]) } else { on_b(ib[2]) };
-    let (Some(l0), Some(l1)) = (start, end) else {
-        // Only non-finite corners (a public caller's unvalidated mesh) get here.
-        return TriTri::None;
-    };
-    if l0 == l1 {
-        return TriTri::Point(l0);
-    }
-    // The segments run from start to end in the direction of a's normal × b's as the
-    // corners were ordered: each swap above reversed one normal.
-    let reversed = sa[ia[0]].times(sb[ib[0]]).times(along) == Sign::Negative;
-    TriTri::Segment(if reversed { [l1, l0] } else { [l0, l1] })
 }
 
 /// Coplanar triangles, each edge clipped to the other triangle, with the shortcut for
