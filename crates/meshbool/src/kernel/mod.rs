@@ -668,6 +668,18 @@ pub fn orient3d_sides(t: &[[f64; 3]; 3], ds: &[[f64; 3]; 3]) -> [Sign; 3] {
     if in_one_axis_plane(&[a, b, c, &ds[0], &ds[1], &ds[2]]) {
         return [Sign::Zero; 3];
     }
+    if let Some(k) = (0..3).find(|&k| a[k] == b[k] && b[k] == c[k]) {
+        // A plane square to axis k (faces of boxes and CAD parts, where the filter fails
+        // for every point on it): the normal points along k, with the sign of the
+        // triangle's orientation in the projection dropping k; a point's side is the
+        // sign of its coordinate's difference from the plane's, times that.
+        let n = orient2d_inputs(a, b, c, k, robust_safe(&[a, b, c]));
+        return ds.map(|d| match d[k].partial_cmp(&a[k]) {
+            Some(Ordering::Greater) => n,
+            Some(Ordering::Less) => n.reversed(),
+            _ => Sign::Zero,
+        });
+    }
     if !robust_safe(&[a, b, c, &ds[0], &ds[1], &ds[2]]) {
         return ds.map(|d| orient3d_explicit(a, b, c, &d));
     }

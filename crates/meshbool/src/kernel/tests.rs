@@ -612,16 +612,24 @@ fn sides_of_three_points_agree_with_single_tests() {
             ),
             3 => {
                 // A face in an axis plane (UTM-sized coordinates), the points in it or an
-                // eighth off it (on the axis plane's shortcut: all in it).
+                // eighth above or below it (on the shortcuts for all in one axis plane
+                // and for a triangle in one).
                 let k = (rng.next() % 3) as usize;
-                let at = |rng: &mut Rng, off: bool| {
+                let at = |rng: &mut Rng, off: f64| {
                     let mut p = grid(rng, UTM[k]);
-                    p[k] = UTM[k] + if off { 0.125 } else { 0.0 };
+                    p[k] = UTM[k] + off;
                     p
                 };
                 let some_off = rng.next() % 2 == 0;
-                let t = std::array::from_fn(|_| at(&mut rng, false));
-                let ds = std::array::from_fn(|j| at(&mut rng, some_off && j == 1));
+                let t = std::array::from_fn(|_| at(&mut rng, 0.0));
+                let ds = std::array::from_fn(|j| {
+                    let off = match (some_off, j) {
+                        (true, 1) => 0.125,
+                        (true, 2) => -0.125,
+                        _ => 0.0,
+                    };
+                    at(&mut rng, off)
+                });
                 (t, ds)
             }
             _ => (
