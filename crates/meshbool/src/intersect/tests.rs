@@ -1364,3 +1364,37 @@ fn blocks_numbered_side_by_side_give_the_numbers_of_one_pass() {
         }
     }
 }
+
+/// Non-finite corners (a public caller's unvalidated mesh) give some answer, never a
+/// panic (debug assertions included): each coordinate of either triangle of a crossing
+/// pair, and of a pair where one lies in the other's plane, made NaN or infinite in turn,
+/// one or two at a time.
+#[test]
+fn non_finite_corners_give_an_answer_not_a_panic() {
+    let a0 = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]];
+    let crossing = [[0.5, 0.5, -1.0], [0.5, 0.5, 1.0], [1.5, 0.5, 0.0]];
+    let touching = [[0.5, 0.5, 0.0], [3.0, 0.5, 0.0], [0.5, 0.5, 1.0]];
+    let mut tried = 0;
+    for b0 in [crossing, touching] {
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            for i in 0..18 {
+                for j in i..18 {
+                    let (mut pa, mut pb) = (a0, b0);
+                    for x in [i, j] {
+                        let p = if x < 9 { &mut pa } else { &mut pb };
+                        p[(x % 9) / 3][x % 3] = bad;
+                    }
+                    let (Some(a), Some(b)) =
+                        (Tri::new(0, [0, 1, 2], pa), Tri::new(0, [10, 11, 12], pb))
+                    else {
+                        continue;
+                    };
+                    tried += 1;
+                    let _ = tt(&a, &b);
+                    tritri::meet(&a, &b, |_| {});
+                }
+            }
+        }
+    }
+    assert!(tried > 100, "{tried}");
+}

@@ -326,7 +326,9 @@ pub(super) fn meet(a: &Tri, b: &Tri, mut f: impl FnMut(Piece)) {
 /// triangle-triangle intersection tests", 2002, is this one in that configuration).
 fn crossing(a: &Tri, b: &Tri, sa: [Sign; 3]) -> TriTri {
     let sb = orient3d_sides(a.corners(), b.corners());
-    if sb[0] != Sign::Zero && sb[0] == sb[1] && sb[1] == sb[2] {
+    // All on one side: apart. All on `a`'s plane while `a` is not all on `b`'s: only with
+    // non-finite corners (a public caller's unvalidated mesh).
+    if sb[0] == sb[1] && sb[1] == sb[2] {
         return TriTri::None;
     }
     let line = Line {
