@@ -279,6 +279,43 @@ fn thread_counts_out_of_range_are_errors() {
     assert_eq!(counts.unwrap(), (3, 3));
 }
 
+/// Calls that keep their pool's other workers awake ([`awake`]) give their results and
+/// return: from several threads at once on the global pool, from inside parallel work on
+/// it (nested calls), and in pools of their own, booleans among them (the same mesh
+/// every time).
+#[test]
+fn calls_keeping_workers_awake_return_from_many_threads_and_nested_work() {
+    use rayon::prelude::*;
+    let sum = |n: u64| (0..n).into_par_iter().map(|x| x * x % 1009).sum::<u64>();
+    let want = |n: u64| (0..n).map(|x| x * x % 1009).sum::<u64>();
+    let (a, b) = cubes();
+    let union = || {
+        let out = boolean(&a, &b, Op::Union, &BooleanOptions::default()).unwrap();
+        out.mesh.triangles.len()
+    };
+    let triangles = union();
+    std::thread::scope(|s| {
+        for k in 0..6u64 {
+            s.spawn(move || {
+                for i in 0..40u64 {
+                    let n = 1000 + 40 * k + i;
+                    assert_eq!(with_threads(None, || sum(n)).unwrap(), want(n));
+                    let nested: Vec<u64> = with_threads(None, || {
+                        (0..8u64)
+                            .into_par_iter()
+                            .map(|j| with_threads(None, || sum(n + j)).unwrap())
+                            .collect()
+                    })
+                    .unwrap();
+                    assert_eq!(nested, (0..8u64).map(|j| want(n + j)).collect::<Vec<_>>());
+                    assert_eq!(with_threads(Some(3), || sum(n)).unwrap(), want(n));
+                    assert_eq!(with_threads(None, union).unwrap(), triangles);
+                }
+            });
+        }
+    });
+}
+
 #[test]
 fn progress_reports_every_stage_in_order() {
     let (a, b) = cubes();
