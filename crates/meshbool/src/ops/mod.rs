@@ -195,10 +195,10 @@ fn awake<R: Send>(f: impl FnOnce() -> R + Send) -> R {
                 if rayon::current_thread_index() == Some(me) {
                     return;
                 }
-                let mut last = std::time::Instant::now();
+                let mut last = web_time::Instant::now();
                 while !done.load(Ordering::Acquire) {
                     if rayon::yield_now() == Some(rayon::Yield::Executed) {
-                        last = std::time::Instant::now();
+                        last = web_time::Instant::now();
                     } else if last.elapsed() > AWAKE_IDLE {
                         return;
                     } else {
