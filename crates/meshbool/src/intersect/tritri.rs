@@ -7,6 +7,7 @@
 //! reached from different triangle pairs therefore gets the same label, and each label has
 //! one canonical construction ([`super::label_point`]).
 
+use std::cell::OnceCell;
 use std::cmp::Ordering;
 
 use crate::kernel::{
@@ -334,7 +335,7 @@ fn crossing(a: &Tri, b: &Tri, sa: [Sign; 3]) -> TriTri {
     let line = Line {
         tris: [a, b],
         sides: [sa, sb],
-        axis: std::cell::Cell::new(None),
+        axis: OnceCell::new(),
     };
     line.overlap()
 }
@@ -357,18 +358,15 @@ struct Line<'t> {
     /// The sides of each triangle's corners of the other's plane.
     sides: [[Sign; 3]; 2],
     /// An axis in which `d` is non-zero and the sign of `d` in it ([`planes_line_axis`]),
-    /// found when first needed; `Some(None)` only for non-finite corners.
-    axis: std::cell::Cell<Option<Option<(usize, Sign)>>>,
+    /// found when first needed; `None` only for non-finite corners.
+    axis: OnceCell<Option<(usize, Sign)>>,
 }
 
 impl Line<'_> {
     fn axis(&self) -> Option<(usize, Sign)> {
-        if let Some(a) = self.axis.get() {
-            return a;
-        }
-        let a = planes_line_axis(self.tris[0].corners(), self.tris[1].corners());
-        self.axis.set(Some(a));
-        a
+        *self
+            .axis
+            .get_or_init(|| planes_line_axis(self.tris[0].corners(), self.tris[1].corners()))
     }
 
     fn corner(&self, t: usize, k: usize) -> &[f64; 3] {
@@ -413,12 +411,7 @@ impl Line<'_> {
                     return Sign::Zero; // non-finite corners only
                 };
                 let (p, q) = (self.corner(t, k)[axis], self.corner(u, m)[axis]);
-                let s = match q.partial_cmp(&p) {
-                    Some(Ordering::Greater) => Sign::Positive,
-                    Some(Ordering::Less) => Sign::Negative,
-                    _ => Sign::Zero,
-                };
-                s.times(along)
+                Sign::of_difference(q, p).times(along)
             }
         }
     }

@@ -59,6 +59,16 @@ impl Sign {
         self.times(Sign::Negative)
     }
 
+    /// The sign of `x − y`, exact (a comparison, no subtraction); zero when either is
+    /// NaN.
+    pub(crate) fn of_difference(x: f64, y: f64) -> Sign {
+        match x.partial_cmp(&y) {
+            Some(Ordering::Greater) => Sign::Positive,
+            Some(Ordering::Less) => Sign::Negative,
+            _ => Sign::Zero,
+        }
+    }
+
     fn of_f64(x: f64) -> Sign {
         if x > 0.0 {
             Sign::Positive
@@ -664,21 +674,18 @@ fn orient3d_fixed_many(t: &[[f64; 3]; 3], ds: &[[f64; 3]]) -> Option<[Sign; 3]> 
 pub fn orient3d_sides(t: &[[f64; 3]; 3], ds: &[[f64; 3]; 3]) -> [Sign; 3] {
     let [a, b, c] = t;
     // Checked before the filter here: for a triangle against another, one such test
-    // spares the three filters' failures.
+    // spares the three filters' failures. (The square plane below gives the same zeros,
+    // but through an orientation: coplanar faces of boxes are most pairs of such meshes.)
     if in_one_axis_plane(&[a, b, c, &ds[0], &ds[1], &ds[2]]) {
         return [Sign::Zero; 3];
     }
+    // A plane square to axis k (faces of boxes and CAD parts, where the filter fails for
+    // every point on it): the normal points along k, with the sign of the triangle's
+    // orientation in the projection dropping k; a point's side is the sign of its
+    // coordinate's difference from the plane's, times that.
     if let Some(k) = (0..3).find(|&k| a[k] == b[k] && b[k] == c[k]) {
-        // A plane square to axis k (faces of boxes and CAD parts, where the filter fails
-        // for every point on it): the normal points along k, with the sign of the
-        // triangle's orientation in the projection dropping k; a point's side is the
-        // sign of its coordinate's difference from the plane's, times that.
         let n = orient2d_inputs(a, b, c, k, robust_safe(&[a, b, c]));
-        return ds.map(|d| match d[k].partial_cmp(&a[k]) {
-            Some(Ordering::Greater) => n,
-            Some(Ordering::Less) => n.reversed(),
-            _ => Sign::Zero,
-        });
+        return ds.map(|d| Sign::of_difference(d[k], a[k]).times(n));
     }
     if !robust_safe(&[a, b, c, &ds[0], &ds[1], &ds[2]]) {
         return ds.map(|d| orient3d_explicit(a, b, c, &d));
