@@ -19,6 +19,7 @@
 //! in the one final piece whose half-open region (closed below, open above along every cut)
 //! holds that corner.
 
+use crate::par::Grain;
 use rayon::prelude::*;
 
 use crate::bvh::{overlaps, round_out, tri_box, Box3, Box3f};
@@ -168,6 +169,7 @@ impl Slivers {
         // The longest side and the swept sum in one pass over the triangles.
         let (longest, swept_all) = (0..n)
             .into_par_iter()
+            .grained()
             .map(|t| {
                 let l = long(t);
                 (l, l.powi(2))
@@ -176,6 +178,7 @@ impl Slivers {
         Slivers {
             ids: (0..n)
                 .into_par_iter()
+                .grained()
                 .filter(|&t| piece_width(m, t, f64::INFINITY).is_some())
                 .collect(),
             longest,
@@ -252,14 +255,18 @@ pub(crate) fn cover_large(
     let large: Vec<(u32, f64)> = known_large.unwrap_or_else(|| {
         (0..n)
             .into_par_iter()
+            .grained()
             .filter_map(|t| Some((t, piece_width(m, t, typical)?)))
             .collect()
     });
     if large.is_empty() {
         return None;
     }
-    let of_large: f64 = large.par_iter().map(|&(t, _)| swept(t)).sum();
-    let all = known.map_or_else(|| (0..n).into_par_iter().map(swept).sum(), |s| s.swept_all);
+    let of_large: f64 = large.par_iter().grained().map(|&(t, _)| swept(t)).sum();
+    let all = known.map_or_else(
+        || (0..n).into_par_iter().grained().map(swept).sum(),
+        |s| s.swept_all,
+    );
     if of_large < WORTH * all {
         return None;
     }
@@ -431,6 +438,7 @@ const NOWHERE: u64 = u64::MAX;
 fn reached(m: &Mesh, common: &Box3, grid: &Grid) -> (Vec<u64>, Vec<u64>) {
     let ranges: Vec<u64> = (0..m.triangles.len() as u32)
         .into_par_iter()
+        .grained()
         .map(|t| {
             let e = tri_box(m, t);
             if overlaps(&e, common) {
@@ -443,6 +451,7 @@ fn reached(m: &Mesh, common: &Box3, grid: &Grid) -> (Vec<u64>, Vec<u64>) {
     let words = grid.cells().div_ceil(64);
     let bits = ranges
         .par_iter()
+        .grained()
         .with_min_len(1 << 14)
         .fold(
             || (vec![0u64; words], NOWHERE),
@@ -481,6 +490,7 @@ impl<'a> Part<'a> {
         let kept = |c: usize| keep[c / 64] >> (c % 64) & 1 == 1;
         let mut found: Vec<(u32, u32)> = ranges
             .par_iter()
+            .grained()
             .enumerate()
             .with_min_len(1 << 12)
             .fold(Vec::new, |mut out, (t, &r)| {
@@ -502,6 +512,7 @@ impl<'a> Part<'a> {
         ids.dedup();
         let boxes = ids
             .par_iter()
+            .grained()
             .map(|&t| round_out(&tri_box(mesh, t)))
             .collect();
         for f in &mut found {
@@ -556,6 +567,7 @@ impl<'a> Part<'a> {
 fn position_bounds(m: &Mesh) -> Option<Box3> {
     m.positions
         .par_iter()
+        .grained()
         .fold(
             || None,
             |b: Option<Box3>, p| {
@@ -587,7 +599,8 @@ pub fn overlapping_pairs(a: &Mesh, b: &Mesh) -> Vec<(u32, u32)> {
     if a.triangles.is_empty() || b.triangles.is_empty() {
         return Vec::new();
     }
-    let (Some(ba), Some(bb)) = rayon::join(|| position_bounds(a), || position_bounds(b)) else {
+    let (Some(ba), Some(bb)) = crate::par::join(|| position_bounds(a), || position_bounds(b))
+    else {
         return Vec::new();
     };
     let common: Box3 = [
@@ -599,9 +612,9 @@ pub fn overlapping_pairs(a: &Mesh, b: &Mesh) -> Vec<(u32, u32)> {
     }
     let grid = Grid::new(&common, a, b);
     let ((ra, bits_a), (rb, bits_b)) =
-        rayon::join(|| reached(a, &common, &grid), || reached(b, &common, &grid));
+        crate::par::join(|| reached(a, &common, &grid), || reached(b, &common, &grid));
     let keep: Vec<u64> = bits_a.iter().zip(&bits_b).map(|(x, y)| x & y).collect();
-    let (pa, pb) = rayon::join(
+    let (pa, pb) = crate::par::join(
         || Part::new(a, &ra, &grid, &keep),
         || Part::new(b, &rb, &grid, &keep),
     );
@@ -610,6 +623,7 @@ pub fn overlapping_pairs(a: &Mesh, b: &Mesh) -> Vec<(u32, u32)> {
     let own = [[f64::NEG_INFINITY; 3], [f64::INFINITY; 3]];
     let pairs: Vec<(u32, u32)> = cells
         .par_iter()
+        .grained()
         .flat_map_iter(|&c| {
             let (la, lb) = (pa.in_cell(c), pb.in_cell(c));
             let at = Place {
@@ -697,7 +711,7 @@ fn cut(
     };
     if la.len() + lb.len() > PARALLEL {
         let mut more = Vec::new();
-        rayon::join(|| half(below, true, out), || half(above, false, &mut more));
+        crate::par::join(|| half(below, true, out), || half(above, false, &mut more));
         out.append(&mut more);
     } else {
         half(below, true, out);

@@ -8,6 +8,7 @@
 //! Queries compare input coordinates only (closed boxes: touching counts as overlapping),
 //! so they are exact and conservative.
 
+use crate::par::Grain;
 use rayon::prelude::*;
 
 use crate::{Aabb, Mesh};
@@ -170,12 +171,13 @@ fn morton_order_within(mesh: &Mesh, within: Option<&Aabb>) -> Vec<u32> {
     let mut keyed: Vec<(u64, u32)> = match &ids {
         None => (0..mesh.triangles.len() as u32)
             .into_par_iter()
+            .grained()
             .map(keyed_of)
             .collect(),
-        Some(ids) => ids.par_iter().map(|&t| keyed_of(t)).collect(),
+        Some(ids) => ids.par_iter().grained().map(|&t| keyed_of(t)).collect(),
     };
     sort_keyed(&mut keyed);
-    keyed.into_par_iter().map(|(_, t)| t).collect()
+    keyed.into_par_iter().grained().map(|(_, t)| t).collect()
 }
 
 /// The triangles of `mesh` whose boxes meet the closed box `w`, in order, and the box of
@@ -194,6 +196,7 @@ fn meeting_box(mesh: &Mesh, w: &Aabb) -> (Vec<u32>, Option<Aabb>) {
     let codes: Vec<u8> = mesh
         .positions
         .par_iter()
+        .grained()
         .with_min_len(CHUNK)
         .map(beyond)
         .collect();
@@ -218,6 +221,7 @@ fn meeting_box(mesh: &Mesh, w: &Aabb) -> (Vec<u32>, Option<Aabb>) {
     }
     let parts: Vec<(Vec<u32>, Option<Aabb>)> = (0..mesh.triangles.len())
         .into_par_iter()
+        .grained()
         .step_by(CHUNK)
         .map(part)
         .collect();
@@ -365,14 +369,18 @@ fn sort_keyed(keyed: &mut Vec<(u64, u32)>) {
         }
         rest = r;
     }
-    slices.into_par_iter().with_min_len(64).for_each(|b| {
-        // One crowded bucket (a detailed spot in a large box) still sorts in parallel.
-        if b.len() > 1 << 15 {
-            b.par_sort_unstable();
-        } else {
-            b.sort_unstable();
-        }
-    });
+    slices
+        .into_par_iter()
+        .grained()
+        .with_min_len(64)
+        .for_each(|b| {
+            // One crowded bucket (a detailed spot in a large box) still sorts in parallel.
+            if b.len() > 1 << 15 {
+                b.par_sort_unstable();
+            } else {
+                b.sort_unstable();
+            }
+        });
     *keyed = out;
 }
 
@@ -407,6 +415,7 @@ impl Bvh {
         }
         let mut recs: Vec<Rec> = (0..n as u32)
             .into_par_iter()
+            .grained()
             .with_min_len(1 << 12)
             .map(|t| {
                 let bbox = round_out(&tri_box(mesh, t));
@@ -416,7 +425,11 @@ impl Bvh {
             .collect();
         let mut nodes = vec![EMPTY; 2 * leaves(n) - 1];
         Self::build_sah(&mut nodes, 0, 0, &mut recs, levels);
-        let (order, boxes) = recs.into_par_iter().map(|r| (r.t, r.bbox)).unzip();
+        let (order, boxes) = recs
+            .into_par_iter()
+            .grained()
+            .map(|r| (r.t, r.bbox))
+            .unzip();
         Bvh {
             nodes,
             order,
@@ -480,7 +493,7 @@ impl Bvh {
             Self::build_sah(nodes, base, offset, recs, levels.saturating_sub(1))
         };
         if n > 1 << 12 {
-            rayon::join(
+            crate::par::join(
                 || build(left, base + 1, offset, lo),
                 || build(right, right_base, offset + mid, hi),
             );
@@ -502,6 +515,7 @@ impl Bvh {
         }
         let boxes: Vec<Box3f> = order
             .par_iter()
+            .grained()
             .map(|&t| round_out(&tri_box(mesh, t)))
             .collect();
         let mut nodes = vec![EMPTY; 2 * leaves(order.len()) - 1];
@@ -533,7 +547,7 @@ impl Bvh {
         let (lo, hi) = boxes.split_at(mid);
         let right_base = base + 1 + left.len();
         let (bl, br) = if boxes.len() > 1 << 14 {
-            rayon::join(
+            crate::par::join(
                 || Self::build(left, base + 1, offset, lo),
                 || Self::build(right, right_base, offset + mid, hi),
             )
@@ -740,6 +754,7 @@ impl Query<'_> {
         } else {
             frontier
                 .into_par_iter()
+                .grained()
                 .map(|t| {
                     let mut v = Vec::new();
                     self.traverse(t, &mut v);
@@ -976,7 +991,7 @@ fn sort_buckets(
         let mid = n / 2;
         let (sl, sr) = second.split_at_mut(start[first + mid] - start[first]);
         let (kl, kr) = kept.split_at_mut(mid);
-        rayon::join(
+        crate::par::join(
             || sort_buckets(start, first, sl, kl, unique),
             || sort_buckets(start, first + mid, sr, kr, unique),
         );

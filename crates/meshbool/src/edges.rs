@@ -2,6 +2,7 @@
 //! The basis of the edge statistics in [`crate::measure`], of edge-connected components,
 //! and of patch flood fills in the boolean pipeline.
 
+use crate::par::Grain;
 use crate::Mesh;
 
 /// One triangle's use of an edge.
@@ -249,6 +250,7 @@ pub(crate) fn vertex_components(triangles: &[[u32; 3]], n: usize) -> Vec<u32> {
     } else {
         triangles
             .par_chunks(chunk)
+            .grained()
             .map(|c| c.iter().flatten().max().map_or(0, |&m| m as usize + 1))
             .collect()
     };
@@ -264,10 +266,11 @@ pub(crate) fn vertex_components(triangles: &[[u32; 3]], n: usize) -> Vec<u32> {
     }
     let starts: Vec<usize> = std::iter::once(0).chain(ends.iter().copied()).collect();
     let lengths: Vec<usize> = ends.iter().zip(&starts).map(|(e, s)| e - s).collect();
-    let mut parent: Vec<u32> = (0..n as u32).into_par_iter().collect();
+    let mut parent: Vec<u32> = (0..n as u32).into_par_iter().grained().collect();
     let across: Vec<Vec<[u32; 2]>> = crate::par::split_by(&mut parent, &lengths)
         .into_par_iter()
-        .zip(triangles.par_chunks(chunk))
+        .grained()
+        .zip(triangles.par_chunks(chunk).grained())
         .zip(&starts)
         .map(|((range, tris), &start)| {
             let (lo, hi) = (start as u32, (start + range.len()) as u32);
@@ -292,17 +295,20 @@ pub(crate) fn vertex_components(triangles: &[[u32; 3]], n: usize) -> Vec<u32> {
         let shared = SharedRoots {
             parent: parent
                 .into_par_iter()
+                .grained()
                 .map(std::sync::atomic::AtomicU32::new)
                 .collect(),
         };
-        across.par_iter().for_each(|pairs| {
+        across.par_iter().grained().for_each(|pairs| {
             pairs
                 .par_chunks(1 << 12)
+                .grained()
                 .for_each(|c| c.iter().for_each(|&[x, y]| shared.join(x, y)))
         });
         shared
             .parent
             .into_par_iter()
+            .grained()
             .map(std::sync::atomic::AtomicU32::into_inner)
             .collect()
     } else {
@@ -319,6 +325,7 @@ pub(crate) fn vertex_components(triangles: &[[u32; 3]], n: usize) -> Vec<u32> {
     }
     triangles
         .par_iter()
+        .grained()
         .map(|t| parent[t[0] as usize])
         .collect()
 }
@@ -427,6 +434,7 @@ impl SharedRoots {
         SharedRoots {
             parent: (0..n as u32)
                 .into_par_iter()
+                .grained()
                 .map(std::sync::atomic::AtomicU32::new)
                 .collect(),
         }
@@ -476,10 +484,12 @@ impl SharedRoots {
         const CHUNK: usize = 1 << 16;
         let roots: Vec<u32> = (0..self.parent.len() as u32)
             .into_par_iter()
+            .grained()
             .map(|t| self.find(t))
             .collect();
         let firsts: Vec<u32> = roots
             .par_chunks(CHUNK)
+            .grained()
             .enumerate()
             .map(|(c, r)| {
                 let base = (c * CHUNK) as u32;
@@ -497,7 +507,8 @@ impl SharedRoots {
         }
         let mut rank = vec![0u32; roots.len()];
         rank.par_chunks_mut(CHUNK)
-            .zip(roots.par_chunks(CHUNK))
+            .grained()
+            .zip(roots.par_chunks(CHUNK).grained())
             .enumerate()
             .for_each(|(c, (rank, r))| {
                 let (mut next, first) = (base[c], (c * CHUNK) as u32);
@@ -508,7 +519,11 @@ impl SharedRoots {
                     }
                 }
             });
-        let label = roots.par_iter().map(|&r| rank[r as usize]).collect();
+        let label = roots
+            .par_iter()
+            .grained()
+            .map(|&r| rank[r as usize])
+            .collect();
         (count as usize, label)
     }
 }
@@ -557,6 +572,7 @@ impl SeamTopology {
             let step = nv.div_ceil(4 * threads.min(64)) as u32;
             let pieces = bucket_ranges(mesh, step, seam_word)
                 .into_par_iter()
+                .grained()
                 .map(|(v0, _, start, half)| {
                     SeamPiece::of_buckets(mesh, v0, &start, half, &seam, &on_seam, |a, b| {
                         roots.join(a, b)
@@ -701,7 +717,7 @@ impl EdgeCounts {
             // Two ranges, each scanning every triangle: less memory traffic than listing
             // the half-edges first, which pays from more threads on.
             let half = (nv / 2) as u32;
-            let (a, b) = rayon::join(
+            let (a, b) = crate::par::join(
                 || counts_in_range(mesh, 0, half),
                 || counts_in_range(mesh, half, nv as u32),
             );
@@ -710,6 +726,7 @@ impl EdgeCounts {
         let step = nv.div_ceil(4 * threads.min(64)) as u32;
         bucket_ranges(mesh, step, count_word)
             .into_par_iter()
+            .grained()
             .map(|(v0, v1, start, mut half)| count_buckets(v1 - v0, &start, &mut half))
             .reduce(EdgeCounts::default, add)
     }
@@ -785,6 +802,7 @@ fn bucket_ranges<T: Copy + Default + Send + Sync>(
     let counts: Vec<Vec<u32>> = mesh
         .triangles
         .par_chunks(CHUNK)
+        .grained()
         .map(|tris| {
             let mut c = vec![0u32; parts];
             for &tri in tris {
@@ -799,6 +817,7 @@ fn bucket_ranges<T: Copy + Default + Send + Sync>(
     // (below 2^31) in the high half of a word, the corner (`3t + k`) in the low half.
     let mut lists: Vec<Vec<u64>> = (0..parts)
         .into_par_iter()
+        .grained()
         .map(|p| vec![0u64; counts.iter().map(|c| c[p] as usize).sum()])
         .collect();
     let mut slices: Vec<Vec<&mut [u64]>> =
@@ -811,6 +830,7 @@ fn bucket_ranges<T: Copy + Default + Send + Sync>(
     }
     mesh.triangles
         .par_chunks(CHUNK)
+        .grained()
         .zip(slices)
         .enumerate()
         .for_each(|(c, (tris, mut slices))| {
@@ -826,6 +846,7 @@ fn bucket_ranges<T: Copy + Default + Send + Sync>(
         });
     lists
         .into_par_iter()
+        .grained()
         .enumerate()
         .map(|(p, words)| {
             let v0 = ((p as u64) << shift).min(u64::from(nv)) as u32;

@@ -2,6 +2,7 @@
 //! exact welding (on the crate's weld table) and bounds.
 
 use crate::error::{Error, Location, Result};
+use crate::par::Grain;
 
 /// A triangle mesh: vertex positions and triangles as triples of vertex indices
 /// (counter-clockwise seen from the side the normal points to).
@@ -248,6 +249,7 @@ impl Mesh {
         if let Some(v) = self
             .positions
             .par_iter()
+            .grained()
             .with_min_len(1 << 14)
             .position_first(|p| p.iter().any(|c| !c.is_finite()))
         {
@@ -308,7 +310,12 @@ impl Mesh {
         if self.triangles.len() <= PIECE {
             return piece(&self.triangles);
         }
-        let boxes: Vec<Option<Aabb>> = self.triangles.par_chunks(PIECE).map(piece).collect();
+        let boxes: Vec<Option<Aabb>> = self
+            .triangles
+            .par_chunks(PIECE)
+            .grained()
+            .map(piece)
+            .collect();
         let mut it = boxes.into_iter().flatten();
         let first = it.next()?;
         Some(it.fold(first, |b, c| b.grown(&c.min).grown(&c.max)))
@@ -368,6 +375,7 @@ pub fn weld_exact(mesh: &Mesh) -> Welded {
     let triangles = mesh
         .triangles
         .par_iter()
+        .grained()
         .map(|t| t.map(|i| vertex_map[i as usize]))
         .collect();
     Welded {

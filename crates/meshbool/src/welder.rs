@@ -262,7 +262,7 @@ where
         let (mut cur, mut next) = (Hashed::default(), Hashed::default());
         decode(0, &mut cur);
         for start in (0..n).step_by(BLOCK) {
-            rayon::join(
+            crate::par::join(
                 || {
                     if start + BLOCK < n {
                         decode(start + BLOCK, &mut next)

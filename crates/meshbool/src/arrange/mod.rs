@@ -6,6 +6,7 @@
 //! Pipeline position: after [`crate::intersect`], before classification. Seam points on a
 //! triangle's edge are inserted into both triangles of that edge, so no T-junctions appear.
 
+use crate::par::Grain;
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
@@ -112,6 +113,7 @@ pub fn arrange(mesh: &Mesh, seam: &Seam, side: Source) -> Arranged {
     let cut = cut_triangles(mesh, &points, &constraints, near);
     let results: Vec<(u32, CutResult)> = cut
         .par_iter()
+        .grained()
         .map(|&t| (t, cut_triangle(mesh, t, &points, &constraints)))
         .collect();
     Arranged::assemble(points, seam_edges, reassemble(mesh, results))
@@ -168,7 +170,7 @@ fn index_seam_points(mesh: &Mesh, seam: &Seam, side: Source) -> SeamPoints {
     // Copied side by side: on large meshes a serial copy into fresh memory is this
     // step's serial part.
     let mut positions = Vec::with_capacity(mesh.positions.len() + seam.points.len());
-    positions.par_extend(mesh.positions.par_iter().copied());
+    positions.par_extend(mesh.positions.par_iter().grained().copied());
     let input_vertices = positions.len();
     let mut added: Vec<Point> = Vec::new();
     let mut enclosed = Vec::new();
@@ -265,10 +267,11 @@ fn cut_triangles(
                 })
         };
         match near {
-            Some(near) => cut.par_extend(near.par_iter().copied().filter(holds)),
+            Some(near) => cut.par_extend(near.par_iter().grained().copied().filter(holds)),
             None => cut.par_extend(
                 (0..mesh.triangles.len() as u32)
                     .into_par_iter()
+                    .grained()
                     .filter(holds),
             ),
         }
@@ -464,6 +467,7 @@ fn reassemble(mesh: &Mesh, results: Vec<(u32, CutResult)>) -> Reassembled {
     type Found = (Vec<(u32, FailReason)>, Vec<u32>);
     let lists: Vec<Found> = crate::par::split_by(&mut triangles, &sizes)
         .into_par_iter()
+        .grained()
         .zip(crate::par::split_by(&mut parent, &sizes))
         .enumerate()
         .map(|(k, (tris, par))| {

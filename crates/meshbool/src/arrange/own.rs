@@ -9,6 +9,7 @@
 //! ([`Point::Tpi`]), named by the sorted triangle triple so that the three triangles share
 //! one vertex, and inserted into all three (each splits its constraints there).
 
+use crate::par::Grain;
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
@@ -91,6 +92,7 @@ fn arrange_welded(mesh: &Mesh, seam: &Seam) -> Arranged {
     let cut = cut_triangles(mesh, &points, &constraints, None);
     let results: Vec<_> = cut
         .par_iter()
+        .grained()
         .map(|&t| (t, cut_triangle(mesh, t, &points, &constraints)))
         .collect();
     Arranged::assemble(points, seam_edges, reassemble(mesh, results))

@@ -20,6 +20,7 @@
 //! Every edit keeps the mesh manifold (the link condition: the two ends of a collapsed
 //! edge share no neighbour but the edge's far corners; a flip makes no edge twice).
 
+use crate::par::Grain;
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 use serde::{Deserialize, Serialize};
@@ -520,6 +521,7 @@ fn clean_up_labelled(
         let found: Vec<Vec<u32>> = mesh
             .triangles
             .par_chunks(CHUNK)
+            .grained()
             .enumerate()
             .map(|(c, tris)| {
                 let mut out = Vec::new();
@@ -580,6 +582,7 @@ fn clean_up_labelled(
     for (&p, out) in added.iter().zip(
         added
             .par_iter()
+            .grained()
             .map(|&p| w.ruled_out(p))
             .collect::<Vec<_>>(),
     ) {
@@ -618,12 +621,17 @@ fn clean_up_labelled(
     // Caps left at the seam.
     let mut caps: Vec<u32> = added
         .par_iter()
+        .grained()
         .filter(|&&v| !w.dead_vertex[v as usize])
         .flat_map_iter(|&v| w.star(v))
         .collect();
     caps.par_sort_unstable();
     caps.dedup();
-    let caps: Vec<u32> = caps.into_par_iter().filter(|&t| w.zero_area(t)).collect();
+    let caps: Vec<u32> = caps
+        .into_par_iter()
+        .grained()
+        .filter(|&t| w.zero_area(t))
+        .collect();
     for &t in &caps {
         if w.alive[t as usize] && w.zero_area(t) && !w.flip_cap(t) {
             w.report.zero_area_left += 1;

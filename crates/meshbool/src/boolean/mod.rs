@@ -23,6 +23,7 @@
 use std::fmt;
 use std::str::FromStr;
 
+use crate::par::Grain;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -420,13 +421,13 @@ pub fn split(a: &Mesh, b: &Mesh, opts: &PipelineOptions) -> Split {
     opts.stage(Stage::Intersect);
     let seam = intersect_with(a, b, opts.grid_from, opts.kept);
     opts.stage(Stage::Arrange);
-    let (arr_a, arr_b) = rayon::join(
+    let (arr_a, arr_b) = crate::par::join(
         || arrange(a, &seam, Source::A),
         || arrange(b, &seam, Source::B),
     );
     // Closedness picks the winding-number threshold; the arranged mesh is closed exactly
     // when its input is (cutting keeps every edge's use count).
-    let (topo_a, topo_b) = rayon::join(
+    let (topo_a, topo_b) = crate::par::join(
         || SeamTopology::new(&arr_a.mesh, &arr_a.seam_edges),
         || SeamTopology::new(&arr_b.mesh, &arr_b.seam_edges),
     );
@@ -442,7 +443,7 @@ pub fn split(a: &Mesh, b: &Mesh, opts: &PipelineOptions) -> Split {
         topology: &topo_b,
     };
     opts.stage(Stage::Classify);
-    let (class_a, class_b) = rayon::join(
+    let (class_a, class_b) = crate::par::join(
         || classify(&oa, &ob, closed_b, opts.exact_winding_up_to),
         || classify(&ob, &oa, closed_a, opts.exact_winding_up_to),
     );
@@ -483,7 +484,10 @@ pub fn merge(
     const CHUNK: usize = 1 << 14;
     let (na, nb) = (s.a.mesh.positions.len(), s.b.mesh.positions.len());
     // B's vertex ids in the merged numbering: seam vertices are A's, others follow A's.
-    let mut b_to_merged: Vec<u32> = (na as u32..(na + nb) as u32).into_par_iter().collect();
+    let mut b_to_merged: Vec<u32> = (na as u32..(na + nb) as u32)
+        .into_par_iter()
+        .grained()
+        .collect();
     for (sp, &vb) in s.b.seam_vertex.iter().enumerate() {
         b_to_merged[vb as usize] = s.a.seam_vertex[sp];
     }
@@ -506,6 +510,7 @@ pub fn merge(
         .collect();
     let counts: Vec<usize> = pieces
         .par_iter()
+        .grained()
         .map(|(k, r)| {
             r.clone()
                 .filter(|&t| (sides[*k].1)(t) != Keep::Drop)
@@ -522,10 +527,12 @@ pub fn merge(
     let mut provenance = filled(none, total);
     let used: Vec<AtomicBool> = (0..na + nb)
         .into_par_iter()
+        .grained()
         .map(|_| AtomicBool::new(false))
         .collect();
     split_by(&mut triangles, &counts)
         .into_par_iter()
+        .grained()
         .zip(split_by(&mut provenance, &counts))
         .zip(&pieces)
         .for_each(|((tris, prov), (k, range))| {
@@ -564,6 +571,7 @@ pub fn merge(
     };
     let used_in: Vec<usize> = used
         .par_chunks(CHUNK)
+        .grained()
         .map(|c| c.iter().filter(|u| u.load(Relaxed)).count())
         .collect();
     let mut positions = filled([0.0; 3], used_in.iter().sum());
@@ -571,6 +579,7 @@ pub fn merge(
     let mut new_id = filled(0u32, na + nb);
     new_id
         .par_chunks_mut(CHUNK)
+        .grained()
         .zip(split_by(&mut positions, &used_in))
         .enumerate()
         .for_each(|(c, (ids, pos))| {
@@ -588,6 +597,7 @@ pub fn merge(
         });
     triangles
         .par_iter_mut()
+        .grained()
         .for_each(|t| *t = t.map(|v| new_id[v as usize]));
     // Seam vertices are numbered by A's arrangement in the merged numbering.
     let mut seam: Vec<(u32, u32)> =
@@ -828,7 +838,7 @@ impl Split {
                 .position(|g| g.side_and_class() == (source, class))
                 .map_or(u32::MAX, |i| i as u32)
         };
-        (0..n).into_par_iter().map(group_of).collect()
+        (0..n).into_par_iter().grained().map(group_of).collect()
     }
 
     /// The triangles of one group as a mesh (vertices compacted), with their provenance.

@@ -19,6 +19,7 @@
 //! rounds drop with the triangles around them (ten 20k-triangle spheres: 1.5× the
 //! tree's time in a ring, 4.5× when all overlap one another; BENCHMARKS.md).
 
+use crate::par::Grain;
 use rayon::prelude::*;
 
 use super::resolve::largest_pieces;
@@ -84,7 +85,7 @@ pub fn reduce_in_one(parts: &[Part], op: Op, opts: &PipelineOptions) -> Option<R
     if parts.len() < 2 {
         return None;
     }
-    let clean = parts.par_iter().all(|p| {
+    let clean = parts.par_iter().grained().all(|p| {
         let c = EdgeCounts::of(&p.mesh);
         c.boundary == 0 && c.inconsistent == 0 && c.non_manifold == 0
     });
@@ -249,6 +250,7 @@ pub fn reduce(mut parts: Vec<Part>, op: Op, opts: &PipelineOptions) -> Reduced {
         }
         let done: Vec<_> = pairs
             .into_par_iter()
+            .grained()
             .map(|(a, b)| {
                 let r = boolean(&a.mesh, &b.mesh, op, &pipeline);
                 let of = |s: Source, t: u32| match s {

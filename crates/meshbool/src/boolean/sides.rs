@@ -19,6 +19,7 @@
 //! through an edge, a far vertex on the edge's line) another ray or the caller's measure
 //! is used.
 
+use crate::par::Grain;
 use rayon::prelude::*;
 
 use crate::arrange::Arranged;
@@ -535,6 +536,7 @@ pub(super) fn meeting(input: &Mesh, index: Option<&Bvh>, b: &[[f64; 3]; 2]) -> V
         Some(bvh) => bvh.in_box(input, b),
         None => (0..input.triangles.len() as u32)
             .into_par_iter()
+            .grained()
             .with_min_len(1 << 12)
             .filter(|&t| crate::bvh::overlaps(&crate::bvh::tri_box(input, t), b))
             .collect(),
@@ -566,6 +568,7 @@ pub(super) fn patch_sides(
         .collect();
     let facts: Vec<EdgeFacts> = seams
         .par_iter()
+        .grained()
         .map(|&e| {
             if topo.uses_of(e).len() < 2 {
                 return None;
@@ -644,6 +647,7 @@ pub(super) fn patch_sides(
     const TRIES: usize = 16;
     let root_values: Vec<Option<(u32, Vec<i64>)>> = roots
         .par_iter()
+        .grained()
         .map(|&r| {
             let mut cands: Vec<(bool, f64, u32)> = members[r as usize]
                 .iter()

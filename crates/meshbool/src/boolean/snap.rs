@@ -2,6 +2,7 @@
 //! the pipeline knows: which vertices are seam points, which input each triangle comes
 //! from), provenance and seam vertices carried over.
 
+use crate::par::Grain;
 use rayon::prelude::*;
 
 use super::{merge, BooleanResult, Group, Keep, Provenance, Source, Split};
@@ -95,7 +96,7 @@ pub(super) fn groups_of(m: &Mesh, provenance: &[Provenance], labels: &[u32]) -> 
 
 /// Each triangle's input as a label: 0 for A, 1 for B.
 fn by_source(provenance: &[Provenance]) -> Vec<u32> {
-    provenance.par_iter().map(source_label).collect()
+    provenance.par_iter().grained().map(source_label).collect()
 }
 
 /// A triangle's label by the input it comes from: 0 for A, 1 for B.

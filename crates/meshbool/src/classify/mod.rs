@@ -11,6 +11,7 @@
 use std::cell::OnceCell;
 use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
 
+use crate::par::Grain;
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
@@ -254,7 +255,7 @@ pub fn classify(x: &CutMesh, y: &CutMesh, y_closed: bool, exact_winding_up_to: f
     let by_winding = resolved.by_winding;
     Classified {
         class: settle(resolved, answers, patch, patches),
-        patch: patch.par_iter().copied().collect(),
+        patch: patch.par_iter().grained().copied().collect(),
         patches,
         by_winding,
         approximate_winding,
@@ -280,6 +281,7 @@ fn seam_votes(x: &CutMesh, y: &CutMesh) -> Vec<Vote> {
     // Each task's votes in one vector, and one vector of fan faces reused edge by edge.
     let votes: Vec<Vec<Vote>> = (0..topo.edges.len())
         .into_par_iter()
+        .grained()
         .fold(
             || (Vec::new(), Vec::new()),
             |(mut votes, mut faces): (Vec<Vote>, Vec<FanFace>), e| {
@@ -368,21 +370,27 @@ fn resolve_patches(votes: Vec<Vote>, patch: &[u32], patches: usize) -> Resolved 
     // The first triangle of each patch without votes.
     let first: Vec<AtomicU32> = (0..patches)
         .into_par_iter()
+        .grained()
         .map(|_| AtomicU32::new(u32::MAX))
         .collect();
     if decided.contains(&None) {
-        patch.par_chunks(CHUNK).enumerate().for_each(|(c, ps)| {
-            for (j, &p) in ps.iter().enumerate() {
-                let t = (c * CHUNK + j) as u32;
-                let f = &first[p as usize];
-                if decided[p as usize].is_none() && f.load(Relaxed) > t {
-                    f.fetch_min(t, Relaxed);
+        patch
+            .par_chunks(CHUNK)
+            .grained()
+            .enumerate()
+            .for_each(|(c, ps)| {
+                for (j, &p) in ps.iter().enumerate() {
+                    let t = (c * CHUNK + j) as u32;
+                    let f = &first[p as usize];
+                    if decided[p as usize].is_none() && f.load(Relaxed) > t {
+                        f.fetch_min(t, Relaxed);
+                    }
                 }
-            }
-        });
+            });
     }
     let class: Vec<Option<Class>> = patch
         .par_iter()
+        .grained()
         .enumerate()
         .map(|(t, &p)| match decided[p as usize] {
             Some(Some(c)) => Some(c),
@@ -395,6 +403,7 @@ fn resolve_patches(votes: Vec<Vote>, patch: &[u32], patches: usize) -> Resolved 
     } else {
         (0..patch.len())
             .into_par_iter()
+            .grained()
             .filter(|&t| {
                 let p = patch[t] as usize;
                 match decided[p] {
@@ -462,6 +471,7 @@ fn settle(r: Resolved, answers: Vec<Class>, patch: &[u32], patches: usize) -> Ve
     }
     class
         .into_par_iter()
+        .grained()
         .enumerate()
         .map(|(t, c)| {
             c.or(patch_answer[patch[t] as usize])

@@ -7,6 +7,7 @@
 //! seam, open surfaces whose seam stops inside a piece); they are measures, not
 //! predicates, and are documented as such.
 
+use crate::par::Grain;
 use rayon::prelude::*;
 
 use crate::bvh::morton_order;
@@ -34,6 +35,7 @@ const HALF_ANGLE_TO_WINDING: f64 = 1.0 / (2.0 * std::f64::consts::PI);
 pub fn winding_number(mesh: &Mesh, p: [f64; 3]) -> f64 {
     let half: f64 = (0..mesh.triangles.len())
         .into_par_iter()
+        .grained()
         .map(|t| {
             let [a, b, c] = mesh.corners(t);
             half_solid_angle(&a, &b, &c, &p)
@@ -48,6 +50,7 @@ pub fn winding_number(mesh: &Mesh, p: [f64; 3]) -> f64 {
 pub(crate) fn winding_number_without(mesh: &Mesh, p: [f64; 3], skip: usize) -> f64 {
     let half: f64 = (0..mesh.triangles.len())
         .into_par_iter()
+        .grained()
         .filter(|&t| t != skip)
         .map(|t| {
             let [a, b, c] = mesh.corners(t);
@@ -213,7 +216,7 @@ impl<'a> FastWinding<'a> {
             let (left, right) = rest.split_at_mut(subtree_nodes(n / 2));
             let right_base = base + 1 + left.len();
             let (l, r) = if n > 1 << 14 {
-                rayon::join(
+                crate::par::join(
                     || Self::build(mesh, order, start, mid, base + 1, left),
                     || Self::build(mesh, order, mid, end, right_base, right),
                 )
@@ -300,6 +303,7 @@ impl<'a> FastWinding<'a> {
         let order = morton_order_of_points(points);
         let groups: Vec<(usize, [f64; GROUP])> = order
             .par_chunks(GROUP)
+            .grained()
             .enumerate()
             .map(|(g, ids)| {
                 let mut pts = [[0.0; 3]; GROUP];
@@ -409,6 +413,7 @@ fn morton_order_of_points(points: &[[f64; 3]]) -> Vec<u32> {
     };
     let mut keyed: Vec<(u32, u32)> = points
         .par_iter()
+        .grained()
         .enumerate()
         .map(|(i, p)| {
             let cell = |k: usize| (((p[k] - lo[k]) * scale[k]).max(0.0) as u32).min(1023);

@@ -19,6 +19,7 @@
 use std::sync::atomic::AtomicU32;
 use std::sync::atomic::Ordering::Relaxed;
 
+use crate::par::Grain;
 use rayon::prelude::*;
 
 use crate::kernel::{orient2d_inputs, robust_safe, Sign};
@@ -37,7 +38,7 @@ pub(crate) fn certified(m: &Mesh) -> Vec<bool> {
     // claims a slot. The order within a vertex's slots varies from run to run; the fan is
     // sorted before use.
     let count: Vec<AtomicU32> = (0..nv).map(|_| AtomicU32::new(0)).collect();
-    m.triangles.par_iter().for_each(|t| {
+    m.triangles.par_iter().grained().for_each(|t| {
         for &v in t {
             count[v as usize].fetch_add(1, Relaxed);
         }
@@ -52,14 +53,19 @@ pub(crate) fn certified(m: &Mesh) -> Vec<bool> {
     let cursor: Vec<AtomicU32> = start[..nv].iter().map(|&s| AtomicU32::new(s)).collect();
     // Each slot holds a corner: 3 × triangle + corner.
     let slots: Vec<AtomicU32> = (0..sum).map(|_| AtomicU32::new(0)).collect();
-    m.triangles.par_iter().enumerate().for_each(|(i, t)| {
-        for (k, &v) in t.iter().enumerate() {
-            let at = cursor[v as usize].fetch_add(1, Relaxed);
-            slots[at as usize].store(3 * i as u32 + k as u32, Relaxed);
-        }
-    });
+    m.triangles
+        .par_iter()
+        .grained()
+        .enumerate()
+        .for_each(|(i, t)| {
+            for (k, &v) in t.iter().enumerate() {
+                let at = cursor[v as usize].fetch_add(1, Relaxed);
+                slots[at as usize].store(3 * i as u32 + k as u32, Relaxed);
+            }
+        });
     (0..nv)
         .into_par_iter()
+        .grained()
         .map_init(Scratch::default, |s, v| {
             let fan = &slots[start[v] as usize..start[v + 1] as usize];
             s.certify(m, v as u32, fan)

@@ -6,6 +6,7 @@
 //! triangle pairs is one point) → segments. The arrangement stage consumes the seam; the
 //! curves are also useful on their own (`meshbool curves`).
 
+use crate::par::Grain;
 use rayon::prelude::*;
 use rustc_hash::{FxHashMap, FxHashSet};
 
@@ -104,10 +105,11 @@ impl Seam {
 
     /// The enclosures and approximate positions of the exact points.
     fn locate(&mut self) {
-        self.enclosures = self.exact.par_iter().map(Enclosure::of).collect();
+        self.enclosures = self.exact.par_iter().grained().map(Enclosure::of).collect();
         self.positions = self
             .exact
             .par_iter()
+            .grained()
             .zip(&self.enclosures)
             .map(|(p, e)| p.approx_within(e))
             .collect();
@@ -200,10 +202,14 @@ pub(crate) fn intersect_with(
                 slot[t as usize] = k as u32;
             }
         }
-        let tris = ids.par_iter().map(|&t| tri(m, t as usize)).collect();
+        let tris = ids
+            .par_iter()
+            .grained()
+            .map(|&t| tri(m, t as usize))
+            .collect();
         (slot, tris, ids)
     };
-    let ((slot_a, tris_a, near_a), (slot_b, tris_b, near_b)) = rayon::join(
+    let ((slot_a, tris_a, near_a), (slot_b, tris_b, near_b)) = crate::par::join(
         || prepare(a, pairs.iter().map(|p| p.0).collect()),
         || prepare(b, pairs.iter().map(|p| p.1).collect()),
     );
@@ -212,6 +218,7 @@ pub(crate) fn intersect_with(
     // made in place, with no allocation per pair.
     let results: Vec<Vec<(u32, u32, Piece)>> = pairs
         .par_chunks(1 << 10)
+        .grained()
         .map(|block| {
             let mut out = Vec::with_capacity(2 * block.len());
             for &(i, j) in block {
@@ -240,6 +247,7 @@ pub(crate) fn intersect_with(
     seam.exact = seam
         .points
         .par_iter()
+        .grained()
         .map(|l| label_point(l, a, b))
         .collect();
     seam.locate();
@@ -297,14 +305,14 @@ fn candidate_pairs(
                 let (Some(box_a), Some(box_b)) = (a.bounds(), b.bounds()) else {
                     return Vec::new();
                 };
-                rayon::join(|| Bvh::new_within(a, &box_b), || Bvh::new_within(b, &box_a))
+                crate::par::join(|| Bvh::new_within(a, &box_b), || Bvh::new_within(b, &box_a))
             };
             ba.overlapping_pairs(a, &bb, b)
         }
     };
     let typical = crate::broad::typical_size(a, b);
     let slivers = |k: usize, m: &Mesh| kept[k]?.slivers.get(|| Slivers::of(m));
-    let (ca, cb) = rayon::join(
+    let (ca, cb) = crate::par::join(
         || crate::broad::cover_large(a, typical, slivers(0, a)),
         || crate::broad::cover_large(b, typical, slivers(1, b)),
     );
@@ -322,7 +330,7 @@ fn candidate_pairs(
     let (ma, pa) = ca.as_ref().map_or((a, None), |(m, p)| (m, Some(p)));
     let (mb, pb) = cb.as_ref().map_or((b, None), |(m, p)| (m, Some(p)));
     let mut pairs = pairs_of(ma, mb, trees);
-    pairs.par_iter_mut().for_each(|(i, j)| {
+    pairs.par_iter_mut().grained().for_each(|(i, j)| {
         if let Some(p) = pa {
             *i = p[*i as usize];
         }
@@ -416,6 +424,7 @@ fn assemble(blocks: &[&[(u32, u32, Piece)]], name: impl Fn(Label) -> Label + Syn
     };
     let parts: Vec<Part> = blocks
         .par_chunks(blocks.len().div_ceil(runs).max(1))
+        .grained()
         .map(|run| Part::of(run, &name))
         .collect();
     let mut seam = Seam::default();
@@ -490,6 +499,7 @@ fn own_label(l: Label) -> Label {
 pub fn self_seam(m: &Mesh, pairs: &[(u32, u32)]) -> Seam {
     let results: Vec<(u32, u32, TriTri)> = pairs
         .par_iter()
+        .grained()
         .filter_map(|&(i, j)| {
             let (x, y) = (tri(m, i as usize)?, tri(m, j as usize)?);
             let (vi, vj) = (m.triangles[i as usize], m.triangles[j as usize]);
@@ -535,6 +545,7 @@ pub fn self_seam(m: &Mesh, pairs: &[(u32, u32)]) -> Seam {
     seam.exact = seam
         .points
         .par_iter()
+        .grained()
         .map(|l| label_point(l, m, m))
         .collect();
     seam.locate();
@@ -570,7 +581,7 @@ fn vertices_on_features(results: impl Iterator<Item = (u32, u32, Piece)>) -> Vec
 pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
     // Large triangles are looked at through their pieces ([`crate::broad::cover_large`]).
     let cover = crate::broad::cover_large(m, crate::broad::typical_size(m, m), None);
-    let (fan_ok, bvh) = rayon::join(
+    let (fan_ok, bvh) = crate::par::join(
         || fans::certified(m),
         || Bvh::new(cover.as_ref().map_or(m, |c| &c.0)),
     );
@@ -597,6 +608,7 @@ pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
             let pairs = piece_pairs(&bvh, stand_in, parent, true);
             crate::bvh::sort_pairs(pairs, m.triangles.len(), true)
                 .into_par_iter()
+                .grained()
                 .filter(|&(i, j)| meets(i, j))
                 .collect()
         }
@@ -627,6 +639,7 @@ fn piece_pairs(bvh: &Bvh, stand_in: &Mesh, parent: &[u32], first_only: bool) -> 
     let rounded: Vec<crate::bvh::Box3f> = if first_only {
         (0..n)
             .into_par_iter()
+            .grained()
             .map(|t| crate::bvh::round_out(&crate::bvh::tri_box(stand_in, t)))
             .collect()
     } else {
@@ -655,6 +668,7 @@ fn piece_pairs(bvh: &Bvh, stand_in: &Mesh, parent: &[u32], first_only: bool) -> 
     };
     bvh.self_candidates_where(stand_in, &keep)
         .into_par_iter()
+        .grained()
         .map(|(i, j)| {
             let (i, j) = (parent[i as usize], parent[j as usize]);
             (i.min(j), i.max(j))
@@ -670,7 +684,7 @@ fn piece_pairs(bvh: &Bvh, stand_in: &Mesh, parent: &[u32], first_only: bool) -> 
 /// triangles through their pieces), a pair of parts and the candidates of each in
 /// parallel.
 pub(crate) fn crossings_between(parts: &[&Mesh], all: &Mesh, starts: &[u32]) -> Vec<(u32, u32)> {
-    let boxes: Vec<Option<crate::Aabb>> = parts.par_iter().map(|m| m.bounds()).collect();
+    let boxes: Vec<Option<crate::Aabb>> = parts.par_iter().grained().map(|m| m.bounds()).collect();
     let mut meeting = Vec::new();
     for i in 0..parts.len() {
         for j in i + 1..parts.len() {
@@ -683,11 +697,13 @@ pub(crate) fn crossings_between(parts: &[&Mesh], all: &Mesh, starts: &[u32]) -> 
     }
     let mut found: Vec<(u32, u32)> = meeting
         .par_iter()
+        .grained()
         .flat_map_iter(|&(i, j)| {
             let (a, b) = (parts[i], parts[j]);
             let from_grid = a.triangles.len() + b.triangles.len() >= GRID_FROM;
             candidate_pairs(a, b, from_grid, [None, None])
                 .into_par_iter()
+                .grained()
                 .map(|(x, y)| (x + starts[i], y + starts[j]))
                 .filter(|&(x, y)| meets_beyond_shared(all, x, y, 0))
                 .collect::<Vec<_>>()

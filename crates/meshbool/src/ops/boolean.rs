@@ -5,9 +5,12 @@ use serde::Serialize;
 
 use web_time::Instant;
 
+use crate::par::Grain;
 use rayon::prelude::*;
 
-use super::{with_threads, Checks, Input, Measures, Operand, OperandReport, RunOptions, SCHEMA};
+use super::{
+    with_threads_for, Checks, Input, Measures, Operand, OperandReport, RunOptions, SCHEMA,
+};
 use crate::arrange::FailReason;
 use crate::boolean::nary::{reduce, reduce_in_one, Part};
 use crate::boolean::{CleanupReport, FailedTriangle, Op, PipelineOptions, Provenance, Stage};
@@ -362,12 +365,14 @@ pub fn boolean_many<'a>(
         scale_back(&mut out.mesh, &mut out.operands, &mut out.snap, -e);
         return Ok(out);
     }
-    with_threads(opts.run.threads, || {
+    let triangles = inputs.iter().map(|i| i.mesh().triangles.len()).sum();
+    with_threads_for(opts.run.threads, triangles, || {
         if inputs.iter().any(|i| matches!(i, Input::Mesh(_))) {
             opts.run.stage(Stage::Check);
         }
         let operands: Vec<_> = inputs
             .par_iter()
+            .grained()
             .enumerate()
             .map(|(k, i)| i.operand(&(k + 1).to_string(), &opts.checks))
             .collect::<Result<_>>()?;

@@ -161,7 +161,7 @@ pub fn cutfill<'a>(
             }
             curtain_to(&up, floor).0
         };
-        let ((ts, ds), (tr, dr)) = rayon::join(
+        let ((ts, ds), (tr, dr)) = crate::par::join(
             || (solid(&t_up), solid(&d_up)),
             || (raised(&t_up), raised(&d_up)),
         );

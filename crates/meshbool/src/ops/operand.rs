@@ -9,11 +9,12 @@ use web_time::Instant;
 
 use serde::{Deserialize, Serialize};
 
-use super::{with_threads, RunOptions};
+use super::{with_threads_for, RunOptions};
 use crate::boolean::{resolve, FillRule, PipelineOptions, ResolveReport, Stage};
 use crate::edges::EdgeCounts;
 use crate::intersect::self_intersections;
 use crate::kept::Keeps;
+use crate::par;
 use crate::{weld_exact, Error, Mesh, Result};
 
 /// What to check of an operand, and what to do when a check finds a problem.
@@ -264,7 +265,7 @@ impl Operand {
         b: impl AsRef<Path> + Sync,
         checks: &Checks,
     ) -> Result<(Operand, Operand)> {
-        let (a, b) = rayon::join(|| Operand::read(&a, checks), || Operand::read(&b, checks));
+        let (a, b) = crate::par::join(|| Operand::read(&a, checks), || Operand::read(&b, checks));
         Ok((a?, b?))
     }
 
@@ -291,7 +292,8 @@ impl Operand {
             && mesh.triangles.len() >= 1 << 16
             && rayon::current_num_threads() > 2
         {
-            let (c, i) = rayon::join(|| EdgeCounts::of(&mesh), || crate::repair::inward(&mesh));
+            let (c, i) =
+                crate::par::join(|| EdgeCounts::of(&mesh), || crate::repair::inward(&mesh));
             (Some(c), Some(i))
         } else {
             (checks.edges.then(|| EdgeCounts::of(&mesh)), None)
@@ -576,11 +578,12 @@ impl<'a> Input<'a> {
         run: &RunOptions,
         f: impl FnOnce(&Operand, &Operand) -> R + Send,
     ) -> Result<(R, f64)> {
-        with_threads(run.threads, || {
+        let triangles = a.mesh().triangles.len() + b.mesh().triangles.len();
+        with_threads_for(run.threads, triangles, || {
             if matches!(a, Input::Mesh(_)) || matches!(b, Input::Mesh(_)) {
                 run.stage(Stage::Check);
             }
-            let (a, b) = rayon::join(|| a.operand("A", checks), || b.operand("B", checks));
+            let (a, b) = par::join(|| a.operand("A", checks), || b.operand("B", checks));
             let (a, b) = (a?, b?);
             let start = Instant::now();
             let r = f(&a, &b);

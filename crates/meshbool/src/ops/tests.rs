@@ -316,6 +316,84 @@ fn calls_keeping_workers_awake_return_from_many_threads_and_nested_work() {
     });
 }
 
+/// Where a boolean's stages ran: the thread and its index in a rayon pool, per stage.
+fn stage_threads(
+    a: &Mesh,
+    b: &Mesh,
+    threads: Option<usize>,
+) -> (BooleanOutput, Vec<(std::thread::ThreadId, Option<usize>)>) {
+    let seen = Arc::new(Mutex::new(Vec::new()));
+    let log = seen.clone();
+    let opts = BooleanOptions {
+        run: RunOptions {
+            threads,
+            progress: Some(Progress::new(move |_| {
+                let here = (std::thread::current().id(), rayon::current_thread_index());
+                log.lock().unwrap().push(here);
+            })),
+        },
+        ..BooleanOptions::default()
+    };
+    let out = boolean(a, b, Op::Union, &opts).unwrap();
+    let seen = seen.lock().unwrap().clone();
+    (out, seen)
+}
+
+/// A call on fewer than [`SERIAL_BELOW`] triangles runs every stage on the calling
+/// thread, outside any pool, whatever threads it asks for; a larger one moves into the
+/// pool. The small result is the right solid either way.
+#[test]
+fn small_calls_run_on_the_calling_thread() {
+    let (a, b) = cubes();
+    assert!(a.triangles.len() + b.triangles.len() < SERIAL_BELOW);
+    let me = std::thread::current().id();
+    for threads in [None, Some(0), Some(3)] {
+        let (out, seen) = stage_threads(&a, &b, threads);
+        assert!(seen.len() >= 4, "{seen:?}");
+        assert!(
+            seen.iter().all(|&s| s == (me, None)),
+            "{threads:?}: {seen:?}"
+        );
+        let m = Measures::of(&out.mesh);
+        assert!((m.volume - (2.0 - 0.125)).abs() < 1e-12, "{}", m.volume);
+        assert_eq!((m.boundary_edges, m.non_manifold_edges), (0, 0));
+    }
+    let big = crate::shapes::uv_sphere([0.0; 3], 1.0, 24, 12);
+    let other = crate::shapes::uv_sphere([0.5; 3], 1.0, 24, 12);
+    assert!(big.triangles.len() + other.triangles.len() >= SERIAL_BELOW);
+    let (_, seen) = stage_threads(&big, &other, None);
+    assert!(seen.iter().all(|&(_, index)| index.is_some()), "{seen:?}");
+    // Inside a small call, a nested call stays on its thread.
+    let nested = crate::par::serially(|| with_threads(Some(2), rayon::current_thread_index));
+    assert_eq!(nested.unwrap(), None);
+}
+
+/// The pipeline run serially on a thread outside any pool ([`crate::par::serially`])
+/// gives the same mesh, bit for bit, as in a pool of three threads: crossing spheres of
+/// 5,040 triangles each, every operation.
+#[test]
+fn serial_steps_give_the_parallel_mesh() {
+    let a = crate::shapes::uv_sphere([0.0; 3], 1.0, 72, 36);
+    let b = crate::shapes::rigid_motion(&a, [1.0, 2.0, 3.0], 0.7, [0.1, 0.2, 0.3]);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(3)
+        .build()
+        .unwrap();
+    let opts = crate::boolean::PipelineOptions::default();
+    for op in [
+        Op::Union,
+        Op::Intersection,
+        Op::Difference,
+        Op::ReverseDifference,
+    ] {
+        let serial = crate::par::serially(|| crate::boolean::boolean(&a, &b, op, &opts));
+        let parallel = pool.install(|| crate::boolean::boolean(&a, &b, op, &opts));
+        assert!(serial.mesh.triangles.len() > 5000, "{op:?}");
+        assert_eq!(serial.mesh, parallel.mesh, "{op:?}");
+        assert_eq!(serial.provenance, parallel.provenance, "{op:?}");
+    }
+}
+
 #[test]
 fn progress_reports_every_stage_in_order() {
     let (a, b) = cubes();

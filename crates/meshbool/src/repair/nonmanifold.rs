@@ -11,6 +11,7 @@
 //! orientation around an edge does not alternate (an inconsistently oriented or open
 //! input), triangles without a partner are counted and left on a boundary there.
 
+use crate::par::Grain;
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -64,6 +65,7 @@ pub(crate) fn split_at(
     let found: Vec<Vec<(u32, u32, u8)>> = mesh
         .triangles
         .par_chunks(CHUNK)
+        .grained()
         .enumerate()
         .map(|(c, tris)| {
             let mut out = Vec::new();
@@ -93,6 +95,7 @@ pub(crate) fn split_at(
     // Each candidate's fans, worked out on its own.
     let fans: Vec<Fans> = (0..candidates.len())
         .into_par_iter()
+        .grained()
         .map(|i| {
             let cs = &corners[start[i] as usize..start[i + 1] as usize];
             let counts_here =

@@ -45,6 +45,7 @@
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
+use crate::par::Grain;
 use rayon::prelude::*;
 use rustc_hash::{FxHashMap, FxHashSet};
 use serde::{Deserialize, Serialize};
@@ -366,6 +367,7 @@ pub(crate) fn compact_from_end(
         let last = count as u32;
         mesh.triangles
             .par_iter_mut()
+            .grained()
             .with_min_len(1 << 12)
             .for_each(|t| {
                 if t.iter().any(|&v| v >= last) {
@@ -547,6 +549,7 @@ impl Edit {
             }
             mesh.triangles
                 .par_iter_mut()
+                .grained()
                 .with_min_len(1 << 12)
                 .for_each(|t| *t = t.map(|v| new_id[v as usize]));
             remove_sorted(&mut mesh.positions, &self.dead);
@@ -677,6 +680,7 @@ impl Scan {
             Some(hb) => mesh
                 .positions
                 .par_iter()
+                .grained()
                 .with_min_len(PIECE)
                 .map(|p| {
                     (0..3).fold(0u8, |code, k| {
@@ -690,6 +694,7 @@ impl Scan {
         let pieces: Vec<ScanPiece> = mesh
             .triangles
             .par_chunks(PIECE)
+            .grained()
             .enumerate()
             .map(|(k, tris)| {
                 let (mut bad, mut area, mut near) = (Vec::new(), 0.0, Vec::new());
@@ -865,6 +870,7 @@ impl Grid {
         let (lo, hi) = mesh
             .positions
             .par_chunks(1 << 14)
+            .grained()
             .map(|ps| {
                 ps.iter().fold(
                     ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]),
@@ -1621,7 +1627,7 @@ impl<'a> Work<'a> {
         const PIECE: usize = 1 << 13;
         if full && self.cells.is_empty() {
             let grid = &self.grid;
-            self.cells = (self.mesh.positions.par_iter().with_min_len(PIECE))
+            self.cells = (self.mesh.positions.par_iter().grained().with_min_len(PIECE))
                 .map(|p| grid.packed(p))
                 .collect();
         }
@@ -1631,6 +1637,7 @@ impl<'a> Work<'a> {
                 .mesh
                 .triangles
                 .par_chunks(PIECE)
+                .grained()
                 .enumerate()
                 .map(|(k, tris)| {
                     let (mut ids, mut halo) = (Vec::new(), Vec::new());
@@ -1654,6 +1661,7 @@ impl<'a> Work<'a> {
         } else {
             self.candidates
                 .par_iter()
+                .grained()
                 .with_min_len(PIECE)
                 .filter(|&&(t, key)| {
                     // The corners only for a triangle spanning many cells (read at
@@ -1699,6 +1707,7 @@ impl<'a> Work<'a> {
         let added: Vec<u32> = self
             .candidates
             .par_iter()
+            .grained()
             .with_min_len(PIECE)
             .filter(|&&(t, key)| newly(key, t) && w.alive(t))
             .map(|&(t, _)| t)
@@ -1794,6 +1803,7 @@ impl<'a> Work<'a> {
         keyed.par_sort_unstable();
         let boxes = keyed
             .par_iter()
+            .grained()
             .with_min_len(1 << 12)
             .map(|&(_, t)| tri_box(&self.corners(&self.tri(t))))
             .collect();
@@ -1968,6 +1978,7 @@ impl<'a> Work<'a> {
                 .mesh
                 .triangles
                 .par_iter()
+                .grained()
                 .with_min_len(1 << 13)
                 .map(|t| shape(&self.corners(t)).2)
                 .sum();
