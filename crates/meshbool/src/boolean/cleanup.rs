@@ -24,12 +24,18 @@ use crate::par::Grain;
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 use serde::{Deserialize, Serialize};
+use smallvec::SmallVec;
 
 use super::{Provenance, Source};
 use crate::kernel::{normals_cross_sign, normals_dot_sign, orient3d_explicit, Sign};
 use crate::measure::is_degenerate;
-use crate::repair::{common, compact_from_end, neighbours};
+use crate::repair::compact_from_end;
 use crate::Mesh;
+
+/// Triangle or vertex ids around one vertex: held inline up to 16 (a vertex's star or
+/// neighbours, almost always fewer), so that the many small lists of the clean-up do not
+/// each go to the allocator.
+type Ids = SmallVec<[u32; 16]>;
 
 /// What the exact clean-up of a boolean's result did ([`super::PipelineOptions::cleanup`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -71,7 +77,7 @@ struct Work<'a> {
     /// Per vertex: its slot in `stars`, or `u32::MAX` for one no edit touches.
     slot: Vec<u32>,
     /// Per slot: triangles that contained the vertex at some time (check before use).
-    stars: Vec<Vec<u32>>,
+    stars: Vec<SmallVec<[u32; 8]>>,
     /// Slots below this hold every triangle of their vertex (those made at the start);
     /// later ones only the triangles edits gave it.
     complete_slots: usize,
@@ -91,19 +97,19 @@ struct Work<'a> {
 /// A closed fan of triangles around a vertex: its neighbours (sorted), and for each the
 /// triangle whose edge runs out of the vertex to it and the one whose edge runs in.
 struct ClosedFan {
-    neighbours: Vec<u32>,
-    out: Vec<u32>,
-    into: Vec<u32>,
+    neighbours: Ids,
+    out: Ids,
+    into: Ids,
 }
 
 impl Work<'_> {
     /// The live triangles at `v` (empty for a vertex without a slot).
-    fn star(&self, v: u32) -> Vec<u32> {
+    fn star(&self, v: u32) -> Ids {
         let s = self.slot[v as usize];
         if s == u32::MAX {
-            return Vec::new();
+            return Ids::new();
         }
-        let mut star: Vec<u32> = self.stars[s as usize]
+        let mut star: Ids = self.stars[s as usize]
             .iter()
             .copied()
             .filter(|&t| self.alive[t as usize] && self.triangles[t as usize].contains(&v))
@@ -121,7 +127,7 @@ impl Work<'_> {
     fn add(&mut self, v: u32, t: u32) {
         if self.slot[v as usize] == u32::MAX {
             self.slot[v as usize] = self.stars.len() as u32;
-            self.stars.push(Vec::new());
+            self.stars.push(SmallVec::new());
         }
         self.stars[self.slot[v as usize] as usize].push(t);
     }
@@ -156,9 +162,15 @@ impl Work<'_> {
     }
 
     /// The neighbours of `v` in the triangles `star` (sorted).
-    fn neighbours(&self, star: &[u32], v: u32) -> Vec<u32> {
-        let tris: Vec<[u32; 3]> = star.iter().map(|&t| self.triangles[t as usize]).collect();
-        neighbours(&tris, v)
+    fn neighbours(&self, star: &[u32], v: u32) -> Ids {
+        let mut n: Ids = star
+            .iter()
+            .flat_map(|&t| self.triangles[t as usize])
+            .filter(|&x| x != v)
+            .collect();
+        n.sort_unstable();
+        n.dedup();
+        n
     }
 
     /// Whether collapsing `p` onto `q` keeps the mesh manifold: `q`'s star is known,
@@ -172,24 +184,20 @@ impl Work<'_> {
         if !self.complete(q) {
             return false;
         }
-        let on_edge: Vec<u32> = star_p
+        let mut on_edge = star_p
             .iter()
             .copied()
-            .filter(|&t| self.triangles[t as usize].contains(&q))
-            .collect();
-        if on_edge.len() != 2 {
+            .filter(|&t| self.triangles[t as usize].contains(&q));
+        let (Some(e), Some(f), None) = (on_edge.next(), on_edge.next(), on_edge.next()) else {
             return false;
-        }
+        };
         let (np, nq) = (self.neighbours(star_p, p), self.neighbours(star_q, q));
-        let shared = common(&np, &nq).len();
-        let far: Vec<u32> = on_edge
-            .iter()
-            .map(|&t| {
-                let tri = self.triangles[t as usize];
-                tri.into_iter().find(|&x| x != p && x != q).unwrap_or(p)
-            })
-            .collect();
-        far[0] != far[1] && shared == 2
+        let shared = np.iter().filter(|x| nq.binary_search(x).is_ok()).count();
+        let far = |t: u32| {
+            let tri = self.triangles[t as usize];
+            tri.into_iter().find(|&x| x != p && x != q).unwrap_or(p)
+        };
+        far(e) != far(f) && shared == 2
     }
 
     /// Collapses `p` onto `q` (checked by the caller): the triangles on the edge die, the
@@ -232,7 +240,7 @@ impl Work<'_> {
     /// The triangles `star` around `p` as a closed fan: every neighbour starts exactly
     /// one triangle's edge out of `p` and ends exactly one; `None` otherwise.
     fn closed_fan(&self, p: u32, star: &[u32]) -> Option<ClosedFan> {
-        let mut fan: Vec<(u32, u32, u32)> = Vec::with_capacity(star.len()); // (next, prev, t)
+        let mut fan: SmallVec<[(u32, u32, u32); 16]> = SmallVec::new(); // (next, prev, t)
         for &t in star {
             let tri = self.triangles[t as usize];
             let i = tri.iter().position(|&v| v == p)?;
@@ -242,8 +250,8 @@ impl Work<'_> {
         if neighbours.len() != fan.len() {
             return None;
         }
-        let mut out = vec![u32::MAX; neighbours.len()];
-        let mut into = vec![u32::MAX; neighbours.len()];
+        let mut out: Ids = smallvec::smallvec![u32::MAX; neighbours.len()];
+        let mut into: Ids = smallvec::smallvec![u32::MAX; neighbours.len()];
         for &(next, prev, t) in &fan {
             let (i, j) = (
                 neighbours.binary_search(&next).ok()?,
@@ -280,9 +288,9 @@ impl Work<'_> {
     /// them in both sheets: the seam stays a straight line through where `p` was, so no
     /// group changes shape and the groups stay conforming. Two seam points at one
     /// position joined by a seam edge collapse the same way.
-    fn remove_across_sheets(&mut self, p: u32) -> Option<(u32, Vec<u32>)> {
+    fn remove_across_sheets(&mut self, p: u32) -> Option<(u32, Ids)> {
         let star = self.star(p);
-        let mut sides: [Vec<u32>; 2] = [Vec::new(), Vec::new()];
+        let mut sides: [Ids; 2] = [Ids::new(), Ids::new()];
         for &t in &star {
             sides[self.sheet(t)].push(t);
         }
@@ -290,17 +298,19 @@ impl Work<'_> {
             self.closed_fan(p, &sides[0])?,
             self.closed_fan(p, &sides[1])?,
         ];
-        let seam = common(&fans[0].neighbours, &fans[1].neighbours);
+        let seam: Ids = (fans[0].neighbours.iter().copied())
+            .filter(|x| fans[1].neighbours.binary_search(x).is_ok())
+            .collect();
         let [q, r] = seam[..] else {
             return None;
         };
         let mut neighbours = fans[0].neighbours.clone();
-        neighbours.extend(&fans[1].neighbours);
+        neighbours.extend(fans[1].neighbours.iter().copied());
         neighbours.sort_unstable();
         neighbours.dedup();
         let link = |w: &Self, q: u32| {
             (0..2).all(|s| {
-                let star_q: Vec<u32> = w.star(q).into_iter().filter(|&t| w.sheet(t) == s).collect();
+                let star_q: Ids = w.star(q).into_iter().filter(|&t| w.sheet(t) == s).collect();
                 w.link_ok_with(p, q, &sides[s], &star_q)
             })
         };
@@ -330,7 +340,7 @@ impl Work<'_> {
         None
     }
 
-    fn remove(&mut self, p: u32) -> Option<(u32, Vec<u32>)> {
+    fn remove(&mut self, p: u32) -> Option<(u32, Ids)> {
         if self.dead_vertex[p as usize] || !self.complete(p) {
             return None;
         }
@@ -361,16 +371,16 @@ impl Work<'_> {
     /// What `p`'s star alone says of removing `p` (reading, not changing anything): `None`
     /// where the star is no closed fan; else `p`'s neighbours, and the neighbours to try
     /// moving `p` onto (after any at `p`'s position), `None` where the star rules that out.
-    fn plan(&self, p: u32, star: &[u32]) -> Option<(Vec<u32>, Option<Vec<u32>>)> {
+    fn plan(&self, p: u32, star: &[u32]) -> Option<(Ids, Option<Ids>)> {
         let ClosedFan {
             neighbours,
             out,
             into,
         } = self.closed_fan(p, star)?;
-        let creases: Vec<usize> = (0..neighbours.len())
+        let creases: SmallVec<[usize; 4]> = (0..neighbours.len())
             .filter(|&i| !self.flat(out[i], into[i]))
             .collect();
-        let targets: Option<Vec<u32>> = match creases[..] {
+        let targets: Option<Ids> = match creases[..] {
             [] => {
                 // Input vertices (exact points) first.
                 let mut t = neighbours.clone();
@@ -384,7 +394,7 @@ impl Work<'_> {
                 let (pt, pu) = (self.parent(out[i]), self.parent(into[i]));
                 let crossing = (0..3).any(|k| normals_cross_sign(&pt, &pu, k) != Sign::Zero);
                 (crossing && self.between(neighbours[i], p, neighbours[j]))
-                    .then(|| vec![neighbours[i], neighbours[j]])
+                    .then(|| smallvec::smallvec![neighbours[i], neighbours[j]])
             }
             _ => None,
         };
@@ -426,7 +436,7 @@ impl Work<'_> {
         }
         let star_a = self.star(a);
         let label = |u: u32| self.labels.as_ref().map(|l| l[u as usize]);
-        let across: Vec<u32> = star_a
+        let across: Ids = star_a
             .iter()
             .copied()
             .filter(|&u| u != t && self.triangles[u as usize].contains(&b))
@@ -543,13 +553,13 @@ fn clean_up_labelled(
     }
     let around = touching(&ring);
     let mut slot = crate::par::filled(u32::MAX, nv);
-    let mut stars: Vec<Vec<u32>> = Vec::new();
+    let mut stars: Vec<SmallVec<[u32; 8]>> = Vec::new();
     for &t in &around {
         for v in mesh.triangles[t as usize] {
             if ring[v as usize] {
                 if slot[v as usize] == u32::MAX {
                     slot[v as usize] = stars.len() as u32;
-                    stars.push(Vec::new());
+                    stars.push(SmallVec::new());
                 }
                 stars[slot[v as usize] as usize].push(t);
             }

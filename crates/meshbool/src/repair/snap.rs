@@ -2506,7 +2506,7 @@ fn turns_over(old: &[[f64; 3]; 3], new: &[[f64; 3]; 3]) -> bool {
 }
 
 /// The neighbours of `v` in the triangles `star` (all containing `v`), sorted.
-pub(crate) fn neighbours(star: &[[u32; 3]], v: u32) -> Vec<u32> {
+fn neighbours(star: &[[u32; 3]], v: u32) -> Vec<u32> {
     let mut n: Vec<u32> = star.iter().flatten().copied().filter(|&x| x != v).collect();
     n.sort_unstable();
     n.dedup();
@@ -2514,7 +2514,7 @@ pub(crate) fn neighbours(star: &[[u32; 3]], v: u32) -> Vec<u32> {
 }
 
 /// The elements of sorted `a` that are in sorted `b`.
-pub(crate) fn common(a: &[u32], b: &[u32]) -> Vec<u32> {
+fn common(a: &[u32], b: &[u32]) -> Vec<u32> {
     a.iter()
         .copied()
         .filter(|x| b.binary_search(x).is_ok())
