@@ -155,9 +155,12 @@ impl Work<'_> {
         if p.source == q.source && p.triangle == q.triangle {
             return p.flipped == q.flipped;
         }
+        // A corner of `u`'s parent at a corner of `t`'s is in its plane: parents that
+        // share an edge (a face split in two) need one `orient3d` of three, and not the
+        // two whose exact zero takes its slowest path.
         let (pt, pu) = (self.parent(t), self.parent(u));
         pu.iter()
-            .all(|x| orient3d_explicit(&pt[0], &pt[1], &pt[2], x) == Sign::Zero)
+            .all(|x| pt.contains(x) || orient3d_explicit(&pt[0], &pt[1], &pt[2], x) == Sign::Zero)
             && normals_dot_sign(&pt, &pu) == Sign::Positive
     }
 

@@ -17,6 +17,7 @@ use rustc_hash::FxHashMap;
 
 use crate::arrange::Arranged;
 use crate::edges::SeamTopology;
+use crate::intersect::Feature;
 use crate::kernel::{orient2d, orient3d_plane, Point, Sign, Triangle};
 use crate::Mesh;
 
@@ -57,6 +58,8 @@ pub struct Classified {
 /// explicit) and its far vertex (exact).
 struct FanFace {
     plane: [[f64; 3]; 3],
+    /// The input triangle of the plane: its id and its corners' vertex ids.
+    parent: (u32, [u32; 3]),
     far: Point,
     /// Whether its triangle runs from the edge's first end to its second.
     forward: bool,
@@ -66,6 +69,26 @@ struct FanFace {
 }
 
 impl FanFace {
+    /// The side of the face's plane that `w` is on, exactly: zero without arithmetic
+    /// where `w` is a seam point on the face's input triangle (`w_on`: the feature of
+    /// that input it lies on, known from the seam), else by `orient3d`. A point on a
+    /// triangle's vertex, edge or face lies in its plane; most seam points lie on the
+    /// faces of the fans they are classified against, where `orient3d` is zero and only
+    /// its exact stage decides (an implicit point's exact coordinates built for that).
+    fn side(&self, w: &Point, w_on: Option<Feature>) -> Sign {
+        let (t, corners) = self.parent;
+        let on = match w_on {
+            Some(Feature::Vertex(v)) => corners.contains(&v),
+            Some(Feature::Edge(u, v)) => corners.contains(&u) && corners.contains(&v),
+            Some(Feature::Face(f)) => f == t,
+            None => false,
+        };
+        if on {
+            return Sign::Zero;
+        }
+        orient3d_plane(&self.plane[0], &self.plane[1], &self.plane[2], w)
+    }
+
     /// The face's input triangle with its projection; `None` when degenerate.
     fn triangle(&self) -> Option<&Triangle> {
         self.triangle
@@ -88,15 +111,15 @@ struct Fan<'a> {
 /// does not decide (a boundary edge of the other mesh).
 fn local_class(
     own: &[[f64; 3]; 3],
-    w: &Point,
+    (w, w_on): (&Point, Option<Feature>),
     e: [&Point; 2],
     near: [f64; 3],
     fan: &Fan<'_>,
 ) -> Option<Class> {
     let [f0, f1] = fan.faces else {
-        return glued_class(own, w, e, near, fan.faces);
+        return glued_class(own, (w, w_on), e, near, fan.faces);
     };
-    let s = [f0, f1].map(|f| orient3d_plane(&f.plane[0], &f.plane[1], &f.plane[2], w));
+    let s = [f0, f1].map(|f| f.side(w, w_on));
     for (k, f) in [f0, f1].iter().enumerate() {
         if s[k] != Sign::Zero {
             continue;
@@ -106,9 +129,11 @@ fn local_class(
             return Some(c);
         }
     }
-    let convex = *fan
-        .convex
-        .get_or_init(|| orient3d_plane(&f0.plane[0], &f0.plane[1], &f0.plane[2], &f1.far));
+    // Two pieces of one input triangle: a flat fan, `f1`'s far vertex in `f0`'s plane.
+    let convex = *fan.convex.get_or_init(|| match f0.parent.0 == f1.parent.0 {
+        true => Sign::Zero,
+        false => orient3d_plane(&f0.plane[0], &f0.plane[1], &f0.plane[2], &f1.far),
+    });
     let behind = |x: Sign| x == Sign::Negative;
     let inside = match convex {
         Sign::Negative => behind(s[0]) && behind(s[1]),
@@ -163,7 +188,7 @@ fn on_face(
 /// faces `w` lies on disagree. `near` is the position of `e[0]`.
 fn glued_class(
     own: &[[f64; 3]; 3],
-    w: &Point,
+    (w, w_on): (&Point, Option<Feature>),
     e: [&Point; 2],
     near: [f64; 3],
     fan: &[FanFace],
@@ -173,7 +198,7 @@ fn glued_class(
     }
     let mut found = None;
     for f in fan {
-        if orient3d_plane(&f.plane[0], &f.plane[1], &f.plane[2], w) != Sign::Zero {
+        if f.side(w, w_on) != Sign::Zero {
             continue;
         }
         let Some(plane) = f.triangle() else {
@@ -229,6 +254,10 @@ pub struct CutMesh<'a> {
     pub arranged: &'a Arranged,
     /// `SeamTopology::new(&arranged.mesh, &arranged.seam_edges)`.
     pub topology: &'a SeamTopology,
+    /// For every seam point, the feature of [`CutMesh::input`] it lies on (the seam's
+    /// labels on this side), when known: the other mesh's classification then knows
+    /// without arithmetic which seam points lie in this mesh's faces' planes.
+    pub seam_features: Option<&'a [Feature]>,
 }
 
 /// Up to this many triangle × query products, winding numbers are exact sums; beyond, the
@@ -270,6 +299,7 @@ type Vote = (u32, u32, Option<Class>);
 /// that edge ([`local_class`]), in the order of `x`'s seam edges.
 fn seam_votes(x: &CutMesh, y: &CutMesh) -> Vec<Vote> {
     let (x_in, topo, y_in, ytopo) = (x.input, x.topology, y.input, y.topology);
+    let y_features = y.seam_features;
     let (x, y) = (x.arranged, y.arranged);
     let patch = &topo.patch;
     let seam_of_vertex: FxHashMap<u32, u32> = x
@@ -292,8 +322,10 @@ fn seam_votes(x: &CutMesh, y: &CutMesh) -> Vec<Vote> {
                 if let Ok(ye) = ytopo.edges.binary_search(&[yu.min(yv), yu.max(yv)]) {
                     faces.extend(ytopo.uses_of(ye).iter().map(|use_| {
                         let tri = y.mesh.triangles[use_.triangle as usize];
+                        let parent = y.parent[use_.triangle as usize];
                         FanFace {
-                            plane: y_in.corners(y.parent[use_.triangle as usize] as usize),
+                            plane: y_in.corners(parent as usize),
+                            parent: (parent, y_in.triangles[parent as usize]),
                             far: y.point(tri[(use_.corner as usize + 2) % 3]),
                             forward: tri[use_.corner as usize] == yu,
                             triangle: OnceCell::new(),
@@ -308,10 +340,19 @@ fn seam_votes(x: &CutMesh, y: &CutMesh) -> Vec<Vote> {
                 let ends = [&pu, &pv];
                 votes.extend(topo.uses_of(e).iter().map(|use_| {
                     let t = use_.triangle as usize;
-                    let w = &x.point(x.mesh.triangles[t][(use_.corner as usize + 2) % 3]);
+                    let wv = x.mesh.triangles[t][(use_.corner as usize + 2) % 3];
+                    let w = &x.point(wv);
+                    // Where `w` is a seam point: the feature of `y`'s input it lies on.
+                    let w_on = y_features
+                        .zip(seam_of_vertex.get(&wv))
+                        .map(|(f, &s)| f[s as usize]);
                     let own = x_in.corners(x.parent[t] as usize);
                     let near = x.mesh.positions[u as usize];
-                    (patch[t], t as u32, local_class(&own, w, ends, near, &fan))
+                    (
+                        patch[t],
+                        t as u32,
+                        local_class(&own, (w, w_on), ends, near, &fan),
+                    )
                 }));
                 (votes, faces)
             },
