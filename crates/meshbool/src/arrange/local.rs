@@ -50,30 +50,49 @@ impl Local {
     /// The triangle `corners` (counter-clockwise when `sign` is positive in the projection
     /// dropping `axis`; `sign` must be non-zero), with room for `points` more vertices.
     pub(crate) fn new(corners: [[f64; 3]; 3], axis: usize, sign: Sign, points: usize) -> Local {
-        // Each point adds a vertex and at most two triangles.
-        let (n, t) = (3 + points, 1 + 2 * points);
-        fn with<T: Copy>(first: &[T], n: usize) -> Vec<T> {
-            let mut v = Vec::with_capacity(n);
-            v.extend_from_slice(first);
-            v
-        }
-        let mut pts = Vec::with_capacity(n);
-        pts.extend(corners.iter().map(|&p| Prepared::new(Point::Explicit(p))));
-        Local {
-            pts,
-            approx: with(&corners, n),
-            on: with(&[0b101, 0b011, 0b110], n),
-            whole: 0b111,
-            tris: with(&[[0, 1, 2]], t),
-            nbr: with(&[[NONE; 3]], t),
-            fixed: with(&[[true; 3]], t),
-            vt: with(&[0; 3], n),
+        let mut local = Local {
+            pts: Vec::new(),
+            approx: Vec::new(),
+            on: Vec::new(),
+            whole: 0,
+            tris: Vec::new(),
+            nbr: Vec::new(),
+            fixed: Vec::new(),
+            vt: Vec::new(),
             sides: Vec::new(),
             stamp: 0,
             axis,
             sign,
             last: 0,
+        };
+        local.reset(corners, axis, sign, points);
+        local
+    }
+
+    /// [`Local::new`] in this one's memory: a triangulation per cut triangle, one after
+    /// another, without allocating for each.
+    pub(crate) fn reset(&mut self, corners: [[f64; 3]; 3], axis: usize, sign: Sign, points: usize) {
+        // Each point adds a vertex and at most two triangles.
+        let (n, t) = (3 + points, 1 + 2 * points);
+        fn refill<T: Copy>(v: &mut Vec<T>, first: &[T], n: usize) {
+            v.clear();
+            v.reserve(n);
+            v.extend_from_slice(first);
         }
+        self.pts.clear();
+        self.pts.reserve(n);
+        self.pts
+            .extend(corners.iter().map(|&p| Prepared::new(Point::Explicit(p))));
+        refill(&mut self.approx, &corners, n);
+        refill(&mut self.on, &[0b101, 0b011, 0b110], n);
+        self.whole = 0b111;
+        refill(&mut self.tris, &[[0, 1, 2]], t);
+        refill(&mut self.nbr, &[[NONE; 3]], t);
+        refill(&mut self.fixed, &[[true; 3]], t);
+        refill(&mut self.vt, &[0; 3], n);
+        // `sides` stays: its entries are valid only under the current stamp, which only
+        // grows (cleared where it wraps).
+        (self.axis, self.sign, self.last) = (axis, sign, 0);
     }
 
     /// Locates every later point by the walk, also those on an outer edge not split

@@ -114,9 +114,22 @@ pub fn arrange(mesh: &Mesh, seam: &Seam, side: Source) -> Arranged {
     let results: Vec<(u32, CutResult)> = cut
         .par_iter()
         .grained()
-        .map(|&t| (t, cut_triangle(mesh, t, &points, &constraints)))
+        .map_init(Scratch::default, |s, &t| {
+            (t, cut_triangle(mesh, t, &points, &constraints, s))
+        })
         .collect();
     Arranged::assemble(points, seam_edges, reassemble(mesh, results))
+}
+
+/// Memory that [`cut_triangle`] reuses from one triangle to the next (one per parallel
+/// task): most cut triangles hold a few points, and allocating their triangulation's
+/// arrays for each was a good part of the arrangement of small inputs.
+#[derive(Default)]
+pub(crate) struct Scratch {
+    local: Option<local::Local>,
+    mine: Vec<(u32, Option<usize>)>,
+    to_local: Vec<(u32, u32)>,
+    ids: Vec<u32>,
 }
 
 impl Arranged {
@@ -293,6 +306,7 @@ fn cut_triangle(
     t: u32,
     points: &SeamPoints,
     cons: &FxHashMap<u32, Vec<[u32; 2]>>,
+    scratch: &mut Scratch,
 ) -> CutResult {
     let tri = mesh.triangles[t as usize];
     let corners = mesh.corners(t as usize);
@@ -300,11 +314,16 @@ fn cut_triangle(
         return Err(local::Failed(FailReason::DegenerateTriangle));
     };
     // Seam points with the outer edge they lie on, if any.
-    let mut mine: Vec<(u32, Option<usize>)> = points
-        .on_face
-        .get(&t)
-        .map(|p| p.iter().map(|&g| (g, None)).collect())
-        .unwrap_or_default();
+    let Scratch {
+        local,
+        mine,
+        to_local,
+        ids,
+    } = scratch;
+    mine.clear();
+    if let Some(p) = points.on_face.get(&t) {
+        mine.extend(p.iter().map(|&g| (g, None)));
+    }
     for k in 0..3 {
         let (u, v) = (tri[k], tri[(k + 1) % 3]);
         if let Some(p) = points.on_edge.get(&(u.min(v), u.max(v))) {
@@ -317,15 +336,22 @@ fn cut_triangle(
     if mine.is_empty() && cons_t.iter().all(|c| c.iter().all(|v| tri.contains(v))) {
         return Ok((vec![tri], vec![false]));
     }
-    let mut lt = local::Local::new(corners, shape.axis(), shape.sign(), mine.len());
+    let (axis, sign) = (shape.axis(), shape.sign());
+    let lt = match local {
+        Some(lt) => {
+            lt.reset(corners, axis, sign, mine.len());
+            lt
+        }
+        None => local.insert(local::Local::new(corners, axis, sign, mine.len())),
+    };
     // Mesh vertex to local vertex, as pairs sorted once all are in (a few per triangle,
     // thousands under a fine mesh): where a vertex is named twice, the later pair holds.
-    let mut to_local: Vec<(u32, u32)> = Vec::with_capacity(3 + mine.len());
+    to_local.clear();
     to_local.extend(tri.iter().enumerate().map(|(k, &v)| (v, k as u32)));
-    let mut ids: Vec<u32> = Vec::with_capacity(3 + mine.len());
+    ids.clear();
     ids.extend_from_slice(&tri);
-    chain_order(&mut mine, cons_t);
-    for (g, on_edge) in mine {
+    chain_order(mine, cons_t);
+    for &(g, on_edge) in mine.iter() {
         // An input vertex here is one of the mesh's own lying on this triangle (the
         // self-arrangement); the rest are constructed seam points.
         let exact = match (g as usize).checked_sub(points.input_vertices) {

@@ -93,7 +93,9 @@ fn arrange_welded(mesh: &Mesh, seam: &Seam) -> Arranged {
     let results: Vec<_> = cut
         .par_iter()
         .grained()
-        .map(|&t| (t, cut_triangle(mesh, t, &points, &constraints)))
+        .map_init(super::Scratch::default, |s, &t| {
+            (t, cut_triangle(mesh, t, &points, &constraints, s))
+        })
         .collect();
     Arranged::assemble(points, seam_edges, reassemble(mesh, results))
 }
