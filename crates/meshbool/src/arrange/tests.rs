@@ -52,6 +52,68 @@ fn check_closed_pair(a: &Mesh, b: &Mesh) {
 /// Points on the outer edges (exact binary coordinates on a tilted plane), inserted in
 /// many orders, some constrained: the first point on each edge, placed without a walk,
 /// gives the triangulation the walk gives.
+/// A triangulation reset for the next triangle ([`local::Local::reset`], as the
+/// arrangement reuses one per task) is the one made fresh: one `Local` taken through 120
+/// triangles in two planes, each with a random set of points, some on its edges, and
+/// constraints among them, every time with the triangles a new one makes.
+#[test]
+fn a_reset_triangulation_is_a_fresh_one() {
+    let planes: [fn(f64, f64) -> [f64; 3]; 2] = [
+        |x, y| [x, y, 0.5 * x + 2.0 * y],
+        |x, y| [0.25 * x - y, x + 0.5 * y, 3.0 - x],
+    ];
+    let points = [
+        (1.0, 0.0, Some(0)),
+        (6.0, 0.0, Some(0)),
+        (5.0, 3.0, Some(1)),
+        (0.0, 2.0, Some(2)),
+        (1.0, 1.0, None),
+        (2.0, 3.0, None),
+        (4.0, 2.0, None),
+        (1.5, 5.0, None),
+    ];
+    let mut rng = Rng(0x0dd_ba11_5eed);
+    let mut reused: Option<local::Local> = None;
+    for round in 0..120 {
+        let plane = planes[round % 2];
+        let scale = 1.0 + (round % 3) as f64;
+        let at = |x: f64, y: f64| plane(scale * x, scale * y);
+        let corners = [at(0.0, 0.0), at(8.0, 0.0), at(0.0, 8.0)];
+        let shape = Triangle::new(corners).unwrap();
+        let chosen: Vec<usize> = (0..points.len()).filter(|_| rng.next() % 3 != 0).collect();
+        let run = |lt: &mut local::Local| {
+            let ids: Vec<u32> = chosen
+                .iter()
+                .map(|&k| {
+                    let (x, y, on) = points[k];
+                    let p = at(x, y);
+                    lt.insert(Prepared::new(Point::Explicit(p)), p, on).unwrap()
+                })
+                .collect();
+            for w in ids.windows(2).step_by(2) {
+                let (p, q) = (w[0], w[1]);
+                // Only constraints that cross no earlier one: between consecutive
+                // interior points (their segments lie apart).
+                if chosen[ids.iter().position(|&i| i == p).unwrap()] >= 4 {
+                    let _ = lt.constrain(p, q);
+                }
+            }
+            lt.improve();
+            lt.tris.clone()
+        };
+        let (axis, sign) = (shape.axis(), shape.sign());
+        let mut fresh = local::Local::new(corners, axis, sign, chosen.len());
+        let lt = match &mut reused {
+            Some(lt) => {
+                lt.reset(corners, axis, sign, chosen.len());
+                lt
+            }
+            None => reused.insert(local::Local::new(corners, axis, sign, chosen.len())),
+        };
+        assert_eq!(run(lt), run(&mut fresh), "round {round}");
+    }
+}
+
 #[test]
 fn points_on_whole_edges_go_where_the_walk_takes_them() {
     let plane = |x: f64, y: f64| [x, y, 0.5 * x + 2.0 * y];
