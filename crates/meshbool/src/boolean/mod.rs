@@ -364,7 +364,8 @@ impl Stage {
 /// algorithms (public so that tests can force either path on small inputs).
 #[derive(Clone, Copy)]
 pub struct PipelineOptions<'p> {
-    /// Called with each stage as it begins, on the calling thread.
+    /// Called with each stage as it begins, on the thread running the call (a worker of
+    /// the pool, or the calling thread for a small call: [`crate::ops::SERIAL_BELOW`]).
     pub progress: Option<&'p (dyn Fn(Stage) + Sync)>,
     /// Candidate pairs from the grid from this many triangles in both meshes together
     /// ([`crate::intersect::GRID_FROM`]), below from two trees.
@@ -644,7 +645,16 @@ fn added_points(s: &Split, seam_origin: &[u32], seam_vertices: &[u32]) -> Vec<u3
 
 /// The boolean `op` of `a` and `b` (both valid, exactly welded, consistently oriented;
 /// closed meshes facing outward, open surfaces with "inside" behind them).
+///
+/// Called from outside a thread pool, it moves into the current one once (a small call
+/// runs serially on the calling thread instead: [`crate::ops::SERIAL_BELOW`]).
 pub fn boolean(a: &Mesh, b: &Mesh, op: Op, opts: &PipelineOptions) -> BooleanResult {
+    let triangles = a.triangles.len() + b.triangles.len();
+    crate::ops::run_for(triangles, || boolean_in_pool(a, b, op, opts))
+}
+
+/// [`boolean`] on the thread it is called on.
+fn boolean_in_pool(a: &Mesh, b: &Mesh, op: Op, opts: &PipelineOptions) -> BooleanResult {
     let s = split(a, b, opts);
     opts.stage(Stage::Merge);
     let rule = op.rule();

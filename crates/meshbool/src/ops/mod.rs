@@ -193,6 +193,21 @@ pub(crate) fn with_threads_for<R: Send>(
     with_threads(threads, f)
 }
 
+/// Runs `f`, a call on `triangles` triangles in all, as [`with_threads_for`] does with
+/// the default threads: serially on this thread under [`SERIAL_BELOW`], else on a worker
+/// of the current pool (moved there once from outside). For the pipeline's own entry
+/// points ([`crate::boolean::boolean`]), called directly from outside a pool: there every
+/// parallel step would otherwise wake the pool from outside.
+pub(crate) fn run_for<R: Send>(triangles: usize, f: impl FnOnce() -> R + Send) -> R {
+    if triangles < SERIAL_BELOW || crate::par::is_serial() {
+        crate::par::serially(f)
+    } else if rayon::current_thread_index().is_some() {
+        f()
+    } else {
+        rayon::scope(|_| awake(f))
+    }
+}
+
 /// An error for more threads than [`RunOptions::MAX_THREADS`].
 fn check_threads(threads: Option<usize>) -> Result<()> {
     match threads {

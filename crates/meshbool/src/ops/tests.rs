@@ -363,6 +363,26 @@ fn small_calls_run_on_the_calling_thread() {
     assert!(big.triangles.len() + other.triangles.len() >= SERIAL_BELOW);
     let (_, seen) = stage_threads(&big, &other, None);
     assert!(seen.iter().all(|&(_, index)| index.is_some()), "{seen:?}");
+    // The pipeline's boolean called directly from outside a pool: the small one on this
+    // thread, the large one on a worker.
+    for ((x, y), small) in [((&a, &b), true), ((&big, &other), false)] {
+        let seen = Mutex::new(Vec::new());
+        let log = |_: crate::boolean::Stage| {
+            let here = (std::thread::current().id(), rayon::current_thread_index());
+            seen.lock().unwrap().push(here);
+        };
+        let opts = crate::boolean::PipelineOptions {
+            progress: Some(&log),
+            ..Default::default()
+        };
+        crate::boolean::boolean(x, y, Op::Union, &opts);
+        let seen = seen.into_inner().unwrap();
+        assert!(seen.len() >= 2, "{seen:?}");
+        match small {
+            true => assert!(seen.iter().all(|&s| s == (me, None)), "{seen:?}"),
+            false => assert!(seen.iter().all(|&(_, i)| i.is_some()), "{seen:?}"),
+        }
+    }
     // Inside a small call, a nested call stays on its thread.
     let nested = crate::par::serially(|| with_threads(Some(2), rayon::current_thread_index));
     assert_eq!(nested.unwrap(), None);
