@@ -417,8 +417,14 @@ impl PipelineOptions<'_> {
 }
 
 /// Runs intersection, arrangement and classification of `a` against `b` (both valid and
-/// exactly welded; see [`crate::weld_exact`]).
+/// exactly welded; see [`crate::weld_exact`]). Threads as [`boolean`]'s.
 pub fn split(a: &Mesh, b: &Mesh, opts: &PipelineOptions) -> Split {
+    let triangles = a.triangles.len() + b.triangles.len();
+    crate::ops::run_for(triangles, || split_in_pool(a, b, opts))
+}
+
+/// [`split`] on the thread it is called on.
+fn split_in_pool(a: &Mesh, b: &Mesh, opts: &PipelineOptions) -> Split {
     opts.stage(Stage::Intersect);
     let seam = intersect_with(a, b, opts.grid_from, opts.kept);
     opts.stage(Stage::Arrange);
@@ -655,7 +661,7 @@ pub fn boolean(a: &Mesh, b: &Mesh, op: Op, opts: &PipelineOptions) -> BooleanRes
 
 /// [`boolean`] on the thread it is called on.
 fn boolean_in_pool(a: &Mesh, b: &Mesh, op: Op, opts: &PipelineOptions) -> BooleanResult {
-    let s = split(a, b, opts);
+    let s = split_in_pool(a, b, opts);
     opts.stage(Stage::Merge);
     let rule = op.rule();
     let merged = merge(

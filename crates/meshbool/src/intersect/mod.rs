@@ -159,9 +159,11 @@ fn tri(m: &Mesh, t: usize) -> Option<tritri::Tri> {
 /// Intersects meshes `a` and `b` exactly. Inputs must be valid ([`Mesh::validate`]) and
 /// should be welded ([`crate::weld_exact`]): points are named by vertex ids, so two vertices
 /// at the same position would name one point twice and break the curves there.
-/// Degenerate triangles are left out and counted in [`Seam::degenerate`].
+/// Degenerate triangles are left out and counted in [`Seam::degenerate`]. Threads as
+/// [`crate::boolean::boolean`]'s.
 pub fn intersect(a: &Mesh, b: &Mesh) -> Seam {
-    intersect_with(a, b, GRID_FROM, [None, None])
+    let triangles = a.triangles.len() + b.triangles.len();
+    crate::ops::run_for(triangles, || intersect_with(a, b, GRID_FROM, [None, None]))
 }
 
 /// [`intersect`], with candidate pairs from the grid from `grid_from` triangles in both
