@@ -29,13 +29,8 @@ use smallvec::SmallVec;
 use super::{Provenance, Source};
 use crate::kernel::{normals_cross_sign, normals_dot_sign, orient3d_explicit, Sign};
 use crate::measure::is_degenerate;
-use crate::repair::compact_from_end;
+use crate::repair::{common, compact_from_end, neighbours, Ids};
 use crate::Mesh;
-
-/// Triangle or vertex ids around one vertex: held inline up to 16 (a vertex's star or
-/// neighbours, almost always fewer), so that the many small lists of the clean-up do not
-/// each go to the allocator.
-type Ids = SmallVec<[u32; 16]>;
 
 /// What the exact clean-up of a boolean's result did ([`super::PipelineOptions::cleanup`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -166,14 +161,7 @@ impl Work<'_> {
 
     /// The neighbours of `v` in the triangles `star` (sorted).
     fn neighbours(&self, star: &[u32], v: u32) -> Ids {
-        let mut n: Ids = star
-            .iter()
-            .flat_map(|&t| self.triangles[t as usize])
-            .filter(|&x| x != v)
-            .collect();
-        n.sort_unstable();
-        n.dedup();
-        n
+        neighbours(star.iter().map(|&t| self.triangles[t as usize]), v)
     }
 
     /// Whether collapsing `p` onto `q` keeps the mesh manifold: `q`'s star is known,
@@ -195,7 +183,7 @@ impl Work<'_> {
             return false;
         };
         let (np, nq) = (self.neighbours(star_p, p), self.neighbours(star_q, q));
-        let shared = np.iter().filter(|x| nq.binary_search(x).is_ok()).count();
+        let shared = common(&np, &nq).len();
         let far = |t: u32| {
             let tri = self.triangles[t as usize];
             tri.into_iter().find(|&x| x != p && x != q).unwrap_or(p)
@@ -301,9 +289,7 @@ impl Work<'_> {
             self.closed_fan(p, &sides[0])?,
             self.closed_fan(p, &sides[1])?,
         ];
-        let seam: Ids = (fans[0].neighbours.iter().copied())
-            .filter(|x| fans[1].neighbours.binary_search(x).is_ok())
-            .collect();
+        let seam = common(&fans[0].neighbours, &fans[1].neighbours);
         let [q, r] = seam[..] else {
             return None;
         };

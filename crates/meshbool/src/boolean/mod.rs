@@ -31,7 +31,7 @@ use crate::arrange::{arrange, Arranged, FailReason};
 use crate::classify::{classify, Class, Classified, CutMesh};
 use crate::edges::SeamTopology;
 pub use crate::intersect::Source;
-use crate::intersect::{intersect_with, Feature, Seam};
+use crate::intersect::{intersect_with, Seam};
 use crate::kept::Keeps;
 use crate::par::{exclusive_sums, filled, split_by};
 use crate::repair::nonmanifold::split_at;
@@ -439,25 +439,17 @@ fn split_in_pool(a: &Mesh, b: &Mesh, opts: &PipelineOptions) -> Split {
         || SeamTopology::new(&arr_b.mesh, &arr_b.seam_edges),
     );
     let (closed_a, closed_b) = (topo_a.is_closed(), topo_b.is_closed());
-    let features = |side: Source| -> Vec<Feature> {
-        seam.points
-            .par_iter()
-            .grained()
-            .map(|l| l.feature(side))
-            .collect()
-    };
-    let (features_a, features_b) = (features(Source::A), features(Source::B));
     let oa = CutMesh {
         input: a,
         arranged: &arr_a,
         topology: &topo_a,
-        seam_features: Some(&features_a),
+        seam: Some((&seam.points, Source::A)),
     };
     let ob = CutMesh {
         input: b,
         arranged: &arr_b,
         topology: &topo_b,
-        seam_features: Some(&features_b),
+        seam: Some((&seam.points, Source::B)),
     };
     opts.stage(Stage::Classify);
     let (class_a, class_b) = crate::par::join(

@@ -17,7 +17,7 @@ use rustc_hash::FxHashMap;
 
 use crate::arrange::Arranged;
 use crate::edges::SeamTopology;
-use crate::intersect::Feature;
+use crate::intersect::{Feature, Label, Source};
 use crate::kernel::{orient2d, orient3d_plane, Point, Sign, Triangle};
 use crate::Mesh;
 
@@ -254,10 +254,11 @@ pub struct CutMesh<'a> {
     pub arranged: &'a Arranged,
     /// `SeamTopology::new(&arranged.mesh, &arranged.seam_edges)`.
     pub topology: &'a SeamTopology,
-    /// For every seam point, the feature of [`CutMesh::input`] it lies on (the seam's
-    /// labels on this side), when known: the other mesh's classification then knows
+    /// The seam's points (their labels, [`crate::intersect::Seam::points`]) and the
+    /// side of [`CutMesh::input`] in them, when known: each label's feature on that side
+    /// is where the point lies on the input, so the other mesh's classification knows
     /// without arithmetic which seam points lie in this mesh's faces' planes.
-    pub seam_features: Option<&'a [Feature]>,
+    pub seam: Option<(&'a [Label], Source)>,
 }
 
 /// Up to this many triangle × query products, winding numbers are exact sums; beyond, the
@@ -299,7 +300,7 @@ type Vote = (u32, u32, Option<Class>);
 /// that edge ([`local_class`]), in the order of `x`'s seam edges.
 fn seam_votes(x: &CutMesh, y: &CutMesh) -> Vec<Vote> {
     let (x_in, topo, y_in, ytopo) = (x.input, x.topology, y.input, y.topology);
-    let y_features = y.seam_features;
+    let y_seam = y.seam;
     let (x, y) = (x.arranged, y.arranged);
     let patch = &topo.patch;
     let seam_of_vertex: FxHashMap<u32, u32> = x
@@ -343,9 +344,9 @@ fn seam_votes(x: &CutMesh, y: &CutMesh) -> Vec<Vote> {
                     let wv = x.mesh.triangles[t][(use_.corner as usize + 2) % 3];
                     let w = &x.point(wv);
                     // Where `w` is a seam point: the feature of `y`'s input it lies on.
-                    let w_on = y_features
+                    let w_on = y_seam
                         .zip(seam_of_vertex.get(&wv))
-                        .map(|(f, &s)| f[s as usize]);
+                        .map(|((labels, side), &s)| labels[s as usize].feature(side));
                     let own = x_in.corners(x.parent[t] as usize);
                     let near = x.mesh.positions[u as usize];
                     (

@@ -147,20 +147,13 @@ impl RunOptions {
 /// pool). A call already on a worker of a pool that size runs directly. Errors when
 /// `threads` is over [`RunOptions::MAX_THREADS`] or the threads cannot be started.
 pub fn with_threads<R: Send>(threads: Option<usize>, f: impl FnOnce() -> R + Send) -> Result<R> {
-    if crate::par::is_serial() {
-        // Inside a small call ([`with_threads_for`]): serial on this thread, as it is.
-        check_threads(threads)?;
-        return Ok(f());
-    }
+    check_threads(threads)?;
     let n = match threads {
-        // On a worker of the global pool: a call from outside it moves there once, so
-        // that its many parallel steps start as local tasks rather than each waking the
-        // pool from outside (tens of microseconds each: most of a small boolean).
-        None | Some(0) if rayon::current_thread_index().is_some() => return Ok(f()),
-        None | Some(0) => return Ok(rayon::scope(|_| awake(f))),
+        // Inside a small call ([`with_threads_for`]): serial on this thread, as it is.
+        _ if crate::par::is_serial() => return Ok(f()),
+        None | Some(0) => return Ok(in_current_pool(f)),
         Some(n) => n,
     };
-    check_threads(threads)?;
     if rayon::current_thread_index().is_some() && rayon::current_num_threads() == n {
         return Ok(f());
     }
@@ -201,7 +194,17 @@ pub(crate) fn with_threads_for<R: Send>(
 pub(crate) fn run_for<R: Send>(triangles: usize, f: impl FnOnce() -> R + Send) -> R {
     if triangles < SERIAL_BELOW || crate::par::is_serial() {
         crate::par::serially(f)
-    } else if rayon::current_thread_index().is_some() {
+    } else {
+        in_current_pool(f)
+    }
+}
+
+/// Runs `f` on a worker of the current pool: directly on one, else moved there once
+/// from outside, so that its many parallel steps start as local tasks rather than each
+/// waking the pool from outside (tens of microseconds each: most of a small boolean),
+/// with the pool's other workers kept awake ([`awake`]).
+fn in_current_pool<R: Send>(f: impl FnOnce() -> R + Send) -> R {
+    if rayon::current_thread_index().is_some() {
         f()
     } else {
         rayon::scope(|_| awake(f))

@@ -265,7 +265,7 @@ impl Operand {
         b: impl AsRef<Path> + Sync,
         checks: &Checks,
     ) -> Result<(Operand, Operand)> {
-        let (a, b) = crate::par::join(|| Operand::read(&a, checks), || Operand::read(&b, checks));
+        let (a, b) = par::join(|| Operand::read(&a, checks), || Operand::read(&b, checks));
         Ok((a?, b?))
     }
 
@@ -292,8 +292,7 @@ impl Operand {
             && mesh.triangles.len() >= 1 << 16
             && rayon::current_num_threads() > 2
         {
-            let (c, i) =
-                crate::par::join(|| EdgeCounts::of(&mesh), || crate::repair::inward(&mesh));
+            let (c, i) = par::join(|| EdgeCounts::of(&mesh), || crate::repair::inward(&mesh));
             (Some(c), Some(i))
         } else {
             (checks.edges.then(|| EdgeCounts::of(&mesh)), None)

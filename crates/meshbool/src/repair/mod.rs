@@ -37,7 +37,8 @@ pub use pipeline::{
     RepairReport,
 };
 pub(crate) use snap::{
-    check_tolerance, compact_from_end, remove_sorted, snap_carrying, snap_filling, snap_unchecked,
+    check_tolerance, common, compact_from_end, neighbours, remove_sorted, snap_carrying,
+    snap_filling, snap_unchecked, Ids,
 };
 pub use snap::{snap, snap_in_place, snap_with, SnapOptions, SnapReport, Snapped};
 pub use stitch::{stitch, zipper, StitchReport};

@@ -1943,7 +1943,7 @@ impl<'a> Work<'a> {
         let sk = self.star(keep)?;
         let mut creases = 0u8;
         let sk_tris: Vec<[u32; 3]> = sk.iter().map(|&t| self.tri(t)).collect();
-        for x in neighbours(&sk_tris, keep) {
+        for x in neighbours(sk_tris.iter().copied(), keep) {
             let on: Vec<u32> = sk
                 .iter()
                 .copied()
@@ -2130,8 +2130,11 @@ impl<'a> Work<'a> {
         far.sort_unstable();
         far.dedup();
         if self.sheets.is_some() {
-            let (nk, ng) = (neighbours(&sk_tris, keep), neighbours(&sg_tris, gone));
-            if common(&nk, &ng) != far {
+            let (nk, ng) = (
+                neighbours(sk_tris.iter().copied(), keep),
+                neighbours(sg_tris.iter().copied(), gone),
+            );
+            if common(&nk, &ng)[..] != far[..] {
                 return refuse(Manifold);
             }
         }
@@ -2442,8 +2445,11 @@ fn collapse_topology(
         return refuse(Manifold);
     }
     let sg_sheet: Vec<[u32; 3]> = of_gone.iter().map(|&i| sg_tris[i]).collect();
-    let (nk, ng) = (neighbours(of_keep, keep), neighbours(&sg_sheet, gone));
-    if common(&nk, &ng) != far {
+    let (nk, ng) = (
+        neighbours(of_keep.iter().copied(), keep),
+        neighbours(sg_sheet.iter().copied(), gone),
+    );
+    if common(&nk, &ng)[..] != far[..] {
         return refuse(Manifold);
     }
     let uses = |tris: &[[u32; 3]], x: u32| tris.iter().filter(|t| t.contains(&x)).count();
@@ -2505,16 +2511,21 @@ fn turns_over(old: &[[f64; 3]; 3], new: &[[f64; 3]; 3]) -> bool {
     }
 }
 
+/// Vertex or triangle ids around one vertex (its star, its neighbours): held inline up
+/// to 16, almost always enough, so that the many small lists of the clean-ups do not each
+/// go to the allocator.
+pub(crate) type Ids = smallvec::SmallVec<[u32; 16]>;
+
 /// The neighbours of `v` in the triangles `star` (all containing `v`), sorted.
-fn neighbours(star: &[[u32; 3]], v: u32) -> Vec<u32> {
-    let mut n: Vec<u32> = star.iter().flatten().copied().filter(|&x| x != v).collect();
+pub(crate) fn neighbours(star: impl IntoIterator<Item = [u32; 3]>, v: u32) -> Ids {
+    let mut n: Ids = star.into_iter().flatten().filter(|&x| x != v).collect();
     n.sort_unstable();
     n.dedup();
     n
 }
 
 /// The elements of sorted `a` that are in sorted `b`.
-fn common(a: &[u32], b: &[u32]) -> Vec<u32> {
+pub(crate) fn common(a: &[u32], b: &[u32]) -> Ids {
     a.iter()
         .copied()
         .filter(|x| b.binary_search(x).is_ok())
