@@ -1398,3 +1398,89 @@ fn non_finite_corners_give_an_answer_not_a_panic() {
     }
     assert!(tried > 100, "{tried}");
 }
+
+/// Triangles whose boxes only touch, on a plane square to an axis, are answered from
+/// their corners on it ([`tritri::touching`]): the same pieces as the general test
+/// (`tt`), on the candidate pairs of grids (a plane's grid with itself and with a copy
+/// shifted by half a cell, boxes of 4 × 4 grids with themselves and side by side) and on
+/// random triangles with corners on a small lattice (in general position, in a plane
+/// square to an axis, in a tilted plane; sharing no corner, one, two or all three; as
+/// given, at UTM coordinates, scaled down, rotated), where boxes touch often and corners
+/// land on edges. Each answer the shortcut gives (apart, a common corner, a corner on an
+/// edge) is met many times, and so is its refusal (an edge on the plane); so are
+/// triangles with the same corners ([`tritri::twins`]).
+#[test]
+fn touching_boxes_give_the_pieces_of_the_general_test() {
+    // [apart, corner at corner, corner on edge, left to the general test, twins]
+    let mut seen = [0usize; 5];
+    let mut check = |a: &Tri, b: &Tri| {
+        let mut got = Vec::new();
+        tritri::meet(a, b, |p| got.push(p));
+        let mut want = Vec::new();
+        tritri::pieces_of(&tt(a, b), |p| want.push(p));
+        assert_eq!(got, want, "{:?} {:?}", a.corners(), b.corners());
+        if let Some(t) = tritri::touching(a, b) {
+            seen[match t {
+                None => 0,
+                Some(Label {
+                    a: Vertex(_),
+                    b: Vertex(_),
+                }) => 1,
+                Some(_) => 2,
+            }] += 1;
+        } else {
+            seen[3] += 1;
+        }
+        seen[4] += usize::from(tritri::twins(a, b).is_some());
+    };
+    let plane = crate::shapes::plane([0.0; 3], 1.0, 1.0, 6, 6).unwrap();
+    let half = crate::shapes::plane([1.0 / 12.0, 0.0, 0.0], 1.0, 1.0, 6, 6).unwrap();
+    // A box with each face a 4 × 4 grid of squares cut along a diagonal.
+    let cube = |lo: [f64; 3], hi: [f64; 3]| {
+        let (mut positions, mut triangles) = (Vec::new(), Vec::new());
+        for d in 0..3 {
+            for side in [lo[d], hi[d]] {
+                let (u, v) = ((d + 1) % 3, (d + 2) % 3);
+                let base = positions.len() as u32;
+                for i in 0..=4 {
+                    for j in 0..=4 {
+                        let mut p = [side; 3];
+                        p[u] = lo[u] + (hi[u] - lo[u]) * f64::from(i) / 4.0;
+                        p[v] = lo[v] + (hi[v] - lo[v]) * f64::from(j) / 4.0;
+                        positions.push(p);
+                    }
+                }
+                for i in 0..4 {
+                    for j in 0..4 {
+                        let at = |i: u32, j: u32| base + 5 * i + j;
+                        triangles.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                        triangles.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+                    }
+                }
+            }
+        }
+        crate::weld_exact(&Mesh::new_unchecked(positions, triangles)).mesh
+    };
+    let (c, side) = (
+        cube([0.0; 3], [1.0; 3]),
+        cube([1.0, 0.0, 0.0], [2.0, 1.0, 1.0]),
+    );
+    for (a, b) in [(&plane, &plane), (&plane, &half), (&c, &c), (&c, &side)] {
+        for (i, j) in candidate_pairs(a, b, false, [None, None]) {
+            if let (Some(x), Some(y)) = (tri(a, i as usize), tri(b, j as usize)) {
+                check(&x, &y);
+            }
+        }
+    }
+    let mut rng = Rng(0x70c4_b0e5_5eed);
+    for round in 0..200_000 {
+        let plane = round % 3;
+        let pa = [(); 3].map(|_| grid_point(&mut rng, plane));
+        let pb = [(); 3].map(|_| grid_point(&mut rng, plane));
+        let k = (rng.next() % 3) as usize;
+        if let Some((_, _, _, a, b)) = grid_pair(pa, pb, (k, k), round % 4, (round / 12) % 4) {
+            check(&a, &b);
+        }
+    }
+    assert!(seen.iter().all(|&n| n > 300), "{seen:?}");
+}

@@ -60,12 +60,17 @@ pub struct Tri {
     pub v: [u32; 3],
     /// The corners, with the projection in which the triangle is not degenerate.
     tri: Triangle,
+    /// The corners' smallest and largest coordinates.
+    lo: [f64; 3],
+    hi: [f64; 3],
 }
 
 impl Tri {
     /// `None` for a degenerate (zero-area) triangle.
     pub fn new(id: u32, v: [u32; 3], p: [[f64; 3]; 3]) -> Option<Tri> {
-        Triangle::new(p).map(|tri| Tri { id, v, tri })
+        let lo = std::array::from_fn(|k| p[0][k].min(p[1][k]).min(p[2][k]));
+        let hi = std::array::from_fn(|k| p[0][k].max(p[1][k]).max(p[2][k]));
+        Triangle::new(p).map(|tri| Tri { id, v, tri, lo, hi })
     }
 
     /// Corner coordinates.
@@ -277,7 +282,7 @@ fn against(a: &Tri, b: &Tri) -> Against {
 }
 
 /// One piece of what two triangles share, as the seam takes it in.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) enum Piece {
     /// A point where they only touch.
     Point(Label),
@@ -308,12 +313,116 @@ fn coplanar_to(segments: &[[Label; 2]], points: &[Label], mut f: impl FnMut(Piec
 /// The pieces of [`intersect`]`(a, b)`, in the same order ([`pieces_of`]), given to `f`
 /// one by one: a coplanar pair's are made in place, with no allocation.
 pub(super) fn meet(a: &Tri, b: &Tri, mut f: impl FnMut(Piece)) {
+    if let Some(touch) = touching(a, b) {
+        if let Some(l) = touch {
+            f(Piece::Point(l));
+        }
+        return;
+    }
+    if let Some(edges) = twins(a, b) {
+        edges.into_iter().for_each(|s| f(Piece::Segment(s, true)));
+        return;
+    }
     match against(a, b) {
         Against::Apart => {}
         Against::Coplanar => {
             coplanar_pieces(a, b, true, &mut f);
         }
         Against::Sides(sa) => pieces_of(&crossing(a, b, sa), f),
+    }
+}
+
+/// Triangles with the same three corners (a face the two meshes share; every face of a
+/// mesh against itself) share their three edges: the segments between the corners, each
+/// corner named by its vertex in each mesh, in the order of [`coplanar_pieces`]
+/// (each segment's ends sorted, the segments sorted). `None` for any other pair.
+pub(super) fn twins(a: &Tri, b: &Tri) -> Option<[[Label; 2]; 3]> {
+    if a.lo != b.lo || a.hi != b.hi {
+        return None;
+    }
+    let (pa, pb) = (a.corners(), b.corners());
+    // Distinct corners (the triangles are not degenerate): a match for each is a
+    // one-to-one map.
+    let mut at = [0usize; 3];
+    for k in 0..3 {
+        at[k] = (0..3).find(|&m| pb[m] == pa[k])?;
+    }
+    let corner = |k: usize| Label {
+        a: Feature::Vertex(a.v[k]),
+        b: Feature::Vertex(b.v[at[k]]),
+    };
+    let mut edges = [0, 1, 2].map(|k| {
+        let (x, y) = (corner(k), corner((k + 1) % 3));
+        [x.min(y), x.max(y)]
+    });
+    edges.sort_unstable();
+    Some(edges)
+}
+
+/// Triangles whose boxes only touch, on a plane `x_i = c` square to an axis that both
+/// cross (one on each side of it): neighbours on a grid, most candidate pairs of meshes
+/// made on one (boxes, cubes, terrain grids, a mesh against itself). Each meets the plane
+/// in its corners there, one or two, so they share what those corners share: nothing
+/// when their boxes in the plane are apart, else a common corner, or a corner on the
+/// other's edge there (one orientation, in the plane). Exact, from input coordinates
+/// alone. `None` when the boxes do not touch so, or each has an edge on the plane (a
+/// segment shared or crossed, left to the general test, which tells whether the
+/// triangles are coplanar).
+pub(super) fn touching(a: &Tri, b: &Tri) -> Option<Option<Label>> {
+    let i = (0..3).find(|&i| {
+        (a.hi[i] == b.lo[i] || b.hi[i] == a.lo[i]) && a.lo[i] < a.hi[i] && b.lo[i] < b.hi[i]
+    })?;
+    let c = if a.hi[i] == b.lo[i] { a.hi[i] } else { b.hi[i] };
+    // Each triangle's corners on the plane: one, or the two ends of an edge (never three:
+    // each crosses the plane).
+    let on = |t: &Tri| -> ([usize; 2], usize) {
+        let p = t.corners();
+        match (p[0][i] == c, p[1][i] == c, p[2][i] == c) {
+            (true, false, false) => ([0, 0], 1),
+            (false, true, false) => ([1, 1], 1),
+            (false, false, true) => ([2, 2], 1),
+            (true, true, _) => ([0, 1], 2),
+            (true, false, true) => ([0, 2], 2),
+            _ => ([1, 2], 2),
+        }
+    };
+    let ((ka, na), (kb, nb)) = (on(a), on(b));
+    let (pa, pb) = (a.corners(), b.corners());
+    let label = |x: Feature, y: Feature| Label { a: x, b: y };
+    // Corner `m` of `p` against `s`'s edge `k` on the plane: a corner of it, a point
+    // inside it (on its line, within its box), or apart.
+    let corner_on_edge =
+        |p: &Tri, m: usize, s: &Tri, k: [usize; 2]| -> Option<(Feature, Feature)> {
+            let (x, [q, r]) = (&p.corners()[m], k.map(|m| &s.corners()[m]));
+            let own = Feature::Vertex(p.v[m]);
+            if x == q || x == r {
+                let at = if x == q { k[0] } else { k[1] };
+                return Some((own, Feature::Vertex(s.v[at])));
+            }
+            let within = (0..3).all(|j| x[j] >= q[j].min(r[j]) && x[j] <= q[j].max(r[j]));
+            let safe = s.tri.robust_safe() && robust_safe(&[x]);
+            (within && orient2d_inputs(q, r, x, i, safe) == Sign::Zero)
+                .then(|| (own, edge(s.v[k[0]], s.v[k[1]])))
+        };
+    match (na, nb) {
+        (1, 1) => Some(
+            (pa[ka[0]] == pb[kb[0]])
+                .then(|| label(Feature::Vertex(a.v[ka[0]]), Feature::Vertex(b.v[kb[0]]))),
+        ),
+        (1, _) => Some(corner_on_edge(a, ka[0], b, kb).map(|(x, y)| label(x, y))),
+        (_, 1) => Some(corner_on_edge(b, kb[0], a, ka).map(|(y, x)| label(x, y))),
+        _ => {
+            // Two edges on the plane: apart when their boxes are, else left to the
+            // general test.
+            let span = |p: &[[f64; 3]; 3], k: [usize; 2], j: usize| {
+                (p[k[0]][j].min(p[k[1]][j]), p[k[0]][j].max(p[k[1]][j]))
+            };
+            let apart = (0..3).any(|j| {
+                let ((alo, ahi), (blo, bhi)) = (span(pa, ka, j), span(pb, kb, j));
+                ahi < blo || bhi < alo
+            });
+            apart.then_some(None)
+        }
     }
 }
 
