@@ -95,9 +95,70 @@ pub struct Bvh {
     nodes: Vec<Node>,
     /// Triangle ids in leaf order.
     order: Vec<u32>,
-    /// Triangle boxes in leaf order, in `f32` rounded outward: leaf pairs test these
+    /// Triangle boxes in leaf order, in `f32` rounded outward, a leaf's at a time
+    /// ([`LeafBoxes`]; leaves start at multiples of [`LEAF`]): leaf pairs test these
     /// (contiguous, no indirection) and confirm an overlap on the exact boxes.
-    boxes: Vec<Box3f>,
+    boxes: Vec<LeafBoxes>,
+}
+
+/// The `f32` boxes of the triangles of one leaf, coordinate by coordinate (the smallest
+/// x of each, …, the largest z of each; places past the leaf's triangles hold the empty
+/// box): one box is tested against all of them at once, as a mask, with no branch per
+/// triangle; a leaf pair's triangle pairs are then walked along the masks' set bits.
+#[derive(Clone, Copy, Debug)]
+struct LeafBoxes([[f32; LEAF]; 6]);
+
+impl LeafBoxes {
+    /// The boxes of at most [`LEAF`] triangles.
+    fn of(boxes: &[Box3f]) -> Self {
+        let mut rows = [[f32::INFINITY; LEAF]; 6];
+        for row in &mut rows[3..] {
+            *row = [f32::NEG_INFINITY; LEAF];
+        }
+        for (k, b) in boxes.iter().enumerate() {
+            for d in 0..3 {
+                rows[d][k] = b[0][d];
+                rows[3 + d][k] = b[1][d];
+            }
+        }
+        LeafBoxes(rows)
+    }
+
+    /// Box `k`.
+    fn get(&self, k: usize) -> Box3f {
+        let r = &self.0;
+        [[r[0][k], r[1][k], r[2][k]], [r[3][k], r[4][k], r[5][k]]]
+    }
+
+    /// Bit `k` set where box `k` overlaps `q` (closed boxes); set for an empty place
+    /// only when `q` is infinite on both sides of every axis.
+    #[inline]
+    // One place of six rows at a time reads more plainly than six zipped iterators.
+    #[allow(clippy::needless_range_loop)]
+    fn overlapping(&self, q: &Box3f) -> u32 {
+        let r = &self.0;
+        let mut bits = 0u32;
+        // Without short-circuits: no branch per place (about half of them overlap).
+        for k in 0..LEAF {
+            let hit = (r[0][k] <= q[1][0])
+                & (q[0][0] <= r[3][k])
+                & (r[1][k] <= q[1][1])
+                & (q[0][1] <= r[4][k])
+                & (r[2][k] <= q[1][2])
+                & (q[0][2] <= r[5][k]);
+            bits |= u32::from(hit) << k;
+        }
+        bits
+    }
+}
+
+/// The boxes of triangles in leaf order, a leaf's at a time.
+fn leaf_boxes(boxes: &[Box3f]) -> Vec<LeafBoxes> {
+    boxes
+        .par_chunks(LEAF)
+        .grained()
+        .map(LeafBoxes::of)
+        .collect()
 }
 
 /// Spreads the low 21 bits of `x` to every third bit.
@@ -385,6 +446,12 @@ fn sort_keyed(keyed: &mut Vec<(u64, u32)>) {
 }
 
 impl Bvh {
+    /// The boxes of leaf `n`'s triangles.
+    fn leaf(&self, n: &Node) -> &LeafBoxes {
+        debug_assert!(n.count > 0 && n.start as usize % LEAF == 0);
+        &self.boxes[n.start as usize / LEAF]
+    }
+
     /// Builds the hierarchy of `mesh`.
     pub fn new(mesh: &Mesh) -> Self {
         Self::over(mesh, morton_order(mesh))
@@ -425,7 +492,7 @@ impl Bvh {
             .collect();
         let mut nodes = vec![EMPTY; 2 * leaves(n) - 1];
         Self::build_sah(&mut nodes, 0, 0, &mut recs, levels);
-        let (order, boxes) = recs
+        let (order, boxes): (Vec<u32>, Vec<Box3f>) = recs
             .into_par_iter()
             .grained()
             .map(|r| (r.t, r.bbox))
@@ -433,7 +500,7 @@ impl Bvh {
         Bvh {
             nodes,
             order,
-            boxes,
+            boxes: leaf_boxes(&boxes),
         }
     }
 
@@ -523,7 +590,7 @@ impl Bvh {
         Bvh {
             nodes,
             order,
-            boxes,
+            boxes: leaf_boxes(&boxes),
         }
     }
 
@@ -831,11 +898,11 @@ impl Query<'_> {
     /// Pairs among the triangles of one leaf (a self-query).
     fn leaf_within(&self, n: &Node, out: &mut Vec<(u32, u32)>) {
         let range = n.start as usize..(n.start + n.count) as usize;
-        let (ts, bs) = (&self.a.order[range.clone()], &self.a.boxes[range]);
+        let (ts, bs) = (&self.a.order[range], self.a.leaf(n));
         for i in 0..ts.len() {
             for j in i + 1..ts.len() {
                 let (p, q) = (ts[i].min(ts[j]), ts[i].max(ts[j]));
-                if overlaps_f(&bs[i], &bs[j])
+                if overlaps_f(&bs.get(i), &bs.get(j))
                     && (!self.exact || overlaps(&tri_box(self.ma, p), &tri_box(self.ma, q)))
                     && (self.keep)(p, q)
                 {
@@ -851,30 +918,29 @@ impl Query<'_> {
         let same = std::ptr::eq(self.a, self.b);
         let ra = na.start as usize..(na.start + na.count) as usize;
         let rb = nb.start as usize..(nb.start + nb.count) as usize;
-        let (ta, ba) = (&self.a.order[ra.clone()], &self.a.boxes[ra]);
-        let (tb, bb) = (&self.b.order[rb.clone()], &self.b.boxes[rb]);
+        let (ta, ba) = (&self.a.order[ra], self.a.leaf(na));
+        let (tb, bb) = (&self.b.order[rb], self.b.leaf(nb));
         // Only the triangles that reach into the other leaf's box can meet any of its
         // triangles: of two leaves that overlap at a corner, a few on each side.
-        let mut near_b = [0usize; LEAF];
-        let mut nb_count = 0;
-        for (k, bj) in bb.iter().enumerate() {
-            near_b[nb_count] = k;
-            nb_count += usize::from(overlaps_f(bj, &na.bbox));
-        }
-        if nb_count == 0 {
+        // (Masked to the leaves' triangles: an empty place meets a box with infinite
+        // sides, boxes of coordinates beyond `f32`'s range.)
+        let places = |n: &Node| (1u32 << n.count) - 1;
+        let near_a = ba.overlapping(&nb.bbox) & places(na);
+        let near_b = bb.overlapping(&na.bbox) & places(nb);
+        if near_a == 0 || near_b == 0 {
             return;
         }
-        let near_b = &near_b[..nb_count];
-        for (&i, bi) in ta.iter().zip(ba) {
-            if !overlaps_f(bi, &nb.bbox) {
-                continue;
-            }
+        let mut rest_a = near_a;
+        while rest_a != 0 {
+            let k = rest_a.trailing_zeros() as usize;
+            rest_a &= rest_a - 1;
+            let i = ta[k];
+            let mut hits = bb.overlapping(&ba.get(k)) & near_b;
             let mut exact_i = None;
-            for &k in near_b {
-                let (j, bj) = (tb[k], &bb[k]);
-                if !overlaps_f(bi, bj) {
-                    continue;
-                }
+            while hits != 0 {
+                let m = hits.trailing_zeros() as usize;
+                hits &= hits - 1;
+                let j = tb[m];
                 let confirmed = !self.exact || {
                     let ei = *exact_i.get_or_insert_with(|| tri_box(self.ma, i));
                     overlaps(&ei, &tri_box(self.mb, j))
@@ -1188,7 +1254,8 @@ mod tests {
         let mut seen = bvh.order.clone();
         seen.sort_unstable();
         assert_eq!(seen, (0..n as u32).collect::<Vec<_>>());
-        for (&t, b) in bvh.order.iter().zip(&bvh.boxes) {
+        let boxes: Vec<Box3f> = (0..n).map(|i| bvh.boxes[i / LEAF].get(i % LEAF)).collect();
+        for (&t, b) in bvh.order.iter().zip(&boxes) {
             assert_eq!(*b, round_out(&tri_box(mesh, t)));
         }
         // (node, first triangle, triangles, depth)
@@ -1197,7 +1264,7 @@ mod tests {
         while let Some((i, first, count, d)) = stack.pop() {
             depth = depth.max(d);
             let node = &bvh.nodes[i];
-            let want = bvh.boxes[first..first + count]
+            let want = boxes[first..first + count]
                 .iter()
                 .fold(EMPTY_BOX, |b, x| union(&b, x));
             assert_eq!(node.bbox, want, "node {i}");
