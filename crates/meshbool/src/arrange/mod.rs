@@ -185,10 +185,16 @@ fn index_seam_points(mesh: &Mesh, seam: &Seam, side: Source) -> SeamPoints {
     let mut positions = Vec::with_capacity(mesh.positions.len() + seam.points.len());
     positions.par_extend(mesh.positions.par_iter().grained().copied());
     let input_vertices = positions.len();
-    let mut added: Vec<Point> = Vec::new();
-    let mut enclosed = Vec::new();
+    // Sized for the most there can be (every seam point added; each on its own face or
+    // edge): most seams are small, and growing these was a tenth of a small
+    // arrangement.
+    let n = seam.points.len();
+    let mut added: Vec<Point> = Vec::with_capacity(n);
+    let mut enclosed = Vec::with_capacity(n);
     let mut on_face: FxHashMap<u32, Vec<u32>> = FxHashMap::default();
     let mut on_edge: FxHashMap<(u32, u32), Vec<u32>> = FxHashMap::default();
+    on_face.reserve(n);
+    on_edge.reserve(n);
     let seam_vertex: Vec<u32> = seam
         .points
         .iter()
@@ -242,6 +248,7 @@ fn constraints(
     seam_edges: &[[u32; 2]],
 ) -> FxHashMap<u32, Vec<[u32; 2]>> {
     let mut cons: FxHashMap<u32, Vec<[u32; 2]>> = FxHashMap::default();
+    cons.reserve(seam.sources.len());
     for src in &seam.sources {
         let t = match side {
             Source::A => src.tri_a,

@@ -396,6 +396,7 @@ fn resolve_patches(votes: Vec<Vote>, patch: &[u32], patches: usize) -> Resolved 
     // Per triangle too: where a patch's votes disagree (the seam stops inside it), the
     // triangles along the seam keep their own local answer.
     let mut own_vote: FxHashMap<u32, Option<Class>> = FxHashMap::default();
+    own_vote.reserve(votes.len());
     for (p, t, c) in votes {
         decided[p as usize] = combine(decided[p as usize], c);
         let v = own_vote.get(&t).copied();
