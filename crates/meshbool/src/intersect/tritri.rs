@@ -10,10 +10,11 @@
 use std::cell::OnceCell;
 use std::cmp::Ordering;
 
+#[cfg(test)]
+use crate::kernel::{cmp_coord_prepared, same_point_prepared};
 use crate::kernel::{
-    cmp_coord_prepared, longest_axis, orient2d_inputs, orient2d_prepared, orient3d_explicit,
-    orient3d_sides, planes_line_axis, robust_safe, same_point_prepared, Point, Prepared, Sign,
-    Triangle,
+    longest_axis, orient2d_inputs, orient2d_prepared, orient3d_explicit, orient3d_sides,
+    planes_line_axis, robust_safe, Point, Prepared, Sign, Triangle,
 };
 
 /// A vertex, edge or face of one mesh, by its vertex / triangle ids (edges sorted).
@@ -986,13 +987,17 @@ enum Cand {
 /// earlier candidate for the first and the later for the last.
 fn clip_edge(own: &Tri, i: usize, other: &Tri, own_is_a: bool, o: &Orients) -> Clip<Label> {
     let j = (i + 1) % 3;
-    let crossing = edge_crossings(own, i, other, o);
+    let crossing = edge_crossings(i, o);
     // Along the edge, order by its longest coordinate (non-zero: the corners differ there).
+    let axis = longest_axis(&own.corners()[i], &own.corners()[j]);
     let along = Along {
-        axis: longest_axis(&own.corners()[i], &own.corners()[j]),
+        axis,
+        rising: own.corners()[i][axis] < own.corners()[j][axis],
         own,
         other,
-        crossing: &crossing,
+        i,
+        o,
+        crossing,
     };
     let mut ends = Ends::default();
     edge_candidates(own, i, other, o, &along, |c| ends.add(&along, c));
@@ -1033,32 +1038,16 @@ fn clip_edge(own: &Tri, i: usize, other: &Tri, own_is_a: bool, o: &Orients) -> C
     ends.clip(&along).map(label)
 }
 
-/// Where edge `i` of `own` crosses edge `m` of the coplanar triangle `other` (each strictly
-/// crossing the other's line), for each `m`: prepared once for the comparisons, boxed (a
-/// prepared point is some 200 bytes, and most edges cross nothing).
-fn edge_crossings(own: &Tri, i: usize, other: &Tri, o: &Orients) -> [Option<Box<Prepared>>; 3] {
+/// Whether edge `i` of the clipped triangle crosses edge `m` of the coplanar other one
+/// (each strictly crossing the other's line), for each `m`: no point is built (the
+/// crossings are ordered along the edge by orientations already known, [`Along::cmp`]).
+fn edge_crossings(i: usize, o: &Orients) -> [bool; 3] {
     let j = (i + 1) % 3;
     let crosses = |s: Sign, t: Sign| s.times(t) == Sign::Negative;
-    let at = |m: usize| {
+    std::array::from_fn(|m| {
         let n = (m + 1) % 3;
         crosses(o.other_edges[m][i], o.other_edges[m][j])
             && crosses(o.own_edges[i][m], o.own_edges[i][n])
-    };
-    let found = [at(0), at(1), at(2)];
-    if found == [false; 3] {
-        return [None, None, None];
-    }
-    std::array::from_fn(|m| {
-        let n = (m + 1) % 3;
-        found[m].then(|| {
-            Box::new(Prepared::new(Point::ssi(
-                own.corners()[i],
-                own.corners()[j],
-                other.corners()[m],
-                other.corners()[n],
-                other.axis() as u8,
-            )))
-        })
     })
 }
 
@@ -1089,20 +1078,33 @@ fn edge_candidates(
             add(Cand::Other(m as u8));
         }
     }
-    for (m, x) in along.crossing.iter().enumerate() {
-        if x.is_some() {
+    for (m, &x) in along.crossing.iter().enumerate() {
+        if x {
             add(Cand::Crossing(m as u8));
         }
     }
 }
 
-/// The order of candidates along one edge: by coordinate `axis`, exactly.
+/// The order of candidates along edge `i` of `own` (from corner `i` to `i + 1`): by
+/// coordinate `axis`, exactly. Corners by their coordinates; a crossing with edge `m` of
+/// `other` (strictly inside both edges) by orientations already known, no point built:
+/// along the edge, a point lies before the crossing exactly when it lies on corner `i`'s
+/// side of edge `m`'s line. So the edge's own corners lie on either side of every
+/// crossing; a corner of `other` on the edge (never an end of edge `m`, whose ends lie
+/// strictly on either side of the edge's line) lies on the inner side of edge `m`, so
+/// before the crossing when corner `i` does too; and of two crossings, with edges `m`
+/// and `n`, the line enters `other` through the first and leaves through the second, so
+/// the crossing with `m` is the first when corner `i` lies outside edge `m`.
 struct Along<'a> {
     axis: usize,
+    /// Coordinate `axis` grows from corner `i` to corner `i + 1`.
+    rising: bool,
     own: &'a Tri,
     other: &'a Tri,
-    /// The edge's crossings, for [`Cand::Crossing`].
-    crossing: &'a [Option<Box<Prepared>>; 3],
+    i: usize,
+    o: &'a Orients,
+    /// The edge's crossings with `other`'s edges, for [`Cand::Crossing`].
+    crossing: [bool; 3],
 }
 
 impl Along<'_> {
@@ -1115,36 +1117,52 @@ impl Along<'_> {
         }
     }
 
-    fn crossing(&self, m: u8) -> &Prepared {
-        self.crossing[usize::from(m)]
-            .as_deref()
-            .expect("a candidate crossing exists")
+    /// Whether corner `i` of the edge lies on the inner side of `other`'s edge `m`.
+    fn start_inside(&self, m: u8) -> bool {
+        self.o.other_edges[usize::from(m)][self.i].times(self.other.sign()) == Sign::Positive
     }
 
-    fn prepared(&self, c: Cand) -> Prepared {
-        match (self.corner(c), c) {
-            (Some(p), _) => Prepared::new(Point::Explicit(*p)),
-            (None, Cand::Crossing(m)) => self.crossing(m).clone(),
-            (None, _) => unreachable!("corners have coordinates"),
+    /// The order from corner `i` to corner `i + 1` of `x` against a crossing with edge
+    /// `m`.
+    fn against_crossing(&self, x: Cand, m: u8) -> Ordering {
+        debug_assert!(self.crossing[usize::from(m)]);
+        let before = match x {
+            Cand::Own(k) => usize::from(k) == self.i,
+            Cand::Other(_) => self.start_inside(m),
+            Cand::Crossing(n) if n == m => return Ordering::Equal,
+            Cand::Crossing(n) => !self.start_inside(n),
+        };
+        if before {
+            Ordering::Less
+        } else {
+            Ordering::Greater
         }
     }
 
     fn cmp(&self, x: Cand, y: Cand) -> Ordering {
         let axis = self.axis;
-        match (self.corner(x), self.corner(y), x, y) {
+        let along = match (self.corner(x), self.corner(y), x, y) {
             // Input coordinates are finite (validated meshes): the order is total.
-            (Some(p), Some(q), _, _) => p[axis].partial_cmp(&q[axis]).unwrap_or(Ordering::Equal),
-            (None, None, Cand::Crossing(m), Cand::Crossing(n)) => {
-                cmp_coord_prepared(self.crossing(m), self.crossing(n), axis)
+            (Some(p), Some(q), _, _) => {
+                return p[axis].partial_cmp(&q[axis]).unwrap_or(Ordering::Equal)
             }
-            _ => cmp_coord_prepared(&self.prepared(x), &self.prepared(y), axis),
+            (_, _, _, Cand::Crossing(m)) => self.against_crossing(x, m),
+            (_, _, Cand::Crossing(m), _) => self.against_crossing(y, m).reverse(),
+            _ => unreachable!("a candidate without coordinates is a crossing"),
+        };
+        if self.rising {
+            along
+        } else {
+            along.reverse()
         }
     }
 
+    /// Whether two candidates are one point: a crossing is none of the others.
     fn same(&self, x: Cand, y: Cand) -> bool {
-        match (self.corner(x), self.corner(y)) {
-            (Some(p), Some(q)) => p == q,
-            _ => same_point_prepared(&self.prepared(x), &self.prepared(y)),
+        match (self.corner(x), self.corner(y), x, y) {
+            (Some(p), Some(q), _, _) => p == q,
+            (_, _, Cand::Crossing(m), Cand::Crossing(n)) => m == n,
+            _ => false,
         }
     }
 }
@@ -1188,5 +1206,102 @@ impl Ends {
                 }
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod along_tests {
+    use super::*;
+
+    /// Candidates along a clipped edge, crossings included, are ordered by orientations
+    /// exactly as their points are by coordinate (the crossing built as a point, the
+    /// reference): triangles with corners on a lattice in one plane (z = 0, a tilted
+    /// plane through lattice points; as given, at UTM coordinates, scaled down), each
+    /// edge of each triangle clipped to the other, every two candidates compared.
+    #[test]
+    fn crossings_are_ordered_along_an_edge_as_their_points_are() {
+        let mut rng = crate::test_util::Rng(0xa10c_50e7);
+        let (mut with_crossings, mut two_crossings) = (0usize, 0usize);
+        for round in 0..60_000 {
+            let mut point = || {
+                let mut next = || (rng.next() % 5) as f64;
+                let (x, y) = (next(), next());
+                let z = if round % 2 == 0 { 0.0 } else { x + 2.0 * y };
+                match (round / 2) % 3 {
+                    0 => [x, y, z],
+                    1 => [x + 4.5e6, y - 3.25e6, z + 1.0e3],
+                    _ => [x, y, z].map(|c| c * 2f64.powi(-30)),
+                }
+            };
+            let (pa, pb): ([[f64; 3]; 3], [[f64; 3]; 3]) = (
+                std::array::from_fn(|_| point()),
+                std::array::from_fn(|_| point()),
+            );
+            let (Some(a), Some(b)) = (Tri::new(0, [0, 1, 2], pa), Tri::new(1, [3, 4, 5], pb))
+            else {
+                continue;
+            };
+            for (own, other) in [(&a, &b), (&b, &a)] {
+                let side = orientation(own, other);
+                let o = Orients {
+                    other_edges: std::array::from_fn(|m| {
+                        std::array::from_fn(|k| side(other, m, own, k))
+                    }),
+                    own_edges: std::array::from_fn(|i| {
+                        std::array::from_fn(|m| side(own, i, other, m))
+                    }),
+                };
+                for i in 0..3 {
+                    let j = (i + 1) % 3;
+                    let axis = longest_axis(&own.corners()[i], &own.corners()[j]);
+                    let along = Along {
+                        axis,
+                        rising: own.corners()[i][axis] < own.corners()[j][axis],
+                        own,
+                        other,
+                        i,
+                        o: &o,
+                        crossing: edge_crossings(i, &o),
+                    };
+                    let mut cands = Vec::new();
+                    edge_candidates(own, i, other, &o, &along, |c| cands.push(c));
+                    let at = |c: Cand| {
+                        Prepared::new(match c {
+                            Cand::Own(k) => Point::Explicit(own.corners()[usize::from(k)]),
+                            Cand::Other(m) => Point::Explicit(other.corners()[usize::from(m)]),
+                            Cand::Crossing(m) => {
+                                let m = usize::from(m);
+                                let c = other.corners();
+                                Point::ssi(
+                                    own.corners()[i],
+                                    own.corners()[j],
+                                    c[m],
+                                    c[(m + 1) % 3],
+                                    other.axis() as u8,
+                                )
+                            }
+                        })
+                    };
+                    let crossings = along.crossing.iter().filter(|&&x| x).count();
+                    with_crossings += usize::from(crossings > 0);
+                    two_crossings += usize::from(crossings > 1);
+                    for &x in &cands {
+                        for &y in &cands {
+                            let (px, py) = (at(x), at(y));
+                            assert_eq!(
+                                along.cmp(x, y),
+                                cmp_coord_prepared(&px, &py, axis),
+                                "{pa:?} {pb:?} edge {i}"
+                            );
+                            assert_eq!(along.same(x, y), same_point_prepared(&px, &py));
+                        }
+                    }
+                }
+            }
+        }
+        assert!(
+            with_crossings > 5000 && two_crossings > 2000,
+            "{with_crossings} {two_crossings}"
+        );
     }
 }

@@ -876,6 +876,7 @@ pub(crate) fn cmp_coord_prepared(a: &Prepared, b: &Prepared, axis: usize) -> Ord
 }
 
 /// [`same_point`] of prepared points.
+#[cfg(test)]
 pub(crate) fn same_point_prepared(a: &Prepared, b: &Prepared) -> bool {
     (0..3).all(|k| cmp_coord_prepared(a, b, k) == Ordering::Equal)
 }
