@@ -772,11 +772,7 @@ fn coplanar_pieces(a: &Tri, b: &Tri, shortcut: bool, f: &mut impl FnMut(Piece)) 
             own_edges: for_a.other_edges,
         }
     } else {
-        let side = orientation(b, a);
-        Orients {
-            other_edges: std::array::from_fn(|m| std::array::from_fn(|k| side(a, m, b, k))),
-            own_edges: std::array::from_fn(|i| std::array::from_fn(|m| side(b, i, a, m))),
-        }
+        Orients::of(b, a)
     };
     // At most one clip per edge: six segments and six points at most.
     let mut segments = Six::new([FILLER; 2]);
@@ -952,6 +948,17 @@ struct Orients {
     own_edges: [[Sign; 3]; 3],
 }
 
+impl Orients {
+    /// Every orientation for clipping `own`'s edges against `other`, each asked once.
+    fn of(own: &Tri, other: &Tri) -> Orients {
+        let side = orientation(own, other);
+        Orients {
+            other_edges: std::array::from_fn(|m| std::array::from_fn(|k| side(other, m, own, k))),
+            own_edges: std::array::from_fn(|i| std::array::from_fn(|m| side(own, i, other, m))),
+        }
+    }
+}
+
 /// What a clipped edge keeps: nothing, one point, or a segment between two distinct
 /// points (named by labels, or by candidates while clipping).
 enum Clip<T> {
@@ -987,18 +994,7 @@ enum Cand {
 /// earlier candidate for the first and the later for the last.
 fn clip_edge(own: &Tri, i: usize, other: &Tri, own_is_a: bool, o: &Orients) -> Clip<Label> {
     let j = (i + 1) % 3;
-    let crossing = edge_crossings(i, o);
-    // Along the edge, order by its longest coordinate (non-zero: the corners differ there).
-    let axis = longest_axis(&own.corners()[i], &own.corners()[j]);
-    let along = Along {
-        axis,
-        rising: own.corners()[i][axis] < own.corners()[j][axis],
-        own,
-        other,
-        i,
-        o,
-        crossing,
-    };
+    let along = Along::new(own, i, other, o);
     let mut ends = Ends::default();
     edge_candidates(own, i, other, o, &along, |c| ends.add(&along, c));
     let label = |c: Cand| -> Label {
@@ -1107,7 +1103,23 @@ struct Along<'a> {
     crossing: [bool; 3],
 }
 
-impl Along<'_> {
+impl<'a> Along<'a> {
+    /// The order along edge `i` of `own` clipped to `other`, with the orientations `o`.
+    fn new(own: &'a Tri, i: usize, other: &'a Tri, o: &'a Orients) -> Self {
+        let [p, q] = [i, (i + 1) % 3].map(|k| &own.corners()[k]);
+        // Along the edge, by its longest coordinate (non-zero: the corners differ there).
+        let axis = longest_axis(p, q);
+        Along {
+            axis,
+            rising: p[axis] < q[axis],
+            own,
+            other,
+            i,
+            o,
+            crossing: edge_crossings(i, o),
+        }
+    }
+
     /// The input coordinates of a corner candidate.
     fn corner(&self, c: Cand) -> Option<&[f64; 3]> {
         match c {
@@ -1242,27 +1254,11 @@ mod along_tests {
                 continue;
             };
             for (own, other) in [(&a, &b), (&b, &a)] {
-                let side = orientation(own, other);
-                let o = Orients {
-                    other_edges: std::array::from_fn(|m| {
-                        std::array::from_fn(|k| side(other, m, own, k))
-                    }),
-                    own_edges: std::array::from_fn(|i| {
-                        std::array::from_fn(|m| side(own, i, other, m))
-                    }),
-                };
+                let o = Orients::of(own, other);
                 for i in 0..3 {
                     let j = (i + 1) % 3;
-                    let axis = longest_axis(&own.corners()[i], &own.corners()[j]);
-                    let along = Along {
-                        axis,
-                        rising: own.corners()[i][axis] < own.corners()[j][axis],
-                        own,
-                        other,
-                        i,
-                        o: &o,
-                        crossing: edge_crossings(i, &o),
-                    };
+                    let along = Along::new(own, i, other, &o);
+                    let axis = along.axis;
                     let mut cands = Vec::new();
                     edge_candidates(own, i, other, &o, &along, |c| cands.push(c));
                     let at = |c: Cand| {
