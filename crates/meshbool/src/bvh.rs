@@ -67,6 +67,32 @@ pub(crate) fn tri_box(m: &Mesh, t: u32) -> Box3 {
     ]
 }
 
+/// Below this many triangle pairs (the product of two meshes' triangle counts), the
+/// pairs of overlapping boxes are found by testing every pair ([`all_overlapping_pairs`]):
+/// for two meshes of a few dozen triangles, walking two trees costs more than the pair
+/// tests themselves (a measured crossover, BENCHMARKS.md).
+pub(crate) const ALL_PAIRS_UP_TO: usize = 1 << 12;
+
+/// Every pair `(triangle of a, triangle of b)` whose exact boxes overlap, sorted, by
+/// testing every pair: the pairs [`Bvh::overlapping_pairs`] finds, for meshes with few
+/// triangles ([`ALL_PAIRS_UP_TO`]).
+pub(crate) fn all_overlapping_pairs(a: &Mesh, b: &Mesh) -> Vec<(u32, u32)> {
+    let boxes_b: Vec<Box3> = (0..b.triangles.len() as u32)
+        .map(|j| tri_box(b, j))
+        .collect();
+    let mut pairs = Vec::new();
+    for i in 0..a.triangles.len() as u32 {
+        let bi = tri_box(a, i);
+        pairs.extend(
+            (0u32..)
+                .zip(&boxes_b)
+                .filter(|(_, bj)| overlaps(&bi, bj))
+                .map(|(j, _)| (i, j)),
+        );
+    }
+    pairs
+}
+
 /// `b` in `f32`, rounded outward (the result contains `b`).
 pub(crate) fn round_out(b: &Box3) -> Box3f {
     [b[0].map(down), b[1].map(up)]
@@ -1161,6 +1187,11 @@ mod tests {
         assert!(!want.is_empty());
         assert_eq!(pairs.len(), want.len());
         assert!(pairs == want);
+        assert!(all_overlapping_pairs(&a, &b) == want);
+        // Boxes that only touch (cubes sharing a face, an edge) overlap.
+        let (c, d) = (Mesh::unit_cube(), Mesh::cuboid([1.0; 3], [2.0; 3]));
+        let tree = Bvh::new(&c).overlapping_pairs(&c, &Bvh::new(&d), &d);
+        assert!(!tree.is_empty() && all_overlapping_pairs(&c, &d) == tree);
     }
 
     #[test]

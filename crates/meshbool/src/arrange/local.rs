@@ -565,7 +565,8 @@ impl Local {
     }
 
     /// Lawson flips towards a Delaunay triangulation of the unconstrained edges. The
-    /// in-circle test is approximate (it only chooses); validity is the exact convexity test.
+    /// in-circle test is approximate (it only chooses: [`incircle_clear`]); validity is the
+    /// exact convexity test.
     pub(crate) fn improve(&mut self) {
         let (i, j) = ((self.axis + 1) % 3, (self.axis + 2) % 3);
         let xy = |l: &Local, v: u32| robust::Coord {
@@ -584,15 +585,12 @@ impl Local {
                     }
                     let v = rot(self.tris[t as usize], k);
                     let d = rot(self.tris[u as usize], self.slot_of(u, t))[2];
-                    let ic = robust::incircle(
-                        xy(self, v[0]),
-                        xy(self, v[1]),
-                        xy(self, v[2]),
-                        xy(self, d),
-                    ) * match self.sign {
-                        Sign::Negative => -1.0,
-                        _ => 1.0,
-                    };
+                    let ic =
+                        incircle_clear(xy(self, v[0]), xy(self, v[1]), xy(self, v[2]), xy(self, d))
+                            * match self.sign {
+                                Sign::Negative => -1.0,
+                                _ => 1.0,
+                            };
                     // The cheap approximate choice first; the exact test allows it.
                     if ic > 0.0 && self.flippable(t, k) {
                         self.flip(t, k);
@@ -603,5 +601,39 @@ impl Local {
                 }
             }
         }
+    }
+}
+
+/// The in-circle determinant of `d` against `a b c` (positive inside for `a b c`
+/// counter-clockwise) where its `f64` evaluation is sure of its sign, else zero: the
+/// first stage of Shewchuk's `incircle`, with his error bound, without the adaptive
+/// stages. For the Delaunay flips of [`Local::improve`], which only choose among valid
+/// triangulations: a flip is made where a point is clearly inside a circle, and none for
+/// points on one circle or too close to it to tell (the corners of squares, on grids and
+/// boxes, where the adaptive stages ran to their end only to find zero).
+pub(super) fn incircle_clear(
+    a: robust::Coord<f64>,
+    b: robust::Coord<f64>,
+    c: robust::Coord<f64>,
+    d: robust::Coord<f64>,
+) -> f64 {
+    const ERR: f64 = (10.0 + 96.0 * f64::EPSILON / 2.0) * f64::EPSILON / 2.0;
+    let (adx, ady) = (a.x - d.x, a.y - d.y);
+    let (bdx, bdy) = (b.x - d.x, b.y - d.y);
+    let (cdx, cdy) = (c.x - d.x, c.y - d.y);
+    let (bdxcdy, cdxbdy) = (bdx * cdy, cdx * bdy);
+    let (cdxady, adxcdy) = (cdx * ady, adx * cdy);
+    let (adxbdy, bdxady) = (adx * bdy, bdx * ady);
+    let alift = adx * adx + ady * ady;
+    let blift = bdx * bdx + bdy * bdy;
+    let clift = cdx * cdx + cdy * cdy;
+    let det = alift * (bdxcdy - cdxbdy) + blift * (cdxady - adxcdy) + clift * (adxbdy - bdxady);
+    let permanent = (bdxcdy.abs() + cdxbdy.abs()) * alift
+        + (cdxady.abs() + adxcdy.abs()) * blift
+        + (adxbdy.abs() + bdxady.abs()) * clift;
+    if det.abs() > ERR * permanent {
+        det
+    } else {
+        0.0
     }
 }

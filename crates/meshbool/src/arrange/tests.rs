@@ -304,3 +304,49 @@ fn self_arrangement_of_a_part_given_twice() {
         assert!((0..18).all(|e| topo.uses_of(e).len() == 4));
     }
 }
+
+/// The Delaunay flips' in-circle test: the sign of the exact test wherever it answers,
+/// zero for four points on one circle (the corners of squares and rectangles, at any
+/// offset), and zero only within the error bound of `f64` (points near a circle).
+#[test]
+fn the_flips_in_circle_test_has_the_exact_sign_or_none() {
+    use super::local::incircle_clear;
+    let c = |x: f64, y: f64| robust::Coord { x, y };
+    let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+    let mut next = || rng.unit();
+    let (mut signed, mut zero) = (0, 0);
+    for k in 0..20_000 {
+        // Random points, points on a lattice (many on one circle), near-cocircular.
+        let p: [robust::Coord<f64>; 4] = match k % 3 {
+            0 => std::array::from_fn(|_| c(next() * 10.0 - 5.0, next() * 10.0 - 5.0)),
+            1 => std::array::from_fn(|_| c((next() * 4.0).floor(), (next() * 4.0).floor())),
+            _ => {
+                let scale = if k % 2 == 0 { 0.0 } else { 1e6 };
+                let (r, off) = (1.0 + next(), [scale * next(), scale * next()]);
+                std::array::from_fn(|_| {
+                    let t = next() * std::f64::consts::TAU;
+                    c(off[0] + r * t.cos(), off[1] + r * t.sin())
+                })
+            }
+        };
+        let exact = robust::incircle(p[0], p[1], p[2], p[3]);
+        let got = incircle_clear(p[0], p[1], p[2], p[3]);
+        if got == 0.0 {
+            zero += 1;
+        } else {
+            signed += 1;
+            assert_eq!(got > 0.0, exact > 0.0, "{p:?}");
+            assert!(exact != 0.0, "{p:?}");
+        }
+    }
+    assert!(signed > 10_000 && zero > 1_000, "{signed} {zero}");
+    // Squares' and rectangles' corners, anywhere: on one circle.
+    for off in [[0.0, 0.0], [0.5, -3.25], [512_345.5, 7_001_234.25]] {
+        let q = |x: f64, y: f64| c(off[0] + x, off[1] + y);
+        for (w, h) in [(1.0, 1.0), (2.0, 0.5), (0.125, 3.0)] {
+            let r = incircle_clear(q(0.0, 0.0), q(w, 0.0), q(w, h), q(0.0, h));
+            assert_eq!(r, 0.0);
+            assert!(incircle_clear(q(0.0, 0.0), q(w, 0.0), q(w, h), q(w / 2.0, h / 2.0)) > 0.0);
+        }
+    }
+}

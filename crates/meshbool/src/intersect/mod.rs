@@ -268,6 +268,9 @@ fn candidate_pairs(
 ) -> Vec<(u32, u32)> {
     let pairs_of = |a: &Mesh, b: &Mesh, kept: [Option<&Bvh>; 2]| match kept {
         _ if from_grid => crate::broad::overlapping_pairs(a, b),
+        _ if a.triangles.len() * b.triangles.len() <= crate::bvh::ALL_PAIRS_UP_TO => {
+            crate::bvh::all_overlapping_pairs(a, b)
+        }
         [Some(ta), Some(tb)] => ta.overlapping_pairs(a, tb, b),
         // One whole tree kept: the other mesh's tree holds what meets its box.
         [Some(ta), None] => {
@@ -371,13 +374,21 @@ struct Part {
     sources: Vec<(u32, u32, u32)>,
     /// The names of the run's touching points, each once.
     touching: Vec<Label>,
+    /// Each of `points`' number.
+    point_ids: FxHashMap<Label, u32>,
 }
 
 impl Part {
     fn of(blocks: &[&[(u32, u32, Piece)]], name: &impl Fn(Label) -> Label) -> Part {
         let mut part = Part::default();
+        let pieces = blocks.iter().map(|b| b.len()).sum();
         let mut point_ids: FxHashMap<Label, u32> = FxHashMap::default();
         let mut seg_ids: FxHashMap<[u32; 2], u32> = FxHashMap::default();
+        // Sized once for as many as there can be (a piece has two ends; most are met
+        // again by neighbouring pairs, but growing the maps cost more than the room).
+        point_ids.reserve(pieces);
+        seg_ids.reserve(pieces);
+        part.sources.reserve(pieces);
         let mut touched: FxHashSet<Label> = FxHashSet::default();
         for &(i, j, piece) in blocks.iter().copied().flatten() {
             match piece {
@@ -402,6 +413,7 @@ impl Part {
                 }
             }
         }
+        part.point_ids = point_ids;
         part
     }
 }
@@ -421,14 +433,18 @@ impl Part {
 /// on one thread, where the second pass would only add work.
 fn assemble(blocks: &[&[(u32, u32, Piece)]], name: impl Fn(Label) -> Label + Sync) -> Seam {
     let runs = match rayon::current_num_threads() {
+        _ if crate::par::is_serial() => 1,
         1 => 1,
         n => 4 * n,
     };
-    let parts: Vec<Part> = blocks
+    let mut parts: Vec<Part> = blocks
         .par_chunks(blocks.len().div_ceil(runs).max(1))
         .grained()
         .map(|run| Part::of(run, &name))
         .collect();
+    if parts.len() <= 1 {
+        return Seam::of_part(parts.pop().unwrap_or_default());
+    }
     let mut seam = Seam::default();
     let mut point_ids: FxHashMap<Label, u32> = FxHashMap::default();
     let mut seg_ids: FxHashMap<[u32; 2], u32> = FxHashMap::default();
@@ -476,6 +492,54 @@ fn assemble(blocks: &[&[(u32, u32, Piece)]], name: impl Fn(Label) -> Label + Syn
         }
     }
     seam
+}
+
+impl Seam {
+    /// The seam of one run ([`assemble`]): its numbers are already those of the whole.
+    fn of_part(part: Part) -> Seam {
+        let Part {
+            mut points,
+            segments,
+            sources,
+            touching: touching_labels,
+            point_ids,
+        } = part;
+        // A touching point that is no segment's end is listed (numbered after the
+        // segments' points where it is none of theirs), as `assemble` lists it.
+        let mut on_segment = vec![false; points.len()];
+        for (ends, _) in &segments {
+            on_segment[ends[0] as usize] = true;
+            on_segment[ends[1] as usize] = true;
+        }
+        let mut touching = Vec::new();
+        for l in touching_labels {
+            match point_ids.get(&l) {
+                Some(&id) if on_segment[id as usize] => {}
+                Some(&id) => touching.push(id),
+                None => {
+                    touching.push(points.len() as u32);
+                    points.push(l);
+                }
+            }
+        }
+        Seam {
+            points,
+            segments: segments
+                .into_iter()
+                .map(|(ends, coplanar)| SeamSegment { ends, coplanar })
+                .collect(),
+            sources: sources
+                .into_iter()
+                .map(|(segment, tri_a, tri_b)| SegmentSource {
+                    segment,
+                    tri_a,
+                    tri_b,
+                })
+                .collect(),
+            touching,
+            ..Seam::default()
+        }
+    }
 }
 
 /// The name of a point where two triangles of one mesh meet: a vertex by itself, else the

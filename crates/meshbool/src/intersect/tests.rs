@@ -1331,6 +1331,15 @@ fn blocks_numbered_side_by_side_give_the_numbers_of_one_pass() {
     let moved = rigid_motion(&sphere, [1.0, 2.0, 3.0], 0.7, [0.3, 0.1, 0.05]);
     // Corner to corner: the cubes touch at one point only.
     let apart = Mesh::cuboid([1.0; 3], [2.0; 3]);
+    // A point numbered by a segment whose two ends name it (as a vertex's own name can)
+    // and touched there: on no segment, so listed as touching.
+    let mut lone_point = pieces_of(&Mesh::unit_cube(), &apart);
+    let lone = Label {
+        a: Feature::Vertex(100),
+        b: Feature::Vertex(200),
+    };
+    lone_point.push((0, 0, Piece::Segment([lone, lone], false)));
+    lone_point.push((0, 1, Piece::Point(lone)));
     let cases = [
         (pieces_of(&grid, &grid), false),
         (pieces_of(&grid, &shifted), false),
@@ -1344,12 +1353,14 @@ fn blocks_numbered_side_by_side_give_the_numbers_of_one_pass() {
             false,
         ),
         (pieces_of(&grid, &grid), true),
+        (lone_point, false),
     ];
     for (k, (pieces, own)) in cases.iter().enumerate() {
         assert!(!pieces.is_empty(), "case {k}");
         let name = |l: Label| if *own { own_label(l) } else { l };
         let want = assemble_in_one_pass(pieces, name);
         assert!(k != 3 || want.touching.len() == 1, "case {k}");
+        assert!(k != 6 || want.touching.len() == 2, "case {k}");
         for (size, threads) in [(1, 1), (1, 3), (7, 2), (7, 5), (1000, 2), (pieces.len(), 2)] {
             let blocks: Vec<&[(u32, u32, Piece)]> = pieces.chunks(size).collect();
             let pool = rayon::ThreadPoolBuilder::new()
