@@ -268,7 +268,7 @@ fn candidate_pairs(
 ) -> Vec<(u32, u32)> {
     let pairs_of = |a: &Mesh, b: &Mesh, kept: [Option<&Bvh>; 2]| match kept {
         _ if from_grid => crate::broad::overlapping_pairs(a, b),
-        _ if a.triangles.len() * b.triangles.len() <= crate::bvh::ALL_PAIRS_UP_TO => {
+        _ if a.triangles.len().saturating_mul(b.triangles.len()) <= crate::bvh::ALL_PAIRS_UP_TO => {
             crate::bvh::all_overlapping_pairs(a, b)
         }
         [Some(ta), Some(tb)] => ta.overlapping_pairs(a, tb, b),
