@@ -60,7 +60,11 @@ fn up(x: f64) -> f32 {
 
 /// The exact box of triangle `t` of `m`.
 pub(crate) fn tri_box(m: &Mesh, t: u32) -> Box3 {
-    let [a, b, c] = m.corners(t as usize);
+    corners_box(&m.corners(t as usize))
+}
+
+/// The exact box of three corners: their smallest and largest coordinates.
+pub(crate) fn corners_box([a, b, c]: &[[f64; 3]; 3]) -> Box3 {
     [
         std::array::from_fn(|k| a[k].min(b[k]).min(c[k])),
         std::array::from_fn(|k| a[k].max(b[k]).max(c[k])),

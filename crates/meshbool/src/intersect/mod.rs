@@ -430,11 +430,11 @@ impl Part {
 /// each run keeps its own order of first meetings: the numbers are those of one pass over
 /// all pieces, but the one pass left looks at each run's distinct points and segments
 /// only (neighbouring pairs meet the same points many times). A few runs per thread; one
-/// on one thread, where the second pass would only add work.
+/// on one thread and in a serial call, whose numbers are then already the whole seam's
+/// ([`Seam::of_part`]: no second pass).
 fn assemble(blocks: &[&[(u32, u32, Piece)]], name: impl Fn(Label) -> Label + Sync) -> Seam {
     let runs = match rayon::current_num_threads() {
-        _ if crate::par::is_serial() => 1,
-        1 => 1,
+        n if n == 1 || crate::par::is_serial() => 1,
         n => 4 * n,
     };
     let mut parts: Vec<Part> = blocks
@@ -477,11 +477,7 @@ fn assemble(blocks: &[&[(u32, u32, Piece)]], name: impl Fn(Label) -> Label + Syn
                 tri_b: j,
             }));
     }
-    let mut on_segment = vec![false; seam.points.len()];
-    for s in &seam.segments {
-        on_segment[s.ends[0] as usize] = true;
-        on_segment[s.ends[1] as usize] = true;
-    }
+    let on_segment = segment_ends(seam.points.len(), seam.segments.iter().map(|s| s.ends));
     let mut listed = FxHashSet::default();
     for part in &parts {
         for &l in &part.touching {
@@ -506,11 +502,7 @@ impl Seam {
         } = part;
         // A touching point that is no segment's end is listed (numbered after the
         // segments' points where it is none of theirs), as `assemble` lists it.
-        let mut on_segment = vec![false; points.len()];
-        for (ends, _) in &segments {
-            on_segment[ends[0] as usize] = true;
-            on_segment[ends[1] as usize] = true;
-        }
+        let on_segment = segment_ends(points.len(), segments.iter().map(|s| s.0));
         let mut touching = Vec::new();
         for l in touching_labels {
             match point_ids.get(&l) {
@@ -540,6 +532,16 @@ impl Seam {
             ..Seam::default()
         }
     }
+}
+
+/// Per point of `points`, whether it is an end of one of the segments `ends`.
+fn segment_ends(points: usize, ends: impl Iterator<Item = [u32; 2]>) -> Vec<bool> {
+    let mut on = vec![false; points];
+    for [x, y] in ends {
+        on[x as usize] = true;
+        on[y as usize] = true;
+    }
+    on
 }
 
 /// The name of a point where two triangles of one mesh meet: a vertex by itself, else the

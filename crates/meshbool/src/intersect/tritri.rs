@@ -69,8 +69,7 @@ pub struct Tri {
 impl Tri {
     /// `None` for a degenerate (zero-area) triangle.
     pub fn new(id: u32, v: [u32; 3], p: [[f64; 3]; 3]) -> Option<Tri> {
-        let lo = std::array::from_fn(|k| p[0][k].min(p[1][k]).min(p[2][k]));
-        let hi = std::array::from_fn(|k| p[0][k].max(p[1][k]).max(p[2][k]));
+        let [lo, hi] = crate::bvh::corners_box(&p);
         Triangle::new(p).map(|tri| Tri { id, v, tri, lo, hi })
     }
 
