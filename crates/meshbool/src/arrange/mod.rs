@@ -11,7 +11,7 @@ use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
 use crate::intersect::{Feature, Seam, Source};
-use crate::kernel::{orient2d_inputs, robust_safe, Enclosure, Point, Prepared, Triangle};
+use crate::kernel::{orient2d_inputs, robust_safe, Enclosure, Point, Prepared, Sign, Triangle};
 use crate::Mesh;
 
 mod local;
@@ -87,9 +87,38 @@ pub struct Arranged {
     /// in their input triangle's plane (a sliver thinner than the rounding): the output
     /// is only as exact as `f64` coordinates allow there.
     pub rounding_flips: Vec<u32>,
+    /// The projection of every re-triangulated input triangle, sorted by triangle: the
+    /// coordinate its [`Triangle`] drops and its orientation there, for the
+    /// classification's tests in the planes of these triangles ([`Arranged::projection`]).
+    pub(crate) projections: Vec<(u32, Projection)>,
 }
 
+/// A triangle's projection: the coordinate dropped ([`Triangle::axis`]) and the
+/// triangle's orientation there ([`Triangle::sign`]).
+pub(crate) type Projection = (u8, Sign);
+
 impl Arranged {
+    /// The projection of input triangle `t` when the arrangement re-triangulated it (as
+    /// [`Triangle::new`] of its corners gives it); `None` for the others.
+    pub(crate) fn projection(&self, t: u32) -> Option<(usize, Sign)> {
+        let i = self
+            .projections
+            .binary_search_by_key(&t, |&(u, _)| u)
+            .ok()?;
+        let (axis, sign) = self.projections[i].1;
+        Some((usize::from(axis), sign))
+    }
+
+    /// [`Arranged::point`] without copying an added vertex's point (those of seam points
+    /// are large).
+    pub(crate) fn point_ref(&self, v: u32) -> std::borrow::Cow<'_, Point> {
+        let v = v as usize;
+        match v.checked_sub(self.input_vertices) {
+            Some(i) => std::borrow::Cow::Borrowed(&self.added_points[i]),
+            None => std::borrow::Cow::Owned(Point::Explicit(self.mesh.positions[v])),
+        }
+    }
+
     /// The exact point of vertex `v`.
     pub fn point(&self, v: u32) -> Point {
         let v = v as usize;
@@ -144,6 +173,7 @@ impl Arranged {
             seam_edges,
             failed: out.failed,
             rounding_flips: out.rounding_flips,
+            projections: out.projections,
         }
     }
 }
@@ -301,9 +331,10 @@ fn cut_triangles(
     cut
 }
 
-/// One cut triangle re-triangulated: its pieces (vertex ids of the arranged mesh) and,
-/// per piece, whether rounding its seam points turns it over; or why it failed.
-type CutResult = Result<(Vec<[u32; 3]>, Vec<bool>), local::Failed>;
+/// One cut triangle re-triangulated: its pieces (vertex ids of the arranged mesh), per
+/// piece whether rounding its seam points turns it over, and the triangle's projection;
+/// or why it failed.
+type CutResult = Result<(Vec<[u32; 3]>, Vec<bool>, Projection), local::Failed>;
 
 /// Re-triangulates input triangle `t` with the seam points on it (`points`) and its seam
 /// edges (`cons`) as constraints, then improves the shape of the pieces; and marks the
@@ -341,9 +372,10 @@ fn cut_triangle(
     // Nothing inside and only its own edges as seam edges (a face the other mesh shares):
     // the triangle is its own only piece, as the triangulation below would leave it.
     if mine.is_empty() && cons_t.iter().all(|c| c.iter().all(|v| tri.contains(v))) {
-        return Ok((vec![tri], vec![false]));
+        return Ok((vec![tri], vec![false], (shape.axis() as u8, shape.sign())));
     }
     let (axis, sign) = (shape.axis(), shape.sign());
+    let projection = (axis as u8, sign);
     let lt = match local {
         Some(lt) => {
             lt.reset(corners, axis, sign, mine.len());
@@ -391,7 +423,7 @@ fn cut_triangle(
     lt.improve();
     let pieces: Vec<[u32; 3]> = lt.tris.iter().map(|v| v.map(|l| ids[l as usize])).collect();
     let flipped = turned_by_rounding(&pieces, points, &shape);
-    Ok((pieces, flipped))
+    Ok((pieces, flipped, projection))
 }
 
 /// Orders a triangle's seam points along the chains its constraints form, so that each
@@ -457,6 +489,7 @@ struct Reassembled {
     parent: Vec<u32>,
     failed: Vec<(u32, FailReason)>,
     rounding_flips: Vec<u32>,
+    projections: Vec<(u32, Projection)>,
 }
 
 /// The output in input order: runs of uncut triangles copied as they are, each cut one
@@ -467,7 +500,11 @@ struct Reassembled {
 /// the output from the sizes of the spans before it.
 fn reassemble(mesh: &Mesh, results: Vec<(u32, CutResult)>) -> Reassembled {
     let n = mesh.triangles.len();
-    let size = |r: &CutResult| r.as_ref().map_or(1, |(p, _)| p.len());
+    let size = |r: &CutResult| r.as_ref().map_or(1, |(p, _, _)| p.len());
+    let projections = results
+        .iter()
+        .filter_map(|(t, r)| r.as_ref().ok().map(|&(_, _, p)| (*t, p)))
+        .collect();
     // Spans of cut triangles; span k covers input triangles from its first cut one (0 for
     // the first span) to the next span's first cut one (n for the last).
     let spans = if n < 1 << 16 {
@@ -522,7 +559,7 @@ fn reassemble(mesh: &Mesh, results: Vec<(u32, CutResult)>) -> Reassembled {
                 let t = *t as usize;
                 at += copy(tris, par, next, t, at);
                 match r {
-                    Ok((sub, flipped)) => {
+                    Ok((sub, flipped, _)) => {
                         for (i, &f) in flipped.iter().enumerate() {
                             if f {
                                 flips.push((firsts[k] + at + i) as u32);
@@ -555,6 +592,7 @@ fn reassemble(mesh: &Mesh, results: Vec<(u32, CutResult)>) -> Reassembled {
         parent,
         failed,
         rounding_flips,
+        projections,
     }
 }
 

@@ -27,7 +27,7 @@ use serde::{Deserialize, Serialize};
 use smallvec::SmallVec;
 
 use super::{Provenance, Source};
-use crate::kernel::{normals_cross_sign, normals_dot_sign, orient3d_explicit, Sign};
+use crate::kernel::{normals_dot_sign, orient3d_explicit, planes_line_axis, Sign};
 use crate::measure::is_degenerate;
 use crate::repair::{common, compact_from_end, neighbours, Ids};
 use crate::Mesh;
@@ -316,7 +316,7 @@ impl Work<'_> {
             return None;
         }
         let (pa, pb) = (self.parent(sides[0][0]), self.parent(sides[1][0]));
-        if (0..3).all(|k| normals_cross_sign(&pa, &pb, k) == Sign::Zero) || !self.between(q, p, r) {
+        if planes_line_axis(&pa, &pb).is_none() || !self.between(q, p, r) {
             return None;
         }
         for target in [q, r] {
@@ -381,7 +381,9 @@ impl Work<'_> {
                 // two neighbours on the crease lie on that line, exactly; p must be
                 // strictly between them, which rounding (monotone) keeps per coordinate.
                 let (pt, pu) = (self.parent(out[i]), self.parent(into[i]));
-                let crossing = (0..3).any(|k| normals_cross_sign(&pt, &pu, k) != Sign::Zero);
+                // (The largest component of the line's direction first: its sign is
+                // clear at once, where a zero one takes the slowest exact path.)
+                let crossing = planes_line_axis(&pt, &pu).is_some();
                 (crossing && self.between(neighbours[i], p, neighbours[j]))
                     .then(|| smallvec::smallvec![neighbours[i], neighbours[j]])
             }

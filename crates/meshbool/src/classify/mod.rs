@@ -8,6 +8,7 @@
 //! Patches touching no seam, or whose seam edges disagree (an open surface whose seam
 //! stops inside the patch), use the generalized winding number of the other mesh.
 
+use std::borrow::Cow;
 use std::cell::OnceCell;
 use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
 
@@ -18,7 +19,9 @@ use rustc_hash::FxHashMap;
 use crate::arrange::Arranged;
 use crate::edges::SeamTopology;
 use crate::intersect::{Feature, Label, Source};
-use crate::kernel::{orient2d, orient3d_plane, Point, Sign, Triangle};
+use crate::kernel::{
+    orient2d, orient2d_inputs, orient3d_plane, robust_safe, Point, Sign, Triangle,
+};
 use crate::Mesh;
 
 mod winding;
@@ -56,19 +59,20 @@ pub struct Classified {
 
 /// One triangle of the other mesh's fan around a seam edge: its plane (an input triangle,
 /// explicit) and its far vertex (exact).
-struct FanFace {
+struct FanFace<'a> {
     plane: [[f64; 3]; 3],
     /// The input triangle of the plane: its id and its corners' vertex ids.
     parent: (u32, [u32; 3]),
-    far: Point,
+    far: Cow<'a, Point>,
     /// Whether its triangle runs from the edge's first end to its second.
     forward: bool,
-    /// `Triangle::new(plane)`, made when first needed (a point in the face's plane) and
-    /// kept for the edge's other uses.
-    triangle: OnceCell<Option<Triangle>>,
+    /// The projection of the face's input triangle ([`Arranged::projection`]: the
+    /// arrangement found it), taken when first needed (a point in the face's plane) and
+    /// kept for the edge's other uses; `None` inside when degenerate.
+    projection: OnceCell<Option<(usize, Sign)>>,
 }
 
-impl FanFace {
+impl FanFace<'_> {
     /// The side of the face's plane that `w` is on, exactly: zero without arithmetic
     /// where `w` is a seam point on the face's input triangle (`w_on`: the feature of
     /// that input it lies on, known from the seam), else by `orient3d`. A point on a
@@ -89,11 +93,37 @@ impl FanFace {
         orient3d_plane(&self.plane[0], &self.plane[1], &self.plane[2], w)
     }
 
-    /// The face's input triangle with its projection; `None` when degenerate.
-    fn triangle(&self) -> Option<&Triangle> {
-        self.triangle
-            .get_or_init(|| Triangle::new(self.plane))
-            .as_ref()
+    /// The projection of the face's input triangle (its [`Triangle`]'s axis and sign);
+    /// `None` when degenerate. `arranged`: the arrangement of the face's mesh.
+    fn projection(&self, arranged: &Arranged) -> Option<(usize, Sign)> {
+        *self.projection.get_or_init(|| {
+            arranged
+                .projection(self.parent.0)
+                .or_else(|| Triangle::new(self.plane).map(|t| (t.axis(), t.sign())))
+        })
+    }
+}
+
+/// The input triangle a classified triangle comes from: its corners, its id and the
+/// arrangement of its mesh (which knows its projection).
+struct Own<'a> {
+    corners: [[f64; 3]; 3],
+    parent: u32,
+    arranged: &'a Arranged,
+}
+
+impl Own<'_> {
+    /// The triangle's orientation in the projection dropping `axis`: its own
+    /// projection's sign where that drops `axis` too (coplanar faces mostly share the
+    /// axis), else exact `orient2d`.
+    fn sign_in(&self, axis: usize) -> Sign {
+        match self.arranged.projection(self.parent) {
+            Some((a, s)) if a == axis => s,
+            _ => {
+                let [a, b, c] = &self.corners;
+                orient2d_inputs(a, b, c, axis, robust_safe(&[a, b, c]))
+            }
+        }
     }
 }
 
@@ -101,23 +131,24 @@ impl FanFace {
 /// convex (the sign of the second face's far vertex against the first face's plane),
 /// found when first needed and kept for the edge's other uses.
 struct Fan<'a> {
-    faces: &'a [FanFace],
+    faces: &'a [FanFace<'a>],
     convex: OnceCell<Sign>,
 }
 
-/// The class of a triangle with far vertex `w` at seam edge `e0 e1` against the fan.
-/// `own` is the input triangle the classified triangle comes from. An edge of more than
+/// The class of a triangle with far vertex `w` at seam edge `e0 e1` against the fan of
+/// the other mesh (arranged as `other`). `own` is the input triangle the classified
+/// triangle comes from. An edge of more than
 /// two faces (closed parts glued along it) goes to [`glued_class`]. `None` when the fan
 /// does not decide (a boundary edge of the other mesh).
 fn local_class(
-    own: &[[f64; 3]; 3],
+    own: &Own<'_>,
     (w, w_on): (&Point, Option<Feature>),
     e: [&Point; 2],
     near: [f64; 3],
-    fan: &Fan<'_>,
+    (fan, other): (&Fan<'_>, &Arranged),
 ) -> Option<Class> {
     let [f0, f1] = fan.faces else {
-        return glued_class(own, (w, w_on), e, near, fan.faces);
+        return glued_class(own, (w, w_on), e, near, (fan.faces, other));
     };
     let s = [f0, f1].map(|f| f.side(w, w_on));
     for (k, f) in [f0, f1].iter().enumerate() {
@@ -125,7 +156,7 @@ fn local_class(
             continue;
         }
         // In the plane of this face: overlapping it when on the same side of the edge.
-        if let Some(c) = on_face(own, w, e, f, f.triangle()?) {
+        if let Some(c) = on_face(own, w, e, f, f.projection(other)?) {
             return Some(c);
         }
     }
@@ -149,15 +180,14 @@ fn local_class(
 
 /// Whether `w`, seen from edge `e`, lies on face `f` (in its plane, on its side of the
 /// edge); then the class by the facing of `own` (the classified triangle's input
-/// triangle) against it. `plane`: `f.triangle()`.
+/// triangle) against it. `(axis, sign)`: the projection of `f`'s input triangle.
 fn on_face(
-    own: &[[f64; 3]; 3],
+    own: &Own<'_>,
     w: &Point,
     e: [&Point; 2],
-    f: &FanFace,
-    plane: &Triangle,
+    f: &FanFace<'_>,
+    (axis, sign): (usize, Sign),
 ) -> Option<Class> {
-    let axis = plane.axis();
     let (ow, of) = (
         orient2d(e[0], e[1], w, axis),
         orient2d(e[0], e[1], &f.far, axis),
@@ -165,13 +195,7 @@ fn on_face(
     if ow == Sign::Zero || ow != of {
         return None;
     }
-    let own_sign = orient2d(
-        &Point::Explicit(own[0]),
-        &Point::Explicit(own[1]),
-        &Point::Explicit(own[2]),
-        axis,
-    );
-    Some(if own_sign == plane.sign() {
+    Some(if own.sign_in(axis) == sign {
         Class::CoplanarSame
     } else {
         Class::CoplanarOpposite
@@ -187,11 +211,11 @@ fn on_face(
 /// zero times. `None` for fewer than three faces or an odd count (a boundary), and where
 /// faces `w` lies on disagree. `near` is the position of `e[0]`.
 fn glued_class(
-    own: &[[f64; 3]; 3],
+    own: &Own<'_>,
     (w, w_on): (&Point, Option<Feature>),
     e: [&Point; 2],
     near: [f64; 3],
-    fan: &[FanFace],
+    (fan, other): (&[FanFace<'_>], &Arranged),
 ) -> Option<Class> {
     if fan.len() < 3 || fan.len() % 2 == 1 {
         return None;
@@ -201,7 +225,7 @@ fn glued_class(
         if f.side(w, w_on) != Sign::Zero {
             continue;
         }
-        let Some(plane) = f.triangle() else {
+        let Some(plane) = f.projection(other) else {
             continue;
         };
         if let Some(c) = on_face(own, w, e, f, plane) {
@@ -218,7 +242,7 @@ fn glued_class(
     let mut items: Vec<(u32, bool, Point, u32)> = fan
         .iter()
         .enumerate()
-        .map(|(i, f)| (i as u32, f.forward, f.far.clone(), i as u32))
+        .map(|(i, f)| (i as u32, f.forward, f.far.clone().into_owned(), i as u32))
         .collect();
     items.push((fan.len() as u32, true, w.clone(), fan.len() as u32));
     let order = crate::repair::nonmanifold::angular_order(e[0], e[1], near, &items);
@@ -327,9 +351,9 @@ fn seam_votes(x: &CutMesh, y: &CutMesh) -> Vec<Vote> {
                         FanFace {
                             plane: y_in.corners(parent as usize),
                             parent: (parent, y_in.triangles[parent as usize]),
-                            far: y.point(tri[(use_.corner as usize + 2) % 3]),
+                            far: y.point_ref(tri[(use_.corner as usize + 2) % 3]),
                             forward: tri[use_.corner as usize] == yu,
-                            triangle: OnceCell::new(),
+                            projection: OnceCell::new(),
                         }
                     }));
                 }
@@ -337,22 +361,26 @@ fn seam_votes(x: &CutMesh, y: &CutMesh) -> Vec<Vote> {
                     faces: &faces,
                     convex: OnceCell::new(),
                 };
-                let (pu, pv) = (x.point(u), x.point(v));
-                let ends = [&pu, &pv];
+                let (pu, pv) = (x.point_ref(u), x.point_ref(v));
+                let ends = [&*pu, &*pv];
                 votes.extend(topo.uses_of(e).iter().map(|use_| {
                     let t = use_.triangle as usize;
                     let wv = x.mesh.triangles[t][(use_.corner as usize + 2) % 3];
-                    let w = &x.point(wv);
+                    let w = &*x.point_ref(wv);
                     // Where `w` is a seam point: the feature of `y`'s input it lies on.
                     let w_on = y_seam
                         .zip(seam_of_vertex.get(&wv))
                         .map(|((labels, side), &s)| labels[s as usize].feature(side));
-                    let own = x_in.corners(x.parent[t] as usize);
+                    let own = Own {
+                        corners: x_in.corners(x.parent[t] as usize),
+                        parent: x.parent[t],
+                        arranged: x,
+                    };
                     let near = x.mesh.positions[u as usize];
                     (
                         patch[t],
                         t as u32,
-                        local_class(&own, (w, w_on), ends, near, &fan),
+                        local_class(&own, (w, w_on), ends, near, (&fan, y)),
                     )
                 }));
                 (votes, faces)
@@ -521,4 +549,44 @@ fn settle(r: Resolved, answers: Vec<Class>, patch: &[u32], patches: usize) -> Ve
                 .expect("every triangle is decided: by its patch, its seam or a winding number")
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_util::Rng;
+
+    /// A classified triangle's orientation in a fan face's projection is exact
+    /// `orient2d` in that projection, whichever axis its own projection (kept by the
+    /// arrangement) drops: random triangles, whose normals' components differ in sign,
+    /// each asked in all three projections, with and without a kept projection.
+    #[test]
+    fn an_own_triangle_is_oriented_in_any_projection() {
+        let mut rng = Rng(0x0a11_a2e5);
+        let mut differing = 0;
+        for round in 0..2000 {
+            let corners: [[f64; 3]; 3] =
+                std::array::from_fn(|_| std::array::from_fn(|_| rng.unit() - 0.5));
+            let Some(shape) = Triangle::new(corners) else {
+                continue;
+            };
+            let mut arranged = Arranged::default();
+            if round % 4 != 0 {
+                arranged.projections = vec![(7, (shape.axis() as u8, shape.sign()))];
+            }
+            let own = Own {
+                corners,
+                parent: 7,
+                arranged: &arranged,
+            };
+            let e = |p: [f64; 3]| Point::Explicit(p);
+            let [a, b, c] = corners.map(e);
+            let signs: Vec<Sign> = (0..3).map(|axis| orient2d(&a, &b, &c, axis)).collect();
+            for (axis, &s) in signs.iter().enumerate() {
+                assert_eq!(own.sign_in(axis), s, "{corners:?} {axis}");
+            }
+            differing += usize::from(signs.iter().any(|&s| s != shape.sign()));
+        }
+        assert!(differing > 1000, "{differing}");
+    }
 }

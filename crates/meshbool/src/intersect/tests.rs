@@ -609,6 +609,58 @@ fn shared_corner_filter_only_answers_apart_when_apart() {
     );
 }
 
+/// Triangles square to a coordinate axis (faces of boxes) take shortcuts: a point's side
+/// of the plane from one coordinate, and the direction of two such planes' line from
+/// their axes. Both give the general predicates' answers ([`orient3d_sides`],
+/// [`planes_line_axis`]), and pairs of them meet as the reference test (points built and
+/// compared) says, on random grid triangles in random axis planes, either way round,
+/// as given and moved to UTM-like coordinates.
+#[test]
+fn square_triangles_take_shortcuts_with_the_general_answers() {
+    use crate::kernel::{orient3d_sides, planes_line_axis};
+    use tritri::{intersect_by_points, line_axis};
+    let mut rng = Rng(0x0500_a7ef_4ce5);
+    let (mut lines, mut met, mut sides_nonzero) = (0, 0, 0);
+    for round in 0..20_000 {
+        let square = |rng: &mut Rng| -> [[f64; 3]; 3] {
+            let k = (rng.next() % 3) as usize;
+            let at = (rng.next() % 4) as f64;
+            std::array::from_fn(|_| {
+                std::array::from_fn(|c| if c == k { at } else { (rng.next() % 4) as f64 })
+            })
+        };
+        let (pa, pb) = (square(&mut rng), square(&mut rng));
+        let how = round % 3;
+        let (pa, pb) = (moved(pa, how), moved(pb, how));
+        let (Some(a), Some(b)) = (Tri::new(0, [0, 1, 2], pa), Tri::new(0, [10, 11, 12], pb)) else {
+            continue;
+        };
+        for (x, y) in [(&a, &b), (&b, &a)] {
+            let sides = x.sides_of(y);
+            assert_eq!(
+                sides,
+                orient3d_sides(x.corners(), y.corners()),
+                "{pa:?} {pb:?}"
+            );
+            sides_nonzero += usize::from(sides != [Sign::Zero; 3]);
+            let line = line_axis(x, y);
+            assert_eq!(
+                line,
+                planes_line_axis(x.corners(), y.corners()),
+                "{pa:?} {pb:?}"
+            );
+            lines += usize::from(line.is_some());
+        }
+        let by_points = intersect_by_points(&a, &b);
+        assert_eq!(tt(&a, &b), by_points, "{pa:?} {pb:?}");
+        met += usize::from(by_points != TriTri::None);
+    }
+    assert!(
+        lines > 10_000 && met > 3000 && sides_nonzero > 10_000,
+        "{lines} {met} {sides_nonzero}"
+    );
+}
+
 /// Triangles that are not coplanar get what they share from orientations of their
 /// corners alone, pair by pair the same (points or segments, ends labelled and in
 /// order) as from their points on each other's planes built and compared along the

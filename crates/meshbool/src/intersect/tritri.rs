@@ -64,13 +64,42 @@ pub struct Tri {
     /// The corners' smallest and largest coordinates.
     lo: [f64; 3],
     hi: [f64; 3],
+    /// Whether the triangle lies in a plane square to its axis (all corners share that
+    /// coordinate: faces of boxes and CAD parts), where a point's side of its plane is the
+    /// sign of a coordinate difference.
+    square: bool,
 }
 
 impl Tri {
     /// `None` for a degenerate (zero-area) triangle.
     pub fn new(id: u32, v: [u32; 3], p: [[f64; 3]; 3]) -> Option<Tri> {
         let [lo, hi] = crate::bvh::corners_box(&p);
-        Triangle::new(p).map(|tri| Tri { id, v, tri, lo, hi })
+        Triangle::new(p).map(|tri| {
+            let k = tri.axis();
+            let square = p[0][k] == p[1][k] && p[1][k] == p[2][k];
+            Tri {
+                id,
+                v,
+                tri,
+                lo,
+                hi,
+                square,
+            }
+        })
+    }
+
+    /// The exact sides of `other`'s corners against this triangle's plane: as
+    /// [`orient3d_sides`] gives them, from a coordinate comparison where the plane is
+    /// square to this triangle's axis (its normal points along the axis, with the sign of
+    /// the triangle's orientation in the projection dropping it).
+    pub(super) fn sides_of(&self, other: &Tri) -> [Sign; 3] {
+        if self.square {
+            let (k, at) = (self.axis(), self.corners()[0][self.axis()]);
+            return other
+                .corners()
+                .map(|d| Sign::of_difference(d[k], at).times(self.sign()));
+        }
+        orient3d_sides(self.corners(), other.corners())
     }
 
     /// Corner coordinates.
@@ -269,9 +298,26 @@ enum Against {
     Sides([Sign; 3]),
 }
 
+/// [`planes_line_axis`] of the two triangles' planes: from their axes where both are
+/// square to theirs (normals along two axes, signed by the triangles' orientations, so
+/// that `d = n_a × n_b` lies along the third axis with the sign of the axes' order,
+/// positive when cyclic, times the orientations).
+pub(super) fn line_axis(a: &Tri, b: &Tri) -> Option<(usize, Sign)> {
+    let (i, j) = (a.axis(), b.axis());
+    if a.square && b.square && i != j {
+        let cyclic = if j == (i + 1) % 3 {
+            Sign::Positive
+        } else {
+            Sign::Negative
+        };
+        return Some((3 - i - j, cyclic.times(a.sign()).times(b.sign())));
+    }
+    planes_line_axis(a.corners(), b.corners())
+}
+
 /// How `a` lies against `b`'s plane, from the exact sides of its corners.
 fn against(a: &Tri, b: &Tri) -> Against {
-    let sa = orient3d_sides(b.corners(), a.corners());
+    let sa = b.sides_of(a);
     if sa[0] != Sign::Zero && sa[0] == sa[1] && sa[1] == sa[2] {
         Against::Apart
     } else if sa == [Sign::Zero; 3] {
@@ -435,7 +481,7 @@ pub(super) fn touching(a: &Tri, b: &Tri) -> Option<Option<Label>> {
 /// them for pairs that are apart (the test of Devillers and Guigue, "Faster
 /// triangle-triangle intersection tests", 2002, is this one in that configuration).
 fn crossing(a: &Tri, b: &Tri, sa: [Sign; 3]) -> TriTri {
-    let sb = orient3d_sides(a.corners(), b.corners());
+    let sb = a.sides_of(b);
     // All on one side: apart. All on `a`'s plane while `a` is not all on `b`'s: only with
     // non-finite corners (a public caller's unvalidated mesh).
     if sb[0] == sb[1] && sb[1] == sb[2] {
@@ -475,7 +521,7 @@ impl Line<'_> {
     fn axis(&self) -> Option<(usize, Sign)> {
         *self
             .axis
-            .get_or_init(|| planes_line_axis(self.tris[0].corners(), self.tris[1].corners()))
+            .get_or_init(|| line_axis(self.tris[0], self.tris[1]))
     }
 
     fn corner(&self, t: usize, k: usize) -> &[f64; 3] {
