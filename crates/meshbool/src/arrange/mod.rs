@@ -178,6 +178,13 @@ impl Arranged {
     }
 }
 
+/// A short list kept in place (most triangles and edges hold a few seam points and seam
+/// edges): no allocation per entry of the maps below.
+type List<T> = smallvec::SmallVec<[T; 4]>;
+
+/// Per input triangle, its constraints: the seam edges in it, in order.
+type Constraints = FxHashMap<u32, List<[u32; 2]>>;
+
 /// The seam points as vertices of one mesh ([`index_seam_points`]).
 struct SeamPoints {
     /// The input positions, then one per added vertex.
@@ -189,9 +196,9 @@ struct SeamPoints {
     /// Its enclosures when the seam had them (same order).
     enclosed: Vec<Option<Enclosure>>,
     /// Added vertices inside each input triangle's face.
-    on_face: FxHashMap<u32, Vec<u32>>,
+    on_face: FxHashMap<u32, List<u32>>,
     /// Added vertices on each input edge `(lo, hi)`.
-    on_edge: FxHashMap<(u32, u32), Vec<u32>>,
+    on_edge: FxHashMap<(u32, u32), List<u32>>,
     /// For every seam point, its vertex.
     seam_vertex: Vec<u32>,
 }
@@ -221,8 +228,8 @@ fn index_seam_points(mesh: &Mesh, seam: &Seam, side: Source) -> SeamPoints {
     let n = seam.points.len();
     let mut added: Vec<Point> = Vec::with_capacity(n);
     let mut enclosed = Vec::with_capacity(n);
-    let mut on_face: FxHashMap<u32, Vec<u32>> = FxHashMap::default();
-    let mut on_edge: FxHashMap<(u32, u32), Vec<u32>> = FxHashMap::default();
+    let mut on_face: FxHashMap<u32, List<u32>> = FxHashMap::default();
+    let mut on_edge: FxHashMap<(u32, u32), List<u32>> = FxHashMap::default();
     on_face.reserve(n);
     on_edge.reserve(n);
     let seam_vertex: Vec<u32> = seam
@@ -272,12 +279,8 @@ fn seam_edges(seam: &Seam, seam_vertex: &[u32]) -> Vec<[u32; 2]> {
 
 /// Per input triangle of side `side`, the seam edges found in it: the constraints of its
 /// re-triangulation.
-fn constraints(
-    seam: &Seam,
-    side: Source,
-    seam_edges: &[[u32; 2]],
-) -> FxHashMap<u32, Vec<[u32; 2]>> {
-    let mut cons: FxHashMap<u32, Vec<[u32; 2]>> = FxHashMap::default();
+fn constraints(seam: &Seam, side: Source, seam_edges: &[[u32; 2]]) -> Constraints {
+    let mut cons = Constraints::default();
     cons.reserve(seam.sources.len());
     for src in &seam.sources {
         let t = match side {
@@ -297,7 +300,7 @@ fn constraints(
 fn cut_triangles(
     mesh: &Mesh,
     points: &SeamPoints,
-    cons: &FxHashMap<u32, Vec<[u32; 2]>>,
+    cons: &Constraints,
     near: Option<&[u32]>,
 ) -> Vec<u32> {
     let mut cut: Vec<u32> = points.on_face.keys().chain(cons.keys()).copied().collect();
@@ -343,7 +346,7 @@ fn cut_triangle(
     mesh: &Mesh,
     t: u32,
     points: &SeamPoints,
-    cons: &FxHashMap<u32, Vec<[u32; 2]>>,
+    cons: &Constraints,
     scratch: &mut Scratch,
 ) -> CutResult {
     let tri = mesh.triangles[t as usize];
@@ -368,7 +371,7 @@ fn cut_triangle(
             mine.extend(p.iter().map(|&g| (g, Some(k))));
         }
     }
-    let cons_t = cons.get(&t).map(Vec::as_slice).unwrap_or(&[]);
+    let cons_t = cons.get(&t).map(List::as_slice).unwrap_or(&[]);
     // Nothing inside and only its own edges as seam edges (a face the other mesh shares):
     // the triangle is its own only piece, as the triangulation below would leave it.
     if mine.is_empty() && cons_t.iter().all(|c| c.iter().all(|v| tri.contains(v))) {
@@ -430,6 +433,81 @@ fn cut_triangle(
 /// point is inserted next to the one before (the point location walk then takes a step or
 /// two instead of crossing the triangulation); points on no constraint go last.
 fn chain_order(mine: &mut [(u32, Option<usize>)], cons: &[[u32; 2]]) {
+    if mine.len() < 3 || cons.is_empty() {
+        return;
+    }
+    // The constraints' ends, numbered; each end's rank in a depth-first walk of the
+    // graph of the constraints, a vertex's neighbours taken in the constraints' order:
+    // found by scanning the constraints for the few of most triangles, by a list sorted
+    // by end (stably) for many.
+    let mut ends: Vec<u32> = cons.iter().flatten().copied().collect();
+    ends.sort_unstable();
+    ends.dedup();
+    let at = |v: u32| ends.binary_search(&v).ok();
+    let local: Vec<[u32; 2]> = cons
+        .iter()
+        .map(|c| c.map(|v| at(v).map_or(u32::MAX, |i| i as u32)))
+        .collect();
+    let mut next: Vec<(u32, u32)> = Vec::new();
+    if cons.len() > CHAIN_SCAN_UP_TO {
+        next.reserve(2 * cons.len());
+        for &[a, b] in &local {
+            next.extend([(a, b), (b, a)]);
+        }
+        next.sort_by_key(|&(v, _)| v);
+    }
+    let mut rank = vec![u32::MAX; ends.len()];
+    let mut ranked = 0;
+    let mut stack = Vec::with_capacity(ends.len());
+    for &[a, _] in &local {
+        stack.push(a);
+        while let Some(v) = stack.pop() {
+            if rank[v as usize] != u32::MAX {
+                continue;
+            }
+            rank[v as usize] = ranked;
+            ranked += 1;
+            let unranked = |w: u32| rank[w as usize] == u32::MAX;
+            if next.is_empty() {
+                for &[x, y] in &local {
+                    if x == v && unranked(y) {
+                        stack.push(y);
+                    }
+                    if y == v && unranked(x) {
+                        stack.push(x);
+                    }
+                }
+            } else {
+                let from = next.partition_point(|&(u, _)| u < v);
+                let to = next.partition_point(|&(u, _)| u <= v);
+                stack.extend(
+                    next[from..to]
+                        .iter()
+                        .map(|&(_, w)| w)
+                        .filter(|&w| unranked(w)),
+                );
+            }
+        }
+    }
+    // A stable sort by rank: each point's rank found once, ties kept in order.
+    let mut keyed: Vec<(u32, u32)> = mine
+        .iter()
+        .zip(0..)
+        .map(|(&(g, _), k)| (at(g).map_or(u32::MAX, |i| rank[i]), k))
+        .collect();
+    keyed.sort_unstable();
+    let sorted: Vec<(u32, Option<usize>)> = keyed.iter().map(|&(_, k)| mine[k as usize]).collect();
+    mine.copy_from_slice(&sorted);
+}
+
+/// Up to this many constraints, [`chain_order`] finds a vertex's neighbours by scanning
+/// them all (cheaper than sorting a list for a triangle's few).
+const CHAIN_SCAN_UP_TO: usize = 16;
+
+/// [`chain_order`] as first written (a list sorted by end for every size, the points
+/// sorted by a key searched at every comparison): the reference of its test.
+#[cfg(test)]
+fn chain_order_reference(mine: &mut [(u32, Option<usize>)], cons: &[[u32; 2]]) {
     if mine.len() < 3 || cons.is_empty() {
         return;
     }

@@ -74,11 +74,11 @@ fn arrange_welded(mesh: &Mesh, seam: &Seam) -> Arranged {
             [a.min(b), a.max(b)]
         })
         .collect();
-    let constraints: FxHashMap<u32, Vec<[u32; 2]>> = with_other
+    let constraints: super::Constraints = with_other
         .into_iter()
         .map(|(t, list)| {
             // In their order (which the triangulation follows), each once.
-            let mut cons: Vec<[u32; 2]> = Vec::with_capacity(list.len());
+            let mut cons = super::List::with_capacity(list.len());
             for ([a, b], _) in list {
                 let (a, b) = (canon(a), canon(b));
                 let e = [a.min(b), a.max(b)];
@@ -234,7 +234,7 @@ fn merge_equal_points(mesh: &Mesh, points: &mut SeamPoints) -> impl Fn(u32) -> u
         Vec::new()
     };
     if merged {
-        let map = |list: &mut Vec<u32>| {
+        let map = |list: &mut super::List<u32>| {
             for v in list.iter_mut() {
                 *v = canon[*v as usize];
             }

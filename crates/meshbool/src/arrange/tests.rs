@@ -350,3 +350,48 @@ fn the_flips_in_circle_test_has_the_exact_sign_or_none() {
         }
     }
 }
+
+/// The chain order numbers the constraints' ends once and walks them by number: the same
+/// order as the first way (a list sorted by end, searched at every step and comparison),
+/// on random triangles' points and constraints (chains, branches, repeated and
+/// degenerate constraints, points on none), few (scanned) and many (sorted list).
+#[test]
+fn the_chain_order_is_the_one_of_the_first_way() {
+    let mut rng = Rng(0xc4a1_0bde);
+    let (mut moved, mut scanned, mut listed) = (0, 0, 0);
+    for round in 0..4000 {
+        let vertices = 3 + (rng.next() % 40) as u32;
+        let count = 1 + (rng.next() % if round % 3 == 0 { 60 } else { 12 }) as usize;
+        let cons: Vec<[u32; 2]> = (0..count)
+            .map(|_| {
+                let a = 100 + (rng.next() % u64::from(vertices)) as u32;
+                let b = match rng.next() % 8 {
+                    0 => a,
+                    _ => 100 + (rng.next() % u64::from(vertices)) as u32,
+                };
+                [a.min(b), a.max(b)]
+            })
+            .collect();
+        let n = 3 + (rng.next() % u64::from(vertices + 5)) as usize;
+        let mine: Vec<(u32, Option<usize>)> = (0..n)
+            .map(|k| {
+                let on_edge = (k % 4 == 0).then_some(k % 3);
+                (100 + (rng.next() % u64::from(vertices + 5)) as u32, on_edge)
+            })
+            .collect();
+        let (mut ours, mut first) = (mine.clone(), mine.clone());
+        chain_order(&mut ours, &cons);
+        chain_order_reference(&mut first, &cons);
+        assert_eq!(ours, first, "{cons:?}");
+        moved += usize::from(ours != mine);
+        if cons.len() > CHAIN_SCAN_UP_TO {
+            listed += 1;
+        } else {
+            scanned += 1;
+        }
+    }
+    assert!(
+        moved > 3000 && scanned > 2000 && listed > 600,
+        "{moved} {scanned} {listed}"
+    );
+}

@@ -70,6 +70,9 @@ struct FanFace<'a> {
     /// arrangement found it), taken when first needed (a point in the face's plane) and
     /// kept for the edge's other uses; `None` inside when degenerate.
     projection: OnceCell<Option<(usize, Sign)>>,
+    /// The side of the edge its far vertex lies on in that projection, found when first
+    /// needed and kept for the edge's other uses.
+    far_side: OnceCell<Sign>,
 }
 
 impl FanFace<'_> {
@@ -188,11 +191,13 @@ fn on_face(
     f: &FanFace<'_>,
     (axis, sign): (usize, Sign),
 ) -> Option<Class> {
-    let (ow, of) = (
-        orient2d(e[0], e[1], w, axis),
-        orient2d(e[0], e[1], &f.far, axis),
-    );
-    if ow == Sign::Zero || ow != of {
+    let ow = orient2d(e[0], e[1], w, axis);
+    if ow == Sign::Zero
+        || ow
+            != *f
+                .far_side
+                .get_or_init(|| orient2d(e[0], e[1], &f.far, axis))
+    {
         return None;
     }
     Some(if own.sign_in(axis) == sign {
@@ -354,6 +359,7 @@ fn seam_votes(x: &CutMesh, y: &CutMesh) -> Vec<Vote> {
                             far: y.point_ref(tri[(use_.corner as usize + 2) % 3]),
                             forward: tri[use_.corner as usize] == yu,
                             projection: OnceCell::new(),
+                            far_side: OnceCell::new(),
                         }
                     }));
                 }
