@@ -547,12 +547,18 @@ fn chain_order_reference(mine: &mut [(u32, Option<usize>)], cons: &[[u32; 2]]) {
 
 /// Per piece of `parent`, whether it holds a seam point and, with the seam points rounded
 /// to their `f64` coordinates, no longer faces like `parent` (exact test on the rounded
-/// coordinates).
+/// coordinates). A piece whose seam points all have `f64` coordinates (input vertices of
+/// the other mesh) is as the triangulation made it, facing like `parent`.
 fn turned_by_rounding(pieces: &[[u32; 3]], points: &SeamPoints, parent: &Triangle) -> Vec<bool> {
+    let rounded = |v: u32| {
+        (v as usize)
+            .checked_sub(points.input_vertices)
+            .is_some_and(|i| !matches!(points.added[i], Point::Explicit(_)))
+    };
     pieces
         .iter()
         .map(|p| {
-            p.iter().any(|&v| v as usize >= points.input_vertices) && {
+            p.iter().any(|&v| rounded(v)) && {
                 let [a, b, c] = p.map(|v| points.positions[v as usize]);
                 let safe = robust_safe(&[&a, &b, &c]);
                 orient2d_inputs(&a, &b, &c, parent.axis(), safe) != parent.sign()
