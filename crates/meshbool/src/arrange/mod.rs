@@ -372,13 +372,13 @@ fn cut_triangle(
         }
     }
     let cons_t = cons.get(&t).map(List::as_slice).unwrap_or(&[]);
+    let (axis, sign) = (shape.axis(), shape.sign());
+    let projection = (axis as u8, sign);
     // Nothing inside and only its own edges as seam edges (a face the other mesh shares):
     // the triangle is its own only piece, as the triangulation below would leave it.
     if mine.is_empty() && cons_t.iter().all(|c| c.iter().all(|v| tri.contains(v))) {
-        return Ok((vec![tri], vec![false], (shape.axis() as u8, shape.sign())));
+        return Ok((vec![tri], vec![false], projection));
     }
-    let (axis, sign) = (shape.axis(), shape.sign());
-    let projection = (axis as u8, sign);
     let lt = match local {
         Some(lt) => {
             lt.reset(corners, axis, sign, mine.len());
@@ -444,9 +444,10 @@ fn chain_order(mine: &mut [(u32, Option<usize>)], cons: &[[u32; 2]]) {
     ends.sort_unstable();
     ends.dedup();
     let at = |v: u32| ends.binary_search(&v).ok();
+    // (Every end is in the list: its place there is its number.)
     let local: Vec<[u32; 2]> = cons
         .iter()
-        .map(|c| c.map(|v| at(v).map_or(u32::MAX, |i| i as u32)))
+        .map(|c| c.map(|v| ends.partition_point(|&e| e < v) as u32))
         .collect();
     let mut next: Vec<(u32, u32)> = Vec::new();
     if cons.len() > CHAIN_SCAN_UP_TO {

@@ -140,9 +140,9 @@ struct Fan<'a> {
 
 /// The class of a triangle with far vertex `w` at seam edge `e0 e1` against the fan of
 /// the other mesh (arranged as `other`). `own` is the input triangle the classified
-/// triangle comes from. An edge of more than
-/// two faces (closed parts glued along it) goes to [`glued_class`]. `None` when the fan
-/// does not decide (a boundary edge of the other mesh).
+/// triangle comes from. An edge of more than two faces (closed parts glued along it) goes
+/// to [`glued_class`]. `None` when the fan does not decide (a boundary edge of the other
+/// mesh).
 fn local_class(
     own: &Own<'_>,
     (w, w_on): (&Point, Option<Feature>),
@@ -332,12 +332,7 @@ fn seam_votes(x: &CutMesh, y: &CutMesh) -> Vec<Vote> {
     let y_seam = y.seam;
     let (x, y) = (x.arranged, y.arranged);
     let patch = &topo.patch;
-    let seam_of_vertex: FxHashMap<u32, u32> = x
-        .seam_vertex
-        .iter()
-        .enumerate()
-        .map(|(s, &v)| (v, s as u32))
-        .collect();
+    let seam_of_vertex = SeamOf::new(x);
     // Each task's votes in one vector, and one vector of fan faces reused edge by edge.
     let votes: Vec<Vec<Vote>> = (0..topo.edges.len())
         .into_par_iter()
@@ -346,7 +341,9 @@ fn seam_votes(x: &CutMesh, y: &CutMesh) -> Vec<Vote> {
             || (Vec::new(), Vec::new()),
             |(mut votes, mut faces): (Vec<Vote>, Vec<FanFace>), e| {
                 let [u, v] = topo.edges[e];
-                let (su, sv) = (seam_of_vertex[&u], seam_of_vertex[&v]);
+                let (Some(su), Some(sv)) = (seam_of_vertex.get(u), seam_of_vertex.get(v)) else {
+                    unreachable!("a seam edge's ends are seam points");
+                };
                 let (yu, yv) = (y.seam_vertex[su as usize], y.seam_vertex[sv as usize]);
                 faces.clear();
                 if let Ok(ye) = ytopo.edges.binary_search(&[yu.min(yv), yu.max(yv)]) {
@@ -375,8 +372,8 @@ fn seam_votes(x: &CutMesh, y: &CutMesh) -> Vec<Vote> {
                     let w = &*x.point_ref(wv);
                     // Where `w` is a seam point: the feature of `y`'s input it lies on.
                     let w_on = y_seam
-                        .zip(seam_of_vertex.get(&wv))
-                        .map(|((labels, side), &s)| labels[s as usize].feature(side));
+                        .zip(seam_of_vertex.get(wv))
+                        .map(|((labels, side), s)| labels[s as usize].feature(side));
                     let own = Own {
                         corners: x_in.corners(x.parent[t] as usize),
                         parent: x.parent[t],
@@ -395,6 +392,48 @@ fn seam_votes(x: &CutMesh, y: &CutMesh) -> Vec<Vote> {
         .map(|(votes, _)| votes)
         .collect();
     votes.concat()
+}
+
+/// The seam point at each vertex of an arranged mesh that is one: by place for the added
+/// vertices (all seam points), by search among the few input vertices that are.
+struct SeamOf {
+    input_vertices: u32,
+    added: Vec<u32>,
+    inputs: Vec<(u32, u32)>,
+}
+
+impl SeamOf {
+    fn new(x: &Arranged) -> SeamOf {
+        let input_vertices = x.input_vertices as u32;
+        let mut added = vec![u32::MAX; x.added_points.len()];
+        let mut inputs = Vec::new();
+        for (s, &v) in (0..).zip(&x.seam_vertex) {
+            match v.checked_sub(input_vertices) {
+                Some(i) => added[i as usize] = s,
+                None => inputs.push((v, s)),
+            }
+        }
+        inputs.sort_unstable();
+        SeamOf {
+            input_vertices,
+            added,
+            inputs,
+        }
+    }
+
+    /// The seam point at vertex `v`, if any (the last of several at one input vertex).
+    fn get(&self, v: u32) -> Option<u32> {
+        match v.checked_sub(self.input_vertices) {
+            Some(i) => Some(self.added[i as usize]).filter(|&s| s != u32::MAX),
+            None => {
+                let end = self.inputs.partition_point(|&(u, _)| u <= v);
+                end.checked_sub(1)
+                    .map(|k| self.inputs[k])
+                    .filter(|&(u, _)| u == v)
+                    .map(|(_, s)| s)
+            }
+        }
+    }
 }
 
 /// What the seam decided ([`resolve_patches`]), and what is left to winding numbers.
