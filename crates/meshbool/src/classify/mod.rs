@@ -395,25 +395,26 @@ fn seam_votes(x: &CutMesh, y: &CutMesh) -> Vec<Vote> {
 }
 
 /// The seam point at each vertex of an arranged mesh that is one: by place for the added
-/// vertices (all seam points), by search among the few input vertices that are.
+/// vertices (all seam points), through a map for the input vertices that are (few in
+/// most booleans; every one where faces are shared).
 struct SeamOf {
     input_vertices: u32,
     added: Vec<u32>,
-    inputs: Vec<(u32, u32)>,
+    inputs: FxHashMap<u32, u32>,
 }
 
 impl SeamOf {
     fn new(x: &Arranged) -> SeamOf {
         let input_vertices = x.input_vertices as u32;
         let mut added = vec![u32::MAX; x.added_points.len()];
-        let mut inputs = Vec::new();
+        let mut inputs = FxHashMap::default();
         for (s, &v) in (0..).zip(&x.seam_vertex) {
             match v.checked_sub(input_vertices) {
                 Some(i) => added[i as usize] = s,
-                None => inputs.push((v, s)),
+                // (The last of several seam points at one input vertex.)
+                None => _ = inputs.insert(v, s),
             }
         }
-        inputs.sort_unstable();
         SeamOf {
             input_vertices,
             added,
@@ -421,17 +422,11 @@ impl SeamOf {
         }
     }
 
-    /// The seam point at vertex `v`, if any (the last of several at one input vertex).
+    /// The seam point at vertex `v`, if any.
     fn get(&self, v: u32) -> Option<u32> {
         match v.checked_sub(self.input_vertices) {
             Some(i) => Some(self.added[i as usize]).filter(|&s| s != u32::MAX),
-            None => {
-                let end = self.inputs.partition_point(|&(u, _)| u <= v);
-                end.checked_sub(1)
-                    .map(|k| self.inputs[k])
-                    .filter(|&(u, _)| u == v)
-                    .map(|(_, s)| s)
-            }
+            None => self.inputs.get(&v).copied(),
         }
     }
 }
