@@ -121,11 +121,7 @@ impl Arranged {
 
     /// The exact point of vertex `v`.
     pub fn point(&self, v: u32) -> Point {
-        let v = v as usize;
-        match v.checked_sub(self.input_vertices) {
-            Some(i) => self.added_points[i].clone(),
-            None => Point::Explicit(self.mesh.positions[v]),
-        }
+        self.point_ref(v).into_owned()
     }
 }
 

@@ -107,11 +107,11 @@ impl FanFace<'_> {
     }
 }
 
-/// The input triangle a classified triangle comes from: its corners, its id and the
-/// arrangement of its mesh (which knows its projection).
+/// The input triangle a classified triangle comes from: its id, its mesh and the
+/// arrangement of that mesh (which knows its projection).
 struct Own<'a> {
-    corners: [[f64; 3]; 3],
     parent: u32,
+    input: &'a Mesh,
     arranged: &'a Arranged,
 }
 
@@ -123,7 +123,7 @@ impl Own<'_> {
         match self.arranged.projection(self.parent) {
             Some((a, s)) if a == axis => s,
             _ => {
-                let [a, b, c] = &self.corners;
+                let [a, b, c] = &self.input.corners(self.parent as usize);
                 orient2d_inputs(a, b, c, axis, robust_safe(&[a, b, c]))
             }
         }
@@ -375,8 +375,8 @@ fn seam_votes(x: &CutMesh, y: &CutMesh) -> Vec<Vote> {
                         .zip(seam_of_vertex.get(wv))
                         .map(|((labels, side), s)| labels[s as usize].feature(side));
                     let own = Own {
-                        corners: x_in.corners(x.parent[t] as usize),
                         parent: x.parent[t],
+                        input: x_in,
                         arranged: x,
                     };
                     let near = x.mesh.positions[u as usize];
@@ -610,13 +610,14 @@ mod tests {
             let Some(shape) = Triangle::new(corners) else {
                 continue;
             };
+            let input = Mesh::new_unchecked(corners.to_vec(), vec![[0, 1, 2]]);
             let mut arranged = Arranged::default();
             if round % 4 != 0 {
-                arranged.projections = vec![(7, (shape.axis() as u8, shape.sign()))];
+                arranged.projections = vec![(0, (shape.axis() as u8, shape.sign()))];
             }
             let own = Own {
-                corners,
-                parent: 7,
+                parent: 0,
+                input: &input,
                 arranged: &arranged,
             };
             let e = |p: [f64; 3]| Point::Explicit(p);
