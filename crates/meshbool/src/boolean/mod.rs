@@ -28,7 +28,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::arrange::{arrange, Arranged, FailReason};
-use crate::classify::{classify, Class, Classified, CutMesh};
+use crate::classify::{classify_with, Class, Classified, CutMesh, Votes};
 use crate::edges::SeamTopology;
 pub use crate::intersect::Source;
 use crate::intersect::{intersect_with, Seam};
@@ -392,6 +392,12 @@ pub struct PipelineOptions<'p> {
     /// tree of its triangles near the other mesh. Each must be kept for the very mesh it
     /// is given with.
     pub kept: [Option<&'p Keeps>; 2],
+    /// Classify each patch by its first deciding seam vote against a closed other mesh
+    /// ([`Votes::FirstDeciding`]) instead of asking every vote ([`Votes::All`]): for
+    /// operands that are valid solids, checked or known to be clean, where all of a
+    /// patch's votes agree. Off (the default) for meshes that may not be (an operand
+    /// with problems taken as given, the parts of an operand being resolved).
+    pub first_votes: bool,
 }
 
 impl Default for PipelineOptions<'_> {
@@ -404,6 +410,7 @@ impl Default for PipelineOptions<'_> {
             keep_nonmanifold: false,
             cleanup: true,
             kept: [None, None],
+            first_votes: false,
         }
     }
 }
@@ -452,9 +459,13 @@ fn split_in_pool(a: &Mesh, b: &Mesh, opts: &PipelineOptions) -> Split {
         seam: Some((&seam.points, Source::B)),
     };
     opts.stage(Stage::Classify);
+    let votes = match opts.first_votes {
+        true => Votes::FirstDeciding,
+        false => Votes::All,
+    };
     let (class_a, class_b) = crate::par::join(
-        || classify(&oa, &ob, closed_b, opts.exact_winding_up_to),
-        || classify(&ob, &oa, closed_a, opts.exact_winding_up_to),
+        || classify_with(&oa, &ob, closed_b, opts.exact_winding_up_to, votes),
+        || classify_with(&ob, &oa, closed_a, opts.exact_winding_up_to, votes),
     );
     Split {
         seam,

@@ -18,6 +18,14 @@ fn split(a: &Mesh, b: &Mesh) -> Split {
     super::split(a, b, &PipelineOptions::default())
 }
 
+/// The default options but for [`PipelineOptions::first_votes`].
+fn first_votes() -> PipelineOptions<'static> {
+    PipelineOptions {
+        first_votes: true,
+        ..PipelineOptions::default()
+    }
+}
+
 /// Closed, manifold, consistently oriented (or empty).
 fn assert_closed(m: &Mesh, what: &str) {
     if m.triangles.is_empty() {
@@ -43,6 +51,13 @@ fn check(a: &Mesh, b: &Mesh, tol: f64) -> [f64; 4] {
     let r = ops.map(|op| {
         let r = boolean(a, b, op);
         assert!(r.failed.is_empty(), "{op:?}: {:?}", r.failed);
+        // Valid solids: each patch's first deciding vote is all its votes' answer.
+        let first = super::boolean(a, b, op, &first_votes());
+        assert_eq!(
+            (&first.mesh, &first.provenance),
+            (&r.mesh, &r.provenance),
+            "{op:?}: first deciding votes"
+        );
         assert_closed(&r.mesh, &format!("{op:?}"));
         vol(&r.mesh)
     });
@@ -400,6 +415,23 @@ fn progress_reports_every_stage_in_order() {
     assert_eq!(crate::measure::signed_volume(&r.mesh), 2.0 - 0.125);
 }
 
+/// A flat 10 x 10 grid at z = 0, and a vertical square in the plane y = 0.3 (facing +y),
+/// |x| <= 1, |z| <= 1, whose seam on the grid stops inside the grid's single patch.
+fn grid_and_square() -> (Mesh, Mesh) {
+    let grid = crate::shapes::heightfield([-5.0, -5.0], [5.0, 5.0], 20, 20, |_, _| 0.0);
+    let square = Mesh::new_unchecked(
+        vec![
+            [-1.0, 0.3, -1.0],
+            [1.0, 0.3, -1.0],
+            [1.0, 0.3, 1.0],
+            [-1.0, 0.3, 1.0],
+        ],
+        // Facing +y: (2 - 0) x (1 - 0) = (2, 0, 2) x (2, 0, 0) has y = 4 > 0.
+        vec![[0, 2, 1], [0, 3, 2]],
+    );
+    (grid, square)
+}
+
 #[test]
 fn seam_stopping_inside_a_patch_is_classified_by_winding_number() {
     // A: a flat 10 x 10 grid at z = 0. B: a vertical square in the plane y = 0.3 (facing
@@ -407,17 +439,7 @@ fn seam_stopping_inside_a_patch_is_classified_by_winding_number() {
     // stops inside A's single patch. For a flat B the winding number's sign is the side
     // of its plane, so every triangle of A is behind B (inside) exactly when y < 0.3 —
     // also far beyond the ends of the seam.
-    let a = crate::shapes::heightfield([-5.0, -5.0], [5.0, 5.0], 20, 20, |_, _| 0.0);
-    let b = Mesh::new_unchecked(
-        vec![
-            [-1.0, 0.3, -1.0],
-            [1.0, 0.3, -1.0],
-            [1.0, 0.3, 1.0],
-            [-1.0, 0.3, 1.0],
-        ],
-        vec![[0, 2, 1], [0, 3, 2]],
-    );
-    // B faces +y: (2 - 0) x (1 - 0) = (2, 0, 2) x (2, 0, 0) has y = 4 > 0.
+    let (a, b) = grid_and_square();
     let s = split(&a, &b);
     assert_eq!(s.class_a.patches, 1);
     assert_eq!(s.class_a.by_winding, 1);
@@ -581,5 +603,97 @@ fn large_booleans_are_the_same_on_any_number_of_threads() {
             assert_eq!(many.seam_vertices, one.seam_vertices, "{op:?} {threads}");
             assert_eq!(many.rounding_flips, one.rounding_flips, "{op:?} {threads}");
         }
+    }
+}
+
+/// Against a closed mesh a patch's first deciding seam vote is the answer of all its votes
+/// where the operands are valid: the classes of both meshes, and the patches left to
+/// winding numbers, are those of every vote asked, for solids crossing, sharing faces,
+/// touching along an edge, identical, and open surfaces against solids (whose own
+/// classification, against an open mesh, asks every vote either way, as where an open
+/// surface's seam stops inside a patch); on any number of threads for a large pair.
+#[test]
+fn first_deciding_votes_classify_as_every_vote() {
+    let cube = Mesh::unit_cube();
+    let sphere = uv_sphere([0.0; 3], 1.0, 24, 12);
+    let moved = rigid_motion(&sphere, [1.0, 2.0, 3.0], 0.7, [0.3, 0.1, 0.05]);
+    let grid = crate::shapes::heightfield([-2.0, -2.0], [2.0, 2.0], 12, 12, |x, y| 0.1 * x * y);
+    // An open square whose seam stops inside the flat grid's patch (votes disagree there).
+    let (flat, square) = grid_and_square();
+    let large = uv_sphere([0.0; 3], 1.0, 240, 150);
+    let large_moved = rigid_motion(&large, [1.0, 2.0, 3.0], 0.7, [0.3, 0.1, 0.05]);
+    let pairs = [
+        (&sphere, &moved, 1),
+        (&cube, &Mesh::cuboid([0.5, 0.0, 0.0], [1.5, 1.0, 1.0]), 1),
+        (&cube, &Mesh::cuboid([1.0, 1.0, 0.0], [2.0, 2.0, 1.0]), 1),
+        (&cube, &cube, 1),
+        (&sphere, &sphere, 1),
+        (&grid, &moved, 1),
+        (&moved, &grid, 1),
+        (&flat, &square, 1),
+        (&large, &large_moved, 3),
+    ];
+    let on = |threads: usize, a: &Mesh, b: &Mesh, opts: &PipelineOptions| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| super::split(a, b, opts))
+    };
+    let (mut coplanar, mut by_winding) = (0, 0);
+    for (k, (a, b, threads)) in pairs.into_iter().enumerate() {
+        let all = on(1, a, b, &PipelineOptions::default());
+        for threads in [1, threads] {
+            let first = on(threads, a, b, &first_votes());
+            for (f, e) in [
+                (&first.class_a, &all.class_a),
+                (&first.class_b, &all.class_b),
+            ] {
+                assert_eq!(f.class, e.class, "pair {k} on {threads} threads");
+                assert_eq!(f.by_winding, e.by_winding, "pair {k} on {threads} threads");
+            }
+        }
+        by_winding += all.class_a.by_winding + all.class_b.by_winding;
+        coplanar += [&all.class_a, &all.class_b]
+            .iter()
+            .flat_map(|c| &c.class)
+            .filter(|&&c| matches!(c, Class::CoplanarSame | Class::CoplanarOpposite))
+            .count();
+    }
+    assert!(coplanar > 300, "{coplanar}");
+    assert!(by_winding > 0, "{by_winding}");
+}
+
+/// Where the other mesh is closed but its parts cross (an operand taken as given), a
+/// patch's votes can disagree: all votes ask winding numbers there, the first deciding
+/// one answers alone. Two overlapping boxes given as one mesh, `[0, 2]^3` and `[1, 3]^3`,
+/// and a box whose bottom face at `z = 1.5` crosses both: the L-shaped piece of that face
+/// inside the first box only is bounded by the first box's seam (inside there) and the
+/// second's (outside there). A boolean on such an operand, forced through its checks,
+/// asks every vote.
+#[test]
+fn crossing_parts_of_a_closed_mesh_make_votes_disagree() {
+    let mut boxes = Mesh::cuboid([0.0; 3], [2.0; 3]);
+    boxes.append(&Mesh::cuboid([1.0; 3], [3.0; 3])).unwrap();
+    let tool = Mesh::cuboid([0.5, 0.5, 1.5], [2.5, 2.5, 4.0]);
+    let all = split(&tool, &boxes);
+    let first = super::split(&tool, &boxes, &first_votes());
+    assert!(all.class_a.by_winding > 0, "{}", all.class_a.by_winding);
+    assert_eq!(first.class_a.by_winding, 0);
+    assert_ne!(first.class_a.class, all.class_a.class);
+    let forced = crate::ops::BooleanOptions {
+        checks: crate::ops::Checks {
+            resolve: false,
+            force: true,
+            ..crate::ops::Checks::default()
+        },
+        ..crate::ops::BooleanOptions::default()
+    };
+    for op in Op::ALL {
+        let out = crate::ops::boolean(&tool, &boxes, op, &forced).unwrap();
+        assert!(out.operands[1].forced);
+        assert_eq!(out.mesh, boolean(&tool, &boxes, op).mesh, "{op:?}");
+        let by_first = super::boolean(&tool, &boxes, op, &first_votes()).mesh;
+        assert_ne!(out.mesh, by_first, "{op:?}");
     }
 }

@@ -10,7 +10,7 @@
 
 use std::borrow::Cow;
 use std::cell::OnceCell;
-use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
+use std::sync::atomic::{AtomicBool, AtomicU32, Ordering::Relaxed};
 
 use crate::par::Grain;
 use rayon::prelude::*;
@@ -294,16 +294,45 @@ pub struct CutMesh<'a> {
 /// hierarchical approximation (a measured crossover).
 pub const EXACT_WINDING_UP_TO: f64 = 2e7;
 
+/// How many of a patch's seam votes [`classify_with`] asks for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Votes {
+    /// Every use of every seam edge votes; a patch whose votes disagree (an open
+    /// surface's seam stopping inside it, or an operand taken as given whose parts
+    /// cross) keeps the triangles' own agreeing votes and asks winding numbers for the
+    /// rest.
+    All,
+    /// Against a closed other mesh, each patch takes the first vote that decides it, in
+    /// the order of the seam edges and their uses, and no other vote is asked: a patch
+    /// does not cross the other mesh's surface, so all its deciding votes agree where the
+    /// operands are valid solids (checked, or known to be clean). Against an open mesh
+    /// as [`Votes::All`]. Deterministic whatever the threads.
+    FirstDeciding,
+}
+
 /// Classifies the triangles of `x` against the other mesh `y` (both arranged along the same
 /// seam). `y_closed` picks the winding-number threshold (1/2 for closed, 0 for open);
 /// winding numbers are exact sums up to `exact_winding_up_to` triangle × query products
-/// ([`EXACT_WINDING_UP_TO`] by default).
+/// ([`EXACT_WINDING_UP_TO`] by default). Every seam vote is asked ([`Votes::All`]).
 pub fn classify(x: &CutMesh, y: &CutMesh, y_closed: bool, exact_winding_up_to: f64) -> Classified {
+    classify_with(x, y, y_closed, exact_winding_up_to, Votes::All)
+}
+
+/// [`classify`] asking the seam votes that `votes` says.
+pub fn classify_with(
+    x: &CutMesh,
+    y: &CutMesh,
+    y_closed: bool,
+    exact_winding_up_to: f64,
+    votes: Votes,
+) -> Classified {
     // Patches: components of the triangles joined across edges that are not seam edges,
     // numbered in the order of each patch's first triangle.
     let (patches, patch) = (x.topology.patches, &x.topology.patch);
-    let votes = seam_votes(x, y);
-    let resolved = resolve_patches(votes, patch, patches);
+    let resolved = match votes {
+        Votes::FirstDeciding if y_closed => first_votes(x, y),
+        _ => resolve_patches(seam_votes(x, y), patch, patches),
+    };
     let (answers, approximate_winding) = winding_fallback(
         &x.arranged.mesh,
         y.input,
@@ -325,73 +354,169 @@ pub fn classify(x: &CutMesh, y: &CutMesh, y_closed: bool, exact_winding_up_to: f
 /// from the other mesh's fan there (`None`: the fan does not decide).
 type Vote = (u32, u32, Option<Class>);
 
+/// Asks the votes at the seam edges of `x`: each from the other mesh's fan around the
+/// edge ([`local_class`]).
+struct Voter<'a> {
+    x: &'a CutMesh<'a>,
+    y: &'a CutMesh<'a>,
+    seam_of_vertex: SeamOf,
+}
+
+impl<'a> Voter<'a> {
+    fn new(x: &'a CutMesh<'a>, y: &'a CutMesh<'a>) -> Self {
+        Voter {
+            x,
+            y,
+            seam_of_vertex: SeamOf::new(x.arranged),
+        }
+    }
+
+    /// The votes of the uses of seam edge `e` that `wanted(k, patch)` asks for (`k`: the
+    /// use's place among the edge's uses), given to `out(k, vote)` in the uses' order.
+    /// `faces`: room for the fan, reused edge by edge. The fan is not built where no use
+    /// is wanted.
+    fn votes_at(
+        &self,
+        e: usize,
+        faces: &mut Vec<FanFace<'a>>,
+        wanted: impl Fn(usize, u32) -> bool,
+        mut out: impl FnMut(usize, Vote),
+    ) {
+        let (x_in, topo, y_in, ytopo) =
+            (self.x.input, self.x.topology, self.y.input, self.y.topology);
+        let (x, y) = (self.x.arranged, self.y.arranged);
+        let patch = &topo.patch;
+        let uses = topo.uses_of(e);
+        if !(0..)
+            .zip(uses)
+            .any(|(k, u)| wanted(k, patch[u.triangle as usize]))
+        {
+            return;
+        }
+        let seam_of_vertex = &self.seam_of_vertex;
+        let [u, v] = topo.edges[e];
+        let (Some(su), Some(sv)) = (seam_of_vertex.get(u), seam_of_vertex.get(v)) else {
+            unreachable!("a seam edge's ends are seam points");
+        };
+        let (yu, yv) = (y.seam_vertex[su as usize], y.seam_vertex[sv as usize]);
+        faces.clear();
+        if let Ok(ye) = ytopo.edges.binary_search(&[yu.min(yv), yu.max(yv)]) {
+            faces.extend(ytopo.uses_of(ye).iter().map(|use_| {
+                let tri = y.mesh.triangles[use_.triangle as usize];
+                let parent = y.parent[use_.triangle as usize];
+                FanFace {
+                    plane: y_in.corners(parent as usize),
+                    parent: (parent, y_in.triangles[parent as usize]),
+                    far: y.point_ref(tri[(use_.corner as usize + 2) % 3]),
+                    forward: tri[use_.corner as usize] == yu,
+                    projection: OnceCell::new(),
+                    far_side: OnceCell::new(),
+                }
+            }));
+        }
+        let fan = Fan {
+            faces,
+            convex: OnceCell::new(),
+        };
+        let (pu, pv) = (x.point_ref(u), x.point_ref(v));
+        let ends = [&*pu, &*pv];
+        for (k, use_) in uses.iter().enumerate() {
+            let t = use_.triangle as usize;
+            if !wanted(k, patch[t]) {
+                continue;
+            }
+            let wv = x.mesh.triangles[t][(use_.corner as usize + 2) % 3];
+            let w = &*x.point_ref(wv);
+            // Where `w` is a seam point: the feature of `y`'s input it lies on.
+            let w_on = self
+                .y
+                .seam
+                .zip(seam_of_vertex.get(wv))
+                .map(|((labels, side), s)| labels[s as usize].feature(side));
+            let own = Own {
+                parent: x.parent[t],
+                input: x_in,
+                arranged: x,
+            };
+            let near = x.mesh.positions[u as usize];
+            let c = local_class(&own, (w, w_on), ends, near, (&fan, y));
+            out(k, (patch[t], t as u32, c));
+        }
+    }
+}
+
 /// The votes of every use of every seam edge of `x`, each from the other mesh's fan around
 /// that edge ([`local_class`]), in the order of `x`'s seam edges.
 fn seam_votes(x: &CutMesh, y: &CutMesh) -> Vec<Vote> {
-    let (x_in, topo, y_in, ytopo) = (x.input, x.topology, y.input, y.topology);
-    let y_seam = y.seam;
-    let (x, y) = (x.arranged, y.arranged);
-    let patch = &topo.patch;
-    let seam_of_vertex = SeamOf::new(x);
+    let voter = Voter::new(x, y);
     // Each task's votes in one vector, and one vector of fan faces reused edge by edge.
-    let votes: Vec<Vec<Vote>> = (0..topo.edges.len())
+    let votes: Vec<Vec<Vote>> = (0..x.topology.edges.len())
         .into_par_iter()
         .grained()
         .fold(
             || (Vec::new(), Vec::new()),
             |(mut votes, mut faces): (Vec<Vote>, Vec<FanFace>), e| {
-                let [u, v] = topo.edges[e];
-                let (Some(su), Some(sv)) = (seam_of_vertex.get(u), seam_of_vertex.get(v)) else {
-                    unreachable!("a seam edge's ends are seam points");
-                };
-                let (yu, yv) = (y.seam_vertex[su as usize], y.seam_vertex[sv as usize]);
-                faces.clear();
-                if let Ok(ye) = ytopo.edges.binary_search(&[yu.min(yv), yu.max(yv)]) {
-                    faces.extend(ytopo.uses_of(ye).iter().map(|use_| {
-                        let tri = y.mesh.triangles[use_.triangle as usize];
-                        let parent = y.parent[use_.triangle as usize];
-                        FanFace {
-                            plane: y_in.corners(parent as usize),
-                            parent: (parent, y_in.triangles[parent as usize]),
-                            far: y.point_ref(tri[(use_.corner as usize + 2) % 3]),
-                            forward: tri[use_.corner as usize] == yu,
-                            projection: OnceCell::new(),
-                            far_side: OnceCell::new(),
-                        }
-                    }));
-                }
-                let fan = Fan {
-                    faces: &faces,
-                    convex: OnceCell::new(),
-                };
-                let (pu, pv) = (x.point_ref(u), x.point_ref(v));
-                let ends = [&*pu, &*pv];
-                votes.extend(topo.uses_of(e).iter().map(|use_| {
-                    let t = use_.triangle as usize;
-                    let wv = x.mesh.triangles[t][(use_.corner as usize + 2) % 3];
-                    let w = &*x.point_ref(wv);
-                    // Where `w` is a seam point: the feature of `y`'s input it lies on.
-                    let w_on = y_seam
-                        .zip(seam_of_vertex.get(wv))
-                        .map(|((labels, side), s)| labels[s as usize].feature(side));
-                    let own = Own {
-                        parent: x.parent[t],
-                        input: x_in,
-                        arranged: x,
-                    };
-                    let near = x.mesh.positions[u as usize];
-                    (
-                        patch[t],
-                        t as u32,
-                        local_class(&own, (w, w_on), ends, near, (&fan, y)),
-                    )
-                }));
+                voter.votes_at(e, &mut faces, |_, _| true, |_, vote| votes.push(vote));
                 (votes, faces)
             },
         )
         .map(|(votes, _)| votes)
         .collect();
     votes.concat()
+}
+
+/// The classes of [`Votes::FirstDeciding`]: each patch's first deciding vote in the order
+/// of `x`'s seam edges and their uses. A use is asked only while its patch has no deciding
+/// vote before it in that order: on one thread, each patch's votes up to its first
+/// deciding one; on several, a few more, and the first in the order still wins (kept as
+/// the smallest key of order and class per patch). A patch whose votes all fail to decide
+/// (a degenerate fan) asks winding numbers for its triangles, as [`resolve_patches`] does.
+fn first_votes(x: &CutMesh, y: &CutMesh) -> Resolved {
+    use std::sync::atomic::AtomicU64;
+    let topo = x.topology;
+    let (patches, patch) = (topo.patches, &topo.patch);
+    // Key of the vote of use `k` of edge `e`: edge, use (its place among the edge's uses;
+    // more than 2^30 uses of one edge share the last key), class below.
+    let key = |e: usize, k: usize| (e as u64) << 32 | (k.min((1 << 30) - 1) as u64) << 2;
+    const CLASSES: [Class; 4] = [
+        Class::Inside,
+        Class::Outside,
+        Class::CoplanarSame,
+        Class::CoplanarOpposite,
+    ];
+    let code = |c: Class| CLASSES.iter().position(|&d| d == c).unwrap_or(0) as u64;
+    let first: Vec<AtomicU64> = (0..patches).map(|_| AtomicU64::new(u64::MAX)).collect();
+    // Patches with a use that voted (possibly without deciding).
+    let voted: Vec<AtomicBool> = (0..patches).map(|_| AtomicBool::new(false)).collect();
+    let voter = Voter::new(x, y);
+    (0..topo.edges.len())
+        .into_par_iter()
+        .grained()
+        .for_each_init(Vec::new, |faces, e| {
+            voter.votes_at(
+                e,
+                faces,
+                |k, p| first[p as usize].load(Relaxed) > key(e, k),
+                |k, (p, _, c)| {
+                    voted[p as usize].store(true, Relaxed);
+                    if let Some(c) = c {
+                        first[p as usize].fetch_min(key(e, k) | code(c), Relaxed);
+                    }
+                },
+            );
+        });
+    let decided: Vec<Option<Option<Class>>> = first
+        .iter()
+        .zip(&voted)
+        .map(|(f, v)| match f.load(Relaxed) {
+            u64::MAX if v.load(Relaxed) => Some(None),
+            u64::MAX => None,
+            k => Some(Some(CLASSES[(k & 3) as usize])),
+        })
+        .collect();
+    // An undecided patch's votes were all asked, and none decided: no triangle there has
+    // its own answer.
+    resolved(decided, patch, patches, &FxHashMap::default())
 }
 
 /// The seam point at each vertex of an arranged mesh that is one: by place for the added
@@ -470,6 +595,18 @@ fn resolve_patches(votes: Vec<Vote>, patch: &[u32], patches: usize) -> Resolved 
         let v = own_vote.get(&t).copied();
         own_vote.insert(t, combine(v, c).flatten());
     }
+    resolved(decided, patch, patches, &own_vote)
+}
+
+/// What the patches' combined votes `decided` leave: each triangle's class where its
+/// patch, or its own vote (`own_vote`, for a patch whose votes disagree), decides it,
+/// and the triangles to ask winding numbers for.
+fn resolved(
+    decided: Vec<Option<Option<Class>>>,
+    patch: &[u32],
+    patches: usize,
+    own_vote: &FxHashMap<u32, Option<Class>>,
+) -> Resolved {
     // The per-triangle passes run side by side (they are this stage's serial part on
     // large meshes otherwise); those for patches left to winding numbers only where
     // there are such patches.

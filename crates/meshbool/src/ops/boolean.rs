@@ -233,6 +233,7 @@ pub fn boolean<'a>(
             cleanup: !opts.keep_seam_points,
             split_everywhere: a.glued() || b.glued(),
             kept: [Some(a.keeps()), Some(b.keeps())],
+            first_votes: a.clean() && b.clean(),
             ..opts.run.pipeline()
         };
         let mut r = crate::boolean::boolean(a.mesh(), b.mesh(), op, &pipeline);
@@ -399,6 +400,7 @@ pub fn boolean_many<'a>(
         let pipeline = PipelineOptions {
             keep_nonmanifold: opts.keep_nonmanifold,
             cleanup: !opts.keep_seam_points,
+            first_votes: operands.iter().all(|o| o.clean()),
             ..opts.run.pipeline()
         };
         let in_one = if opts.one_arrangement {

@@ -432,6 +432,14 @@ impl Operand {
         self.glued
     }
 
+    /// Whether no problem was taken as given ([`OperandReport::forced`]): the checked mesh
+    /// is valid as far as its checks tell (a skipped check takes it as clean), so that a
+    /// boolean may classify by first deciding votes
+    /// ([`crate::boolean::PipelineOptions::first_votes`]).
+    pub(crate) fn clean(&self) -> bool {
+        !self.report.forced
+    }
+
     /// Whether input triangle `t` was reversed at the door (orientation made consistent,
     /// an inside-out component).
     pub fn reversed(&self, t: u32) -> bool {

@@ -153,6 +153,7 @@ pub fn split<'a>(
     let run = |a: &Operand, b: &Operand| {
         let pipeline = PipelineOptions {
             kept: [Some(a.keeps()), Some(b.keeps())],
+            first_votes: a.clean() && b.clean(),
             ..opts.run.pipeline()
         };
         let s = crate::boolean::split(a.mesh(), b.mesh(), &pipeline);
