@@ -374,10 +374,17 @@ impl SeamPiece {
         on_seam: &[bool],
         mut join: impl FnMut(u32, u32),
     ) -> SeamPiece {
+        // Room for every seam edge here and its two uses (one piece of a serial scan: a
+        // few dozen; the pieces of a large mesh's ranges take what they find).
+        let room = if v0 == 0 && start.len() == mesh.positions.len() + 1 {
+            seam.len()
+        } else {
+            0
+        };
         let mut out = SeamPiece {
-            edges: Vec::new(),
-            offsets: Vec::new(),
-            uses: Vec::new(),
+            edges: Vec::with_capacity(room),
+            offsets: Vec::with_capacity(room + 1),
+            uses: Vec::with_capacity(2 * room),
             any: !half.is_empty(),
             closed: true,
         };
@@ -581,17 +588,24 @@ impl SeamTopology {
                 .collect();
             (pieces, roots.labels())
         };
+        let closed = pieces.iter().any(|p| p.any) && pieces.iter().all(|p| p.closed);
         let mut out = SeamTopology {
-            closed: pieces.iter().any(|p| p.any) && pieces.iter().all(|p| p.closed),
+            closed,
             patches,
             patch,
             ..SeamTopology::default()
         };
-        for p in pieces {
-            let base = out.uses.len() as u32;
-            out.edges.extend(p.edges);
-            out.offsets.extend(p.offsets.iter().map(|&o| o + base));
-            out.uses.extend(p.uses);
+        match <[SeamPiece; 1]>::try_from(pieces) {
+            // One piece (a serial scan): its arrays as they are.
+            Ok([p]) => (out.edges, out.offsets, out.uses) = (p.edges, p.offsets, p.uses),
+            Err(pieces) => {
+                for p in pieces {
+                    let base = out.uses.len() as u32;
+                    out.edges.extend(p.edges);
+                    out.offsets.extend(p.offsets.iter().map(|&o| o + base));
+                    out.uses.extend(p.uses);
+                }
+            }
         }
         out.offsets.push(out.uses.len() as u32);
         out

@@ -69,6 +69,11 @@ impl Local {
         local
     }
 
+    /// How many points its arrays hold room for.
+    pub(crate) fn room(&self) -> usize {
+        self.pts.capacity()
+    }
+
     /// [`Local::new`] in this one's memory: a triangulation per cut triangle, one after
     /// another, without allocating for each.
     pub(crate) fn reset(&mut self, corners: [[f64; 3]; 3], axis: usize, sign: Sign, points: usize) {

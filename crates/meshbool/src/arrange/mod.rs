@@ -139,8 +139,8 @@ pub fn arrange(mesh: &Mesh, seam: &Seam, side: Source) -> Arranged {
     let results: Vec<(u32, CutResult)> = cut
         .par_iter()
         .grained()
-        .map_init(Scratch::default, |s, &t| {
-            (t, cut_triangle(mesh, t, &points, &constraints, s))
+        .map_init(Lent::take, |s, &t| {
+            (t, cut_triangle(mesh, t, &points, &constraints, &mut s.0))
         })
         .collect();
     Arranged::assemble(points, seam_edges, reassemble(mesh, results))
@@ -155,6 +155,38 @@ pub(crate) struct Scratch {
     mine: Vec<(u32, Option<usize>)>,
     to_local: Vec<(u32, u32)>,
     ids: Vec<u32>,
+}
+
+/// A [`Scratch`] kept for the next task on a thread up to this many points (the room
+/// of its triangulation): a few hundred kilobytes a thread at most, while a triangle
+/// crossed by a fine mesh (thousands of points) frees its arrays.
+const KEEP_UP_TO: usize = 1024;
+
+thread_local! {
+    /// The scratch a thread's last arrangement task left ([`Lent`]).
+    static KEPT: std::cell::Cell<Option<Scratch>> = const { std::cell::Cell::new(None) };
+}
+
+/// A [`Scratch`] lent by the thread's kept one, given back to the thread that drops it: a
+/// boolean on small inputs, one arrangement task per mesh, finds its arrays already grown
+/// by the call before (their allocation and growth were a tenth of a two-cube boolean's
+/// arrangement).
+struct Lent(Scratch);
+
+impl Lent {
+    fn take() -> Lent {
+        Lent(KEPT.take().unwrap_or_default())
+    }
+}
+
+impl Drop for Lent {
+    fn drop(&mut self) {
+        let s = std::mem::take(&mut self.0);
+        if s.local.as_ref().is_none_or(|l| l.room() <= KEEP_UP_TO) {
+            // (A thread being torn down has no slot left: the scratch is dropped.)
+            let _ = KEPT.try_with(|k| k.set(Some(s)));
+        }
+    }
 }
 
 impl Arranged {

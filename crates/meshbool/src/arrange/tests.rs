@@ -395,3 +395,53 @@ fn the_chain_order_is_the_one_of_the_first_way() {
         "{moved} {scanned} {listed}"
     );
 }
+
+/// The scratch a thread keeps between arrangements ([`Lent`]) changes no result: a small
+/// pair arranged on a fresh thread, and again on that thread after a larger pair grew and
+/// left its scratch, gives the same meshes; a scratch grown beyond [`KEEP_UP_TO`] points
+/// (a triangle crossed by a fine sphere's equator) is not kept.
+#[test]
+fn a_kept_scratch_changes_no_arrangement() {
+    let small = (
+        Mesh::unit_cube(),
+        Mesh::cuboid([0.5, 0.25, -0.5], [1.5, 0.75, 0.5]),
+    );
+    let sphere = uv_sphere([0.0; 3], 1.0, 48, 24);
+    let large = (
+        sphere.clone(),
+        rigid_motion(&sphere, [1.0, 2.0, 3.0], 0.7, [0.3, 0.1, 0.05]),
+    );
+    let big_triangle = Mesh::new_unchecked(
+        vec![[-3.0, -3.0, 0.01], [6.0, -3.0, 0.02], [-3.0, 6.0, 0.03]],
+        vec![[0, 1, 2]],
+    );
+    let fine = (big_triangle, uv_sphere([0.0; 3], 1.0, 1200, 9));
+    let arranged = |(a, b): &(Mesh, Mesh)| {
+        let seam = intersect(a, b);
+        [(a, Source::A), (b, Source::B)].map(|(m, side)| arrange(m, &seam, side).mesh)
+    };
+    let kept_room = || {
+        KEPT.with(|k| {
+            let s = k.take();
+            let room = s.as_ref().map(|s| s.local.as_ref().map_or(0, |l| l.room()));
+            k.set(s);
+            room
+        })
+    };
+    std::thread::scope(|s| {
+        s.spawn(|| {
+            crate::par::serially(|| {
+                let fresh = arranged(&small);
+                assert!(kept_room().is_some_and(|r| r > 0));
+                let _ = arranged(&large);
+                let grown = kept_room().unwrap();
+                assert_eq!(arranged(&small), fresh);
+                assert!(kept_room().unwrap() >= grown);
+                let seam = intersect(&fine.0, &fine.1);
+                let triangle = arrange(&fine.0, &seam, Source::A).mesh;
+                assert!(triangle.triangles.len() > 2 * KEEP_UP_TO);
+                assert_eq!(kept_room(), None);
+            })
+        });
+    });
+}
