@@ -374,13 +374,10 @@ impl SeamPiece {
         on_seam: &[bool],
         mut join: impl FnMut(u32, u32),
     ) -> SeamPiece {
-        // Room for every seam edge here and its two uses (one piece of a serial scan: a
-        // few dozen; the pieces of a large mesh's ranges take what they find).
-        let room = if v0 == 0 && start.len() == mesh.positions.len() + 1 {
-            seam.len()
-        } else {
-            0
-        };
+        // Room for the seam edges whose lower vertex is in this range (`seam` is sorted)
+        // and their two uses each.
+        let v1 = v0 + (start.len() - 1) as u32;
+        let room = seam.partition_point(|e| e[0] < v1) - seam.partition_point(|e| e[0] < v0);
         let mut out = SeamPiece {
             edges: Vec::with_capacity(room),
             offsets: Vec::with_capacity(room + 1),
@@ -588,9 +585,8 @@ impl SeamTopology {
                 .collect();
             (pieces, roots.labels())
         };
-        let closed = pieces.iter().any(|p| p.any) && pieces.iter().all(|p| p.closed);
         let mut out = SeamTopology {
-            closed,
+            closed: pieces.iter().any(|p| p.any) && pieces.iter().all(|p| p.closed),
             patches,
             patch,
             ..SeamTopology::default()
