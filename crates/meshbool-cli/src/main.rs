@@ -138,3 +138,17 @@ fn closed_pipe(e: &anyhow::Error) -> bool {
             .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
     })
 }
+
+#[cfg(test)]
+mod tests {
+    /// Every command's definition is consistent (arguments named in conflicts and
+    /// requirements exist, no two share a flag): clap checks this only where debug
+    /// assertions are on, as in the tests' `checked` profile, and otherwise ignores what
+    /// it cannot resolve (a conflict with a misnamed argument was once silently not
+    /// enforced).
+    #[test]
+    fn every_command_definition_is_consistent() {
+        use clap::CommandFactory;
+        super::Cli::command().debug_assert();
+    }
+}

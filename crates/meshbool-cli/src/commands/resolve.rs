@@ -28,7 +28,8 @@ pub struct Args {
     /// For an open surface that folds over itself (terrain): keep its `upper` or `lower`
     /// envelope instead, the single-valued surface seen from above or below (exact; walls
     /// kept where it jumps from a sheet to the one under it; faced up).
-    #[arg(long, ignore_case = true, conflicts_with_all = ["rule", "keep_nonmanifold", "snap"],
+    // `tolerance` is the id of `--snap` (the field of the flattened `Snap`).
+    #[arg(long, ignore_case = true, conflicts_with_all = ["rule", "keep_nonmanifold", "tolerance"],
           value_parser = one_of::<Envelope>(Envelope::ALL.map(Envelope::name)))]
     envelope: Option<Envelope>,
     #[command(flatten)]
