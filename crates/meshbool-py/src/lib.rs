@@ -135,13 +135,21 @@ fn info(
     json(&InfoReport::new("", stats))
 }
 
-/// What a boolean found besides its mesh: the report is measured when asked for
-/// ([`Boolean::report`]), so that a call that only wants the mesh does not pay for it.
+/// What a boolean found besides its mesh: the report is measured and the provenance
+/// made into arrays when asked for ([`Boolean::report`], [`Boolean::provenance`]), so
+/// that a call that only wants the mesh does not pay for them.
 #[pyclass(module = "meshbool._native", frozen)]
 struct Boolean {
-    /// The output without its mesh and provenance (they went to numpy).
+    /// The output without its mesh (it went to numpy).
     out: ops::BooleanOutput,
 }
+
+/// A boolean's provenance as arrays: source (0 = A, 1 = B), triangle, flipped.
+type ProvenanceArrays<'py> = (
+    Bound<'py, PyArray1<u8>>,
+    Bound<'py, PyArray1<u32>>,
+    Bound<'py, PyArray1<bool>>,
+);
 
 #[pymethods]
 impl Boolean {
@@ -161,10 +169,21 @@ impl Boolean {
     fn assumed(&self) -> Vec<String> {
         self.out.assumed()
     }
+
+    /// The origin of each result triangle: its source (0 = A, 1 = B), its triangle there
+    /// and whether it was flipped.
+    fn provenance<'py>(&self, py: Python<'py>) -> ProvenanceArrays<'py> {
+        let p = &self.out.provenance;
+        (
+            PyArray1::from_iter(py, p.iter().map(|p| u8::from(p.source == Source::B))),
+            PyArray1::from_iter(py, p.iter().map(|p| p.triangle)),
+            PyArray1::from_iter(py, p.iter().map(|p| p.flipped)),
+        )
+    }
 }
 
-/// A boolean: the result's arrays, its provenance (source 0 = A / 1 = B, triangle,
-/// flipped) and what else it found ([`Boolean`]).
+/// A boolean: the result's arrays and what else it found, provenance included
+/// ([`Boolean`]).
 #[pyfunction]
 #[pyo3(signature = (av, af, bv, bf, op, force, self_check, resolve, orient, threads, keep_nonmanifold, snap=0.0, keep_seam_points=false))]
 #[allow(clippy::too_many_arguments, clippy::type_complexity)]
@@ -203,25 +222,15 @@ fn boolean<'py>(
 type BooleanResult<'py> = (
     Bound<'py, PyArray2<f64>>,
     Bound<'py, PyArray2<u32>>,
-    Bound<'py, PyArray1<u8>>,
-    Bound<'py, PyArray1<u32>>,
-    Bound<'py, PyArray1<bool>>,
     Boolean,
 );
 
-/// The result's arrays, its provenance as three arrays and the rest of the output.
+/// The result's arrays and the rest of the output (its provenance made into arrays only
+/// when asked for: three arrays were a tenth of a small boolean's time outside the
+/// library).
 fn boolean_result(py: Python<'_>, mut out: ops::BooleanOutput) -> PyResult<BooleanResult<'_>> {
-    let provenance = std::mem::take(&mut out.provenance);
-    let source = provenance.iter().map(|p| u8::from(p.source == Source::B));
-    let triangle = provenance.iter().map(|p| p.triangle);
-    let flipped = provenance.iter().map(|p| p.flipped);
-    let (source, triangle, flipped) = (
-        PyArray1::from_iter(py, source),
-        PyArray1::from_iter(py, triangle),
-        PyArray1::from_iter(py, flipped),
-    );
     let (v, f) = arrays(py, std::mem::take(&mut out.mesh))?;
-    Ok((v, f, source, triangle, flipped, Boolean { out }))
+    Ok((v, f, Boolean { out }))
 }
 
 /// A mesh welded and checked once, for many booleans ([`ops::Operand`]).

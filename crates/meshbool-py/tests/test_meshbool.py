@@ -117,6 +117,11 @@ def test_volume_identities_on_spheres():
     assert set(np.unique(p["source"])) == {0, 1}
     np.testing.assert_array_equal(p["flipped"], p["source"] == 1)
     assert p["triangle"][p["source"] == 0].max() < len(a[1])
+    # Made on first use, then kept; a mesh's provenance can be replaced.
+    assert d.provenance is p and p["source"].dtype == np.uint8
+    assert p["triangle"].dtype == np.uint32 and p["flipped"].dtype == np.bool_
+    d.provenance = {"triangle": p["triangle"]}
+    assert list(d.provenance) == ["triangle"]
 
 
 def test_kirra_terrain_minus_cylinder_split_and_pick(tmp_path):

@@ -121,7 +121,7 @@ class Mesh:
     for booleans, ``provenance``.
     """
 
-    __slots__ = ("vertices", "faces", "provenance", "_report", "_pending")
+    __slots__ = ("vertices", "faces", "_provenance", "_report", "_pending")
 
     def __init__(self, vertices: Any, faces: Any) -> None:
         v, f = _arrays(vertices, faces)
@@ -133,7 +133,7 @@ class Mesh:
             )
         self.vertices: np.ndarray = v
         self.faces: np.ndarray = f
-        self.provenance: Optional[dict] = None
+        self._provenance: Optional[dict] = None
         self._report: Optional[dict] = None
         self._pending: Any = None
 
@@ -143,8 +143,22 @@ class Mesh:
         m.vertices, m.faces = v, f
         m._report = json.loads(report) if report is not None else None
         m._pending = None
-        m.provenance = None
+        m._provenance = None
         return m
+
+    @property
+    def provenance(self) -> Optional[dict]:
+        """Where each triangle came from, as a dict of arrays (see the operation that made
+        the mesh; ``None`` for a mesh no operation made). A boolean's provenance is made
+        on first use."""
+        if self._provenance is None and self._pending is not None:
+            source, triangle, flipped = self._pending.provenance()
+            self._provenance = {"source": source, "triangle": triangle, "flipped": flipped}
+        return self._provenance
+
+    @provenance.setter
+    def provenance(self, value: Optional[dict]) -> None:
+        self._provenance = value
 
     @property
     def report(self) -> Optional[dict]:
@@ -300,24 +314,25 @@ def boolean(
     (a dict of arrays: ``source`` 0 for a / 1 for b, ``triangle`` in that input,
     ``flipped``).
     """
-    if isinstance(a, Operand) or isinstance(b, Operand):
-        flags = dict(force=force, self_check=self_check, resolve=resolve, orient=orient,
-                     threads=threads)
-        a = a if isinstance(a, Operand) else Operand(a, name="A", **flags)
-        b = b if isinstance(b, Operand) else Operand(b, name="B", **flags)
-        v, f, source, triangle, flipped, pending = _native.boolean_operands(
+    a_operand, b_operand = isinstance(a, Operand), isinstance(b, Operand)
+    if a_operand or b_operand:
+        if not (a_operand and b_operand):
+            flags = dict(force=force, self_check=self_check, resolve=resolve, orient=orient,
+                         threads=threads)
+            a = a if a_operand else Operand(a, name="A", **flags)
+            b = b if b_operand else Operand(b, name="B", **flags)
+        v, f, pending = _native.boolean_operands(
             a._native, b._native, op, threads, keep_nonmanifold, float(snap), keep_seam_points
         )
     else:
         av, af = _parts(a)
         bv, bf = _parts(b)
-        v, f, source, triangle, flipped, pending = _native.boolean(
+        v, f, pending = _native.boolean(
             av, af, bv, bf, op, force, self_check, resolve, orient, threads,
             keep_nonmanifold, float(snap), keep_seam_points,
         )
     out = Mesh._from(v, f)
     out._pending = pending
-    out.provenance = {"source": source, "triangle": triangle, "flipped": flipped}
     return out
 
 

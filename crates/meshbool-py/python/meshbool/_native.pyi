@@ -17,6 +17,7 @@ def info(v: F64, f: U32) -> str: ...
 class Boolean:
     def report(self, v: F64, f: U32) -> str: ...
     def assumed(self) -> List[str]: ...
+    def provenance(self) -> Tuple[npt.NDArray[np.uint8], U32, npt.NDArray[np.bool_]]: ...
 
 def boolean(
     av: F64,
@@ -31,7 +32,8 @@ def boolean(
     threads: Optional[int],
     keep_nonmanifold: bool,
     snap: float = 0.0,
-) -> Tuple[F64, U32, npt.NDArray[np.uint8], U32, npt.NDArray[np.bool_], Boolean]: ...
+    keep_seam_points: bool = False,
+) -> Tuple[F64, U32, Boolean]: ...
 
 class Operand:
     def __init__(
@@ -56,7 +58,7 @@ def boolean_operands(
     keep_nonmanifold: bool,
     snap: float = 0.0,
     keep_seam_points: bool = False,
-) -> Tuple[F64, U32, npt.NDArray[np.uint8], U32, npt.NDArray[np.bool_], Boolean]: ...
+) -> Tuple[F64, U32, Boolean]: ...
 
 def boolean_many(
     meshes: List[Tuple[F64, U32]],

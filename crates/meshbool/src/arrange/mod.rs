@@ -155,6 +155,7 @@ pub(crate) struct Scratch {
     mine: Vec<(u32, Option<usize>)>,
     to_local: Vec<(u32, u32)>,
     ids: Vec<u32>,
+    chains: Chains,
 }
 
 /// A [`Scratch`] kept for the next task on a thread up to this many points (the room
@@ -362,10 +363,13 @@ fn cut_triangles(
     cut
 }
 
-/// One cut triangle re-triangulated: its pieces (vertex ids of the arranged mesh), per
-/// piece whether rounding its seam points turns it over, and the triangle's projection;
-/// or why it failed.
-type CutResult = Result<(Vec<[u32; 3]>, Vec<bool>, Projection), local::Failed>;
+/// One cut triangle re-triangulated: its pieces (vertex ids of the arranged mesh), the
+/// pieces that rounding their seam points turns over (by their place among the pieces;
+/// almost always none), and the triangle's projection; or why it failed.
+type CutResult = Result<(Pieces, Vec<u32>, Projection), local::Failed>;
+
+/// A cut triangle's pieces, in place for the few of most (no allocation per triangle).
+type Pieces = smallvec::SmallVec<[[u32; 3]; 8]>;
 
 /// Re-triangulates input triangle `t` with the seam points on it (`points`) and its seam
 /// edges (`cons`) as constraints, then improves the shape of the pieces; and marks the
@@ -388,6 +392,7 @@ fn cut_triangle(
         mine,
         to_local,
         ids,
+        chains,
     } = scratch;
     mine.clear();
     if let Some(p) = points.on_face.get(&t) {
@@ -405,7 +410,7 @@ fn cut_triangle(
     // Nothing inside and only its own edges as seam edges (a face the other mesh shares):
     // the triangle is its own only piece, as the triangulation below would leave it.
     if mine.is_empty() && cons_t.iter().all(|c| c.iter().all(|v| tri.contains(v))) {
-        return Ok((vec![tri], vec![false], projection));
+        return Ok((smallvec::smallvec![tri], Vec::new(), projection));
     }
     let lt = match local {
         Some(lt) => {
@@ -420,7 +425,7 @@ fn cut_triangle(
     to_local.extend(tri.iter().enumerate().map(|(k, &v)| (v, k as u32)));
     ids.clear();
     ids.extend_from_slice(&tri);
-    chain_order(mine, cons_t);
+    chain_order(mine, cons_t, chains);
     for &(g, on_edge) in mine.iter() {
         // An input vertex here is one of the mesh's own lying on this triangle (the
         // self-arrangement); the rest are constructed seam points.
@@ -452,43 +457,55 @@ fn cut_triangle(
         lt.constrain(p, q)?;
     }
     lt.improve();
-    let pieces: Vec<[u32; 3]> = lt.tris.iter().map(|v| v.map(|l| ids[l as usize])).collect();
+    let pieces: Pieces = lt.tris.iter().map(|v| v.map(|l| ids[l as usize])).collect();
     let flipped = turned_by_rounding(&pieces, points, &shape);
     Ok((pieces, flipped, projection))
 }
 
 /// Orders a triangle's seam points along the chains its constraints form, so that each
 /// point is inserted next to the one before (the point location walk then takes a step or
-/// two instead of crossing the triangulation); points on no constraint go last.
-fn chain_order(mine: &mut [(u32, Option<usize>)], cons: &[[u32; 2]]) {
+/// two instead of crossing the triangulation); points on no constraint go last. `work`:
+/// arrays reused from one triangle to the next.
+fn chain_order(mine: &mut [(u32, Option<usize>)], cons: &[[u32; 2]], work: &mut Chains) {
     if mine.len() < 3 || cons.is_empty() {
         return;
     }
+    let Chains {
+        ends,
+        local,
+        next,
+        rank,
+        stack,
+        keyed,
+        sorted,
+    } = work;
     // The constraints' ends, numbered; each end's rank in a depth-first walk of the
     // graph of the constraints, a vertex's neighbours taken in the constraints' order:
     // found by scanning the constraints for the few of most triangles, by a list sorted
     // by end (stably) for many.
-    let mut ends: Vec<u32> = cons.iter().flatten().copied().collect();
+    ends.clear();
+    ends.extend(cons.iter().flatten().copied());
     ends.sort_unstable();
     ends.dedup();
-    let at = |v: u32| ends.binary_search(&v).ok();
     // (Every end is in the list: its place there is its number.)
-    let local: Vec<[u32; 2]> = cons
-        .iter()
-        .map(|c| c.map(|v| ends.partition_point(|&e| e < v) as u32))
-        .collect();
-    let mut next: Vec<(u32, u32)> = Vec::new();
+    local.clear();
+    local.extend(
+        cons.iter()
+            .map(|c| c.map(|v| ends.partition_point(|&e| e < v) as u32)),
+    );
+    next.clear();
     if cons.len() > CHAIN_SCAN_UP_TO {
         next.reserve(2 * cons.len());
-        for &[a, b] in &local {
+        for &[a, b] in local.iter() {
             next.extend([(a, b), (b, a)]);
         }
         next.sort_by_key(|&(v, _)| v);
     }
-    let mut rank = vec![u32::MAX; ends.len()];
+    rank.clear();
+    rank.resize(ends.len(), u32::MAX);
     let mut ranked = 0;
-    let mut stack = Vec::with_capacity(ends.len());
-    for &[a, _] in &local {
+    stack.clear();
+    for &[a, _] in local.iter() {
         stack.push(a);
         while let Some(v) = stack.pop() {
             if rank[v as usize] != u32::MAX {
@@ -498,7 +515,7 @@ fn chain_order(mine: &mut [(u32, Option<usize>)], cons: &[[u32; 2]]) {
             ranked += 1;
             let unranked = |w: u32| rank[w as usize] == u32::MAX;
             if next.is_empty() {
-                for &[x, y] in &local {
+                for &[x, y] in local.iter() {
                     if x == v && unranked(y) {
                         stack.push(y);
                     }
@@ -519,14 +536,31 @@ fn chain_order(mine: &mut [(u32, Option<usize>)], cons: &[[u32; 2]]) {
         }
     }
     // A stable sort by rank: each point's rank found once, ties kept in order.
-    let mut keyed: Vec<(u32, u32)> = mine
-        .iter()
-        .zip(0..)
-        .map(|(&(g, _), k)| (at(g).map_or(u32::MAX, |i| rank[i]), k))
-        .collect();
+    let at = |v: u32| ends.binary_search(&v).ok();
+    keyed.clear();
+    keyed.extend(
+        mine.iter()
+            .zip(0..)
+            .map(|(&(g, _), k)| (at(g).map_or(u32::MAX, |i| rank[i]), k)),
+    );
     keyed.sort_unstable();
-    let sorted: Vec<(u32, Option<usize>)> = keyed.iter().map(|&(_, k)| mine[k as usize]).collect();
-    mine.copy_from_slice(&sorted);
+    sorted.clear();
+    sorted.extend(keyed.iter().map(|&(_, k)| mine[k as usize]));
+    mine.copy_from_slice(sorted);
+}
+
+/// The arrays of [`chain_order`], kept in a [`Scratch`]: the constraints' ends, the
+/// constraints by end number, the ends' neighbours (many constraints), ranks, the walk's
+/// stack, the points by rank and in their new order.
+#[derive(Default)]
+pub(crate) struct Chains {
+    ends: Vec<u32>,
+    local: Vec<[u32; 2]>,
+    next: Vec<(u32, u32)>,
+    rank: Vec<u32>,
+    stack: Vec<u32>,
+    keyed: Vec<(u32, u32)>,
+    sorted: Vec<(u32, Option<usize>)>,
 }
 
 /// Up to this many constraints, [`chain_order`] finds a vertex's neighbours by scanning
@@ -574,25 +608,27 @@ fn chain_order_reference(mine: &mut [(u32, Option<usize>)], cons: &[[u32; 2]]) {
     mine.sort_by_key(|&(g, _)| at(g).map_or(u32::MAX, |i| rank[i]));
 }
 
-/// Per piece of `parent`, whether it holds a seam point and, with the seam points rounded
-/// to their `f64` coordinates, no longer faces like `parent` (exact test on the rounded
-/// coordinates). A piece whose seam points all have `f64` coordinates (input vertices of
-/// the other mesh) is as the triangulation made it, facing like `parent`.
-fn turned_by_rounding(pieces: &[[u32; 3]], points: &SeamPoints, parent: &Triangle) -> Vec<bool> {
+/// The pieces of `parent` (their places in `pieces`) that hold a seam point and, with the
+/// seam points rounded to their `f64` coordinates, no longer face like `parent` (exact
+/// test on the rounded coordinates). A piece whose seam points all have `f64` coordinates
+/// (input vertices of the other mesh) is as the triangulation made it, facing like
+/// `parent`.
+fn turned_by_rounding(pieces: &[[u32; 3]], points: &SeamPoints, parent: &Triangle) -> Vec<u32> {
     let rounded = |v: u32| {
         (v as usize)
             .checked_sub(points.input_vertices)
             .is_some_and(|i| !matches!(points.added[i], Point::Explicit(_)))
     };
-    pieces
-        .iter()
-        .map(|p| {
+    (0..)
+        .zip(pieces)
+        .filter(|(_, p)| {
             p.iter().any(|&v| rounded(v)) && {
                 let [a, b, c] = p.map(|v| points.positions[v as usize]);
                 let safe = robust_safe(&[&a, &b, &c]);
                 orient2d_inputs(&a, &b, &c, parent.axis(), safe) != parent.sign()
             }
         })
+        .map(|(i, _)| i)
         .collect()
 }
 
@@ -673,11 +709,7 @@ fn reassemble(mesh: &Mesh, results: Vec<(u32, CutResult)>) -> Reassembled {
                 at += copy(tris, par, next, t, at);
                 match r {
                     Ok((sub, flipped, _)) => {
-                        for (i, &f) in flipped.iter().enumerate() {
-                            if f {
-                                flips.push((firsts[k] + at + i) as u32);
-                            }
-                        }
+                        flips.extend(flipped.iter().map(|&i| (firsts[k] + at) as u32 + i));
                         tris[at..at + sub.len()].copy_from_slice(sub);
                         par[at..at + sub.len()].fill(t as u32);
                         at += sub.len();

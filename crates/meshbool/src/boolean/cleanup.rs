@@ -89,6 +89,20 @@ struct Work<'a> {
     labels: Option<Vec<u32>>,
 }
 
+/// What [`Work::plan`] finds: a vertex's neighbours, and those to try moving it onto.
+type Plan = (Ids, Option<Ids>);
+
+/// What a seam point's first star says ([`Work::first`]).
+enum First {
+    /// Not looked at (a split's groups, a star not known whole), or looked at already.
+    Unknown,
+    /// [`Work::remove`] fails whatever its neighbours' stars are: the star rules it out
+    /// and no neighbour lies at its position.
+    RuledOut,
+    /// [`Work::plan`]'s answer, for [`Work::remove`] to start from.
+    Plan(Plan),
+}
+
 /// A closed fan of triangles around a vertex: its neighbours (sorted), and for each the
 /// triangle whose edge runs out of the vertex to it and the one whose edge runs in.
 struct ClosedFan {
@@ -226,8 +240,6 @@ impl Work<'_> {
         })
     }
 
-    /// Tries to remove seam vertex `p`; returns the vertex it went onto and `p`'s
-    /// neighbours before.
     /// The triangles `star` around `p` as a closed fan: every neighbour starts exactly
     /// one triangle's edge out of `p` and ends exactly one; `None` otherwise.
     fn closed_fan(&self, p: u32, star: &[u32]) -> Option<ClosedFan> {
@@ -329,7 +341,10 @@ impl Work<'_> {
         None
     }
 
-    fn remove(&mut self, p: u32) -> Option<(u32, Ids)> {
+    /// Tries to remove seam vertex `p`; returns the vertex it went onto and `p`'s
+    /// neighbours before. `first`: what [`Work::plan`] said of `p`'s star, where that star
+    /// has not changed since.
+    fn remove(&mut self, p: u32, first: Option<Plan>) -> Option<(u32, Ids)> {
         if self.dead_vertex[p as usize] || !self.complete(p) {
             return None;
         }
@@ -337,7 +352,11 @@ impl Work<'_> {
             return self.remove_across_sheets(p);
         }
         let star = self.star(p);
-        let (neighbours, targets) = self.plan(p, &star)?;
+        debug_assert!(first.is_none() || first == self.plan(p, &star));
+        let (neighbours, targets) = match first {
+            Some(plan) => plan,
+            None => self.plan(p, &star)?,
+        };
         let position = |v: u32| self.positions[v as usize];
         // Zero-length edges first: the same position, nothing to check but the link.
         for &q in &neighbours {
@@ -360,7 +379,7 @@ impl Work<'_> {
     /// What `p`'s star alone says of removing `p` (reading, not changing anything): `None`
     /// where the star is no closed fan; else `p`'s neighbours, and the neighbours to try
     /// moving `p` onto (after any at `p`'s position), `None` where the star rules that out.
-    fn plan(&self, p: u32, star: &[u32]) -> Option<(Ids, Option<Ids>)> {
+    fn plan(&self, p: u32, star: &[u32]) -> Option<Plan> {
         let ClosedFan {
             neighbours,
             out,
@@ -392,19 +411,22 @@ impl Work<'_> {
         Some((neighbours, targets))
     }
 
-    /// Whether [`Work::remove`] of the boolean's seam point `p` fails whatever its
-    /// neighbours' stars are: its own star rules it out and no neighbour lies at its
-    /// position. That holds until `p`'s star changes (a removal next to it).
-    fn ruled_out(&self, p: u32) -> bool {
+    /// What the boolean's seam point `p`'s first star says of removing it. Both answers
+    /// hold until `p`'s star changes (a removal next to it).
+    fn first(&self, p: u32) -> First {
         if self.labels.is_some() || !self.complete(p) {
-            return false;
+            return First::Unknown;
         }
         match self.plan(p, &self.star(p)) {
-            None => true,
-            Some((neighbours, None)) => neighbours
-                .iter()
-                .all(|&q| self.positions[q as usize] != self.positions[p as usize]),
-            Some(_) => false,
+            None => First::RuledOut,
+            Some((neighbours, None))
+                if neighbours
+                    .iter()
+                    .all(|&q| self.positions[q as usize] != self.positions[p as usize]) =>
+            {
+                First::RuledOut
+            }
+            Some(plan) => First::Plan(plan),
         }
     }
 
@@ -575,20 +597,21 @@ fn clean_up_labelled(
     };
     // Seam points, then again those next to a removed one (its removal can make theirs
     // possible), until nothing changes.
-    // Those whose own star rules them out are found side by side first, and skipped
-    // while their stars stay as they were (the same outcome, the same order).
+    // What each one's own star says is found side by side first and used while its
+    // star stays as it was: those it rules out are skipped, the others start from it
+    // (the same outcome, the same order).
     let mut queue: Vec<u32> = added.iter().rev().copied().collect();
     let mut queued = w.seam.clone();
-    let mut ruled_out = vec![false; nv];
-    for (&p, out) in added.iter().zip(
-        added
-            .par_iter()
-            .grained()
-            .map(|&p| w.ruled_out(p))
-            .collect::<Vec<_>>(),
-    ) {
-        ruled_out[p as usize] = out;
+    let mut firsts: Vec<First> = added.par_iter().grained().map(|&p| w.first(p)).collect();
+    // Per vertex: its place in `firsts` while its star is the first one.
+    let mut first_of = vec![u32::MAX; nv];
+    for (i, &p) in added.iter().enumerate() {
+        first_of[p as usize] = i as u32;
     }
+    let ruled_out = |firsts: &[First], first_of: &[u32], p: u32| {
+        let i = first_of[p as usize];
+        i != u32::MAX && matches!(firsts[i as usize], First::RuledOut)
+    };
     // Checked in debug builds and the library's tests: a point is skipped only with the
     // star it was ruled out with.
     let check = cfg!(any(test, debug_assertions));
@@ -597,21 +620,29 @@ fn clean_up_labelled(
     };
     let first_stars: FxHashMap<u32, Vec<[u32; 3]>> = added
         .iter()
-        .filter(|&&p| check && ruled_out[p as usize])
+        .filter(|&&p| check && ruled_out(&firsts, &first_of, p))
         .map(|&p| (p, star_of(&w, p)))
         .collect();
     while let Some(p) = queue.pop() {
         queued[p as usize] = false;
-        if ruled_out[p as usize] {
+        if ruled_out(&firsts, &first_of, p) {
             assert!(
                 !check || star_of(&w, p) == first_stars[&p],
                 "star of {p} changed"
             );
             continue;
         }
-        if let Some((q, neighbours)) = w.remove(p) {
+        // A plan is used once: `p` comes back only when its star changes.
+        let plan = match first_of[p as usize] {
+            u32::MAX => None,
+            i => match std::mem::replace(&mut firsts[i as usize], First::Unknown) {
+                First::Plan(plan) => Some(plan),
+                _ => None,
+            },
+        };
+        if let Some((q, neighbours)) = w.remove(p, plan) {
             for x in neighbours.into_iter().chain([q]) {
-                ruled_out[x as usize] = false;
+                first_of[x as usize] = u32::MAX;
                 if w.seam[x as usize] && !w.dead_vertex[x as usize] && !queued[x as usize] {
                     queued[x as usize] = true;
                     queue.push(x);

@@ -133,10 +133,14 @@ pub(crate) fn split_at(
     (mesh, report, copied)
 }
 
+/// A list of a vertex's corners or edge uses, in place up to a typical valence: no
+/// allocation for most vertices (a boolean looks at every seam vertex).
+type Around<T> = smallvec::SmallVec<[T; 16]>;
+
 /// The fans of one vertex: `fan[c]` for each of its corners (0 for the fan holding its
 /// first corner, then in order of first corners), their number, and the split edges at it.
 struct Fans {
-    fan: Vec<u32>,
+    fan: Around<u32>,
     count: u32,
     split_edges: usize,
     unpaired: usize,
@@ -154,7 +158,7 @@ fn fans_of(
     point: impl Fn(u32) -> Point,
 ) -> Fans {
     // The uses of each edge at v: (other end, corner, direction: true when v -> other).
-    let mut uses: Vec<(u32, u32, bool)> = Vec::with_capacity(2 * cs.len());
+    let mut uses: Around<(u32, u32, bool)> = Around::with_capacity(2 * cs.len());
     for (c, &(t, k)) in cs.iter().enumerate() {
         let tri = mesh.triangles[t as usize];
         let (next, prev) = (tri[(k as usize + 1) % 3], tri[(k as usize + 2) % 3]);
@@ -166,7 +170,7 @@ fn fans_of(
         }
     }
     uses.sort_unstable();
-    let mut parent: Vec<u32> = (0..cs.len() as u32).collect();
+    let mut parent: Around<u32> = (0..cs.len() as u32).collect();
     let mut join = |a: u32, b: u32| {
         let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
         parent[ra.max(rb) as usize] = ra.min(rb);
@@ -188,7 +192,7 @@ fn fans_of(
             }
         }
     }
-    let mut fan = vec![u32::MAX; cs.len()];
+    let mut fan: Around<u32> = smallvec::smallvec![u32::MAX; cs.len()];
     let mut count = 0;
     for c in 0..cs.len() {
         let r = root(&mut parent, c as u32) as usize;
