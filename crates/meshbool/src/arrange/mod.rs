@@ -442,15 +442,31 @@ fn cut_triangle(
         }
         to_local.push((g, l));
     }
-    to_local.sort_by_key(|&(g, _)| g);
+    // The few of most triangles scanned from the end; many sorted (stably) and searched.
+    let few = to_local.len() <= LOCAL_SCAN_UP_TO;
+    if !few {
+        to_local.sort_by_key(|&(g, _)| g);
+    }
     let local_of = |g: u32| {
+        if few {
+            return to_local
+                .iter()
+                .rev()
+                .find(|&&(h, _)| h == g)
+                .map(|&(_, l)| l);
+        }
         let end = to_local.partition_point(|&(h, _)| h <= g);
         to_local[..end]
             .last()
             .filter(|&&(h, _)| h == g)
             .map(|&(_, l)| l)
     };
-    for c in cons_t {
+    for (i, c) in cons_t.iter().enumerate() {
+        // A seam segment is listed once for each pair of triangles it lies in: inserted
+        // again, it would find itself an edge already (checked among the few).
+        if few && i < LOCAL_SCAN_UP_TO && cons_t[..i].iter().any(|d| d == c || [d[1], d[0]] == *c) {
+            continue;
+        }
         let (Some(p), Some(q)) = (local_of(c[0]), local_of(c[1])) else {
             return Err(local::Failed(FailReason::ConstraintEndOutside));
         };
@@ -488,11 +504,15 @@ fn chain_order(mine: &mut [(u32, Option<usize>)], cons: &[[u32; 2]], work: &mut 
     ends.sort_unstable();
     ends.dedup();
     // (Every end is in the list: its place there is its number.)
+    let number = |v: u32| {
+        if ends.len() <= CHAIN_SCAN_UP_TO {
+            ends.iter().take_while(|&&e| e < v).count() as u32
+        } else {
+            ends.partition_point(|&e| e < v) as u32
+        }
+    };
     local.clear();
-    local.extend(
-        cons.iter()
-            .map(|c| c.map(|v| ends.partition_point(|&e| e < v) as u32)),
-    );
+    local.extend(cons.iter().map(|c| c.map(number)));
     next.clear();
     if cons.len() > CHAIN_SCAN_UP_TO {
         next.reserve(2 * cons.len());
@@ -562,6 +582,11 @@ pub(crate) struct Chains {
     keyed: Vec<(u32, u32)>,
     sorted: Vec<(u32, Option<usize>)>,
 }
+
+/// Up to this many vertices (corners and seam points), [`cut_triangle`] finds a mesh
+/// vertex's local vertex by scanning the pairs (cheaper than sorting them for a
+/// triangle's few).
+const LOCAL_SCAN_UP_TO: usize = 16;
 
 /// Up to this many constraints, [`chain_order`] finds a vertex's neighbours by scanning
 /// them all (cheaper than sorting a list for a triangle's few).

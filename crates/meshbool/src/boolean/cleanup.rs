@@ -180,12 +180,13 @@ impl Work<'_> {
 
     /// Whether collapsing `p` onto `q` keeps the mesh manifold: `q`'s star is known,
     /// exactly two triangles hold the edge, and the ends share no other neighbour.
-    fn link_ok(&self, p: u32, q: u32, star_p: &[u32]) -> bool {
-        self.complete(q) && self.link_ok_with(p, q, star_p, &self.star(q))
+    /// `np`: `p`'s neighbours in `star_p` (sorted).
+    fn link_ok(&self, p: u32, q: u32, star_p: &[u32], np: &[u32]) -> bool {
+        self.complete(q) && self.link_ok_with(p, q, star_p, np, &self.star(q))
     }
 
     /// [`Work::link_ok`] with `q`'s star given (`q`'s star known).
-    fn link_ok_with(&self, p: u32, q: u32, star_p: &[u32], star_q: &[u32]) -> bool {
+    fn link_ok_with(&self, p: u32, q: u32, star_p: &[u32], np: &[u32], star_q: &[u32]) -> bool {
         if !self.complete(q) {
             return false;
         }
@@ -196,8 +197,8 @@ impl Work<'_> {
         let (Some(e), Some(f), None) = (on_edge.next(), on_edge.next(), on_edge.next()) else {
             return false;
         };
-        let (np, nq) = (self.neighbours(star_p, p), self.neighbours(star_q, q));
-        let shared = common(&np, &nq).len();
+        let nq = self.neighbours(star_q, q);
+        let shared = np.iter().filter(|x| nq.binary_search(x).is_ok()).count();
         let far = |t: u32| {
             let tri = self.triangles[t as usize];
             tri.into_iter().find(|&x| x != p && x != q).unwrap_or(p)
@@ -249,8 +250,11 @@ impl Work<'_> {
             let i = tri.iter().position(|&v| v == p)?;
             fan.push((tri[(i + 1) % 3], tri[(i + 2) % 3], t));
         }
-        let neighbours = self.neighbours(star, p);
-        if neighbours.len() != fan.len() {
+        // Closed: the edges' far ends `next` are distinct and are the ends `prev` (each
+        // once), so they are the neighbours: sorted, they are the sorted neighbours.
+        let mut neighbours: Ids = fan.iter().map(|&(next, _, _)| next).collect();
+        neighbours.sort_unstable();
+        if neighbours.windows(2).any(|w| w[0] == w[1]) || neighbours.binary_search(&p).is_ok() {
             return None;
         }
         let mut out: Ids = smallvec::smallvec![u32::MAX; neighbours.len()];
@@ -260,7 +264,7 @@ impl Work<'_> {
                 neighbours.binary_search(&next).ok()?,
                 neighbours.binary_search(&prev).ok()?,
             );
-            if out[i] != u32::MAX || into[j] != u32::MAX {
+            if into[j] != u32::MAX {
                 return None;
             }
             out[i] = t;
@@ -312,7 +316,7 @@ impl Work<'_> {
         let link = |w: &Self, q: u32| {
             (0..2).all(|s| {
                 let star_q: Ids = w.star(q).into_iter().filter(|&t| w.sheet(t) == s).collect();
-                w.link_ok_with(p, q, &sides[s], &star_q)
+                w.link_ok_with(p, q, &sides[s], &fans[s].neighbours, &star_q)
             })
         };
         let position = |v: u32| self.positions[v as usize];
@@ -360,14 +364,14 @@ impl Work<'_> {
         let position = |v: u32| self.positions[v as usize];
         // Zero-length edges first: the same position, nothing to check but the link.
         for &q in &neighbours {
-            if position(q) == position(p) && self.link_ok(p, q, &star) {
+            if position(q) == position(p) && self.link_ok(p, q, &star, &neighbours) {
                 self.collapse(p, q, &star);
                 self.report.zero_length_edges += 1;
                 return Some((q, neighbours));
             }
         }
         for q in targets.unwrap_or_default() {
-            if self.link_ok(p, q, &star) && self.keeps_facing(p, q, &star) {
+            if self.link_ok(p, q, &star, &neighbours) && self.keeps_facing(p, q, &star) {
                 self.collapse(p, q, &star);
                 self.report.removed_points += 1;
                 return Some((q, neighbours));

@@ -13,7 +13,7 @@ use std::cmp::Ordering;
 #[cfg(test)]
 use crate::kernel::{cmp_coord_prepared, same_point_prepared};
 use crate::kernel::{
-    longest_axis, orient2d_inputs, orient2d_prepared, orient3d_explicit, orient3d_sides,
+    longest_axis, orient2d_inputs, orient2d_prepared, orient3d_inputs, orient3d_sides,
     planes_line_axis, robust_safe, Point, Prepared, Sign, Triangle,
 };
 
@@ -135,7 +135,7 @@ impl Tri {
     /// the three orientations).
     fn locate_prepared(&self, x: &Prepared) -> Option<Feature> {
         if let Some(p) = x.explicit() {
-            return self.locate_corner(&p);
+            return self.locate_corner(&p, robust_safe(&[&p]));
         }
         let c = self.corners().map(|p| Prepared::new(Point::Explicit(p)));
         self.locate_by(std::array::from_fn(|k| {
@@ -144,9 +144,10 @@ impl Tri {
     }
 
     /// [`Tri::locate`] of an input point (a corner of another triangle, on this one's
-    /// plane): orientations of input points.
-    fn locate_corner(&self, p: &[f64; 3]) -> Option<Feature> {
-        let (c, safe) = (self.corners(), self.tri.robust_safe() && robust_safe(&[p]));
+    /// plane): orientations of input points. `p_safe`: `p` is in the range of the
+    /// fast predicates ([`robust_safe`]; known from its triangle).
+    fn locate_corner(&self, p: &[f64; 3], p_safe: bool) -> Option<Feature> {
+        let (c, safe) = (self.corners(), self.tri.robust_safe() && p_safe);
         self.locate_by(std::array::from_fn(|k| {
             orient2d_inputs(&c[k], &c[(k + 1) % 3], p, self.axis(), safe)
         }))
@@ -156,10 +157,17 @@ impl Tri {
     /// `p` strictly on side `side` of it and `q` strictly on the other, from input points
     /// alone: the point lies on the inner side of edge `k` exactly when the tetrahedron
     /// `k, k + 1, q, p` is oriented as `side` says (three `orient3d`, no construction).
-    fn locate_crossing(&self, p: &[f64; 3], q: &[f64; 3], side: Sign) -> Option<Feature> {
-        let c = self.corners();
+    /// `pq_safe`: `p` and `q` are in the range of the fast predicates ([`robust_safe`]).
+    fn locate_crossing(
+        &self,
+        p: &[f64; 3],
+        q: &[f64; 3],
+        side: Sign,
+        pq_safe: bool,
+    ) -> Option<Feature> {
+        let (c, safe) = (self.corners(), self.tri.robust_safe() && pq_safe);
         self.locate_inside(std::array::from_fn(|k| {
-            orient3d_explicit(&c[k], &c[(k + 1) % 3], q, p).times(side)
+            orient3d_inputs(&c[k], &c[(k + 1) % 3], q, p, safe).times(side)
         }))
     }
 
@@ -226,7 +234,7 @@ impl OnPlane {
     /// contains the point.
     fn locate_in(&self, t: &Tri) -> Option<Feature> {
         match &self.crossing {
-            Some((p, q, side)) => t.locate_crossing(p, q, *side),
+            Some((p, q, side)) => t.locate_crossing(p, q, *side, robust_safe(&[p, q])),
             None => t.locate_prepared(&self.point),
         }
     }
@@ -446,7 +454,7 @@ pub(super) fn touching(a: &Tri, b: &Tri) -> Option<Option<Label>> {
                 return Some((own, Feature::Vertex(s.v[at])));
             }
             let within = (0..3).all(|j| x[j] >= q[j].min(r[j]) && x[j] <= q[j].max(r[j]));
-            let safe = s.tri.robust_safe() && robust_safe(&[x]);
+            let safe = s.tri.robust_safe() && p.tri.robust_safe();
             (within && orient2d_inputs(q, r, x, i, safe) == Sign::Zero)
                 .then(|| (own, edge(s.v[k[0]], s.v[k[1]])))
         };
@@ -595,12 +603,13 @@ impl Line<'_> {
             OnLine::Corner { t: u, .. } | OnLine::Crossing { t: u, .. } if u == t => own,
             OnLine::Corner { t: u, k: m } => {
                 let z = self.corner(u, m);
-                let safe = tri.tri.robust_safe() && robust_safe(&[z]);
+                let safe = tri.tri.robust_safe() && self.tris[u].tri.robust_safe();
                 orient2d_inputs(p, q, z, tri.axis(), safe).times(tri.sign())
             }
             OnLine::Crossing { t: u, k: r, l: s } => {
                 let (r_at, s_at) = (self.corner(u, r), self.corner(u, s));
-                orient3d_explicit(p, q, r_at, s_at)
+                let safe = tri.tri.robust_safe() && self.tris[u].tri.robust_safe();
+                orient3d_inputs(p, q, r_at, s_at, safe)
                     .times(self.sides[u][r])
                     .reversed()
             }
@@ -622,13 +631,18 @@ impl Line<'_> {
                 (
                     t,
                     Feature::Vertex(self.tris[t].v[k]),
-                    self.tris[1 - t].locate_corner(at)?,
+                    self.tris[1 - t].locate_corner(at, self.tris[t].tri.robust_safe())?,
                 )
             }
             OnLine::Crossing { t, k, l } => {
                 let tri = self.tris[t];
                 let (p, q) = (self.corner(t, k), self.corner(t, l));
-                let other = self.tris[1 - t].locate_crossing(p, q, self.sides[t][k])?;
+                let other = self.tris[1 - t].locate_crossing(
+                    p,
+                    q,
+                    self.sides[t][k],
+                    tri.tri.robust_safe(),
+                )?;
                 (t, edge(tri.v[k], tri.v[l]), other)
             }
         };

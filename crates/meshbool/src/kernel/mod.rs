@@ -503,7 +503,20 @@ fn plane_side_explicit<T: Num>(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f6
 /// binary fractions of one scale (grids, CAD data) are decided in integer arithmetic
 /// (`orient3d_fixed`) before Shewchuk's expansion arithmetic.
 pub fn orient3d_explicit(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> Sign {
-    if !robust_safe(&[a, b, c, d]) {
+    orient3d_inputs(a, b, c, d, robust_safe(&[a, b, c, d]))
+}
+
+/// [`orient3d_explicit`] where whether the points meet [`robust_safe`] is known (from
+/// their triangles: `safe`), not checked again.
+pub(crate) fn orient3d_inputs(
+    a: &[f64; 3],
+    b: &[f64; 3],
+    c: &[f64; 3],
+    d: &[f64; 3],
+    safe: bool,
+) -> Sign {
+    debug_assert!(!safe || robust_safe(&[a, b, c, d]));
+    if !safe {
         return decide!(plane_side_explicit(a, b, c, d));
     }
     if let Some(s) = PlaneFilter::new(a, b, c).side(d) {

@@ -1064,3 +1064,37 @@ fn grid_orientations_agree_with_rationals() {
     }
     assert!(zeros > 2000 && zeros < 17_000, "{zeros}");
 }
+
+/// The safe range is what it names: zero (either sign) and magnitudes in
+/// `[2^-200, 2^200]`, at and beside both ends (its constants are decimal literals); not
+/// NaN, the infinities or subnormals.
+#[test]
+fn the_safe_range_is_zero_and_two_to_the_minus_200_to_200() {
+    use super::in_safe_range;
+    let (lo, hi) = (2f64.powi(-200), 2f64.powi(200));
+    let below = |x: f64| f64::from_bits(x.to_bits() - 1);
+    let above = |x: f64| f64::from_bits(x.to_bits() + 1);
+    for (x, want) in [
+        (0.0, true),
+        (-0.0, true),
+        (lo, true),
+        (-lo, true),
+        (hi, true),
+        (-hi, true),
+        (below(lo), false),
+        (-below(lo), false),
+        (above(hi), false),
+        (-above(hi), false),
+        (above(lo), true),
+        (below(hi), true),
+        (1.0, true),
+        (f64::MIN_POSITIVE / 2.0, false),
+        (f64::NAN, false),
+        (-f64::NAN, false),
+        (f64::INFINITY, false),
+        (f64::NEG_INFINITY, false),
+        (f64::MAX, false),
+    ] {
+        assert_eq!(in_safe_range(x), want, "{x:e}");
+    }
+}
