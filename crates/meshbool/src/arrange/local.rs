@@ -590,12 +590,15 @@ impl Local {
                     }
                     let v = rot(self.tris[t as usize], k);
                     let d = rot(self.tris[u as usize], self.slot_of(u, t))[2];
-                    let ic =
-                        incircle_clear(xy(self, v[0]), xy(self, v[1]), xy(self, v[2]), xy(self, d))
-                            * match self.sign {
-                                Sign::Negative => -1.0,
-                                _ => 1.0,
-                            };
+                    let ic = incircle_canonical([
+                        xy(self, v[0]),
+                        xy(self, v[1]),
+                        xy(self, v[2]),
+                        xy(self, d),
+                    ]) * match self.sign {
+                        Sign::Negative => -1.0,
+                        _ => 1.0,
+                    };
                     // The cheap approximate choice first; the exact test allows it.
                     if ic > 0.0 && self.flippable(t, k) {
                         self.flip(t, k);
@@ -607,6 +610,47 @@ impl Local {
             }
         }
     }
+}
+
+/// The in-circle choice of `p[3]` against `p[0] p[1] p[2]` (positive inside for them
+/// counter-clockwise), the same for every order of the four points up to the order's
+/// sign, so that the flips of [`Local::improve`] end in the same triangulation whatever
+/// order the points and constraints came in (cocircular points, on grids and boxes, are
+/// the rule): [`incircle_clear`] of the points in lexicographic order, and where that is
+/// unsure, the sign of the in-circle determinant with each point's lift raised by `ε^r`
+/// (`r` its rank in that order, `ε` infinitesimal: the first point's raise dominates),
+/// from exact orientations of the others (`robust::orient2d` on the same coordinates).
+/// Zero only where all four are collinear (or two coincide).
+pub(super) fn incircle_canonical(p: [robust::Coord<f64>; 4]) -> f64 {
+    let mut q = p;
+    // Insertion sort by (x, y), counting swaps for the permutation's sign.
+    let mut odd = false;
+    for i in 1..4 {
+        let mut j = i;
+        while j > 0 && (q[j].x, q[j].y) < (q[j - 1].x, q[j - 1].y) {
+            q.swap(j, j - 1);
+            odd = !odd;
+            j -= 1;
+        }
+    }
+    let signed = |x: f64| if odd { -x } else { x };
+    let det = incircle_clear(q[0], q[1], q[2], q[3]);
+    if det != 0.0 {
+        return signed(det);
+    }
+    let [a, b, c, d] = q;
+    // d det / d lift of a, b, c, d in turn (the cofactors of the lifted column).
+    for o in [
+        robust::orient2d(b, c, d),
+        robust::orient2d(a, d, c),
+        robust::orient2d(a, b, d),
+        -robust::orient2d(a, b, c),
+    ] {
+        if o != 0.0 {
+            return signed(o);
+        }
+    }
+    0.0
 }
 
 /// The in-circle determinant of `d` against `a b c` (positive inside for `a b c`

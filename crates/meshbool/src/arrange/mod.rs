@@ -483,7 +483,7 @@ fn cut_triangle(
 /// two instead of crossing the triangulation); points on no constraint go last. `work`:
 /// arrays reused from one triangle to the next.
 fn chain_order(mine: &mut [(u32, Option<usize>)], cons: &[[u32; 2]], work: &mut Chains) {
-    if mine.len() < 3 || cons.is_empty() {
+    if mine.len() < CHAIN_FROM || cons.is_empty() {
         return;
     }
     let Chains {
@@ -583,6 +583,11 @@ pub(crate) struct Chains {
     sorted: Vec<(u32, Option<usize>)>,
 }
 
+/// From this many seam points on, [`chain_order`] orders a cut triangle's points along
+/// its constraints; fewer are inserted as they come (a walk across a few triangles costs
+/// less than the ordering; the triangulation does not depend on the order).
+const CHAIN_FROM: usize = 8;
+
 /// Up to this many vertices (corners and seam points), [`cut_triangle`] finds a mesh
 /// vertex's local vertex by scanning the pairs (cheaper than sorting them for a
 /// triangle's few).
@@ -596,7 +601,7 @@ const CHAIN_SCAN_UP_TO: usize = 16;
 /// sorted by a key searched at every comparison): the reference of its test.
 #[cfg(test)]
 fn chain_order_reference(mine: &mut [(u32, Option<usize>)], cons: &[[u32; 2]]) {
-    if mine.len() < 3 || cons.is_empty() {
+    if mine.len() < CHAIN_FROM || cons.is_empty() {
         return;
     }
     // Each end's neighbours along the constraints, in the constraints' order (a stable

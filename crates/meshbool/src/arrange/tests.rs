@@ -351,6 +351,87 @@ fn the_flips_in_circle_test_has_the_exact_sign_or_none() {
     }
 }
 
+/// The flips' canonical in-circle choice: for every order of four points, the same
+/// answer up to the order's sign (so the two diagonals of a quad never both ask for a
+/// flip, and the flips end where they would for any insertion order); the clear test's
+/// sign where it has one; on one circle, the sign of the determinant with the lexicographically
+/// first point's lift raised a little (a lifting, so the triangulation is a regular one).
+#[test]
+fn the_flips_canonical_choice_is_one_for_every_order() {
+    use super::local::{incircle_canonical, incircle_clear};
+    let c = |x: f64, y: f64| robust::Coord { x, y };
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let mut next = || rng.unit();
+    let perms: Vec<([usize; 4], bool)> = (0..24)
+        .map(|mut n| {
+            let mut rest = vec![0, 1, 2, 3];
+            let mut p = [0; 4];
+            for (i, slot) in p.iter_mut().enumerate() {
+                *slot = rest.remove(n % (4 - i));
+                n /= 4 - i;
+            }
+            let odd = (0..4)
+                .flat_map(|i| (i + 1..4).map(move |j| (i, j)))
+                .filter(|&(i, j)| p[i] > p[j])
+                .count()
+                % 2
+                == 1;
+            (p, odd)
+        })
+        .collect();
+    let (mut tied, mut clear) = (0, 0);
+    for k in 0..6_000 {
+        let p: [robust::Coord<f64>; 4] = match k % 2 {
+            0 => std::array::from_fn(|_| c(next() * 10.0 - 5.0, next() * 10.0 - 5.0)),
+            _ => std::array::from_fn(|_| c((next() * 4.0).floor(), (next() * 4.0).floor())),
+        };
+        let distinct = (0..4).all(|i| (i + 1..4).all(|j| (p[i].x, p[i].y) != (p[j].x, p[j].y)));
+        if !distinct {
+            continue;
+        }
+        let base = incircle_canonical(p);
+        for (perm, odd) in &perms {
+            let got = incircle_canonical(perm.map(|i| p[i]));
+            let want = if *odd { -base } else { base };
+            assert_eq!(
+                got.partial_cmp(&0.0),
+                want.partial_cmp(&0.0),
+                "{p:?} {perm:?}"
+            );
+        }
+        let collinear =
+            robust::orient2d(p[0], p[1], p[2]) == 0.0 && robust::orient2d(p[0], p[1], p[3]) == 0.0;
+        assert_eq!(base == 0.0, collinear, "{p:?}");
+        if incircle_clear(p[0], p[1], p[2], p[3]) != 0.0 {
+            clear += 1;
+            assert_eq!(base > 0.0, robust::incircle(p[0], p[1], p[2], p[3]) > 0.0);
+        } else if robust::incircle(p[0], p[1], p[2], p[3]) == 0.0 && !collinear {
+            tied += 1;
+            // The lexicographically first point's lift raised by a small step (exact
+            // here: small integers), the others' by far less.
+            let mut order = [0usize, 1, 2, 3];
+            order.sort_by(|&i, &j| (p[i].x, p[i].y).partial_cmp(&(p[j].x, p[j].y)).unwrap());
+            let mut lift = [0.0f64; 4];
+            for (r, &i) in order.iter().enumerate() {
+                lift[i] = p[i].x * p[i].x
+                    + p[i].y * p[i].y
+                    + [1.0 / 64.0, 1.0 / 4096.0, 1.0 / 262_144.0, 0.0][r];
+            }
+            let d = 3;
+            let row = |i: usize| [p[i].x - p[d].x, p[i].y - p[d].y, lift[i] - lift[d]];
+            let (r0, r1, r2) = (row(0), row(1), row(2));
+            let det = r0[0] * (r1[1] * r2[2] - r1[2] * r2[1])
+                - r0[1] * (r1[0] * r2[2] - r1[2] * r2[0])
+                + r0[2] * (r1[0] * r2[1] - r1[1] * r2[0]);
+            assert!(
+                det != 0.0 && (det > 0.0) == (base > 0.0),
+                "{p:?}: {det} {base}"
+            );
+        }
+    }
+    assert!(tied > 100 && clear > 2_000, "{tied} {clear}");
+}
+
 /// The chain order numbers the constraints' ends once and walks them by number: the same
 /// order as the first way (a list sorted by end, searched at every step and comparison),
 /// on random triangles' points and constraints (chains, branches, repeated and
@@ -393,7 +474,7 @@ fn the_chain_order_is_the_one_of_the_first_way() {
         }
     }
     assert!(
-        moved > 3000 && scanned > 2000 && listed > 600,
+        moved > 2500 && scanned > 2000 && listed > 600,
         "{moved} {scanned} {listed}"
     );
 }

@@ -1889,7 +1889,11 @@ impl<'a> Work<'a> {
                 [(u, v), (v, u)]
             };
             for (keep, gone) in pairs {
-                match self.collapse(keep, gone) {
+                let mut tried = self.collapse(keep, gone);
+                if matches!(tried, Err(Stop::Refused(Manifold))) && self.unlock(keep, gone)? {
+                    tried = self.collapse(keep, gone);
+                }
+                match tried {
                     Err(Stop::Refused(r)) => {
                         first.get_or_insert(r);
                     }
@@ -2197,6 +2201,41 @@ impl<'a> Work<'a> {
     /// Flips edge `k` of bad triangle `t` (corner `k` to `k + 1`) if every gate passes and
     /// both new triangles are better shaped than the worse of the two old ones.
     fn flip(&mut self, t: u32, k: usize) -> Gate<()> {
+        self.flip_with(t, k, false)
+    }
+
+    /// Where collapsing `gone` onto `keep` fails the link condition only through
+    /// neighbours `x` the two share beyond the edge's far corners: flips an edge
+    /// `gone`–`x` (moving no vertex: the volume gate bounds it) so that the collapse may
+    /// pass. Whether one was flipped.
+    fn unlock(&mut self, keep: u32, gone: u32) -> Gate<bool> {
+        let (sk, sg) = (self.star(keep)?, self.star(gone)?);
+        let tk: Vec<[u32; 3]> = sk.iter().map(|&t| self.tri(t)).collect();
+        let tg: Vec<[u32; 3]> = sg.iter().map(|&t| self.tri(t)).collect();
+        let far: Vec<u32> = tg
+            .iter()
+            .filter(|t| t.contains(&keep))
+            .filter_map(|t| t.iter().copied().find(|&w| w != keep && w != gone))
+            .collect();
+        let extra: Vec<u32> = common(&neighbours(tk, keep), &neighbours(tg.iter().copied(), gone))
+            .into_iter()
+            .filter(|x| !far.contains(x))
+            .collect();
+        for x in extra {
+            for (i, t) in tg.iter().enumerate() {
+                if let Some(k) = (0..3).find(|&k| t[k] == gone && t[(k + 1) % 3] == x) {
+                    if self.flip_with(sg[i], k, true).is_ok() {
+                        return Ok(true);
+                    }
+                }
+            }
+        }
+        Ok(false)
+    }
+
+    /// [`Work::flip`]; `unlock`: for [`Work::unlock`], without the gates on the cap's
+    /// height and on the triangles' shape.
+    fn flip_with(&mut self, t: u32, k: usize, unlock: bool) -> Gate<()> {
         let tri = self.tri(t);
         let (a, b, c) = (tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);
         let (sa, sc) = (self.star(a)?, self.star(c)?);
@@ -2226,10 +2265,10 @@ impl<'a> Work<'a> {
         // Distance: the cap's height over the flipped edge.
         let (pa, pb, pc) = (self.pos(a), self.pos(b), self.pos(c));
         let height = norm(&cross(&sub(&pb, &pa), &sub(&pc, &pa))) / norm(&sub(&pb, &pa));
-        if height >= self.d {
+        if height >= self.d && !unlock {
             return refuse(Distance);
         }
-        if altitude(&pt2).min(altitude(&pu2)) <= altitude(&pt).min(altitude(&pu)) {
+        if altitude(&pt2).min(altitude(&pu2)) <= altitude(&pt).min(altitude(&pu)) && !unlock {
             return refuse(NoGain);
         }
         // The facing to keep: that of the replaced triangles that are not themselves
