@@ -3,7 +3,9 @@
 //! that holds them, splitting it or the edge they lie on), then constraint segments (by
 //! flipping the edges that cross them, as in Sloan's algorithm), then Delaunay-style flips
 //! of unconstrained edges for shape (an approximate in-circle test chooses a flip, the exact
-//! orientation test allows it).
+//! orientation test allows it). The in-circle choice is the same for every order of its
+//! four points ([`incircle_canonical`]), so the triangulation does not depend on the order
+//! the points and constraints came in.
 
 use super::FailReason;
 use crate::kernel::{orient2d_prepared, Point, Prepared, Sign};
@@ -570,8 +572,8 @@ impl Local {
     }
 
     /// Lawson flips towards a Delaunay triangulation of the unconstrained edges. The
-    /// in-circle test is approximate (it only chooses: [`incircle_clear`]); validity is the
-    /// exact convexity test.
+    /// in-circle test is approximate and canonical (it only chooses:
+    /// [`incircle_canonical`]); validity is the exact convexity test.
     pub(crate) fn improve(&mut self) {
         let (i, j) = ((self.axis + 1) % 3, (self.axis + 2) % 3);
         let xy = |l: &Local, v: u32| robust::Coord {

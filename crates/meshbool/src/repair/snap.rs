@@ -11,7 +11,10 @@
 //! the planes of its triangles: along a crease or a flat face), else the end on more
 //! creases, else an input vertex rather than a seam point; then the other way round — or
 //! else by flipping its longest edge when that leaves both triangles there better shaped.
-//! A change is made only where every gate passes, each decided exactly where it is a
+//! A collapse that the link condition refuses only through a neighbour both ends share (a
+//! thin slab whose faces are cut along the same diagonal) is tried again after flipping the
+//! edge to that neighbour, where that flip passes the gates but the distance one (it moves
+//! no vertex; the volume gate bounds it). A change is made only where every gate passes, each decided exactly where it is a
 //! question of topology:
 //!
 //! - *manifold*: the link condition (the end points' common neighbours are exactly the
@@ -29,7 +32,8 @@
 //!   points of an exact result can), no more often than the triangles it replaces did;
 //! - *distance*: no vertex ends up farther than `D` from where it was in the input (a
 //!   vertex collapsed into another twice is measured from its input position), and a flip
-//!   only of a triangle lower than `D` over the flipped edge;
+//!   only of a triangle lower than `D` over the flipped edge (but the flip that unlocks a
+//!   collapse);
 //! - *volume*: the volume changes swept by all changes together stay within
 //!   `D × area` of the input (each change's swept volume, added up as absolute values,
 //!   must fit in that budget), so `|volume_change| ≤ D × area`.
