@@ -198,7 +198,7 @@ impl Work<'_> {
             return false;
         };
         let nq = self.neighbours(star_q, q);
-        let shared = np.iter().filter(|x| nq.binary_search(x).is_ok()).count();
+        let shared = common(np, &nq).len();
         let far = |t: u32| {
             let tri = self.triangles[t as usize];
             tri.into_iter().find(|&x| x != p && x != q).unwrap_or(p)

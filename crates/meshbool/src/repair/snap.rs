@@ -14,8 +14,8 @@
 //! A collapse that the link condition refuses only through a neighbour both ends share (a
 //! thin slab whose faces are cut along the same diagonal) is tried again after flipping the
 //! edge to that neighbour, where that flip passes the gates but the distance one (it moves
-//! no vertex; the volume gate bounds it). A change is made only where every gate passes, each decided exactly where it is a
-//! question of topology:
+//! no vertex; the volume gate bounds it). A change is made only where every gate passes,
+//! each decided exactly where it is a question of topology:
 //!
 //! - *manifold*: the link condition (the end points' common neighbours are exactly the
 //!   far corners of the edge's triangles), no boundary vertex moved off the boundary or
