@@ -336,6 +336,11 @@ fn seam_word(a: u32, b: u32, h: u32) -> u64 {
     (u64::from(a.max(b)) << 32) | u64::from(h)
 }
 
+/// Edge `[lo, hi]` as one word that sorts as the pair does.
+fn edge_word(lo: u32, hi: u32) -> u64 {
+    (u64::from(lo) << 32) | u64::from(hi)
+}
+
 /// The edges whose lower vertex lies in one range, as [`SeamTopology::new`] needs them.
 struct SeamPiece {
     /// The seam edges in the range, in order, with the start of each one's uses.
@@ -348,14 +353,15 @@ struct SeamPiece {
 }
 
 impl SeamPiece {
-    /// Scans the edges whose lower vertex is in `v0..v1`: those on the `seam` (sorted;
-    /// `on_seam` marks their lower vertices) are listed with their uses, and the triangles
-    /// around every other edge are handed to `join`, pair by pair (consecutive uses).
+    /// Scans the edges whose lower vertex is in `v0..v1`: those on the `seam` (sorted
+    /// [`edge_word`]s; `on_seam` marks their lower vertices) are listed with their uses,
+    /// and the triangles around every other edge are handed to `join`, pair by pair
+    /// (consecutive uses).
     fn scan(
         mesh: &Mesh,
         v0: u32,
         v1: u32,
-        seam: &[[u32; 2]],
+        seam: &[u64],
         on_seam: &[bool],
         join: impl FnMut(u32, u32),
     ) -> SeamPiece {
@@ -370,14 +376,15 @@ impl SeamPiece {
         v0: u32,
         start: &[u32],
         mut half: Vec<u64>,
-        seam: &[[u32; 2]],
+        seam: &[u64],
         on_seam: &[bool],
         mut join: impl FnMut(u32, u32),
     ) -> SeamPiece {
         // Room for the seam edges whose lower vertex is in this range (`seam` is sorted)
         // and their two uses each.
         let v1 = v0 + (start.len() - 1) as u32;
-        let room = seam.partition_point(|e| e[0] < v1) - seam.partition_point(|e| e[0] < v0);
+        let below = |v: u32| seam.partition_point(|&w| (w >> 32) < u64::from(v));
+        let room = below(v1) - below(v0);
         let mut out = SeamPiece {
             edges: Vec::with_capacity(room),
             offsets: Vec::with_capacity(room + 1),
@@ -395,7 +402,7 @@ impl SeamPiece {
                 let hi = (first >> 32) as u32;
                 let n = rest.iter().take_while(|&&w| (w >> 32) as u32 == hi).count();
                 let edge = [lo as u32, hi];
-                let on = on_seam[lo] && seam.binary_search(&edge).is_ok();
+                let on = on_seam[lo] && seam.binary_search(&edge_word(lo as u32, hi)).is_ok();
                 if n == 2 && !on {
                     // Most edges: two triangles joined, whichever way they run (closed).
                     join(rest[0] as u32 / 3, rest[1] as u32 / 3);
@@ -557,12 +564,16 @@ impl SeamTopology {
     pub fn new(mesh: &Mesh, seam: &[[u32; 2]]) -> Self {
         use rayon::prelude::*;
         let nv = mesh.positions.len();
-        let mut seam: Vec<[u32; 2]> = seam.iter().map(|&[u, v]| [u.min(v), u.max(v)]).collect();
+        // One word per edge (sorted faster than pairs).
+        let mut seam: Vec<u64> = seam
+            .iter()
+            .map(|&[u, v]| edge_word(u.min(v), u.max(v)))
+            .collect();
         seam.sort_unstable();
         seam.dedup();
         let mut on_seam = vec![false; nv];
-        for &[u, _] in &seam {
-            on_seam[u as usize] = true;
+        for &w in &seam {
+            on_seam[(w >> 32) as usize] = true;
         }
         let threads = rayon::current_num_threads();
         let (pieces, (patches, patch)) = if threads <= 2 || mesh.triangles.len() < 1 << 16 {

@@ -157,6 +157,26 @@ fn fans_of(
     counts_here: impl Fn(u32) -> bool,
     point: impl Fn(u32) -> Point,
 ) -> Fans {
+    if one_closed_fan(mesh, v, cs) {
+        return Fans {
+            fan: smallvec::smallvec![0; cs.len()],
+            count: 1,
+            split_edges: 0,
+            unpaired: 0,
+        };
+    }
+    fans_by_edges(mesh, v, cs, counts_here, point)
+}
+
+/// [`fans_of`] worked out in full: the uses of the edges at `v` sorted by their other
+/// end, corners joined across each edge.
+fn fans_by_edges(
+    mesh: &Mesh,
+    v: u32,
+    cs: &[(u32, u8)],
+    counts_here: impl Fn(u32) -> bool,
+    point: impl Fn(u32) -> Point,
+) -> Fans {
     // The uses of each edge at v: (other end, corner, direction: true when v -> other).
     let mut uses: Around<(u32, u32, bool)> = Around::with_capacity(2 * cs.len());
     for (c, &(t, k)) in cs.iter().enumerate() {
@@ -208,6 +228,43 @@ fn fans_of(
         split_edges,
         unpaired,
     }
+}
+
+/// Whether the corners `cs` of vertex `v` form one closed fan with every edge at `v` used
+/// twice, once each way (almost every vertex of a boolean's seam): then [`fans_of`] finds
+/// one fan and no split edge, which this tells without sorting. The corners' next ends
+/// must be distinct (so each edge has at most one use leaving `v`, and one entering) and
+/// stepping from a corner to the one whose previous end is its next must visit them all.
+/// Tried up to a typical valence (the test is quadratic); `false` means: work it out.
+fn one_closed_fan(mesh: &Mesh, v: u32, cs: &[(u32, u8)]) -> bool {
+    const UP_TO: usize = 16;
+    let n = cs.len();
+    if !(3..=UP_TO).contains(&n) {
+        return false;
+    }
+    let mut next = [0u32; UP_TO];
+    let mut prev = [0u32; UP_TO];
+    for (c, &(t, k)) in cs.iter().enumerate() {
+        let tri = mesh.triangles[t as usize];
+        (next[c], prev[c]) = (tri[(k as usize + 1) % 3], tri[(k as usize + 2) % 3]);
+        if next[c] == v || prev[c] == v || next[c] == prev[c] || next[..c].contains(&next[c]) {
+            return false;
+        }
+    }
+    // The walk: n steps back to the start, each to a corner entering along the edge the
+    // last one left by. Distinct next ends make the step unique where it exists; the
+    // walk returning only after n steps means every corner is on it.
+    let mut c = 0;
+    for step in 1..=n {
+        let Some(d) = prev[..n].iter().position(|&p| p == next[c]) else {
+            return false;
+        };
+        c = d;
+        if c == 0 {
+            return step == n;
+        }
+    }
+    false
 }
 
 fn root(parent: &mut [u32], mut x: u32) -> u32 {
@@ -389,6 +446,55 @@ mod tests {
         let (again, r, _) = split_at(m.clone(), &all, None);
         assert_eq!(r, NonManifoldReport::default());
         assert_eq!(&again, m);
+    }
+
+    #[test]
+    fn the_quick_closed_fan_test_agrees_with_the_full_one() {
+        // Closed, open, non-manifold at an edge and at a vertex, a flipped triangle, a
+        // repeated triangle: every vertex, in two triangle orders.
+        let sphere = crate::shapes::uv_sphere([0.0; 3], 1.0, 12, 7);
+        let mut open = sphere.clone();
+        open.triangles.truncate(open.triangles.len() - 5);
+        let mut flipped = sphere.clone();
+        flipped.triangles[3].swap(0, 1);
+        let mut doubled = sphere.clone();
+        doubled.triangles.push(sphere.triangles[7]);
+        let edge = two(
+            Mesh::unit_cube(),
+            &Mesh::cuboid([1.0, 1.0, 0.0], [2.0, 2.0, 1.0]),
+        );
+        let vertex = two(Mesh::unit_cube(), &Mesh::cuboid([1.0; 3], [2.0; 3]));
+        let (mut quick, mut full) = (0, 0);
+        for mesh in [sphere, open, flipped, doubled, edge, vertex] {
+            for reversed in [false, true] {
+                let mut m = mesh.clone();
+                if reversed {
+                    m.triangles.reverse();
+                }
+                for v in 0..m.positions.len() as u32 {
+                    let cs: Vec<(u32, u8)> = (0..m.triangles.len())
+                        .flat_map(|t| (0..3).map(move |k| (t as u32, k as u8)))
+                        .filter(|&(t, k)| m.triangles[t as usize][k as usize] == v)
+                        .collect();
+                    let point = |u: u32| Point::Explicit(m.positions[u as usize]);
+                    let want = fans_by_edges(&m, v, &cs, |_| true, point);
+                    let got = fans_of(&m, v, &cs, |_| true, point);
+                    assert_eq!(
+                        (&got.fan, got.count, got.split_edges, got.unpaired),
+                        (&want.fan, want.count, want.split_edges, want.unpaired),
+                        "vertex {v}"
+                    );
+                    if one_closed_fan(&m, v, &cs) {
+                        quick += 1;
+                    } else {
+                        full += 1;
+                    }
+                }
+            }
+        }
+        // Both ways taken: every vertex of the closed sphere and the cubes' other corners
+        // quickly; the open, flipped, doubled and shared ones in full.
+        assert!(quick > 600 && full > 30, "{quick} quick, {full} full");
     }
 
     #[test]
