@@ -38,6 +38,9 @@ pub(crate) struct Local {
     axis: usize,
     sign: Sign,
     last: u32,
+    /// The edges [`Local::improve`] has yet to test, as (triangle, slot): kept for its
+    /// room.
+    pending: Vec<(u32, u8)>,
 }
 
 /// What went wrong: the inputs broke an assumption (e.g. a constraint crossing another).
@@ -66,6 +69,7 @@ impl Local {
             axis,
             sign,
             last: 0,
+            pending: Vec::new(),
         };
         local.reset(corners, axis, sign, points);
         local
@@ -573,44 +577,68 @@ impl Local {
 
     /// Lawson flips towards a Delaunay triangulation of the unconstrained edges. The
     /// in-circle test is approximate and canonical (it only chooses:
-    /// [`incircle_canonical`]); validity is the exact convexity test.
+    /// [`incircle_canonical`]); validity is the exact convexity test. Each edge is tested
+    /// once, then again only when a flip changed a triangle beside it (a stack of edges,
+    /// not passes over all of them until none flips).
     pub(crate) fn improve(&mut self) {
-        let (i, j) = ((self.axis + 1) % 3, (self.axis + 2) % 3);
-        let xy = |l: &Local, v: u32| robust::Coord {
-            x: l.approx[v as usize][i],
-            y: l.approx[v as usize][j],
-        };
         let mut budget = 8 * self.tris.len() + 16;
-        let mut changed = true;
-        while changed && budget > 0 {
-            changed = false;
-            for t in 0..self.tris.len() as u32 {
-                for k in 0..3 {
-                    let u = self.nbr[t as usize][k];
-                    if budget == 0 || u == NONE || self.fixed[t as usize][k] {
-                        continue;
-                    }
-                    let v = rot(self.tris[t as usize], k);
-                    let d = rot(self.tris[u as usize], self.slot_of(u, t))[2];
-                    let ic = incircle_canonical([
-                        xy(self, v[0]),
-                        xy(self, v[1]),
-                        xy(self, v[2]),
-                        xy(self, d),
-                    ]) * match self.sign {
-                        Sign::Negative => -1.0,
-                        _ => 1.0,
-                    };
-                    // The cheap approximate choice first; the exact test allows it.
-                    if ic > 0.0 && self.flippable(t, k) {
-                        self.flip(t, k);
-                        budget -= 1;
-                        changed = true;
-                        break;
-                    }
+        // Every inner edge once (from its lower triangle), the first triangle's on top;
+        // then after each flip the four edges around the new pair, the only ones whose
+        // opposite corners changed.
+        let mut pending = std::mem::take(&mut self.pending);
+        pending.clear();
+        for t in (0..self.tris.len() as u32).rev() {
+            for k in (0..3u8).rev() {
+                let u = self.nbr[t as usize][k as usize];
+                if u != NONE && t < u && !self.fixed[t as usize][k as usize] {
+                    pending.push((t, k));
                 }
             }
         }
+        while let Some((t, k)) = pending.pop() {
+            if budget == 0 {
+                break;
+            }
+            if self.wants_flip(t, k as usize) {
+                let (t, u) = self.flip(t, k as usize);
+                budget -= 1;
+                pending.extend([(u, 1), (u, 0), (t, 1), (t, 0)]);
+            }
+        }
+        self.pending = pending;
+    }
+
+    /// Whether [`Local::improve`] flips slot `k` of `t`: an inner, unconstrained edge
+    /// whose far corner is inside the circle (the cheap approximate choice first), and
+    /// the exact test allows the flip.
+    fn wants_flip(&self, t: u32, k: usize) -> bool {
+        let u = self.nbr[t as usize][k];
+        if u == NONE || self.fixed[t as usize][k] {
+            return false;
+        }
+        let (i, j) = ((self.axis + 1) % 3, (self.axis + 2) % 3);
+        let xy = |v: u32| robust::Coord {
+            x: self.approx[v as usize][i],
+            y: self.approx[v as usize][j],
+        };
+        let v = rot(self.tris[t as usize], k);
+        let d = rot(self.tris[u as usize], self.slot_of(u, t))[2];
+        let ic = incircle_canonical([xy(v[0]), xy(v[1]), xy(v[2]), xy(d)])
+            * match self.sign {
+                Sign::Negative => -1.0,
+                _ => 1.0,
+            };
+        ic > 0.0 && self.flippable(t, k)
+    }
+
+    /// The edges [`Local::improve`] would still flip (none after it, unless its budget ran
+    /// out).
+    #[cfg(test)]
+    pub(crate) fn flips_left(&self) -> usize {
+        (0..self.tris.len() as u32)
+            .flat_map(|t| (0..3).map(move |k| (t, k)))
+            .filter(|&(t, k)| self.wants_flip(t, k))
+            .count()
     }
 }
 

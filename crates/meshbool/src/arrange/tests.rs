@@ -114,6 +114,81 @@ fn a_reset_triangulation_is_a_fresh_one() {
     }
 }
 
+/// The flips end where no edge wants one, in the same triangulation whatever order the
+/// points came in: points of a lattice (cocircular fours everywhere) and off it, in a
+/// tilted triangle (exact binary coordinates), each set in three orders.
+#[test]
+fn the_flips_end_where_no_edge_wants_one_whatever_the_order() {
+    let at = |x: f64, y: f64| [x, y, 0.5 * x + 2.0 * y];
+    let corners = [at(0.0, 0.0), at(16.0, 0.0), at(0.0, 16.0)];
+    let shape = Triangle::new(corners).unwrap();
+    let lattice: Vec<(f64, f64)> = (1..15)
+        .flat_map(|x| (1..15 - x).map(move |y| (f64::from(x), f64::from(y))))
+        .collect();
+    let mut rng = Rng(0xf11b_5eed);
+    let (mut flips, mut changed) = (0, 0);
+    for round in 0..60 {
+        let mut points: Vec<(f64, f64)> = lattice
+            .iter()
+            .copied()
+            .filter(|_| rng.next() % 4 < 1 + round % 3)
+            .collect();
+        for _ in 0..round % 7 {
+            // Off the lattice, inside the triangle: eighths, never on it.
+            let (x, y) = (1 + rng.next() % 12, 1 + rng.next() % 12);
+            let (x, y) = (x as f64 + 0.375, y.min(14 - x) as f64 + 0.125);
+            if x + y < 15.5 && !points.contains(&(x, y)) {
+                points.push((x, y));
+            }
+        }
+        let triangulation = |order: &[usize]| {
+            let mut lt = local::Local::new(corners, shape.axis(), shape.sign(), order.len());
+            // Local vertex -> point (the corners: none).
+            let mut of_local = vec![usize::MAX; 3];
+            for &i in order {
+                let (x, y) = points[i];
+                let p = at(x, y);
+                let l = lt
+                    .insert(Prepared::new(Point::Explicit(p)), p, None)
+                    .unwrap();
+                assert_eq!(l as usize, of_local.len());
+                of_local.push(i);
+            }
+            let before = lt.tris.clone();
+            lt.improve();
+            assert_eq!(lt.flips_left(), 0, "round {round}");
+            let mut tris: Vec<[usize; 3]> = lt
+                .tris
+                .iter()
+                .map(|t| {
+                    let v = t.map(|l| match of_local[l as usize] {
+                        usize::MAX => points.len() + l as usize,
+                        i => i,
+                    });
+                    let k = (0..3).min_by_key(|&k| v[k]).unwrap();
+                    [v[k], v[(k + 1) % 3], v[(k + 2) % 3]]
+                })
+                .collect();
+            tris.sort_unstable();
+            (tris, before != lt.tris)
+        };
+        let forward: Vec<usize> = (0..points.len()).collect();
+        let mut shuffled = forward.clone();
+        for i in (1..shuffled.len()).rev() {
+            shuffled.swap(i, (rng.next() % (i as u64 + 1)) as usize);
+        }
+        let backward: Vec<usize> = forward.iter().rev().copied().collect();
+        let (want, flipped) = triangulation(&forward);
+        for order in [&shuffled, &backward] {
+            assert_eq!(triangulation(order).0, want, "round {round}");
+        }
+        flips += usize::from(flipped);
+        changed += usize::from(want.len() > 1);
+    }
+    // The flips had work to do in every round with points.
+    assert_eq!(flips, changed);
+}
+
 #[test]
 fn points_on_whole_edges_go_where_the_walk_takes_them() {
     let plane = |x: f64, y: f64| [x, y, 0.5 * x + 2.0 * y];
