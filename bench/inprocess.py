@@ -211,9 +211,11 @@ def main():
         return
     cases = json.load(open(f"{args.meshes}/cases.json"))
     if args.real:
+        # Absolute: the cases' paths are read relative to MESHES.
+        real = os.path.abspath(args.real)
         for a, b in (("79741", "65004"), ("908460", "73416")):
-            cases[f"thingi_{a}_{b}"] = {"A": os.path.join(args.real, f"thingi_{a}.obj"),
-                                        "B": os.path.join(args.real, f"thingi_{b}.obj")}
+            cases[f"thingi_{a}_{b}"] = {"A": os.path.join(real, f"thingi_{a}.obj"),
+                                        "B": os.path.join(real, f"thingi_{b}.obj")}
     libs = libraries(args.libs.split(","))
     records = []
     for case in args.cases.split(","):
