@@ -251,9 +251,10 @@ fn one_closed_fan(mesh: &Mesh, v: u32, cs: &[(u32, u8)]) -> bool {
             return false;
         }
     }
-    // The walk: n steps back to the start, each to a corner entering along the edge the
-    // last one left by. Distinct next ends make the step unique where it exists; the
-    // walk returning only after n steps means every corner is on it.
+    // The walk: n steps back to the start, each to the first corner entering along the
+    // edge the last one left by. Returning to the start only at step n, it visited every
+    // corner once (a repeat before would be a loop without the start); so the previous
+    // ends are the next ends, each once, and every edge has exactly its two uses.
     let mut c = 0;
     for step in 1..=n {
         let Some(d) = prev[..n].iter().position(|&p| p == next[c]) else {
