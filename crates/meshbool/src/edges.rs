@@ -337,7 +337,7 @@ fn seam_word(a: u32, b: u32, h: u32) -> u64 {
 }
 
 /// Edge `[lo, hi]` as one word that sorts as the pair does.
-fn edge_word(lo: u32, hi: u32) -> u64 {
+pub(crate) fn edge_word(lo: u32, hi: u32) -> u64 {
     (u64::from(lo) << 32) | u64::from(hi)
 }
 
@@ -751,6 +751,35 @@ impl EdgeCounts {
             .map(|(v0, v1, start, mut half)| count_buckets(v1 - v0, &start, &mut half))
             .reduce(EdgeCounts::default, add)
     }
+}
+
+/// The edges of `mesh` whose uses do not cancel: `([lo, hi], n)` with `n` the number of
+/// uses running `lo → hi` less those running back, where not zero. Together they are the
+/// boundary of the triangles as a chain (each triangle's edges added with its
+/// orientation): empty for a closed, consistently oriented mesh; an open surface's
+/// boundary loops; twice an edge whose two uses run the same way. In edge order.
+pub(crate) fn unbalanced_edges(mesh: &Mesh) -> Vec<([u32; 2], i32)> {
+    let nv = mesh.positions.len() as u32;
+    // One word per half-edge: the higher vertex, and whether the half-edge runs up.
+    let (start, mut half) = bucket_by_lower(mesh, 0, nv, |a, b, _| {
+        (u64::from(a.max(b)) << 1) | u64::from(a < b)
+    });
+    let mut out = Vec::new();
+    for lo in 0..nv as usize {
+        let bucket = &mut half[start[lo] as usize..start[lo + 1] as usize];
+        bucket.sort_unstable();
+        let mut rest = &*bucket;
+        while let Some(&first) = rest.first() {
+            let n = rest.iter().take_while(|&&w| w >> 1 == first >> 1).count();
+            let up = rest[..n].iter().filter(|&&w| w & 1 == 1).count() as i32;
+            let net = 2 * up - n as i32;
+            if net != 0 {
+                out.push(([lo as u32, (first >> 1) as u32], net));
+            }
+            rest = &rest[n..];
+        }
+    }
+    out
 }
 
 /// The half-edges of `mesh` whose lower vertex lies in `v0..v1`, bucketed by that vertex

@@ -24,6 +24,7 @@ use crate::kernel::{
 };
 use crate::Mesh;
 
+mod reach;
 mod winding;
 pub use winding::{winding_number, FastWinding};
 pub(crate) use winding::{winding_number_without, winding_term};
@@ -335,6 +336,7 @@ pub fn classify_with(
     };
     let (answers, approximate_winding) = winding_fallback(
         &x.arranged.mesh,
+        &x.topology.edges,
         y.input,
         y_closed,
         &resolved.queries,
@@ -673,9 +675,13 @@ fn resolved(
 /// The class of each queried triangle of `x` from the generalized winding number of `y`
 /// at its centroid: inside above the threshold (1/2 for a closed `y`, 0 for an open one).
 /// Exact sums up to `exact_up_to` triangle × query products, the hierarchy beyond
-/// (deterministic either way); also whether the hierarchy answered.
+/// (deterministic either way); also whether the hierarchy answered. From
+/// [`reach::REACH_FROM`] queries on, a winding number clear of the threshold also settles
+/// the queried triangles within reach of it (`seam`: the seam edges of `x`, which no
+/// such reach crosses; see [`reach`]).
 fn winding_fallback(
     x: &Mesh,
+    seam: &[[u32; 2]],
     y: &Mesh,
     y_closed: bool,
     queries: &[usize],
@@ -689,20 +695,23 @@ fn winding_fallback(
     let fast = (queries.len() as f64 * y.triangles.len() as f64 > exact_up_to)
         .then(|| FastWinding::new(y));
     let points: Vec<[f64; 3]> = queries.iter().map(|&t| centroid(t)).collect();
-    let winding: Vec<f64> = match &fast {
-        Some(f) => f.at_many(&points),
-        None => points.iter().map(|&p| winding_number(y, p)).collect(),
+    let eval = |points: &[[f64; 3]]| -> Vec<f64> {
+        match &fast {
+            Some(f) => f.at_many(points),
+            None => points.iter().map(|&p| winding_number(y, p)).collect(),
+        }
     };
-    let classes = winding
-        .into_iter()
-        .map(|w| {
-            if w > threshold {
-                Class::Inside
-            } else {
-                Class::Outside
-            }
-        })
-        .collect();
+    let classes = if queries.len() >= reach::REACH_FROM {
+        reach::classes_by_reach(x, queries, &points, seam, y, threshold, eval)
+    } else {
+        eval(&points)
+            .into_iter()
+            .map(|w| match w > threshold {
+                true => Class::Inside,
+                false => Class::Outside,
+            })
+            .collect()
+    };
     (classes, fast.is_some())
 }
 

@@ -300,7 +300,7 @@ impl<'a> FastWinding<'a> {
         if self.nodes.is_empty() {
             return vec![0.0; points.len()];
         }
-        let order = morton_order_of_points(points);
+        let order = morton_order_of_points(points, false);
         let groups: Vec<(usize, [f64; GROUP])> = order
             .par_chunks(GROUP)
             .grained()
@@ -387,8 +387,10 @@ impl<'a> FastWinding<'a> {
 }
 
 /// Indices of `points` in Morton order of their positions (10 bits per axis over their
-/// bounding box): neighbours in space become neighbours in the list.
-fn morton_order_of_points(points: &[[f64; 3]]) -> Vec<u32> {
+/// bounding box; with `cube`, over the cube on its longest side, so that a flat set, a
+/// terrain's boundary, keeps its few bits of height from splitting neighbours apart):
+/// neighbours in space become neighbours in the list.
+pub(super) fn morton_order_of_points(points: &[[f64; 3]], cube: bool) -> Vec<u32> {
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
     for p in points {
         for k in 0..3 {
@@ -396,8 +398,9 @@ fn morton_order_of_points(points: &[[f64; 3]]) -> Vec<u32> {
             hi[k] = hi[k].max(p[k]);
         }
     }
+    let longest = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
     let scale: [f64; 3] = std::array::from_fn(|k| {
-        let ext = hi[k] - lo[k];
+        let ext = if cube { longest } else { hi[k] - lo[k] };
         if ext > 0.0 {
             1023.0 / ext
         } else {
