@@ -44,7 +44,7 @@ pub(super) const REACH_FROM: usize = 64;
 /// Rounds of seeds: every `stride`-th open triangle in Morton order; a seed's flood stops
 /// after `FLOOD_PER_STRIDE · stride` triangles (bounding a round's work where the reach
 /// is long, as against closed meshes).
-const STRIDES: [usize; 2] = [64, 8];
+const STRIDES: [usize; 4] = [64, 16, 4, 2];
 const FLOOD_PER_STRIDE: usize = 16;
 
 /// Segments per leaf of [`Chain`].
