@@ -16,7 +16,9 @@
 //! closed, consistently oriented mesh the chain is empty and the winding number constant
 //! between crossings: a seed reaches its whole piece. Seeds are taken in rounds, every
 //! `stride`-th triangle still open in Morton order, evaluated together and their reaches
-//! flooded side by side; what is left after the rounds is evaluated one by one. The
+//! flooded side by side (a seed with a corner on the seam settles only itself: its
+//! centroid may lie within rounding of `y`); what is left after the rounds is evaluated
+//! one by one. The
 //! classes do not depend on the threads (a triangle reached by several seeds takes the
 //! first seed's class in Morton order; all agree where the seeds' errors are within the
 //! allowance).
@@ -235,8 +237,12 @@ impl Chain {
 
     /// How long a path from `p` may be while the winding number cannot move by `margin`
     /// along it: the best of a few balls about `p` (a larger ball holds longer paths but
-    /// comes nearer the chain). Infinite without a chain; 0 on it.
+    /// comes nearer the chain). Infinite without a chain; 0 on it (and where anything is
+    /// not a number).
     fn reach(&self, p: &[f64; 3], margin: f64) -> f64 {
+        if !p.iter().all(|c| c.is_finite()) {
+            return 0.0;
+        }
         let d = self.nearest(p);
         if d == f64::INFINITY {
             return d;
@@ -249,7 +255,11 @@ impl Chain {
         radii
             .iter()
             .zip(g)
-            .map(|(&r, g)| if g > 0.0 { r.min(margin / g) } else { r })
+            .map(|(&r, g)| match g {
+                0.0 => r,
+                g if g > 0.0 => r.min(margin / g),
+                _ => 0.0,
+            })
             .fold(0.0, f64::max)
     }
 }
@@ -387,6 +397,16 @@ pub(super) fn classes_by_reach(
     let (chain, links) =
         crate::par::join(|| Chain::new(y), || Links::new(x, queries, centroids, seam));
     let order = morton_order_of_points(centroids, false);
+    // A seed with a corner on the seam settles only itself: a sliver beside the seam may
+    // have its centroid within rounding of `y`, where its winding number is off by ½.
+    let mut on_seam: Vec<u32> = seam.iter().flatten().copied().collect();
+    on_seam.sort_unstable();
+    on_seam.dedup();
+    let touches_seam = |i: u32| {
+        x.triangles[queries[i as usize]]
+            .iter()
+            .any(|v| on_seam.binary_search(v).is_ok())
+    };
     let mut class: Vec<Option<Class>> = vec![None; queries.len()];
     for stride in STRIDES {
         let open: Vec<u32> = order
@@ -395,7 +415,7 @@ pub(super) fn classes_by_reach(
             .filter(|&i| class[i as usize].is_none())
             .collect();
         if open.len() < 2 * stride {
-            break;
+            continue;
         }
         let seeds: Vec<u32> = open.iter().copied().step_by(stride).collect();
         let points: Vec<[f64; 3]> = seeds.iter().map(|&s| centroids[s as usize]).collect();
@@ -406,7 +426,7 @@ pub(super) fn classes_by_reach(
             .grained()
             .map_init(Room::default, |room, (&s, &w)| {
                 let margin = (w - threshold).abs() - ALLOWANCE;
-                if margin <= 0.0 {
+                if margin.is_nan() || margin <= 0.0 || touches_seam(s) {
                     return Vec::new();
                 }
                 let reach = chain.reach(&centroids[s as usize], margin);
@@ -597,7 +617,9 @@ mod tests {
         let links = Links::new(&x, &queries, &centroids, &seam);
         let left = (0..queries.len()).filter(|&t| centroids[t][0] < 0.0);
         let seed = left.clone().next().expect("a triangle on the left") as u32;
-        let mut reached = links.flood(seed, f64::INFINITY, usize::MAX, &mut Room::default());
+        // One room for every flood below, as a round's seeds share one.
+        let mut room = Room::default();
+        let mut reached = links.flood(seed, f64::INFINITY, usize::MAX, &mut room);
         reached.push(seed);
         reached.sort_unstable();
         assert_eq!(reached, left.map(|t| t as u32).collect::<Vec<_>>());
@@ -608,7 +630,7 @@ mod tests {
             .len();
         assert_eq!(n + 1, queries.len());
         // A short reach: only the nearest neighbours.
-        let near = all.flood(seed, 0.3, usize::MAX, &mut Room::default());
+        let near = all.flood(seed + 3, 0.3, usize::MAX, &mut room);
         assert!(!near.is_empty() && near.len() < 12, "{}", near.len());
     }
 }
