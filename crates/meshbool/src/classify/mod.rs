@@ -688,13 +688,9 @@ fn winding_fallback(
     exact_up_to: f64,
 ) -> (Vec<Class>, bool) {
     let threshold = if y_closed { 0.5 } else { 0.0 };
-    let centroid = |t: usize| -> [f64; 3] {
-        let [a, b, c] = x.corners(t);
-        std::array::from_fn(|k| (a[k] + b[k] + c[k]) / 3.0)
-    };
     let fast = (queries.len() as f64 * y.triangles.len() as f64 > exact_up_to)
         .then(|| FastWinding::new(y));
-    let points: Vec<[f64; 3]> = queries.iter().map(|&t| centroid(t)).collect();
+    let points: Vec<[f64; 3]> = queries.iter().map(|&t| x.centroid(t)).collect();
     let eval = |points: &[[f64; 3]]| -> Vec<f64> {
         match &fast {
             Some(f) => f.at_many(points),
@@ -706,13 +702,18 @@ fn winding_fallback(
     } else {
         eval(&points)
             .into_iter()
-            .map(|w| match w > threshold {
-                true => Class::Inside,
-                false => Class::Outside,
-            })
+            .map(|w| class_of_winding(w, threshold))
             .collect()
     };
     (classes, fast.is_some())
+}
+
+/// The class a winding number `w` gives: inside above `threshold`, outside otherwise.
+fn class_of_winding(w: f64, threshold: f64) -> Class {
+    match w > threshold {
+        true => Class::Inside,
+        false => Class::Outside,
+    }
 }
 
 /// Every triangle's class: its seam answer, or the winding answer (`answers`, one per

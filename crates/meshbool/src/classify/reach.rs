@@ -28,7 +28,7 @@ use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
 use super::winding::morton_order_of_points;
-use super::Class;
+use super::{class_of_winding, Class};
 use crate::edges::{edge_word, unbalanced_edges};
 use crate::par::Grain;
 use crate::vec3::{dot, norm, sub};
@@ -390,10 +390,7 @@ pub(super) fn classes_by_reach(
     threshold: f64,
     eval: impl Fn(&[[f64; 3]]) -> Vec<f64>,
 ) -> Vec<Class> {
-    let class_of = |w: f64| match w > threshold {
-        true => Class::Inside,
-        false => Class::Outside,
-    };
+    let class_of = |w: f64| class_of_winding(w, threshold);
     let (chain, links) =
         crate::par::join(|| Chain::new(y), || Links::new(x, queries, centroids, seam));
     let order = morton_order_of_points(centroids, false);
@@ -408,12 +405,16 @@ pub(super) fn classes_by_reach(
             .any(|v| on_seam.binary_search(v).is_ok())
     };
     let mut class: Vec<Option<Class>> = vec![None; queries.len()];
-    for stride in STRIDES {
-        let open: Vec<u32> = order
+    // The triangles without a class yet, in Morton order.
+    let still_open = |class: &[Option<Class>]| -> Vec<u32> {
+        order
             .iter()
             .copied()
             .filter(|&i| class[i as usize].is_none())
-            .collect();
+            .collect()
+    };
+    for stride in STRIDES {
+        let open = still_open(&class);
         if open.len() < 2 * stride {
             continue;
         }
@@ -442,11 +443,7 @@ pub(super) fn classes_by_reach(
             }
         }
     }
-    let open: Vec<u32> = order
-        .iter()
-        .copied()
-        .filter(|&i| class[i as usize].is_none())
-        .collect();
+    let open = still_open(&class);
     let points: Vec<[f64; 3]> = open.iter().map(|&s| centroids[s as usize]).collect();
     for (&i, w) in open.iter().zip(eval(&points)) {
         class[i as usize] = Some(class_of(w));
@@ -466,12 +463,7 @@ mod tests {
 
     /// Every triangle of `x` as a query, with its centroid.
     fn every_triangle(x: &Mesh) -> (Vec<usize>, Vec<[f64; 3]>) {
-        let centroids = (0..x.triangles.len())
-            .map(|t| {
-                let [a, b, c] = x.corners(t);
-                std::array::from_fn(|k| (a[k] + b[k] + c[k]) / 3.0)
-            })
-            .collect();
+        let centroids = (0..x.triangles.len()).map(|t| x.centroid(t)).collect();
         ((0..x.triangles.len()).collect(), centroids)
     }
 
