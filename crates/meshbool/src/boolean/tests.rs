@@ -573,6 +573,56 @@ fn forced_paths_below_their_crossovers_give_the_same_results() {
     assert!(by_winding >= 3, "{by_winding}");
 }
 
+/// Two open terrains, the second rotated and larger than the first: most of the second
+/// lies outside the first's footprint, where the first's winding number is within
+/// hundredths of 0 and the hierarchy's own error decides some sides wrongly. Its sides
+/// are certified ([`crate::classify::FastWinding::sided_many`]): the classes and the
+/// results are those of exact sums.
+#[test]
+fn terrains_classified_by_the_hierarchy_as_by_exact_sums() {
+    use crate::shapes::heightfield;
+    let a = heightfield([0.0, 0.0], [10.0, 10.0], 70, 70, |x, y| {
+        0.6 * (0.9 * x).sin() * (0.7 * y).cos() + 0.25 * (2.3 * x + 1.1 * y + 0.4).sin()
+    });
+    let flat = heightfield([-7.5, -7.5], [7.5, 7.5], 45, 45, |_, _| 0.0);
+    let mut b = rigid_motion(&flat, [0.0, 0.0, 1.0], 0.3, [5.0, 5.0, 0.0]);
+    for p in &mut b.positions {
+        let [x, y, _] = *p;
+        p[2] = 0.22 * (x - 5.0)
+            + 0.1 * (y - 5.0)
+            + 0.35 * (1.3 * y + 0.2).cos() * (0.5 * x + 0.3).sin();
+    }
+    let fast = PipelineOptions {
+        exact_winding_up_to: 0.0,
+        ..PipelineOptions::default()
+    };
+    let exact = PipelineOptions {
+        exact_winding_up_to: f64::INFINITY,
+        ..PipelineOptions::default()
+    };
+    for (x, y) in [(&a, &b), (&b, &a)] {
+        let (f, e) = (super::split(x, y, &fast), super::split(x, y, &exact));
+        for (cf, ce) in [(&f.class_a, &e.class_a), (&f.class_b, &e.class_b)] {
+            assert!(!ce.approximate_winding);
+            assert_eq!(cf.approximate_winding, cf.by_winding > 0);
+            let differ = cf
+                .class
+                .iter()
+                .zip(&ce.class)
+                .filter(|(a, b)| a != b)
+                .count();
+            assert_eq!(differ, 0, "{differ} classes of {}", ce.class.len());
+        }
+        assert!(f.class_a.by_winding + f.class_b.by_winding > 0);
+        for op in Op::ALL {
+            assert_eq!(
+                super::boolean(x, y, op, &fast).mesh,
+                super::boolean(x, y, op, &exact).mesh
+            );
+        }
+    }
+}
+
 /// Large meshes take the paths that run side by side (edge structure by vertex ranges and
 /// a shared union-find, the reassembly in spans, the merge's parallel fills): the result,
 /// its provenance and its seam are the same on any number of threads.

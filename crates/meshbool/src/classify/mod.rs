@@ -674,8 +674,10 @@ fn resolved(
 
 /// The class of each queried triangle of `x` from the generalized winding number of `y`
 /// at its centroid: inside above the threshold (1/2 for a closed `y`, 0 for an open one).
-/// Exact sums up to `exact_up_to` triangle × query products, the hierarchy beyond
-/// (deterministic either way); also whether the hierarchy answered. From
+/// Exact sums up to `exact_up_to` triangle × query products, the hierarchy beyond, its
+/// sides of the threshold certified ([`FastWinding::sided_many`]), so the classes are
+/// the exact sums' either way (deterministic either way); also whether the hierarchy
+/// answered. From
 /// [`reach::REACH_FROM`] queries on, a winding number clear of the threshold also settles
 /// the queried triangles within reach of it (`seam`: the seam edges of `x`, which no
 /// such reach crosses; see [`reach`]).
@@ -691,10 +693,13 @@ fn winding_fallback(
     let fast = (queries.len() as f64 * y.triangles.len() as f64 > exact_up_to)
         .then(|| FastWinding::new(y));
     let points: Vec<[f64; 3]> = queries.iter().map(|&t| x.centroid(t)).collect();
-    let eval = |points: &[[f64; 3]]| -> Vec<f64> {
+    let eval = |points: &[[f64; 3]]| -> Vec<(f64, f64)> {
         match &fast {
-            Some(f) => f.at_many(points),
-            None => points.iter().map(|&p| winding_number(y, p)).collect(),
+            Some(f) => f.sided_many(points, threshold),
+            None => points
+                .iter()
+                .map(|&p| (winding_number(y, p), 0.0))
+                .collect(),
         }
     };
     let classes = if queries.len() >= reach::REACH_FROM {
@@ -702,7 +707,7 @@ fn winding_fallback(
     } else {
         eval(&points)
             .into_iter()
-            .map(|w| class_of_winding(w, threshold))
+            .map(|(w, _)| class_of_winding(w, threshold))
             .collect()
     };
     (classes, fast.is_some())

@@ -10,8 +10,10 @@
 //! a path (centroid, the shared edge's midpoint, centroid): the arrangement cut them along
 //! every crossing with `y`, so only their seam edges touch it.
 //!
-//! A seed triangle whose winding number `w` clears the threshold by `m` more than
-//! [`ALLOWANCE`] gives its class to the triangles reached by paths shorter than `m / G`,
+//! A seed triangle whose winding number `w` clears the threshold by `m` more than its
+//! error bound (0 for an exact sum; the hierarchy's own bound, see
+//! [`super::FastWinding::sided_many`]) and [`ROUNDING`] gives its class to the triangles
+//! reached by paths shorter than `m / G`,
 //! `G` the gradient bound over a ball around the seed that holds those paths. Against a
 //! closed, consistently oriented mesh the chain is empty and the winding number constant
 //! between crossings: a seed reaches its whole piece. Seeds are taken in rounds, every
@@ -20,8 +22,8 @@
 //! centroid may lie within rounding of `y`); what is left after the rounds is evaluated
 //! one by one. The
 //! classes do not depend on the threads (a triangle reached by several seeds takes the
-//! first seed's class in Morton order; all agree where the seeds' errors are within the
-//! allowance).
+//! first seed's class in Morton order; all agree, each seed's error being within its
+//! bound).
 
 use rayon::prelude::*;
 use std::cmp::Reverse;
@@ -34,10 +36,10 @@ use crate::par::Grain;
 use crate::vec3::{dot, norm, sub};
 use crate::Mesh;
 
-/// How far a seed's winding number may be from the exact sum: the hierarchy's measured
-/// accuracy (within 0.03; see [`super::FastWinding`]). A seed settles other triangles
-/// only by its clearance of the threshold beyond this.
-const ALLOWANCE: f64 = 0.03;
+/// What a seed's clearance of the threshold loses, beyond its value's error bound, to
+/// the rounding of the sums (a few units in the last place per term, over up to
+/// millions of terms).
+const ROUNDING: f64 = 1e-9;
 
 /// Below this many queried triangles, each is evaluated on its own (the chain and the
 /// links would cost more than they save).
@@ -379,7 +381,8 @@ struct Room {
 
 /// The classes of the triangles `queries` of `x` (with centroids `centroids`) against
 /// `y`: inside where the winding number of `y` is above `threshold`. `eval` gives the
-/// winding numbers at points; it is asked for the seeds and for what no seed reaches
+/// winding numbers at points, each with a bound on its error that its distance to
+/// `threshold` exceeds (or that is 0); it is asked for the seeds and for what no seed reaches
 /// (see the module's comment). `seam`: the seam edges of `x`, sorted.
 pub(super) fn classes_by_reach(
     x: &Mesh,
@@ -388,7 +391,7 @@ pub(super) fn classes_by_reach(
     seam: &[[u32; 2]],
     y: &Mesh,
     threshold: f64,
-    eval: impl Fn(&[[f64; 3]]) -> Vec<f64>,
+    eval: impl Fn(&[[f64; 3]]) -> Vec<(f64, f64)>,
 ) -> Vec<Class> {
     let class_of = |w: f64| class_of_winding(w, threshold);
     let (chain, links) =
@@ -425,8 +428,8 @@ pub(super) fn classes_by_reach(
             .par_iter()
             .zip(&w)
             .grained()
-            .map_init(Room::default, |room, (&s, &w)| {
-                let margin = (w - threshold).abs() - ALLOWANCE;
+            .map_init(Room::default, |room, (&s, &(w, e))| {
+                let margin = (w - threshold).abs() - e - ROUNDING;
                 if margin.is_nan() || margin <= 0.0 || touches_seam(s) {
                     return Vec::new();
                 }
@@ -434,10 +437,10 @@ pub(super) fn classes_by_reach(
                 links.flood(s, reach, FLOOD_PER_STRIDE * stride, room)
             })
             .collect();
-        for (&s, &w) in seeds.iter().zip(&w) {
+        for (&s, &(w, _)) in seeds.iter().zip(&w) {
             class[s as usize] = Some(class_of(w));
         }
-        for (&w, region) in w.iter().zip(&reached) {
+        for (&(w, _), region) in w.iter().zip(&reached) {
             for &t in region {
                 class[t as usize].get_or_insert(class_of(w));
             }
@@ -445,7 +448,7 @@ pub(super) fn classes_by_reach(
     }
     let open = still_open(&class);
     let points: Vec<[f64; 3]> = open.iter().map(|&s| centroids[s as usize]).collect();
-    for (&i, w) in open.iter().zip(eval(&points)) {
+    for (&i, (w, _)) in open.iter().zip(eval(&points)) {
         class[i as usize] = Some(class_of(w));
     }
     class
@@ -524,9 +527,8 @@ mod tests {
     /// Classes by reach are the classes of each triangle's own winding number: on a
     /// tilted plane that passes under an open surface and on past its edge, where the
     /// winding number crosses the threshold without crossing the surface. With exact sums
-    /// every class is the exact one; with the hierarchy, every class clear of the
-    /// threshold by the allowance. Fewer than two in five points are evaluated (2,614 of
-    /// 7,200 when written).
+    /// and with the hierarchy's sided values, every class is the exact one. Fewer than
+    /// two in five points are evaluated.
     #[test]
     fn classes_by_reach_are_the_classes_of_each_triangle() {
         let x = heightfield([-1.2, -1.2], [1.6, 1.2], 60, 60, |x, _| 0.25 * (x - 1.1));
@@ -541,15 +543,13 @@ mod tests {
             let eval = |pts: &[[f64; 3]]| {
                 asked.fetch_add(pts.len(), std::sync::atomic::Ordering::Relaxed);
                 match by_fast {
-                    true => fast.at_many(pts),
-                    false => pts.iter().map(|&p| winding_number(&y, p)).collect(),
+                    true => fast.sided_many(pts, 0.0),
+                    false => pts.iter().map(|&p| (winding_number(&y, p), 0.0)).collect(),
                 }
             };
             let got = classes_by_reach(&x, &queries, &centroids, &[], &y, 0.0, eval);
             for (t, (&w, c)) in exact.iter().zip(&got).enumerate() {
-                if !by_fast || w.abs() > ALLOWANCE {
-                    assert_eq!(*c == Class::Inside, w > 0.0, "{t}: {w} (fast {by_fast})");
-                }
+                assert_eq!(*c == Class::Inside, w > 0.0, "{t}: {w} (fast {by_fast})");
             }
             let asked = asked.into_inner();
             assert!(
@@ -577,7 +577,7 @@ mod tests {
         let asked = std::sync::atomic::AtomicUsize::new(0);
         let eval = |pts: &[[f64; 3]]| {
             asked.fetch_add(pts.len(), std::sync::atomic::Ordering::Relaxed);
-            pts.iter().map(|&p| winding_number(&y, p)).collect()
+            pts.iter().map(|&p| (winding_number(&y, p), 0.0)).collect()
         };
         let got = classes_by_reach(&x, &queries, &centroids, &[], &y, 0.5, eval);
         let n = inner.triangles.len();

@@ -60,8 +60,11 @@ impl PointClass {
 pub struct ClassifyOutput {
     /// Per point, in input order.
     pub classes: Vec<PointClass>,
-    /// Per point: the generalized winding number (the hierarchical approximation, within
-    /// about 0.03 of the exact sum; about 1/2 on a closed surface).
+    /// Per point: the generalized winding number (the hierarchical approximation,
+    /// typically within a few hundredths of the exact sum, and on the exact sum's side of
+    /// the threshold: where the approximation's error bound straddles it, the value is
+    /// completed through the mesh's boundary or summed exactly; an integer there for a
+    /// closed mesh; about 1/2 on a closed surface).
     pub winding: Vec<f64>,
     /// True when the mesh is closed (inside means winding number ≥ 1/2; else behind the
     /// surface means winding number > 0).
@@ -154,15 +157,19 @@ pub fn classify_points<'a>(
         let counts = EdgeCounts::of(m);
         let closed = !m.triangles.is_empty() && counts.boundary == 0 && counts.non_manifold == 0;
         let on = on_surface(m, points);
-        let winding = FastWinding::new(m).at_many(points);
+        let threshold = if closed { 0.5 } else { 0.0 };
+        let winding: Vec<f64> = FastWinding::new(m)
+            .sided_many(points, threshold)
+            .into_iter()
+            .map(|(w, _)| w)
+            .collect();
         let classes = winding
             .iter()
             .zip(&on)
-            .map(|(&w, &on)| match (on, closed) {
-                (true, _) => PointClass::On,
-                (false, true) if w >= 0.5 => PointClass::Inside,
-                (false, false) if w > 0.0 => PointClass::Inside,
-                _ => PointClass::Outside,
+            .map(|(&w, &on)| match on {
+                true => PointClass::On,
+                false if w > threshold => PointClass::Inside,
+                false => PointClass::Outside,
             })
             .collect();
         Ok(ClassifyOutput {
