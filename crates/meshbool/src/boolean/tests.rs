@@ -577,7 +577,8 @@ fn forced_paths_below_their_crossovers_give_the_same_results() {
 /// lies outside the first's footprint, where the first's winding number is within
 /// hundredths of 0 and the hierarchy's own error decides some sides wrongly. Its sides
 /// are certified ([`crate::classify::FastWinding::sided_many`]): the classes and the
-/// results are those of exact sums.
+/// results are those of exact sums. So for two flat sheets in one plane, where the
+/// winding numbers beside them are ties.
 #[test]
 fn terrains_classified_by_the_hierarchy_as_by_exact_sums() {
     use crate::shapes::heightfield;
@@ -600,7 +601,16 @@ fn terrains_classified_by_the_hierarchy_as_by_exact_sums() {
         exact_winding_up_to: f64::INFINITY,
         ..PipelineOptions::default()
     };
-    for (x, y) in [(&a, &b), (&b, &a)] {
+    // Two flat sheets in one plane, the second turned: beside each other the winding
+    // numbers are 0 term by term, ties that must stay on the threshold.
+    let sheet = heightfield([0.0, 0.0], [10.0, 10.0], 40, 40, |_, _| 0.0);
+    let turned = rigid_motion(
+        &heightfield([0.0, 0.0], [10.0, 10.0], 32, 32, |_, _| 0.0),
+        [0.0, 0.0, 1.0],
+        0.3,
+        [5.0, -3.0, 0.0],
+    );
+    for (x, y) in [(&a, &b), (&b, &a), (&sheet, &turned)] {
         let (f, e) = (super::split(x, y, &fast), super::split(x, y, &exact));
         for (cf, ce) in [(&f.class_a, &e.class_a), (&f.class_b, &e.class_b)] {
             assert!(!ce.approximate_winding);

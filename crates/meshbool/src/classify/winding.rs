@@ -85,10 +85,12 @@ const LEAF: usize = 8;
 /// ever decides a threshold (1/2 closed, 0 open), never topology.
 const BETA: f64 = 2.5;
 
-/// A cluster as the queries read it, kept small (88 bytes) because every query walks
+/// A cluster as the queries read it, kept small (96 bytes) because every query walks
 /// hundreds of them: the centre in `f64` (queries subtract it from input coordinates,
 /// which may be UTM-sized), the expansion's coefficients in `f32` (each far-field term is
-/// itself an approximation good to a few per cent; `f32` adds 1e-7 of it).
+/// itself an approximation good to a few per cent; `f32` adds 1e-7 of it), the spread in
+/// `f64` (it grows with the fourth power of the size: `f32` would overflow or vanish on
+/// meshes a few billion or a hundred-billionth of a unit across).
 #[derive(Clone, Copy, Debug, Default)]
 struct Node {
     /// Area-weighted centroid.
@@ -104,8 +106,8 @@ struct Node {
     /// total area, rounded up: what bounds the far field's error ([`far_error`]).
     radius: f32,
     area: f32,
-    /// ∫ |x − centre|² over the cluster's area, rounded up.
-    spread: f32,
+    /// ∫ |x − centre|² over the cluster's area.
+    spread: f64,
     /// Range of the cluster in `order`.
     start: u32,
     end: u32,
@@ -315,7 +317,7 @@ impl<'a> FastWinding<'a> {
             ],
             radius: up_f32(sums.radius),
             area: up_f32(sums.area),
-            spread: up_f32(sums.spread),
+            spread: sums.spread,
             start: start as u32,
             end: end as u32,
             right,
@@ -364,9 +366,12 @@ impl<'a> FastWinding<'a> {
     /// cone over its boundary is closed, so their winding numbers differ by an integer,
     /// which the hierarchy's value fixes when its bound and the cone's rounding are
     /// below ½; the cone's value plus that integer is then good to the cone's rounding
-    /// (against a closed mesh, the cone is empty and the value an integer). Where even
-    /// that leaves the side unsure (a point within rounding of the threshold or of the
-    /// cone's edges), the exact sum (bound 0). A mesh with a long boundary gets more
+    /// (against a closed mesh, the cone is empty and the value an integer). A completed
+    /// value within its bound, below [`TIE`], of the threshold is a tie: it becomes the
+    /// threshold itself, not above it (a point in the plane of a flat sheet, beside it,
+    /// where the exact sum is 0 term by term). Where the completion fails (a point
+    /// within rounding of the cone's edges), the exact sum, [`winding_number`] (bound 0).
+    /// So the side is the exact sum's wherever that is clear of rounding. A mesh with a long boundary gets more
     /// walks, the far field farther, before its cone is asked ([`LONG_BOUNDARY`]).
     pub fn sided_many(&self, points: &[[f64; 3]], threshold: f64) -> Vec<(f64, f64)> {
         let mut out = self.walk_many(points, 1.0);
@@ -402,19 +407,20 @@ impl<'a> FastWinding<'a> {
                 out[i] = we;
             }
         }
-        open.retain(|&i| unsure(out[i]));
+        // A completed value within `TIE` of the threshold is a tie that no sum breaks
+        // better than its rounding: it counts as on the threshold (not above it), as
+        // exact sums have it where every term vanishes (a point in the plane of a flat
+        // sheet, beside it), with no sum over the whole mesh.
+        for &i in &open {
+            let (w, e) = out[i];
+            if e <= TIE && (w - threshold).abs() <= e {
+                out[i] = (threshold, e);
+            }
+        }
+        open.retain(|&i| unsure(out[i]) && out[i].1 > TIE);
         let exact: Vec<f64> = open
             .par_iter()
-            .map(|&i| {
-                let p = points[i];
-                let half: f64 = (0..self.mesh.triangles.len())
-                    .map(|t| {
-                        let [a, b, c] = self.mesh.corners(t);
-                        half_solid_angle(&a, &b, &c, &p)
-                    })
-                    .sum();
-                half * HALF_ANGLE_TO_WINDING
-            })
+            .map(|&i| winding_number(self.mesh, points[i]))
             .collect();
         for (&i, w) in open.iter().zip(exact) {
             out[i] = (w, 0.0);
@@ -426,6 +432,8 @@ impl<'a> FastWinding<'a> {
     /// taken far beyond `widen` times its usual squared far distance.
     fn walk_many(&self, points: &[[f64; 3]], widen: f64) -> Vec<(f64, f64)> {
         const GROUP: usize = 64;
+        // The bound's coefficient term assumes clusters at least `BETA` radii away.
+        debug_assert!(widen >= 1.0);
         if self.nodes.is_empty() {
             return vec![(0.0, 0.0); points.len()];
         }
@@ -471,8 +479,7 @@ impl<'a> FastWinding<'a> {
             let [xx, yy, zz, xy, xz, yz] = n.moment.map(f64::from);
             let normal = n.normal.map(f64::from);
             let far2 = widen * n.far2;
-            let (radius, area, spread) =
-                (f64::from(n.radius), f64::from(n.area), f64::from(n.spread));
+            let (radius, area, spread) = (f64::from(n.radius), f64::from(n.area), n.spread);
             let (mut near, mut m) = (0u64, mask);
             while m != 0 {
                 let k = m.trailing_zeros() as usize;
@@ -547,6 +554,10 @@ fn far_error(r: f64, a: f64, spread: f64, inv: f64) -> f64 {
     (spread * (3.0 - 2.0 * u) / ((1.0 - u) * (1.0 - u)) * inv2 + F32_COEFFICIENTS * a) * inv2
 }
 
+/// How near the threshold a completed value may lie, its bound below this, and stand:
+/// the rounding of an exact sum over ten million terms.
+const TIE: f64 = 1e-9;
+
 /// Boundary edges beyond which [`FastWinding::sided_many`] walks a second time (the far
 /// field twice as far) before it asks the cone, whose cost per point grows with the
 /// boundary; beyond 16 times as many, a third time (four times as far). Terrain ∪
@@ -595,7 +606,10 @@ impl Cone {
         Cone { apex, ends }
     }
 
-    /// The cone's winding number at `p` and a bound on its rounding: per triangle, the
+    /// The cone's winding number at `p` and a bound on its rounding, up to a whole number
+    /// (within rounding of a cone triangle's plane, inside it, `atan2` may take either
+    /// side's value, ½ apart in winding; completion rounds such a step away): per
+    /// triangle, the
     /// corners' differences from `p` and the triple product and denominator of
     /// [`half_solid_angle`] are each within a few units in the last place of
     /// `|a| |b| |c|` (the corners from `p`), so the vector `atan2` reads is within
@@ -747,11 +761,15 @@ mod tests {
             }
             assert!(used > 0.05, "the bound is looser than it was ({used})");
             // Farther far fields: a tighter bound, still holding.
-            let wider = fast.walk_many(&pts, 4.0);
-            let mean_wider: f64 = wider.iter().map(|&(_, e)| e).sum::<f64>() / pts.len() as f64;
-            assert!(mean_wider < mean_bound / 3.0, "{mean_wider} {mean_bound}");
-            for (p, &(w, e)) in pts.iter().zip(&wider) {
-                assert!((w - winding_number(m, *p)).abs() <= e + 1e-12, "{p:?}");
+            let mut mean_before = mean_bound;
+            for widen in [4.0, 16.0] {
+                let wider = fast.walk_many(&pts, widen);
+                let mean: f64 = wider.iter().map(|&(_, e)| e).sum::<f64>() / pts.len() as f64;
+                assert!(mean < mean_before / 3.0, "{widen}: {mean} {mean_before}");
+                for (p, &(w, e)) in pts.iter().zip(&wider) {
+                    assert!((w - winding_number(m, *p)).abs() <= e + 1e-12, "{p:?}");
+                }
+                mean_before = mean;
             }
         }
     }
@@ -830,21 +848,29 @@ mod tests {
                 }
                 assert_eq!(ws > threshold, exact > threshold, "{p:?}: {ws} {exact}");
                 assert!((ws - threshold).abs() > es && (ws - exact).abs() <= es + 1e-9);
-                unsure += usize::from((w - threshold).abs() <= e);
+                if (w - threshold).abs() <= e {
+                    unsure += 1;
+                    // Completed, not summed: through the cone beside the field (a bound
+                    // of rounding), to an integer against the sphere.
+                    match threshold == 0.0 {
+                        true => assert!(es > 0.0 && es < 1e-9, "{p:?}: {es}"),
+                        false => assert!(es == 0.0 && ws == ws.round(), "{p:?}: {ws}"),
+                    }
+                }
                 wrong_alone += usize::from((w > threshold) != (exact > threshold));
             }
         }
         assert!(unsure > 100 && wrong_alone > 0, "{unsure} {wrong_alone}");
-        // In the plane of a flat open square, beside it, the winding number is 0: no
-        // bound decides, and the value is the exact sum's.
+        // In the plane of a flat open square, beside it, the winding number is 0 term by
+        // term: no bound decides, and the tie is the threshold itself (not above it).
         let flat = heightfield([0.0, 0.0], [1.0, 1.0], 20, 20, |_, _| 0.0);
         let fast = FastWinding::new(&flat);
         let beside: Vec<[f64; 3]> = (0..40)
             .map(|i| [1.5 + 0.1 * f64::from(i), 0.3 + 0.01 * f64::from(i), 0.0])
             .collect();
         for (p, (w, e)) in beside.iter().zip(fast.sided_many(&beside, 0.0)) {
-            assert_eq!(e, 0.0, "{p:?}");
-            assert!((w - winding_number(&flat, *p)).abs() < 1e-12 && w.abs() < 1e-12);
+            assert_eq!(winding_number(&flat, *p), 0.0);
+            assert!(e <= TIE && w == 0.0, "{p:?}: {w} {e}");
         }
     }
 

@@ -158,18 +158,29 @@ pub fn classify_points<'a>(
         let closed = !m.triangles.is_empty() && counts.boundary == 0 && counts.non_manifold == 0;
         let on = on_surface(m, points);
         let threshold = if closed { 0.5 } else { 0.0 };
-        let winding: Vec<f64> = FastWinding::new(m)
-            .sided_many(points, threshold)
-            .into_iter()
-            .map(|(w, _)| w)
-            .collect();
+        let fast = FastWinding::new(m);
+        // Points off the surface on the exact sum's side; those on it keep the
+        // hierarchy's own value (about ½ on a closed surface).
+        let (on_pts, off_pts): (Vec<usize>, Vec<usize>) = (0..points.len()).partition(|&i| on[i]);
+        let pick = |ids: &[usize]| -> Vec<[f64; 3]> { ids.iter().map(|&i| points[i]).collect() };
+        let mut winding = vec![0.0; points.len()];
+        for (&i, (w, _)) in off_pts
+            .iter()
+            .zip(fast.sided_many(&pick(&off_pts), threshold))
+        {
+            winding[i] = w;
+        }
+        for (&i, w) in on_pts.iter().zip(fast.at_many(&pick(&on_pts))) {
+            winding[i] = w;
+        }
         let classes = winding
             .iter()
             .zip(&on)
-            .map(|(&w, &on)| match on {
-                true => PointClass::On,
-                false if w > threshold => PointClass::Inside,
-                false => PointClass::Outside,
+            .map(|(&w, &on)| match (on, closed) {
+                (true, _) => PointClass::On,
+                (false, true) if w >= 0.5 => PointClass::Inside,
+                (false, false) if w > 0.0 => PointClass::Inside,
+                _ => PointClass::Outside,
             })
             .collect();
         Ok(ClassifyOutput {
