@@ -27,7 +27,7 @@ use crate::Mesh;
 mod reach;
 mod winding;
 pub use winding::{winding_number, FastWinding};
-pub(crate) use winding::{winding_number_without, winding_term};
+pub(crate) use winding::{winding_number_without, winding_term, SUM_ROUNDING};
 
 /// Where a triangle of one mesh lies relative to the other mesh.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -690,8 +690,23 @@ fn winding_fallback(
     exact_up_to: f64,
 ) -> (Vec<Class>, bool) {
     let threshold = if y_closed { 0.5 } else { 0.0 };
-    let fast = (queries.len() as f64 * y.triangles.len() as f64 > exact_up_to)
-        .then(|| FastWinding::new(y));
+    let by_reach = queries.len() >= reach::REACH_FROM;
+    // The reach's chain and the hierarchy's cone are both over `y`'s boundary: found
+    // once, beside the hierarchy's build.
+    let (fast, boundary) = crate::par::join(
+        || {
+            (queries.len() as f64 * y.triangles.len() as f64 > exact_up_to)
+                .then(|| FastWinding::new(y))
+        },
+        || match by_reach {
+            true => crate::edges::unbalanced_edges(y),
+            false => Vec::new(),
+        },
+    );
+    let fast = fast.map(|f| match by_reach {
+        true => f.with_boundary(&boundary),
+        false => f,
+    });
     let points: Vec<[f64; 3]> = queries.iter().map(|&t| x.centroid(t)).collect();
     let eval = |points: &[[f64; 3]]| -> Vec<(f64, f64)> {
         match &fast {
@@ -702,8 +717,8 @@ fn winding_fallback(
                 .collect(),
         }
     };
-    let classes = if queries.len() >= reach::REACH_FROM {
-        reach::classes_by_reach(x, queries, &points, seam, y, threshold, eval)
+    let classes = if by_reach {
+        reach::classes_by_reach(x, queries, &points, seam, y, &boundary, threshold, eval)
     } else {
         eval(&points)
             .into_iter()

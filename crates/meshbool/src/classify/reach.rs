@@ -12,7 +12,7 @@
 //!
 //! A seed triangle whose winding number `w` clears the threshold by `m` more than its
 //! error bound (0 for an exact sum; the hierarchy's own bound, see
-//! [`super::FastWinding::sided_many`]) and [`ROUNDING`] gives its class to the triangles
+//! [`super::FastWinding::sided_many`]) and [`SUM_ROUNDING`] gives its class to the triangles
 //! reached by paths shorter than `m / G`,
 //! `G` the gradient bound over a ball around the seed that holds those paths. Against a
 //! closed, consistently oriented mesh the chain is empty and the winding number constant
@@ -30,16 +30,10 @@ use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
 use super::winding::morton_order_of_points;
-use super::{class_of_winding, Class};
-use crate::edges::{edge_word, unbalanced_edges};
+use super::{class_of_winding, Class, SUM_ROUNDING};
 use crate::par::Grain;
 use crate::vec3::{dot, norm, sub};
 use crate::Mesh;
-
-/// What a seed's clearance of the threshold loses, beyond its value's error bound, to
-/// the rounding of the sums (a few units in the last place per term, over up to
-/// millions of terms).
-const ROUNDING: f64 = 1e-9;
 
 /// Below this many queried triangles, each is evaluated on its own (the chain and the
 /// links would cost more than they save).
@@ -68,7 +62,7 @@ struct ChainNode {
     right: u32,
 }
 
-/// The boundary chain of a mesh ([`unbalanced_edges`]) as segments in a hierarchy of
+/// The boundary chain of a mesh ([`crate::edges::unbalanced_edges`]) as segments in a hierarchy of
 /// boxes: the nearest segment to a point, and bounds on the winding number's gradient.
 pub(super) struct Chain {
     /// Segment ends, in the hierarchy's order.
@@ -105,8 +99,13 @@ fn segment_distance2(p: &[f64; 3], [a, b]: &[[f64; 3]; 2]) -> f64 {
 
 impl Chain {
     /// The boundary chain of `mesh`.
-    pub(super) fn new(mesh: &Mesh) -> Chain {
-        let edges = unbalanced_edges(mesh);
+    #[cfg(test)]
+    fn new(mesh: &Mesh) -> Chain {
+        Chain::over(mesh, &crate::edges::unbalanced_edges(mesh))
+    }
+
+    /// The chain of `mesh`'s boundary `edges`, its [`crate::edges::unbalanced_edges`].
+    pub(super) fn over(mesh: &Mesh, edges: &[([u32; 2], i32)]) -> Chain {
         let at = |v: u32| mesh.positions[v as usize];
         let mids: Vec<[f64; 3]> = edges
             .iter()
@@ -279,31 +278,51 @@ impl Links {
     /// seam edges of `x` (sorted pairs, lower vertex first). Only edges with exactly two
     /// uses among the queried triangles link them.
     fn new(x: &Mesh, queries: &[usize], centroids: &[[f64; 3]], seam: &[[u32; 2]]) -> Links {
-        let mut half: Vec<(u64, u32)> = Vec::with_capacity(3 * queries.len());
-        for (i, &t) in queries.iter().enumerate() {
+        // The queried triangles' edges by their lower vertex (a counting sort), each use
+        // as (higher vertex, query): in edge order once each bucket is sorted.
+        let nv = x.positions.len();
+        let edges_of = |t: usize| {
             let tri = x.triangles[t];
-            for k in 0..3 {
-                let (a, b) = (tri[k], tri[(k + 1) % 3]);
-                if a != b {
-                    half.push((edge_word(a.min(b), a.max(b)), i as u32));
-                }
+            (0..3)
+                .map(move |k| (tri[k], tri[(k + 1) % 3]))
+                .filter(|(a, b)| a != b)
+                .map(|(a, b)| (a.min(b), a.max(b)))
+        };
+        let mut start = vec![0u32; nv + 1];
+        for &t in queries {
+            for (lo, _) in edges_of(t) {
+                start[lo as usize + 1] += 1;
             }
         }
-        half.par_sort_unstable();
-        let mut pairs: Vec<(u32, u32, f64)> = Vec::new();
-        let mut rest = &half[..];
-        while let Some(&(w, i)) = rest.first() {
-            let n = rest.iter().take_while(|h| h.0 == w).count();
-            let edge = [(w >> 32) as u32, w as u32];
-            if n == 2 && rest[1].1 != i && seam.binary_search(&edge).is_err() {
-                let j = rest[1].1;
-                let [a, b] = edge.map(|v| x.positions[v as usize]);
-                let m: [f64; 3] = std::array::from_fn(|k| (a[k] + b[k]) / 2.0);
-                let len =
-                    norm(&sub(&centroids[i as usize], &m)) + norm(&sub(&m, &centroids[j as usize]));
-                pairs.push((i, j, len));
+        for v in 0..nv {
+            start[v + 1] += start[v];
+        }
+        let mut fill = start.clone();
+        let mut half = vec![(0u32, 0u32); start[nv] as usize];
+        for (i, &t) in queries.iter().enumerate() {
+            for (lo, hi) in edges_of(t) {
+                half[fill[lo as usize] as usize] = (hi, i as u32);
+                fill[lo as usize] += 1;
             }
-            rest = &rest[n..];
+        }
+        let mut pairs: Vec<(u32, u32, f64)> = Vec::new();
+        for lo in 0..nv {
+            let bucket = &mut half[start[lo] as usize..start[lo + 1] as usize];
+            bucket.sort_unstable();
+            let mut rest = &*bucket;
+            while let Some(&(hi, i)) = rest.first() {
+                let n = rest.iter().take_while(|h| h.0 == hi).count();
+                let edge = [lo as u32, hi];
+                if n == 2 && rest[1].1 != i && seam.binary_search(&edge).is_err() {
+                    let j = rest[1].1;
+                    let [a, b] = edge.map(|v| x.positions[v as usize]);
+                    let m: [f64; 3] = std::array::from_fn(|k| (a[k] + b[k]) / 2.0);
+                    let len = norm(&sub(&centroids[i as usize], &m))
+                        + norm(&sub(&m, &centroids[j as usize]));
+                    pairs.push((i, j, len));
+                }
+                rest = &rest[n..];
+            }
         }
         let mut offsets = vec![0u32; queries.len() + 1];
         for &(i, j, _) in &pairs {
@@ -383,19 +402,24 @@ struct Room {
 /// `y`: inside where the winding number of `y` is above `threshold`. `eval` gives the
 /// winding numbers at points, each with a bound on its error that its distance to
 /// `threshold` exceeds (or that is 0); it is asked for the seeds and for what no seed reaches
-/// (see the module's comment). `seam`: the seam edges of `x`, sorted.
+/// (see the module's comment). `seam`: the seam edges of `x`, sorted; `boundary`: those
+/// of `y` whose uses do not cancel ([`crate::edges::unbalanced_edges`]).
+#[allow(clippy::too_many_arguments)]
 pub(super) fn classes_by_reach(
     x: &Mesh,
     queries: &[usize],
     centroids: &[[f64; 3]],
     seam: &[[u32; 2]],
     y: &Mesh,
+    boundary: &[([u32; 2], i32)],
     threshold: f64,
     eval: impl Fn(&[[f64; 3]]) -> Vec<(f64, f64)>,
 ) -> Vec<Class> {
     let class_of = |w: f64| class_of_winding(w, threshold);
-    let (chain, links) =
-        crate::par::join(|| Chain::new(y), || Links::new(x, queries, centroids, seam));
+    let (chain, links) = crate::par::join(
+        || Chain::over(y, boundary),
+        || Links::new(x, queries, centroids, seam),
+    );
     let order = morton_order_of_points(centroids, false);
     // A seed with a corner on the seam settles only itself: a sliver beside the seam may
     // have its centroid within rounding of `y`, where its winding number is off by ½.
@@ -429,7 +453,7 @@ pub(super) fn classes_by_reach(
             .zip(&w)
             .grained()
             .map_init(Room::default, |room, (&s, &(w, e))| {
-                let margin = (w - threshold).abs() - e - ROUNDING;
+                let margin = (w - threshold).abs() - e - SUM_ROUNDING;
                 if margin.is_nan() || margin <= 0.0 || touches_seam(s) {
                     return Vec::new();
                 }
@@ -461,8 +485,21 @@ pub(super) fn classes_by_reach(
 mod tests {
     use super::*;
     use crate::classify::{winding_number, FastWinding};
+    use crate::edges::unbalanced_edges;
     use crate::shapes::{heightfield, uv_sphere};
     use crate::test_util::Rng;
+
+    /// [`classes_by_reach`] of every triangle of `x` (no seam) against `y`.
+    fn all_by_reach(
+        x: &Mesh,
+        y: &Mesh,
+        threshold: f64,
+        eval: impl Fn(&[[f64; 3]]) -> Vec<(f64, f64)>,
+    ) -> Vec<Class> {
+        let (queries, centroids) = every_triangle(x);
+        let boundary = unbalanced_edges(y);
+        classes_by_reach(x, &queries, &centroids, &[], y, &boundary, threshold, eval)
+    }
 
     /// Every triangle of `x` as a query, with its centroid.
     fn every_triangle(x: &Mesh) -> (Vec<usize>, Vec<[f64; 3]>) {
@@ -547,7 +584,7 @@ mod tests {
                     false => pts.iter().map(|&p| (winding_number(&y, p), 0.0)).collect(),
                 }
             };
-            let got = classes_by_reach(&x, &queries, &centroids, &[], &y, 0.0, eval);
+            let got = all_by_reach(&x, &y, 0.0, eval);
             for (t, (&w, c)) in exact.iter().zip(&got).enumerate() {
                 assert_eq!(*c == Class::Inside, w > 0.0, "{t}: {w} (fast {by_fast})");
             }
@@ -573,18 +610,17 @@ mod tests {
         x.positions.extend(&outer.positions);
         x.triangles
             .extend(outer.triangles.iter().map(|t| t.map(|v| v + base)));
-        let (queries, centroids) = every_triangle(&x);
         let asked = std::sync::atomic::AtomicUsize::new(0);
         let eval = |pts: &[[f64; 3]]| {
             asked.fetch_add(pts.len(), std::sync::atomic::Ordering::Relaxed);
             pts.iter().map(|&p| (winding_number(&y, p), 0.0)).collect()
         };
-        let got = classes_by_reach(&x, &queries, &centroids, &[], &y, 0.5, eval);
+        let got = all_by_reach(&x, &y, 0.5, eval);
         let n = inner.triangles.len();
         assert!(got[..n].iter().all(|&c| c == Class::Inside));
         assert!(got[n..].iter().all(|&c| c == Class::Outside));
         // The first round's seeds (every 64th) and no more.
-        assert_eq!(asked.into_inner(), queries.len().div_ceil(64));
+        assert_eq!(asked.into_inner(), x.triangles.len().div_ceil(64));
     }
 
     /// No link crosses a seam edge: a grid cut along its middle column of edges floods
