@@ -22,3 +22,12 @@ pub(crate) fn data(name: &str) -> crate::Mesh {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data");
     crate::io::read_path(dir.join(name)).expect("data file reads")
 }
+
+/// `f` run in a pool of its own with `threads` threads (what a result must not depend on).
+pub(crate) fn on_threads<R: Send>(threads: usize, f: impl FnOnce() -> R + Send) -> R {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("a thread pool")
+        .install(f)
+}

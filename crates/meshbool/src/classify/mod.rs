@@ -676,8 +676,8 @@ fn resolved(
 /// at its centroid: inside above the threshold (1/2 for a closed `y`, 0 for an open one).
 /// Exact sums up to `exact_up_to` triangle × query products, the hierarchy beyond, its
 /// sides of the threshold certified ([`FastWinding::sided_many`]), so the classes are
-/// the exact sums' either way (deterministic either way); also whether the hierarchy
-/// answered. From
+/// the exact sums' either way, whatever the threads (exact sums round the same on any
+/// number of them, [`winding_number`]); also whether the hierarchy answered. From
 /// [`reach::REACH_FROM`] queries on, a winding number clear of the threshold also settles
 /// the queried triangles within reach of it (`seam`: the seam edges of `x`, which no
 /// such reach crosses; see [`reach`]).

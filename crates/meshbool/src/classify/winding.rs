@@ -45,33 +45,40 @@ const HALF_ANGLE_TO_WINDING: f64 = 1.0 / (2.0 * std::f64::consts::PI);
 
 /// Generalized winding number of `mesh` at `p`: 1 inside a closed, outward-facing mesh, 0
 /// outside; ±1/2 on either side of a large open surface (positive behind it, where its
-/// normals point away). Exact sum over all triangles (in floating point), in parallel.
+/// normals point away). Exact sum over all triangles (in floating point), in parallel,
+/// the same value bit for bit whatever the threads (fixed chunks summed in order).
 pub fn winding_number(mesh: &Mesh, p: [f64; 3]) -> f64 {
-    let half: f64 = (0..mesh.triangles.len())
-        .into_par_iter()
-        .grained()
-        .map(|t| {
-            let [a, b, c] = mesh.corners(t);
-            half_solid_angle(&a, &b, &c, &p)
-        })
-        .sum();
-    half * HALF_ANGLE_TO_WINDING
+    half_angles(mesh, &p, |_| true) * HALF_ANGLE_TO_WINDING
 }
 
 /// [`winding_number`] of `mesh` at `p` without triangle `skip`: at a point on `skip`
 /// itself, whose own solid angle there is a half sphere of either sign, the other
 /// triangles' sum is `w + 1/2` with `w` the winding number just in front of `skip`.
 pub(crate) fn winding_number_without(mesh: &Mesh, p: [f64; 3], skip: usize) -> f64 {
-    let half: f64 = (0..mesh.triangles.len())
+    half_angles(mesh, &p, |t| t != skip) * HALF_ANGLE_TO_WINDING
+}
+
+/// The half solid angles at `p` of the triangles `t` of `mesh` with `keep(t)`, summed in
+/// order within fixed chunks side by side and the chunks' sums then in order: a sum
+/// whose rounding does not depend on how the threads split the work (a parallel `sum`
+/// splits where work is stolen), so that sides decided by exact sums are too.
+fn half_angles(mesh: &Mesh, p: &[f64; 3], keep: impl Fn(usize) -> bool + Sync) -> f64 {
+    const CHUNK: usize = 1 << 10;
+    let n = mesh.triangles.len();
+    let chunks: Vec<f64> = (0..n.div_ceil(CHUNK))
         .into_par_iter()
         .grained()
-        .filter(|&t| t != skip)
-        .map(|t| {
-            let [a, b, c] = mesh.corners(t);
-            half_solid_angle(&a, &b, &c, &p)
+        .map(|c| {
+            (c * CHUNK..(n.min((c + 1) * CHUNK)))
+                .filter(|&t| keep(t))
+                .map(|t| {
+                    let [a, b, c] = mesh.corners(t);
+                    half_solid_angle(&a, &b, &c, p)
+                })
+                .sum::<f64>()
         })
-        .sum();
-    half * HALF_ANGLE_TO_WINDING
+        .collect();
+    chunks.iter().sum()
 }
 
 /// Triangle `abc`'s term of a winding number at `p` (what [`winding_number`] and the near
@@ -751,6 +758,30 @@ mod tests {
             torus([0.0; 3], 2.0, 0.6, 48, 24),
             heightfield([-2.0, -2.0], [2.0, 2.0], 30, 30, |x, y| 0.2 * x * y),
         ]
+    }
+
+    /// Exact sums do not depend on the threads: the same bits on one thread and on
+    /// three (a parallel `sum` rounds as its splits fall), with and without a triangle.
+    #[test]
+    fn exact_sums_are_the_same_bits_on_any_number_of_threads() {
+        let m = uv_sphere([0.1, 0.2, 0.3], 1.0, 120, 60);
+        let mut rng = Rng(0x7e57_5a3e_b175);
+        let pts: Vec<[f64; 3]> = (0..200)
+            .map(|_| std::array::from_fn(|_| 3.0 * (rng.unit() - 0.5)))
+            .collect();
+        let on = |threads: usize| {
+            crate::test_util::on_threads(threads, || {
+                (pts.iter().enumerate())
+                    .map(|(i, &p)| {
+                        let without = winding_number_without(&m, p, 7 * i);
+                        [winding_number(&m, p).to_bits(), without.to_bits()]
+                    })
+                    .collect::<Vec<_>>()
+            })
+        };
+        let (one, three) = (on(1), on(3));
+        let differ = one.iter().zip(&three).filter(|(a, b)| a != b).count();
+        assert_eq!(differ, 0, "{differ} of {} points", pts.len());
     }
 
     #[test]

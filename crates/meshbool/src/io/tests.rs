@@ -1183,11 +1183,7 @@ fn records_written_side_by_side_are_the_bytes_of_one_thread() {
         Format::PlyBinaryBe,
     ] {
         let on = |threads: usize| {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            pool.install(|| {
+            crate::test_util::on_threads(threads, || {
                 let mut out = Vec::new();
                 write(&mut out, &m, format).unwrap();
                 out
