@@ -200,9 +200,10 @@ impl Chain {
 
     /// Upper bounds on the winding number's gradient over the balls of radii `radii`
     /// about `p` (each below the distance from `p` to the chain):
-    /// `(1/4π) Σ n · |e| / (dist(p, e) − r)²` (`n`: the times `e` counts), a cluster taken whole, by its box's
-    /// distance and its total length, where the ball is farther from its box than the
-    /// box is wide (which overstates its part at most fourfold).
+    /// `(1/4π) Σ n · |e| / (dist(p, e) − r)²` (`n`: the times `e` counts), a cluster
+    /// taken whole, by its box's distance and its total length, where the ball is
+    /// farther from its box than the box is wide (which overstates its part at most
+    /// fourfold).
     fn gradient_bounds<const K: usize>(&self, p: &[f64; 3], radii: [f64; K]) -> [f64; K] {
         let mut sum = [0.0; K];
         if self.nodes.is_empty() {

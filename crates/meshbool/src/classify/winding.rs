@@ -401,8 +401,9 @@ impl<'a> FastWinding<'a> {
     /// threshold itself, not above it (a point in the plane of a flat sheet, beside it,
     /// where the exact sum is 0 term by term). Where the completion fails (a point
     /// within rounding of the cone's edges), the exact sum, [`winding_number`] (bound 0).
-    /// So the side is the exact sum's wherever that is clear of rounding. A mesh with a long boundary gets more
-    /// walks, the far field farther, before its cone is asked ([`LONG_BOUNDARY`]).
+    /// So the side is the exact sum's wherever that is clear of rounding. A mesh with a
+    /// long boundary gets more walks, the far field farther, before its cone is asked
+    /// ([`LONG_BOUNDARY`]).
     pub fn sided_many(&self, points: &[[f64; 3]], threshold: f64) -> Vec<(f64, f64)> {
         let mut out = self.walk_many(points, 1.0);
         // Unsure unless clear of the threshold by more than the bound (NaN: unsure).
