@@ -19,7 +19,7 @@ use super::nary::{reduce, Part, Reduced};
 use super::{sides, Op, PipelineOptions};
 use crate::arrange::arrange_self;
 use crate::classify::{
-    winding_number, winding_number_without, winding_term, FastWinding, SUM_ROUNDING,
+    side_margin, winding_number, winding_number_without, winding_term, FastWinding,
 };
 use crate::edges::{EdgeKind, EdgeTopology};
 use crate::intersect::{self_intersections, self_seam};
@@ -669,9 +669,9 @@ fn measured_sides(
             .sum::<f64>();
         let net = 1 + stack.iter().map(|&(_, s)| s).sum::<i64>();
         let mut front = w - stacked - net as f64 / 2.0;
-        // Rounded to the nearest whole number: certain unless within the bound of a
-        // half, where the exact sum decides.
-        if e > 0.0 && 0.5 - (front - front.round()).abs() <= e + SUM_ROUNDING {
+        // Rounded to the nearest whole number: certain unless within the bound of the
+        // nearest half, where the exact sum decides.
+        if e > 0.0 && side_margin(front, e, front.floor() + 0.5) <= 0.0 {
             front = winding_number_without(m, p, t) - stacked - net as f64 / 2.0;
         }
         let front = front.round() as i64;

@@ -10,27 +10,25 @@
 //! a path (centroid, the shared edge's midpoint, centroid): the arrangement cut them along
 //! every crossing with `y`, so only their seam edges touch it.
 //!
-//! A seed triangle whose winding number `w` clears the threshold by `m` more than its
-//! error bound (0 for an exact sum; the hierarchy's own bound, see
-//! [`super::FastWinding::sided_many`]) and [`SUM_ROUNDING`] gives its class to the triangles
-//! reached by paths shorter than `m / G`,
-//! `G` the gradient bound over a ball around the seed that holds those paths. Against a
-//! closed, consistently oriented mesh the chain is empty and the winding number constant
-//! between crossings: a seed reaches its whole piece. Seeds are taken in rounds, every
-//! `stride`-th triangle still open in Morton order, evaluated together and their reaches
-//! flooded side by side (a seed with a corner on the seam settles only itself: its
-//! centroid may lie within rounding of `y`); what is left after the rounds is evaluated
-//! one by one. The
-//! classes do not depend on the threads (a triangle reached by several seeds takes the
-//! first seed's class in Morton order; all agree, each seed's error being within its
-//! bound).
+//! A seed triangle whose winding number `w` clears the threshold by `m` more than its error
+//! bound (0 for an exact sum; the hierarchy's own bound, see
+//! [`super::FastWinding::sided_many`]) and the sums' rounding ([`side_margin`]) gives its
+//! class to the triangles reached by paths shorter than `m / G`, `G` the gradient bound
+//! over a ball around the seed that holds those paths. Against a closed, consistently
+//! oriented mesh the chain is empty and the winding number constant between crossings: a
+//! seed reaches its whole piece. Seeds are taken in rounds, every `stride`-th triangle
+//! still open in Morton order, evaluated together and their reaches flooded side by side (a
+//! seed with a corner on the seam settles only itself: its centroid may lie within rounding
+//! of `y`); what is left after the rounds is evaluated one by one. The classes do not
+//! depend on the threads (a triangle reached by several seeds takes the first seed's class
+//! in Morton order; all agree, each seed's error being within its bound).
 
 use rayon::prelude::*;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
 use super::winding::morton_order_of_points;
-use super::{class_of_winding, Class, SUM_ROUNDING};
+use super::{class_of_winding, side_margin, Class};
 use crate::par::Grain;
 use crate::vec3::{dot, norm, sub};
 use crate::Mesh;
@@ -454,7 +452,7 @@ pub(super) fn classes_by_reach(
             .zip(&w)
             .grained()
             .map_init(Room::default, |room, (&s, &(w, e))| {
-                let margin = (w - threshold).abs() - e - SUM_ROUNDING;
+                let margin = side_margin(w, e, threshold);
                 if margin.is_nan() || margin <= 0.0 || touches_seam(s) {
                     return Vec::new();
                 }

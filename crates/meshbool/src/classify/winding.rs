@@ -58,6 +58,16 @@ pub(crate) fn winding_number_without(mesh: &Mesh, p: [f64; 3], skip: usize) -> f
     half_angles(mesh, &p, |t| t != skip) * HALF_ANGLE_TO_WINDING
 }
 
+/// [`winding_number`] of the triangles `t` of `mesh` with `keep(t)` at `p`: the same sum
+/// over a subset without copying it.
+pub(crate) fn winding_number_of(
+    mesh: &Mesh,
+    p: [f64; 3],
+    keep: impl Fn(usize) -> bool + Sync,
+) -> f64 {
+    half_angles(mesh, &p, keep) * HALF_ANGLE_TO_WINDING
+}
+
 /// The half solid angles at `p` of the triangles `t` of `mesh` with `keep(t)`, summed in
 /// order within fixed chunks side by side and the chunks' sums then in order: a sum
 /// whose rounding does not depend on how the threads split the work (a parallel `sum`
@@ -593,6 +603,13 @@ fn far_error(r: f64, a: f64, spread: f64, inv: f64) -> f64 {
 /// `|w − threshold| > e + SUM_ROUNDING`.
 pub(crate) const SUM_ROUNDING: f64 = 1e-9;
 
+/// How far a winding number `w` with error bound `e` clears `threshold` beyond that bound
+/// and [`SUM_ROUNDING`]: its side of the threshold is certain where this is positive (NaN
+/// where `w` or `e` is, which no comparison takes for certain).
+pub(crate) fn side_margin(w: f64, e: f64, threshold: f64) -> f64 {
+    (w - threshold).abs() - e - SUM_ROUNDING
+}
+
 /// How near the threshold a completed value may lie, its bound below this, and stand:
 /// the rounding of an exact sum over ten million terms.
 const TIE: f64 = 1e-9;
@@ -650,17 +667,22 @@ impl Cone {
     /// The cone's winding number at `p` and a bound on its rounding, up to a whole number
     /// (within rounding of a cone triangle's plane, inside it, `atan2` may take either
     /// side's value, ½ apart in winding; completion rounds such a step away): per
-    /// triangle, the
-    /// corners' differences from `p` and the triple product and denominator of
-    /// [`half_solid_angle`] are each within a few units in the last place of
+    /// triangle, the corners' differences from `p` and the triple product and denominator
+    /// of [`half_solid_angle`] are each within a few units in the last place of
     /// `|a| |b| |c|` (the corners from `p`), so the vector `atan2` reads is within
     /// `64 u |a| |b| |c|` of the true one and its angle within π/2 times that over the
-    /// vector's length; infinite where that is not below the length.
+    /// vector's length; infinite where that is not below the length. The length is a
+    /// plain square root (`hypot` costs 2 % of a terrain ∪ terrain), `hypot` only where
+    /// the squares overflow; where they underflow it comes out short, which only widens
+    /// the bound.
     fn at(&self, p: &[f64; 3]) -> (f64, f64) {
         let (mut half, mut error, mut sizes) = (0.0, 0.0, 0.0);
         for (a, b, n) in &self.ends {
             let (det, den, lengths) = solid_angle_vector(&self.apex, a, b, p);
-            let length = det.hypot(den);
+            let length = match (det * det + den * den).sqrt() {
+                l if l.is_finite() => l,
+                _ => det.hypot(den),
+            };
             let slack = 64.0 * f64::EPSILON / 2.0 * lengths;
             if slack.partial_cmp(&length) != Some(Less) {
                 return (0.0, f64::INFINITY);

@@ -8,7 +8,7 @@
 
 use rayon::prelude::*;
 
-use crate::classify::{winding_number, winding_term, FastWinding, SUM_ROUNDING};
+use crate::classify::{side_margin, winding_number_of, winding_term, FastWinding};
 use crate::vec3::{cross, dot, sub};
 use crate::Mesh;
 
@@ -130,12 +130,7 @@ impl Inward {
                     .expect("a component has triangles")
             })
             .collect();
-        let exact = |c: u32, at: [f64; 3]| {
-            let rest: Vec<u32> = (0..mesh.triangles.len() as u32)
-                .filter(|&t| comp[t as usize] != c)
-                .collect();
-            winding_number(&mesh.subset(&rest), at)
-        };
+        let exact = |c: u32, at: [f64; 3]| winding_number_of(mesh, at, |t| comp[t] != c);
         if inward.len() <= exact_up_to {
             return (inward.iter().zip(&probes))
                 .map(|(&c, &at)| exact(c, at))
@@ -154,7 +149,7 @@ impl Inward {
                 let rest = total - own;
                 // The side of ½ is certain clear of it by more than the bound; else
                 // the exact sum decides.
-                match (rest - 0.5).abs() > e + SUM_ROUNDING {
+                match side_margin(rest, e, 0.5) > 0.0 {
                     true => rest,
                     false => exact(c, at),
                 }
