@@ -161,8 +161,9 @@ struct Sums {
     area: f64,
     /// Σ area-normal ⊗ (triangle centroid − centre).
     moment: [[f64; 3]; 3],
-    /// Σ area-normal ⊗ ∫ y ⊗ y over each triangle / its area (y = x − centre).
-    third: [[[f64; 3]; 3]; 3],
+    /// Fully symmetric part of Σ area-normal ⊗ ∫ y ⊗ y over each triangle / its area
+    /// (y = x − centre), in the order of [`THIRD`].
+    third: [f64; 10],
     /// A bound on the distance from `centre` to any corner in the cluster.
     radius: f64,
     /// ∫ y ⊗ y, ∫ |y|² y and ∫ |y|⁴ over the cluster's area (y = x − centre): what
@@ -201,6 +202,21 @@ impl Sums {
         (trace.max(0.0) * self.fourth.max(0.0)).sqrt()
     }
 }
+
+/// The index triples of the symmetric third moment's ten components, as [`Node`] keeps
+/// them.
+const THIRD: [[usize; 3]; 10] = [
+    [0, 0, 0],
+    [1, 1, 1],
+    [2, 2, 2],
+    [0, 0, 1],
+    [0, 0, 2],
+    [0, 1, 1],
+    [1, 1, 2],
+    [0, 2, 2],
+    [1, 2, 2],
+    [0, 1, 2],
+];
 
 /// Nodes of the subtree over `n` triangles.
 fn subtree_nodes(n: usize) -> usize {
@@ -281,7 +297,7 @@ impl<'a> FastWinding<'a> {
             } else {
                 mesh.corners(order[start] as usize)[0]
             };
-            let (mut moment, mut third) = ([[0.0; 3]; 3], [[[0.0; 3]; 3]; 3]);
+            let (mut moment, mut third) = ([[0.0; 3]; 3], [0.0; 10]);
             let (mut second, mut skew, mut fourth) = ([[0.0; 3]; 3], [0.0; 3], 0.0);
             for &t in &order[start..end] {
                 let (nt, centroid) = tri(t);
@@ -294,14 +310,14 @@ impl<'a> FastWinding<'a> {
                 // corners from the centre, s their sum).
                 let vs = mesh.corners(t as usize).map(|v| sub(&v, &centre));
                 let sum: [f64; 3] = std::array::from_fn(|k| vs[0][k] + vs[1][k] + vs[2][k]);
-                for j in 0..3 {
-                    for k in 0..3 {
-                        let yy =
-                            (vs.iter().map(|v| v[j] * v[k]).sum::<f64>() + sum[j] * sum[k]) / 12.0;
-                        for i in 0..3 {
-                            third[i][j][k] += nt[i] * yy;
-                        }
-                    }
+                let yy: [[f64; 3]; 3] = std::array::from_fn(|j| {
+                    std::array::from_fn(|k| {
+                        (vs.iter().map(|v| v[j] * v[k]).sum::<f64>() + sum[j] * sum[k]) / 12.0
+                    })
+                });
+                // Symmetrized: n ⊗ Y averaged over the three places of n.
+                for (s, &[i, j, k]) in third.iter_mut().zip(&THIRD) {
+                    *s += (nt[i] * yy[j][k] + nt[j] * yy[i][k] + nt[k] * yy[i][j]) / 3.0;
                 }
                 // The triangle's ∫ y ⊗ y, ∫ |y|² y and ∫ |y|⁴: its area times the
                 // moments of the barycentric coordinates (Dirichlet(1, 1, 1): E[λ^α] =
@@ -314,8 +330,7 @@ impl<'a> FastWinding<'a> {
                 let at_s: [f64; 3] = std::array::from_fn(|i| dot(&vs[i], &sum));
                 for j in 0..3 {
                     for k in 0..3 {
-                        let yy = vs.iter().map(|v| v[j] * v[k]).sum::<f64>() + sum[j] * sum[k];
-                        second[j][k] += ar * yy / 12.0;
+                        second[j][k] += ar * yy[j][k];
                     }
                     let cubic = (ss + p) * sum[j]
                         + 2.0 * (0..3).map(|i| (at_s[i] + g[i][i]) * vs[i][j]).sum::<f64>();
@@ -396,20 +411,27 @@ impl<'a> FastWinding<'a> {
                         + r.normal[i] * (r.centre[j] - centre[j])
                 })
             });
-            // Third moments moved: H + M ⊗ δ + (M ⊗ δ with its last two indices swapped)
-            // + N ⊗ δ ⊗ δ, δ = child centre − centre.
-            let moved_third = |c: &Sums, i: usize, j: usize, k: usize| {
+            // Third moments moved: H + M ⊗ δ + (M ⊗ δ, its last two indices swapped) +
+            // N ⊗ δ ⊗ δ, δ = child centre − centre; symmetrized, with P = M + Mᵀ, S +
+            // (P_ij δ_k + P_ik δ_j + P_jk δ_i + N_i δ_j δ_k + N_j δ_i δ_k + N_k δ_i δ_j) / 3.
+            let moved_third = |c: &Sums| -> [f64; 10] {
                 let dl = sub(&c.centre, &centre);
-                c.third[i][j][k]
-                    + c.moment[i][j] * dl[k]
-                    + c.moment[i][k] * dl[j]
-                    + c.normal[i] * dl[j] * dl[k]
-            };
-            let third = std::array::from_fn(|i| {
-                std::array::from_fn(|j| {
-                    std::array::from_fn(|k| moved_third(&l, i, j, k) + moved_third(&r, i, j, k))
+                let (m, n) = (&c.moment, &c.normal);
+                let p = |i: usize, j: usize| m[i][j] + m[j][i];
+                std::array::from_fn(|x| {
+                    let [i, j, k] = THIRD[x];
+                    c.third[x]
+                        + (p(i, j) * dl[k]
+                            + p(i, k) * dl[j]
+                            + p(j, k) * dl[i]
+                            + n[i] * dl[j] * dl[k]
+                            + n[j] * dl[i] * dl[k]
+                            + n[k] * dl[i] * dl[j])
+                            / 3.0
                 })
-            });
+            };
+            let (tl, tr) = (moved_third(&l), moved_third(&r));
+            let third = std::array::from_fn(|x| tl[x] + tr[x]);
             let (ml, mr) = (l.moved_area_moments(&centre), r.moved_area_moments(&centre));
             let sums = Sums {
                 normal: std::array::from_fn(|k| l.normal[k] + r.normal[k]),
@@ -427,11 +449,6 @@ impl<'a> FastWinding<'a> {
         };
         let m = &sums.moment;
         let sym = |i: usize, j: usize| ((m[i][j] + m[j][i]) / 2.0) as f32;
-        // H is symmetric in its last two indices: its symmetric part averages the three
-        // choices of the first.
-        let h = &sums.third;
-        let sym3 =
-            |i: usize, j: usize, k: usize| ((h[i][j][k] + h[j][i][k] + h[k][i][j]) / 3.0) as f32;
         nodes[0] = Node {
             centre: sums.centre,
             far2: (BETA * sums.radius).powi(2),
@@ -444,18 +461,7 @@ impl<'a> FastWinding<'a> {
                 sym(0, 2),
                 sym(1, 2),
             ],
-            third: [
-                sym3(0, 0, 0),
-                sym3(1, 1, 1),
-                sym3(2, 2, 2),
-                sym3(0, 0, 1),
-                sym3(0, 0, 2),
-                sym3(0, 1, 1),
-                sym3(1, 1, 2),
-                sym3(0, 2, 2),
-                sym3(1, 2, 2),
-                sym3(0, 1, 2),
-            ],
+            third: sums.third.map(|x| x as f32),
             radius: up_f32(sums.radius),
             area: up_f32(sums.area),
             cube: sums.cube(),
@@ -966,14 +972,17 @@ mod tests {
         }
         let close = |got: f64, want: f64, scale: f64| (got - want).abs() <= 1e-12 * scale;
         let s2 = second[0][0] + second[1][1] + second[2][2];
-        for j in 0..3 {
+        for (j, (got, want)) in sums.second.iter().zip(&second).enumerate() {
             for k in 0..3 {
-                assert!(close(sums.second[j][k], second[j][k], s2), "C {j}{k}");
-                for (i, (got, want)) in sums.third.iter().zip(&third).enumerate() {
-                    assert!(close(got[j][k], want[j][k], s2), "H {i}{j}{k}");
-                }
+                assert!(close(got[k], want[k], s2), "C {j}{k}");
             }
             assert!(close(sums.skew[j], skew[j], s2 * sums.radius), "V {j}");
+        }
+        // H is symmetric in its last two indices: its symmetric part averages the three
+        // choices of the first.
+        for (x, &[i, j, k]) in THIRD.iter().enumerate() {
+            let want = (third[i][j][k] + third[j][i][k] + third[k][i][j]) / 3.0;
+            assert!(close(sums.third[x], want, s2), "S {i}{j}{k}");
         }
         assert!(
             close(sums.fourth, fourth, fourth),
