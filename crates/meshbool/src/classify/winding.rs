@@ -655,8 +655,8 @@ impl<'a> FastWinding<'a> {
                         + 6.0 * xyz * x * y * z;
                     let r = 1.0 / d2.sqrt();
                     let (r2, inv3) = (r * r, r * r * r);
-                    let second = (7.5 * sddd * r2 - 4.5 * dot(&tau, &d)) * r2;
-                    far[k] += ((dot(&normal, &d) + xx + yy + zz) - 3.0 * dmd * r2 + second) * inv3;
+                    let third = (7.5 * sddd * r2 - 4.5 * dot(&tau, &d)) * r2;
+                    far[k] += ((dot(&normal, &d) + xx + yy + zz) - 3.0 * dmd * r2 + third) * inv3;
                     error[k] += far_error(radius, area, cube, r);
                 } else {
                     near |= 1 << k;
