@@ -792,11 +792,24 @@ fn bucket_by_lower<T: Copy + Default>(
     v1: u32,
     entry: impl Fn(u32, u32, u32) -> T,
 ) -> (Vec<u32>, Vec<T>) {
+    bucket_by_lower_of(mesh.triangles.len(), |t| mesh.triangles[t], v0, v1, entry)
+}
+
+/// [`bucket_by_lower`] of the triangles `triangle(0)`, …, `triangle(count − 1)` (a subset
+/// of a mesh's, or any), `id` being `3 · i + corner` for the `i`-th.
+pub(crate) fn bucket_by_lower_of<T: Copy + Default>(
+    count: usize,
+    triangle: impl Fn(usize) -> [u32; 3],
+    v0: u32,
+    v1: u32,
+    entry: impl Fn(u32, u32, u32) -> T,
+) -> (Vec<u32>, Vec<T>) {
     let n = v1.saturating_sub(v0) as usize;
     let lower =
         |a: u32, b: u32| (a != b && (v0..v1).contains(&a.min(b))).then(|| (a.min(b) - v0) as usize);
     let mut start = vec![0u32; n + 1];
-    for tri in &mesh.triangles {
+    for t in 0..count {
+        let tri = triangle(t);
         for k in 0..3 {
             if let Some(lo) = lower(tri[k], tri[(k + 1) % 3]) {
                 start[lo + 1] += 1;
@@ -808,7 +821,8 @@ fn bucket_by_lower<T: Copy + Default>(
     }
     let mut fill = start.clone();
     let mut half = vec![T::default(); start[n] as usize];
-    for (t, tri) in mesh.triangles.iter().enumerate() {
+    for t in 0..count {
+        let tri = triangle(t);
         for k in 0..3 {
             let (a, b) = (tri[k], tri[(k + 1) % 3]);
             if let Some(lo) = lower(a, b) {

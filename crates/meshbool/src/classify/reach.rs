@@ -277,33 +277,16 @@ impl Links {
     /// seam edges of `x` (sorted pairs, lower vertex first). Only edges with exactly two
     /// uses among the queried triangles link them.
     fn new(x: &Mesh, queries: &[usize], centroids: &[[f64; 3]], seam: &[[u32; 2]]) -> Links {
-        // The queried triangles' edges by their lower vertex (a counting sort), each use
-        // as (higher vertex, query): in edge order once each bucket is sorted.
+        // The queried triangles' edges by their lower vertex, each use as (higher vertex,
+        // query): in edge order once each bucket is sorted.
         let nv = x.positions.len();
-        let edges_of = |t: usize| {
-            let tri = x.triangles[t];
-            (0..3)
-                .map(move |k| (tri[k], tri[(k + 1) % 3]))
-                .filter(|(a, b)| a != b)
-                .map(|(a, b)| (a.min(b), a.max(b)))
-        };
-        let mut start = vec![0u32; nv + 1];
-        for &t in queries {
-            for (lo, _) in edges_of(t) {
-                start[lo as usize + 1] += 1;
-            }
-        }
-        for v in 0..nv {
-            start[v + 1] += start[v];
-        }
-        let mut fill = start.clone();
-        let mut half = vec![(0u32, 0u32); start[nv] as usize];
-        for (i, &t) in queries.iter().enumerate() {
-            for (lo, hi) in edges_of(t) {
-                half[fill[lo as usize] as usize] = (hi, i as u32);
-                fill[lo as usize] += 1;
-            }
-        }
+        let (start, mut half) = crate::edges::bucket_by_lower_of(
+            queries.len(),
+            |i| x.triangles[queries[i]],
+            0,
+            nv as u32,
+            |a, b, id| (a.max(b), id / 3),
+        );
         let mut pairs: Vec<(u32, u32, f64)> = Vec::new();
         for lo in 0..nv {
             let bucket = &mut half[start[lo] as usize..start[lo + 1] as usize];

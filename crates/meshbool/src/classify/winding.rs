@@ -276,21 +276,27 @@ impl<'a> FastWinding<'a> {
     ) -> Sums {
         let n = end - start;
         let (sums, right) = if n <= LEAF {
+            // One pass for each triangle's half cross product, area and centroid (kept
+            // for the second), the sums and the box; the centre is then known, and one
+            // pass more takes the moments about it and the radius.
+            let tris = &order[start..end];
+            let (mut nts, mut ars) = ([[0.0; 3]; LEAF], [0.0; LEAF]);
+            let mut centroids = [[0.0; 3]; LEAF];
             let (mut normal, mut weighted, mut area) = ([0.0; 3], [0.0; 3], 0.0);
-            let tri = |t: u32| {
+            let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+            for (j, &t) in tris.iter().enumerate() {
                 let [a, b, c] = mesh.corners(t as usize);
                 let nt = cross(&sub(&b, &a), &sub(&c, &a)).map(|x| x / 2.0);
                 let centroid: [f64; 3] = std::array::from_fn(|k| (a[k] + b[k] + c[k]) / 3.0);
-                (nt, centroid)
-            };
-            for &t in &order[start..end] {
-                let (nt, centroid) = tri(t);
                 let ar = norm(&nt);
                 for k in 0..3 {
                     normal[k] += nt[k];
                     weighted[k] += ar * centroid[k];
+                    lo[k] = lo[k].min(a[k]).min(b[k]).min(c[k]);
+                    hi[k] = hi[k].max(a[k]).max(b[k]).max(c[k]);
                 }
                 area += ar;
+                (nts[j], ars[j], centroids[j]) = (nt, ar, centroid);
             }
             let centre = if area > 0.0 {
                 weighted.map(|x| x / area)
@@ -299,8 +305,9 @@ impl<'a> FastWinding<'a> {
             };
             let (mut moment, mut third) = ([[0.0; 3]; 3], [0.0; 10]);
             let (mut second, mut skew, mut fourth) = ([[0.0; 3]; 3], [0.0; 3], 0.0);
-            for &t in &order[start..end] {
-                let (nt, centroid) = tri(t);
+            let mut radius2: f64 = 0.0;
+            let kept = nts.iter().zip(ars).zip(&centroids);
+            for (&t, ((nt, ar), centroid)) in tris.iter().zip(kept) {
                 for i in 0..3 {
                     for j in 0..3 {
                         moment[i][j] += nt[i] * (centroid[j] - centre[j]);
@@ -310,11 +317,14 @@ impl<'a> FastWinding<'a> {
                 // corners from the centre, s their sum).
                 let vs = mesh.corners(t as usize).map(|v| sub(&v, &centre));
                 let sum: [f64; 3] = std::array::from_fn(|k| vs[0][k] + vs[1][k] + vs[2][k]);
-                let yy: [[f64; 3]; 3] = std::array::from_fn(|j| {
-                    std::array::from_fn(|k| {
-                        (vs.iter().map(|v| v[j] * v[k]).sum::<f64>() + sum[j] * sum[k]) / 12.0
-                    })
-                });
+                let mut yy = [[0.0; 3]; 3];
+                for j in 0..3 {
+                    for k in j..3 {
+                        let v = vs[0][j] * vs[0][k] + vs[1][j] * vs[1][k] + vs[2][j] * vs[2][k];
+                        yy[j][k] = (v + sum[j] * sum[k]) / 12.0;
+                        yy[k][j] = yy[j][k];
+                    }
+                }
                 // Symmetrized: n ⊗ Y averaged over the three places of n.
                 for (s, &[i, j, k]) in third.iter_mut().zip(&THIRD) {
                     *s += (nt[i] * yy[j][k] + nt[j] * yy[i][k] + nt[k] * yy[i][j]) / 3.0;
@@ -322,42 +332,36 @@ impl<'a> FastWinding<'a> {
                 // The triangle's ∫ y ⊗ y, ∫ |y|² y and ∫ |y|⁴: its area times the
                 // moments of the barycentric coordinates (Dirichlet(1, 1, 1): E[λ^α] =
                 // 2 α! / (|α| + 2)!) summed over the corners' products.
-                let ar = norm(&nt);
-                let g: [[f64; 3]; 3] =
-                    std::array::from_fn(|i| std::array::from_fn(|j| dot(&vs[i], &vs[j])));
+                let mut g = [[0.0; 3]; 3];
+                for i in 0..3 {
+                    for j in i..3 {
+                        g[i][j] = dot(&vs[i], &vs[j]);
+                        g[j][i] = g[i][j];
+                    }
+                    // The farthest corner from the centre: the radius.
+                    radius2 = radius2.max(g[i][i]);
+                }
                 let ss = dot(&sum, &sum);
-                let p: f64 = (0..3).map(|i| g[i][i]).sum();
+                let p = g[0][0] + g[1][1] + g[2][2];
                 let at_s: [f64; 3] = std::array::from_fn(|i| dot(&vs[i], &sum));
                 for j in 0..3 {
                     for k in 0..3 {
                         second[j][k] += ar * yy[j][k];
                     }
                     let cubic = (ss + p) * sum[j]
-                        + 2.0 * (0..3).map(|i| (at_s[i] + g[i][i]) * vs[i][j]).sum::<f64>();
+                        + 2.0
+                            * ((at_s[0] + g[0][0]) * vs[0][j]
+                                + (at_s[1] + g[1][1]) * vs[1][j]
+                                + (at_s[2] + g[2][2]) * vs[2][j]);
                     skew[j] += ar * cubic / 60.0;
                 }
-                let r: f64 = at_s.iter().map(|x| x * x).sum();
-                let t: f64 = (0..3).map(|i| g[i][i] * at_s[i]).sum();
+                let r = dot(&at_s, &at_s);
+                let t = g[0][0] * at_s[0] + g[1][1] * at_s[1] + g[2][2] * at_s[2];
                 let f: f64 = g.iter().flatten().map(|x| x * x).sum();
-                let u: f64 = (0..3).map(|i| g[i][i] * g[i][i]).sum();
+                let u = g[0][0] * g[0][0] + g[1][1] * g[1][1] + g[2][2] * g[2][2];
                 let quartic =
                     ss * ss + 2.0 * p * ss + 4.0 * r + 8.0 * t + p * p + 2.0 * f + 6.0 * u;
                 fourth += ar * quartic / 360.0;
-            }
-            let corners = || {
-                order[start..end]
-                    .iter()
-                    .flat_map(|&t| mesh.corners(t as usize))
-            };
-            let radius = corners()
-                .map(|p| norm(&sub(&p, &centre)))
-                .fold(0.0, f64::max);
-            let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-            for p in corners() {
-                for k in 0..3 {
-                    lo[k] = lo[k].min(p[k]);
-                    hi[k] = hi[k].max(p[k]);
-                }
             }
             let sums = Sums {
                 normal,
@@ -365,7 +369,7 @@ impl<'a> FastWinding<'a> {
                 area,
                 moment,
                 third,
-                radius,
+                radius: radius2.sqrt(),
                 second,
                 skew,
                 fourth,
@@ -622,6 +626,11 @@ impl<'a> FastWinding<'a> {
         let mut stack = [(0u32, 0u64); 64];
         stack[0] = (0, all);
         let mut depth = 1;
+        // Per cluster: the points taking it far and their offsets from its centre, then
+        // their terms and bounds.
+        let mut ids = [0u8; 64];
+        let (mut xs, mut ys, mut zs, mut d2s) = ([0.0; 64], [0.0; 64], [0.0; 64], [0.0; 64]);
+        let (mut terms, mut bounds) = ([0.0; 64], [0.0; 64]);
         while depth > 0 {
             depth -= 1;
             let (i, mask) = stack[depth];
@@ -633,34 +642,49 @@ impl<'a> FastWinding<'a> {
             let normal = n.normal.map(f64::from);
             let far2 = widen * n.far2;
             let (radius, area, cube) = (f64::from(n.radius), f64::from(n.area), n.cube);
-            let (mut near, mut m) = (0u64, mask);
+            // The points that take this cluster far, as columns (the far terms below are
+            // then one loop the compiler vectorizes), and those that descend.
+            let (mut near, mut m, mut nf) = (0u64, mask, 0);
             while m != 0 {
                 let k = m.trailing_zeros() as usize;
                 m &= m - 1;
                 let d = sub(&n.centre, &pts[k]);
                 let d2 = dot(&d, &d);
-                if d2 > far2 {
-                    // Far field of ∫ n · (x − p) / |x − p|³ with x = c + y, d = c − p, to
-                    // the third term: (N·d + tr M) / |d|³ − 3 dᵀM d / |d|⁵ + 15/2 S[d,d,d]
-                    // / |d|⁷ − 9/2 τ·d / |d|⁵ (only the symmetric parts of M and of the
-                    // third moment, S, enter; τ_k = Σ_i S_iik); times 4π, scaled at the end.
-                    let dmd = d[0] * d[0] * xx
-                        + d[1] * d[1] * yy
-                        + d[2] * d[2] * zz
-                        + 2.0 * (d[0] * d[1] * xy + d[0] * d[2] * xz + d[1] * d[2] * yz);
-                    let [x, y, z] = d;
-                    let sddd = x * x * (xxx * x + 3.0 * (xxy * y + xxz * z))
-                        + y * y * (yyy * y + 3.0 * (xyy * x + yyz * z))
-                        + z * z * (zzz * z + 3.0 * (xzz * x + yzz * y))
-                        + 6.0 * xyz * x * y * z;
-                    let r = 1.0 / d2.sqrt();
-                    let (r2, inv3) = (r * r, r * r * r);
-                    let third = (7.5 * sddd * r2 - 4.5 * dot(&tau, &d)) * r2;
-                    far[k] += ((dot(&normal, &d) + xx + yy + zz) - 3.0 * dmd * r2 + third) * inv3;
-                    error[k] += far_error(radius, area, cube, r);
-                } else {
-                    near |= 1 << k;
-                }
+                // Without a branch (which way it goes is a coin toss): the point is
+                // written in the next free column, which counts only if it is far.
+                let is_far = d2 > far2;
+                ids[nf] = k as u8;
+                (xs[nf], ys[nf], zs[nf], d2s[nf]) = (d[0], d[1], d[2], d2);
+                nf += usize::from(is_far);
+                near |= u64::from(!is_far) << k;
+            }
+            let trace = xx + yy + zz;
+            for j in 0..nf.min(64) {
+                // Far field of ∫ n · (x − p) / |x − p|³ with x = c + y, d = c − p, to the
+                // third term: (N·d + tr M) / |d|³ − 3 dᵀM d / |d|⁵ + 15/2 S[d,d,d] / |d|⁷
+                // − 9/2 τ·d / |d|⁵ (only the symmetric parts of M and of the third
+                // moment, S, enter; τ_k = Σ_i S_iik); times 4π, scaled at the end.
+                let (x, y, z) = (xs[j], ys[j], zs[j]);
+                let dmd = x * x * xx
+                    + y * y * yy
+                    + z * z * zz
+                    + 2.0 * (x * y * xy + x * z * xz + y * z * yz);
+                let sddd = x * x * (xxx * x + 3.0 * (xxy * y + xxz * z))
+                    + y * y * (yyy * y + 3.0 * (xyy * x + yyz * z))
+                    + z * z * (zzz * z + 3.0 * (xzz * x + yzz * y))
+                    + 6.0 * xyz * x * y * z;
+                let r = 1.0 / d2s[j].sqrt();
+                let (r2, inv3) = (r * r, r * r * r);
+                let tau_d = tau[0] * x + tau[1] * y + tau[2] * z;
+                let third = (7.5 * sddd * r2 - 4.5 * tau_d) * r2;
+                let nd = normal[0] * x + normal[1] * y + normal[2] * z;
+                terms[j] = ((nd + trace) - 3.0 * dmd * r2 + third) * inv3;
+                bounds[j] = far_error(radius, area, cube, r);
+            }
+            for j in 0..nf.min(64) {
+                let k = ids[j] as usize;
+                far[k] += terms[j];
+                error[k] += bounds[j];
             }
             if near == 0 {
                 continue;
