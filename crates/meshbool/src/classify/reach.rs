@@ -269,8 +269,8 @@ impl Chain {
     }
 }
 
-/// How many times wider than it is near a cluster of chain segments must be from a point
-/// for [`Chain::inverse_square_sum`] to take it whole.
+/// How far from a point, in widths of its box, a cluster of chain segments must be for
+/// [`Chain::inverse_square_sum`] to take it whole.
 const WHOLE: f64 = 1.0;
 
 /// The queried triangles' neighbours across edges that are not seam edges, with the
@@ -329,8 +329,9 @@ impl Links {
 
     /// The triangles reached from `seed` by paths shorter than `reach`, in the order they
     /// are first reached (breadth first, a triangle's distance lowered and passed on
-    /// again where a shorter path comes), at most `cap` of them (the seed not counted). `room`: the flood's working memory,
-    /// reused from flood to flood (each seed floods once per [`Room`]).
+    /// again where a shorter path comes), at most `cap` of them (the seed not counted).
+    /// `room`: the flood's working memory, reused from flood to flood (each seed floods
+    /// once per [`Room`]).
     fn flood(&self, seed: u32, reach: f64, cap: usize, room: &mut Room) -> Vec<u32> {
         let stamp = seed + 1;
         if room.stamp.len() < self.to.len() {
