@@ -237,7 +237,7 @@ export function meshInfo(m) {
 }
 
 /**
- * Reads a mesh file from its bytes (Uint8Array or ArrayBuffer): STL, OBJ, PLY, DXF, JSON
+ * Reads a mesh file from its bytes (Uint8Array or ArrayBuffer): STL, OBJ, PLY, OFF, DXF, JSON
  * soups or glTF `.glb` (the Rust library's GOCAD, Surpac and LandXML readers are not in
  * this WebAssembly build). `{positions, index, format}`. `format` names the format ("stl", "obj", ...)
  * or is the file's name (its extension is the hint); without it the format is detected

@@ -44,6 +44,10 @@ pub enum Format {
     /// LandXML 1.2 TIN surfaces (`.xml`): `<P id="..">northing easting elevation</P>`
     /// points and `<F>` faces; invisible faces (`i="1"`) are skipped.
     LandXml,
+    /// Object File Format (`.off`, ASCII): `OFF`, the counts, vertex lines and face lines
+    /// (0-based polygons, triangulated as fans on read); the `C`, `N` and `ST` variants'
+    /// extra numbers are skipped.
+    Off,
 }
 
 impl fmt::Display for Format {
@@ -62,13 +66,14 @@ impl fmt::Display for Format {
             Format::GocadTs => "GOCAD TSurf",
             Format::SurpacDtm => "Surpac DTM",
             Format::LandXml => "LandXML",
+            Format::Off => "OFF",
         })
     }
 }
 
 impl Format {
     /// All formats, with the names they are read by ([`FromStr`]) and written as.
-    pub const NAMES: [(&'static str, Format); 13] = [
+    pub const NAMES: [(&'static str, Format); 14] = [
         ("stl", Format::StlBinary),
         ("stl-ascii", Format::StlAscii),
         ("obj", Format::Obj),
@@ -82,6 +87,7 @@ impl Format {
         ("gocad-ts", Format::GocadTs),
         ("surpac-dtm", Format::SurpacDtm),
         ("landxml", Format::LandXml),
+        ("off", Format::Off),
     ];
 
     /// The format's name in [`Format::NAMES`] (`stl`, `stl-ascii`, `obj`, ...).
@@ -108,7 +114,7 @@ impl Format {
 
     /// The file name extension of the format: `stl`, `obj`, `ply`, `dxf`, `json`, `glb`,
     /// `ts` (GOCAD TSurf), `dtm` (Surpac DTM, whose points go in a `.str` beside it), `xml`
-    /// (LandXML).
+    /// (LandXML), `off`.
     pub fn extension(self) -> &'static str {
         match self {
             Format::StlBinary | Format::StlAscii => "stl",
@@ -120,12 +126,13 @@ impl Format {
             Format::GocadTs => "ts",
             Format::SurpacDtm => "dtm",
             Format::LandXml => "xml",
+            Format::Off => "off",
         }
     }
 
     /// The format written for a file name's extension: `.stl` binary STL, `.obj`, `.ply`
     /// binary little-endian, `.dxf`, `.json` JSON soup, `.glb` binary glTF, `.ts` GOCAD
-    /// TSurf, `.dtm` Surpac DTM, `.xml` LandXML. `None` for other extensions.
+    /// TSurf, `.dtm` Surpac DTM, `.xml` LandXML, `.off` OFF. `None` for other extensions.
     pub fn for_path(path: impl AsRef<Path>) -> Option<Format> {
         let ext = path.as_ref().extension()?.to_str()?.to_ascii_lowercase();
         Some(match ext.as_str() {
@@ -138,6 +145,7 @@ impl Format {
             "ts" => Format::GocadTs,
             "dtm" => Format::SurpacDtm,
             "xml" => Format::LandXml,
+            "off" => Format::Off,
             _ => return None,
         })
     }

@@ -24,7 +24,9 @@ use rayon::prelude::*;
 
 use super::resolve::largest_pieces;
 use super::sides::{patch_sides, Inputs};
-use super::{boolean, cleanup, CleanupReport, Op, PipelineOptions, Provenance, Source};
+use super::{
+    boolean, cleanup, BooleanResult, CleanupReport, Op, PipelineOptions, Provenance, Source,
+};
 use crate::arrange::{arrange_self, FailReason};
 use crate::edges::{EdgeCounts, EdgeTopology};
 use crate::intersect::{crossings_between, self_seam};
@@ -85,11 +87,7 @@ pub fn reduce_in_one(parts: &[Part], op: Op, opts: &PipelineOptions) -> Option<R
     if parts.len() < 2 {
         return None;
     }
-    let clean = parts.par_iter().grained().all(|p| {
-        let c = EdgeCounts::of(&p.mesh);
-        c.boundary == 0 && c.inconsistent == 0 && c.non_manifold == 0
-    });
-    if !clean {
+    if !parts.par_iter().grained().all(|p| closed_sheets(&p.mesh)) {
         return None;
     }
     let mut all = Mesh::default();
@@ -99,13 +97,165 @@ pub fn reduce_in_one(parts: &[Part], op: Op, opts: &PipelineOptions) -> Option<R
         all.append(&p.mesh).ok()?;
     }
     let inputs = Inputs::starting_at(&starts[1..]);
-    let n = inputs.count();
     // Pairs of different parts only: a part does not cross itself (a boolean's operands
     // are checked, resolved where they do; a pairwise boolean takes the same).
     let meshes: Vec<&Mesh> = parts.iter().map(|p| &p.mesh).collect();
     let pairs = crossings_between(&meshes, &all, &starts);
-    let seam = self_seam(&all, &pairs);
-    let arr = arrange_self(&all, &seam);
+    let inside = |w: &[i64]| match op {
+        Op::Union => w.iter().any(|&x| x >= 1),
+        _ => w.iter().all(|&x| x >= 1),
+    };
+    let kept = keep_in_one(&all, &inputs, &pairs, Windings::ZeroOrOne, inside, opts)?;
+    // Each triangle's part, and its input triangle there.
+    let parent = kept
+        .provenance
+        .iter()
+        .map(|p| {
+            let k = inputs.of(p.triangle) as usize;
+            parts[k].parent[(p.triangle - starts[k]) as usize]
+        })
+        .collect();
+    Some(Reduced {
+        part: Part {
+            mesh: kept.mesh,
+            parent,
+        },
+        seam_points: kept.seam_points,
+        failed: Vec::new(),
+        rounding_flips: kept.rounding_flips,
+        nonmanifold: kept.nonmanifold,
+        cleanup: kept.cleanup,
+        one_arrangement: true,
+    })
+}
+
+/// `op` of `a` and `b` (valid, exactly welded, each made of closed, consistently oriented
+/// sheets with no edge of more than two triangles) where either may cross or overlap
+/// itself: both cut along every crossing at once, their own included, in one arrangement
+/// of the two, and each patch kept where the operation's inside differs on its two sides.
+/// Inside a mesh is where its exact winding number is at least 1 (the fill rule
+/// positive of [`super::resolve()`]), so the result is the boolean of the solids the two
+/// enclose, with nothing rounded before the end: a self-overlapping operand is resolved
+/// and combined in one step, and no rounding of its resolved surface can leave slivers or
+/// crossings for the boolean to trip on.
+///
+/// `pairs_a` and `pairs_b` are each mesh's own crossing pairs (as
+/// [`crate::intersect::self_intersections`] finds them).
+///
+/// `None` where the exact route does not decide (a mesh that is not made of closed sheets,
+/// a triangle the arrangement could not cut, winding numbers not decided exactly); the
+/// caller then resolves and combines in two steps.
+pub fn boolean_in_one(
+    a: &Mesh,
+    b: &Mesh,
+    pairs_a: &[(u32, u32)],
+    pairs_b: &[(u32, u32)],
+    op: Op,
+    opts: &PipelineOptions,
+) -> Option<BooleanResult> {
+    if !(closed_sheets(a) && closed_sheets(b)) {
+        return None;
+    }
+    let na = u32::try_from(a.triangles.len()).ok()?;
+    u32::try_from(a.triangles.len() + b.triangles.len()).ok()?;
+    let mut all = a.clone();
+    all.append(b).ok()?;
+    let starts = [0, na];
+    let inputs = Inputs::starting_at(&starts[1..]);
+    let mut pairs = crossings_between(&[a, b], &all, &starts);
+    pairs.extend_from_slice(pairs_a);
+    pairs.extend(pairs_b.iter().map(|&(i, j)| (i + na, j + na)));
+    pairs.par_sort_unstable();
+    pairs.dedup();
+    let inside = |w: &[i64]| {
+        let (in_a, in_b) = (w[0] >= 1, w[1] >= 1);
+        match op {
+            Op::Union => in_a || in_b,
+            Op::Intersection => in_a && in_b,
+            Op::Difference => in_a && !in_b,
+            Op::ReverseDifference => in_b && !in_a,
+        }
+    };
+    let kept = keep_in_one(&all, &inputs, &pairs, Windings::Any, inside, opts)?;
+    let provenance = kept
+        .provenance
+        .iter()
+        .map(|p| {
+            let (source, triangle) = if p.triangle < na {
+                (Source::A, p.triangle)
+            } else {
+                (Source::B, p.triangle - na)
+            };
+            Provenance {
+                source,
+                triangle,
+                flipped: p.flipped,
+            }
+        })
+        .collect();
+    Some(BooleanResult {
+        mesh: kept.mesh,
+        provenance,
+        nonmanifold: kept.nonmanifold,
+        seam_points: kept.seam_points,
+        degenerate: [0, 0],
+        failed: Vec::new(),
+        rounding_flips: kept.rounding_flips,
+        seam_vertices: kept.seam_vertices,
+        cleanup: kept.cleanup,
+    })
+}
+
+/// Whether `m` is made of closed, consistently oriented sheets with no edge of more than
+/// two triangles: what one arrangement's winding numbers need.
+fn closed_sheets(m: &Mesh) -> bool {
+    let c = EdgeCounts::of(m);
+    c.boundary == 0 && c.inconsistent == 0 && c.non_manifold == 0
+}
+
+/// Which winding numbers [`keep_in_one`] takes: only 0 and 1 (meshes that do not cross
+/// themselves, whose inside a pairwise boolean would take them to have), or any.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Windings {
+    ZeroOrOne,
+    Any,
+}
+
+/// What [`keep_in_one`] keeps of an arrangement.
+struct Kept {
+    /// The kept patches (split where not manifold unless asked to keep it, cleaned up
+    /// unless asked not to; unreferenced vertices removed).
+    mesh: Mesh,
+    /// Each triangle's input triangle in the meshes given together (as [`Source::A`]),
+    /// and whether it was reversed.
+    provenance: Vec<Provenance>,
+    /// The vertices of `mesh` at seam points (sorted).
+    seam_vertices: Vec<u32>,
+    seam_points: usize,
+    rounding_flips: usize,
+    nonmanifold: NonManifoldReport,
+    cleanup: CleanupReport,
+}
+
+/// The meshes whose concatenation is `all` (`inputs` tells whose each triangle is), cut
+/// along the crossings of the triangle pairs `pairs` in one arrangement; each patch is
+/// kept where `inside` (of the meshes' winding numbers, one each) differs on its two
+/// sides, facing away from the inside (the first of a stack of coincident patches only).
+/// Then split where the meshes meet (the only places the result can be non-manifold),
+/// the fans paired at the seam's exact points, and cleaned up exactly, as a pairwise
+/// boolean does. `None` where a triangle could not be cut, the winding numbers are not
+/// decided exactly, there are too many to keep, or one is other than `windings` takes.
+fn keep_in_one(
+    all: &Mesh,
+    inputs: &Inputs,
+    pairs: &[(u32, u32)],
+    windings: Windings,
+    inside: impl Fn(&[i64]) -> bool,
+    opts: &PipelineOptions,
+) -> Option<Kept> {
+    let n = inputs.count();
+    let seam = self_seam(all, pairs);
+    let arr = arrange_self(all, &seam);
     if !arr.failed.is_empty() {
         return None;
     }
@@ -117,34 +267,33 @@ pub fn reduce_in_one(parts: &[Part], op: Op, opts: &PipelineOptions) -> Option<R
         return None;
     }
     let best = largest_pieces(m, &patch, count);
-    let sides = patch_sides(&all, &inputs, &arr, &topo, &patch, count, &best)?;
+    let sides = patch_sides(all, inputs, &arr, &topo, &patch, count, &best)?;
     let behind: Vec<i64> = sides
         .front
         .iter()
         .zip(&sides.net)
         .map(|(f, d)| f + d)
         .collect();
-    if sides
-        .front
-        .iter()
-        .chain(&behind)
-        .any(|w| !(0..=1).contains(w))
+    if windings == Windings::ZeroOrOne
+        && sides
+            .front
+            .iter()
+            .chain(&behind)
+            .any(|w| !(0..=1).contains(w))
     {
         return None;
     }
-    let inside = |w: &[i64]| match op {
-        Op::Union => w.iter().any(|&x| x >= 1),
-        _ => w.iter().all(|&x| x >= 1),
-    };
     // Per patch: None dropped, Some(flip) kept (the first of its stack only, where the
-    // inside differs on its two sides, facing away from the inside).
+    // inside differs on its two sides, facing away from the inside). A patch of zero-area
+    // pieces only (seam points rounding to one point) is kept where its group's values
+    // decide it: dropping it would leave a hole of zero width in a closed result.
     let keep: Vec<Option<bool>> = (0..count)
         .map(|p| {
             let (f, b) = (
                 inside(&sides.front[p * n..][..n]),
                 inside(&behind[p * n..][..n]),
             );
-            (f != b && sides.first[p] && best[p].1 != usize::MAX).then_some(f)
+            (f != b && sides.first[p] && sides.decided[p]).then_some(f)
         })
         .collect();
     let mut mesh = Mesh {
@@ -171,9 +320,6 @@ pub fn reduce_in_one(parts: &[Part], op: Op, opts: &PipelineOptions) -> Option<R
         .iter()
         .filter(|&&t| keep[patch[t as usize] as usize].is_some())
         .count();
-    // Split where the parts meet (the only places the result can be non-manifold), the
-    // fans paired at the seam's exact points, as a pairwise boolean does; then the exact
-    // clean-up of the seam points the arrangement added (and their copies).
     let mut seam_vertices = arr.seam_vertex.clone();
     seam_vertices.sort_unstable();
     seam_vertices.dedup();
@@ -197,35 +343,52 @@ pub fn reduce_in_one(parts: &[Part], op: Op, opts: &PipelineOptions) -> Option<R
             added.push(v);
         }
     }
+    seam_vertices.sort_unstable();
     let cleanup = if opts.cleanup {
         cleanup::clean_up(
             &mut mesh,
             &mut provenance,
             &mut seam_vertices,
             &added,
-            [&all, &all],
+            [all, all],
         )
     } else {
         CleanupReport::default()
     };
-    let (mesh, _) = mesh.without_unreferenced();
-    // Each triangle's part, and its input triangle there.
-    let parent = provenance
-        .iter()
-        .map(|p| {
-            let k = inputs.of(p.triangle) as usize;
-            parts[k].parent[(p.triangle - starts[k]) as usize]
-        })
-        .collect();
-    Some(Reduced {
-        part: Part { mesh, parent },
+    let (mesh, seam_vertices) = without_unreferenced(mesh, &seam_vertices);
+    Some(Kept {
+        mesh,
+        provenance,
+        seam_vertices,
         seam_points: seam.points.len(),
-        failed: Vec::new(),
         rounding_flips,
         nonmanifold,
         cleanup,
-        one_arrangement: true,
     })
+}
+
+/// `mesh` without the vertices no triangle uses (the rest renumbered in order of first
+/// use, as [`Mesh::without_unreferenced`] does), and `seam_vertices` renamed to match
+/// (those left out dropped; sorted).
+fn without_unreferenced(mesh: Mesh, seam_vertices: &[u32]) -> (Mesh, Vec<u32>) {
+    let mut new = vec![u32::MAX; mesh.positions.len()];
+    let mut next = 0u32;
+    for t in &mesh.triangles {
+        for &v in t {
+            if new[v as usize] == u32::MAX {
+                new[v as usize] = next;
+                next += 1;
+            }
+        }
+    }
+    let (mesh, _) = mesh.without_unreferenced();
+    let mut seam: Vec<u32> = seam_vertices
+        .iter()
+        .map(|&v| new[v as usize])
+        .filter(|&v| v != u32::MAX)
+        .collect();
+    seam.sort_unstable();
+    (mesh, seam)
 }
 
 /// `op` ([`Op::Union`] or [`Op::Intersection`]) of `parts`, pairwise in a balanced tree.

@@ -70,6 +70,12 @@ pub(super) struct PatchSides {
     /// Whether the patch is the first (lowest id) of its stack of coincident patches (a
     /// patch alone is).
     pub(super) first: Vec<bool>,
+    /// Whether the patch's winding numbers are decided: its group of patches (joined
+    /// through the fans at seam edges) has a piece of positive area, from which a ray
+    /// found the group's values. A patch of zero-area pieces only (seam points that
+    /// round to one point) is decided through its group; a group of such patches alone
+    /// is not (its values are left at 0).
+    pub(super) decided: Vec<bool>,
 }
 
 /// +1, −1 or 0.
@@ -645,7 +651,7 @@ pub(super) fn patch_sides(
     // A tree pays where there are many rays; a few are cheaper as passes over all.
     let bvh = (roots.len() > FEW_RAYS).then(|| Bvh::new(input));
     const TRIES: usize = 16;
-    let root_values: Vec<Option<(u32, Vec<i64>)>> = roots
+    let root_values: Vec<Option<(u32, Option<Vec<i64>>)>> = roots
         .par_iter()
         .grained()
         .map(|&r| {
@@ -655,8 +661,8 @@ pub(super) fn patch_sides(
                 .map(|&p| (stacked[p as usize], -largest[p as usize].0, p))
                 .collect();
             if cands.is_empty() {
-                // Only zero-area pieces: dropped by the caller whatever their sides.
-                return Some((r, vec![0; n]));
+                // Only zero-area pieces: not decided (dropped by the caller).
+                return Some((r, None));
             }
             cands.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)).then(a.2.cmp(&b.2)));
             // Patches alone (no coincident sheet) first, then stacked ones.
@@ -667,22 +673,32 @@ pub(super) fn patch_sides(
                     // value(root) = value(p) − (value(p) − value(root)).
                     let o = &offset[p * n..(p + 1) * n];
                     front.iter_mut().zip(o).for_each(|(f, o)| *f -= o);
-                    return Some((r, front));
+                    return Some((r, Some(front)));
                 }
             }
             None
         })
         .collect();
     let mut root_value = vec![0i64; count * n];
+    let mut root_decided = vec![false; count];
     for v in root_values {
         let (r, value) = v?;
-        root_value[r as usize * n..(r as usize + 1) * n].copy_from_slice(&value);
+        if let Some(value) = value {
+            root_value[r as usize * n..(r as usize + 1) * n].copy_from_slice(&value);
+            root_decided[r as usize] = true;
+        }
     }
     let first = (0..count as u32).map(|p| stacks.find(p) == p).collect();
     let front = (0..count * n)
         .map(|i| root_value[root_of[i / n] as usize * n + i % n] + offset[i])
         .collect();
-    Some(PatchSides { front, net, first })
+    let decided = root_of.iter().map(|&r| root_decided[r as usize]).collect();
+    Some(PatchSides {
+        front,
+        net,
+        first,
+        decided,
+    })
 }
 
 #[cfg(test)]

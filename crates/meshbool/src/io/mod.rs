@@ -1,5 +1,5 @@
 //! Reading and writing meshes: STL (binary and ASCII), OBJ, PLY (ASCII, binary little and
-//! big endian), DXF (3DFACE and polyface meshes), JSON triangle soups, binary glTF
+//! big endian), OFF, DXF (3DFACE and polyface meshes), JSON triangle soups, binary glTF
 //! (`.glb`), and the surface formats of mining and geology software: GOCAD TSurf (`.ts`),
 //! Surpac DTM (`.dtm` with its string file `.str`) and LandXML 1.2 TIN surfaces (`.xml`).
 //!
@@ -27,6 +27,7 @@ mod json;
 #[cfg(feature = "mining-formats")]
 mod landxml;
 mod obj;
+mod off;
 mod ply;
 mod points;
 mod polyline;
@@ -71,13 +72,14 @@ fn format_in_family(bytes: &[u8], hint: Format) -> Format {
         Format::GocadTs => Format::GocadTs,
         Format::SurpacDtm => Format::SurpacDtm,
         Format::LandXml => Format::LandXml,
+        Format::Off => Format::Off,
     }
 }
 
 /// The format of `bytes` from the content alone (no PLY header): binary STL by its
 /// size, then by the first text: `solid` (ASCII STL), a JSON bracket, `GOCAD TSurf`, a
-/// `<LandXML` element, Surpac's `OBJECT`/`TRISOLATION` lines, DXF group codes, OBJ
-/// records. `None` when nothing fits.
+/// `<LandXML` element, Surpac's `OBJECT`/`TRISOLATION` lines, an `OFF` header, DXF group
+/// codes, OBJ records. `None` when nothing fits.
 fn format_from_content(bytes: &[u8]) -> Option<Format> {
     if stl::is_binary(bytes) {
         return Some(Format::StlBinary);
@@ -100,6 +102,9 @@ fn format_from_content(bytes: &[u8]) -> Option<Format> {
         if surpac::looks_like(text) {
             return Some(Format::SurpacDtm);
         }
+    }
+    if off::looks_like(text) {
+        return Some(Format::Off);
     }
     if dxf::looks_like(text) {
         return Some(Format::Dxf);
@@ -131,6 +136,7 @@ pub fn read_bytes(bytes: &[u8], format: Format) -> Result<Mesh> {
     let mesh = match format {
         Format::StlBinary | Format::StlAscii => stl::read(bytes)?,
         Format::Obj => obj::read(bytes)?,
+        Format::Off => off::read(bytes)?,
         Format::PlyAscii | Format::PlyBinaryLe | Format::PlyBinaryBe => ply::read(bytes)?,
         Format::Dxf => dxf::read(bytes)?,
         Format::JsonSoup | Format::JsonKirra => json::read(bytes)?,
@@ -214,6 +220,7 @@ pub fn write(out: &mut impl Write, mesh: &Mesh, format: Format) -> Result<()> {
         Format::StlBinary => stl::write_binary(out, mesh),
         Format::StlAscii => stl::write_ascii(out, mesh),
         Format::Obj => obj::write(out, mesh),
+        Format::Off => off::write(out, mesh),
         Format::PlyAscii | Format::PlyBinaryLe | Format::PlyBinaryBe => {
             ply::write(out, mesh, format)
         }

@@ -12,7 +12,7 @@ use super::{
     with_threads_for, Checks, Input, Measures, Operand, OperandReport, RunOptions, SCHEMA,
 };
 use crate::arrange::FailReason;
-use crate::boolean::nary::{reduce, reduce_in_one, Part};
+use crate::boolean::nary::{boolean_in_one, reduce, reduce_in_one, Part};
 use crate::boolean::{CleanupReport, FailedTriangle, Op, PipelineOptions, Provenance, Stage};
 use crate::repair::{NonManifoldReport, SnapOptions, SnapReport};
 use crate::{Error, Mesh, Result};
@@ -236,7 +236,28 @@ pub fn boolean<'a>(
             first_votes: a.clean() && b.clean(),
             ..opts.run.pipeline()
         };
-        let mut r = crate::boolean::boolean(a.mesh(), b.mesh(), op, &pipeline);
+        // An operand resolved at the door is resolved again together with the boolean,
+        // in one arrangement of both (nothing rounded in between); where that route does
+        // not decide, the boolean takes the resolved surfaces.
+        let in_one = (a.unresolved().is_some() || b.unresolved().is_some())
+            .then(|| {
+                fn as_given(o: &Operand) -> (&Mesh, &[(u32, u32)]) {
+                    match o.unresolved() {
+                        Some(u) => (&u.mesh, &u.pairs),
+                        None => (o.mesh(), &[]),
+                    }
+                }
+                let ((ma, pa), (mb, pb)) = (as_given(a), as_given(b));
+                crate::ops::run_for(ma.triangles.len() + mb.triangles.len(), || {
+                    boolean_in_one(ma, mb, pa, pb, op, &pipeline)
+                })
+            })
+            .flatten();
+        let resolved_in_one = in_one.is_some();
+        let mut r = match in_one {
+            Some(r) => r,
+            None => crate::boolean::boolean(a.mesh(), b.mesh(), op, &pipeline),
+        };
         let snap = if opts.snap > 0.0 {
             opts.run.stage(Stage::Snap);
             // The tolerance was checked above: never an error here.
@@ -244,7 +265,20 @@ pub fn boolean<'a>(
         } else {
             None
         };
-        Operand::to_input_triangles(&mut r.provenance, a, b);
+        if resolved_in_one {
+            // Provenance names the triangles as orientation and resolve took them: named
+            // by input ids, with reversals at the door told.
+            for p in &mut r.provenance {
+                let o = match p.source {
+                    crate::Source::A => a,
+                    crate::Source::B => b,
+                };
+                p.triangle = o.unresolved_to_input(p.triangle);
+                p.flipped ^= o.reversed(p.triangle);
+            }
+        } else {
+            Operand::to_input_triangles(&mut r.provenance, a, b);
+        }
         for f in &mut r.failed {
             f.triangle = match f.source {
                 crate::Source::A => a.input_triangle(f.triangle),

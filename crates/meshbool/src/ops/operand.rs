@@ -80,6 +80,12 @@ pub struct OperandReport {
     pub triangles: usize,
     /// Vertices after the exact weld.
     pub vertices: usize,
+    /// Triangles with two equal corners once the positions are welded (corners that were
+    /// distinct vertices at one position, or repeated indices), removed at the door:
+    /// they have no area, and every edge they use they use once each way, so the rest
+    /// stays as closed as it was. 0 when none, or when edges are not checked
+    /// ([`Checks::edges`]). Triangle ids in reports and provenance still name the input's.
+    pub collapsed_triangles: usize,
     /// Edges used twice in the same direction in the input; `None`: not checked.
     pub inconsistent_edges: Option<usize>,
     /// Triangles reversed at the door to make the orientation consistent (each component
@@ -98,6 +104,11 @@ pub struct OperandReport {
     /// How the operand was resolved into the solid its overlapping parts enclose
     /// ([`Checks::resolve`]); `None`: it was not (no self-intersections, or not asked).
     pub resolved: Option<ResolveReport>,
+    /// Signed volume of the operand as it enters the boolean: after the orientation, the
+    /// inside-out reversal and the resolve at the door (meaningful for a closed operand
+    /// only). The volume identities hold for it: vol(A ∪ B) + vol(A ∩ B) = vol(A) + vol(B)
+    /// with these volumes.
+    pub volume: f64,
     /// True when problems were found and taken as given ([`Checks::force`]).
     pub forced: bool,
 }
@@ -126,6 +137,7 @@ impl OperandReport {
         {
             super::scale_points(std::slice::from_mut(near), e);
         }
+        self.volume = super::scaled_measure(self.volume, e, 3);
     }
 
     /// What makes inside/outside ambiguous, one phrase each; empty for a clean operand.
@@ -170,6 +182,12 @@ impl OperandReport {
         }
         if self.self_intersections.is_none() {
             lines.push(format!("{}: not checked for self-intersections", self.name));
+        }
+        if self.collapsed_triangles > 0 {
+            lines.push(format!(
+                "{}: {} triangles with two equal corners after the exact weld removed (no area; the edges they used are used as before by the rest)",
+                self.name, self.collapsed_triangles
+            ));
         }
         if self.reoriented_triangles > 0 {
             lines.push(format!(
@@ -224,8 +242,13 @@ impl OperandReport {
 pub struct Operand {
     mesh: Mesh,
     report: OperandReport,
-    /// For a resolved operand, the input triangle each triangle of `mesh` is part of.
+    /// For a resolved operand, or one whose collapsed triangles were removed, the input
+    /// triangle each triangle of `mesh` is part of.
     parent: Option<Vec<u32>>,
+    /// Where collapsed triangles were removed ([`OperandReport::collapsed_triangles`]):
+    /// the input triangle of each triangle of the mesh that orientation and resolve then
+    /// took.
+    kept: Option<Vec<u32>>,
     /// Input triangles reversed at the door (orientation made consistent, inside-out
     /// components), sorted.
     reversed: Vec<u32>,
@@ -235,6 +258,20 @@ pub struct Operand {
     /// The whole tree of `mesh`'s triangles, built when a second boolean asks for it and
     /// kept for the later ones.
     keeps: Keeps,
+    /// For an operand resolved at the door: the mesh before the resolve (oriented, its
+    /// triangles the input's) and its crossing pairs, so that a boolean can resolve and
+    /// combine in one exact arrangement rather than take the resolved surface, rounded
+    /// to `f64` ([`crate::boolean::nary::boolean_in_one`]).
+    unresolved: Option<Unresolved>,
+}
+
+/// A self-crossing operand as it was before the resolve: see [`Operand::unresolved`].
+#[derive(Clone, Debug)]
+pub(crate) struct Unresolved {
+    /// The oriented mesh (closed, consistent sheets), triangle ids the input's.
+    pub(crate) mesh: Mesh,
+    /// Its crossing triangle pairs.
+    pub(crate) pairs: Vec<(u32, u32)>,
 }
 
 impl Operand {
@@ -288,6 +325,16 @@ impl Operand {
         // On a large mesh and several threads, the components with negative volume are
         // found beside the edge counts (their parallel parts leave threads idle), used
         // below if the mesh is closed and its orientation stays as it is.
+        // Triangles with two equal corners (distinct vertices at one position, welded):
+        // no area, and every edge they use they use once each way; they would make edges
+        // of more than two triangles, so they go, the rest keeping their input ids.
+        let input_triangles = mesh.triangles.len();
+        let kept = if checks.edges {
+            without_collapsed(&mut mesh)
+        } else {
+            None
+        };
+        let to_input = |t: u32| kept.as_ref().map_or(t, |k| k[t as usize]);
         let (found_counts, mut inward) = if checks.edges
             && mesh.triangles.len() >= 1 << 16
             && rayon::current_num_threads() > 2
@@ -321,12 +368,13 @@ impl Operand {
             let first = found.first().map(|&(i, j)| [i, j]);
             SelfIntersections {
                 pairs: found.len(),
-                first,
+                first: first.map(|f| f.map(to_input)),
                 near: first.map(|[i, _]| mesh.centroid(i as usize)),
                 unresolved: None,
             }
         });
         let (mut resolved, mut parent, mut glued_result) = (None, None, false);
+        let mut unresolved = None;
         let clean_edges = counts.is_some_and(|c| c.inconsistent == 0 && c.non_manifold == 0);
         // Inside-out closed components are reversed (a closed mesh's inside is where its
         // normals point away from; written the other way round it would be its complement).
@@ -348,6 +396,7 @@ impl Operand {
         let reversed: Vec<u32> = if reoriented_triangles > 0 || !reversed.is_empty() {
             (0..flipped.len() as u32)
                 .filter(|&t| flipped[t as usize])
+                .map(to_input)
                 .collect()
         } else {
             Vec::new()
@@ -373,7 +422,24 @@ impl Operand {
                     Ok(r) => {
                         glued_result =
                             crate::repair::split_nonmanifold(&r.mesh).1.vertices_added > 0;
-                        mesh = r.mesh;
+                        // Glued inputs are separated into sheets by the resolve: only
+                        // sheets as given are kept for a boolean in one arrangement.
+                        let before = std::mem::replace(&mut mesh, r.mesh);
+                        // Glued parts as the resolve takes them: separated into closed
+                        // sheets (triangle ids kept), their crossings found again.
+                        unresolved = Some(if glued_input {
+                            let sheets = crate::repair::split_nonmanifold(&before).0;
+                            let pairs = crate::intersect::self_intersections(&sheets);
+                            Unresolved {
+                                mesh: sheets,
+                                pairs,
+                            }
+                        } else {
+                            Unresolved {
+                                mesh: before,
+                                pairs: found.clone(),
+                            }
+                        });
                         parent = Some(r.parent);
                         resolved = Some(r.report);
                     }
@@ -381,8 +447,15 @@ impl Operand {
                 }
             }
         }
+        // Resolved triangles' parents, and the triangles kept, named by input ids.
+        let parent = match (parent, &kept) {
+            (Some(p), Some(_)) => Some(p.into_iter().map(to_input).collect()),
+            (None, Some(k)) => Some(k.clone()),
+            (p, None) => p,
+        };
         let report = OperandReport {
             name,
+            collapsed_triangles: input_triangles - kept.as_ref().map_or(input_triangles, Vec::len),
             triangles: mesh.triangles.len(),
             vertices: mesh.positions.len(),
             inconsistent_edges: found_counts.map(|c| c.inconsistent),
@@ -391,6 +464,7 @@ impl Operand {
             self_intersections,
             reversed_components,
             resolved,
+            volume: crate::measure::signed_volume(&mesh),
             forced: false,
         };
         Ok(Operand {
@@ -400,6 +474,8 @@ impl Operand {
             reversed,
             glued: glued_result,
             keeps: Keeps::default(),
+            unresolved,
+            kept,
         })
     }
 
@@ -407,8 +483,24 @@ impl Operand {
     /// and its report's.
     pub(crate) fn scale(&mut self, e: i32) {
         super::scale_points(&mut self.mesh.positions, e);
+        if let Some(u) = &mut self.unresolved {
+            super::scale_points(&mut u.mesh.positions, e);
+        }
         self.report.scale_back(e);
         self.keeps = Keeps::default();
+    }
+
+    /// The input triangle of triangle `t` of the mesh as orientation and resolve took it
+    /// (the [`Unresolved`] mesh; [`Operand::mesh`] when not resolved): `t` itself unless
+    /// collapsed triangles were removed.
+    pub(crate) fn unresolved_to_input(&self, t: u32) -> u32 {
+        self.kept.as_ref().map_or(t, |k| k[t as usize])
+    }
+
+    /// For an operand resolved at the door, the mesh before the resolve and its crossing
+    /// pairs ([`Unresolved`]).
+    pub(crate) fn unresolved(&self) -> Option<&Unresolved> {
+        self.unresolved.as_ref()
     }
 
     /// What booleans keep of [`Operand::mesh`] between calls.
@@ -417,7 +509,7 @@ impl Operand {
     }
 
     /// The input triangle that triangle `t` of [`Operand::mesh`] is part of: `t` itself
-    /// unless the operand was resolved.
+    /// unless the operand was resolved or had collapsed triangles removed.
     pub fn input_triangle(&self, t: u32) -> u32 {
         match &self.parent {
             Some(p) => p[t as usize],
@@ -488,6 +580,20 @@ impl Operand {
     pub fn into_mesh(self) -> Mesh {
         self.mesh
     }
+}
+
+/// Removes the triangles of `mesh` with two equal corners (indices); `None` when there
+/// are none, else the ids of the triangles kept, ascending.
+fn without_collapsed(mesh: &mut Mesh) -> Option<Vec<u32>> {
+    let collapsed = |t: &[u32; 3]| t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
+    if !mesh.triangles.iter().any(collapsed) {
+        return None;
+    }
+    let kept: Vec<u32> = (0..mesh.triangles.len() as u32)
+        .filter(|&t| !collapsed(&mesh.triangles[t as usize]))
+        .collect();
+    mesh.triangles.retain(|t| !collapsed(t));
+    Some(kept)
 }
 
 /// The report with the problems it lists judged: an error unless `checks.force`, which
