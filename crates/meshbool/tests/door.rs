@@ -64,3 +64,94 @@ fn collapsed_triangles_are_removed_at_the_door_and_provenance_names_the_input() 
         assert_eq!(vols, vec![1.8125, 0.1875, 0.8125, 0.8125], "{t}");
     }
 }
+
+/// The unit cube as a soup whose odd triangles' corners are one unit in the last place
+/// off (each coordinate raised to the next `f64`): shared corners that differ in the last
+/// bits, as floating-point exports write them. Exactly welded it is open along every
+/// edge between an odd and an even triangle.
+fn cube_off_by_an_ulp() -> Mesh {
+    let cube = Mesh::unit_cube();
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for (t, tri) in cube.triangles().iter().enumerate() {
+        let base = positions.len() as u32;
+        for &v in tri {
+            let p = cube.positions()[v as usize];
+            positions.push(if t % 2 == 1 { p.map(f64::next_up) } else { p });
+        }
+        triangles.push([base, base + 1, base + 2]);
+    }
+    Mesh::new(positions, triangles).unwrap()
+}
+
+#[test]
+fn positions_that_differ_by_rounding_are_one_vertex() {
+    let a = cube_off_by_an_ulp();
+    let open = mesh_stats(&meshbool::weld_exact(&a).mesh);
+    assert!(open.boundary_edges > 0, "{open:?}");
+    let b = Mesh::cuboid([0.5, -0.25, 0.5], [1.5, 0.75, 1.5]);
+    let opts = BooleanOptions::default();
+    for (op, exact) in Op::ALL.into_iter().zip([1.8125, 0.1875, 0.8125, 0.8125]) {
+        let out = ops::boolean(&a, &b, op, &opts).unwrap();
+        let r = out.report();
+        let noise = r.operands[0].rounding_noise.as_ref().expect("merged");
+        assert_eq!(noise.boundary_edges, [open.boundary_edges, 0]);
+        assert_eq!(noise.precision, "f64");
+        assert!(noise.tolerance <= 1e-15, "{}", noise.tolerance);
+        assert!(r.assumed.iter().any(|l| l.contains("rounding noise")));
+        let s = mesh_stats(&out.mesh);
+        assert!(s.closed, "{op}: {s:?}");
+        assert!(
+            (s.volume - exact).abs() <= 1e-14,
+            "{op}: {} vs {exact}",
+            s.volume
+        );
+    }
+    // Taken exactly as written, the cube is an open surface with cracks whose sheets
+    // cross by an ulp: refused (or, forced, open).
+    let mut exact = BooleanOptions {
+        checks: meshbool::ops::Checks {
+            rounding_noise: false,
+            ..meshbool::ops::Checks::default()
+        },
+        ..BooleanOptions::default()
+    };
+    let err = ops::boolean(&a, &b, Op::Union, &exact).unwrap_err();
+    assert!(err.to_string().contains("not closed"), "{err}");
+    // The refusal says what would close the cracks.
+    assert!(err.to_string().contains("close at a weld of 2e-9"), "{err}");
+    exact.checks.force = true;
+    let out = ops::boolean(&a, &b, Op::Union, &exact).unwrap();
+    assert!(out.report().operands[0].rounding_noise.is_none());
+    assert!(!mesh_stats(&out.mesh).closed);
+}
+
+#[test]
+fn real_holes_and_gaps_beyond_rounding_stay_open() {
+    // A cube without one triangle, and the ulp cube with one corner moved 1e-9 (far more
+    // than rounding): the hole is not merged; the gapped cube's other cracks are, the
+    // moved corner's stay open.
+    let forced = meshbool::ops::Checks {
+        force: true,
+        ..meshbool::ops::Checks::default()
+    };
+    let (positions, mut triangles) = Mesh::unit_cube().into_parts();
+    triangles.pop();
+    let holed = Mesh::new(positions, triangles).unwrap();
+    let op = ops::Operand::new("holed", &holed, &forced).unwrap();
+    assert!(op.report().rounding_noise.is_none());
+    assert_eq!(mesh_stats(op.mesh()).boundary_edges, 3);
+    let (mut positions, triangles) = cube_off_by_an_ulp().into_parts();
+    positions[3][0] += 1e-9;
+    let gapped = Mesh::new(positions, triangles).unwrap();
+    let before = mesh_stats(&meshbool::weld_exact(&gapped).mesh).boundary_edges;
+    let op = ops::Operand::new("gapped", &gapped, &forced).unwrap();
+    let n = op
+        .report()
+        .rounding_noise
+        .as_ref()
+        .expect("the other cracks");
+    assert_eq!(n.boundary_edges[0], before);
+    assert!(n.boundary_edges[1] > 0, "{n:?}");
+    assert_eq!(mesh_stats(op.mesh()).boundary_edges, n.boundary_edges[1]);
+}

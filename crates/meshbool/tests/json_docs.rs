@@ -146,6 +146,20 @@ fn samples() -> BTreeMap<&'static str, Vec<Value>> {
     let d = ops::boolean(&cube, &cutter, Op::Difference, &snapped).unwrap();
     assert!(d.snap.as_ref().is_some_and(|s| s.collapsed > 0));
     s.entry("boolean").or_default().push(json(&d.report()));
+    // Shared corners one unit in the last place apart: merged at the door.
+    let (mut positions, mut triangles) = (Vec::new(), Vec::new());
+    for (t, tri) in cube.triangles().iter().enumerate() {
+        for &v in tri {
+            let p = cube.positions()[v as usize];
+            positions.push(if t % 2 == 1 { p.map(f64::next_up) } else { p });
+        }
+        let base = 3 * t as u32;
+        triangles.push([base, base + 1, base + 2]);
+    }
+    let noisy = Mesh::new(positions, triangles).unwrap();
+    let merged = ops::boolean(&noisy, &other, Op::Union, &BooleanOptions::default()).unwrap();
+    assert!(merged.report().operands[0].rounding_noise.is_some());
+    s.entry("boolean").or_default().push(json(&merged.report()));
     let snapped_split = SplitOptions {
         snap: 0.01,
         ..SplitOptions::default()

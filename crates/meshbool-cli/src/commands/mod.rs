@@ -44,6 +44,11 @@ pub struct OperandFlags {
     /// it at the door (each component facing as most of its triangles do).
     #[arg(long)]
     pub no_orient: bool,
+    /// Take positions as exactly as written: do not merge boundary vertices that differ
+    /// by rounding (within 4 units in the last place of the largest coordinate, in the
+    /// precision the file stores) into one vertex.
+    #[arg(long)]
+    pub exact_positions: bool,
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
@@ -62,6 +67,7 @@ impl OperandFlags {
             resolve: !self.no_resolve,
             orient: !self.no_orient,
             force: self.force,
+            rounding_noise: !self.exact_positions,
             ..Checks::default()
         }
     }

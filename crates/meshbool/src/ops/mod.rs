@@ -74,7 +74,9 @@ pub use envelope::{
     envelope, Envelope, EnvelopeCommandReport, EnvelopeOptions, EnvelopeOutput, EnvelopeReport,
 };
 pub use make::{make, MakeOutput, MakeReport, Shape};
-pub use operand::{Checks, Input, Operand, OperandReport, SelfIntersections};
+pub use operand::{
+    Checks, Input, NoiseMerge, Operand, OperandReport, SelfIntersections, ROUNDING_ULPS,
+};
 pub use points::{
     classify_points, ClassifyOptions, ClassifyOutput, ClassifyReport, PointClass, PointResult,
 };

@@ -44,6 +44,32 @@ pub struct Checks {
     /// Proceed when a check finds a problem, taking the input as given; the problems are
     /// listed in the report's `assumed`. Without it they are an [`Error::Operand`].
     pub force: bool,
+    /// Positions that differ by rounding are one vertex: boundary vertices within
+    /// [`ROUNDING_ULPS`] units in the last place of the mesh's largest coordinate (in the
+    /// precision the file stores: `f32` for binary STL, else `f64`) of one another are
+    /// merged, where that closes boundary edges and makes no edge non-manifold or
+    /// inconsistent ([`NoiseMerge`]). Off: only exactly equal positions are one vertex.
+    /// Needs `edges`.
+    pub rounding_noise: bool,
+}
+
+/// Units in the last place of a mesh's largest coordinate within which boundary
+/// positions are taken as one vertex ([`Checks::rounding_noise`]): writers that round
+/// each corner on its own (binary STL's `f32`, text with few digits of a computed `f64`)
+/// leave cracks of a unit or two.
+pub const ROUNDING_ULPS: f64 = 4.0;
+
+/// What [`Checks::rounding_noise`] merged.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct NoiseMerge {
+    /// Boundary vertices merged into another.
+    pub vertices: usize,
+    /// The distance they were merged within (a 3D distance).
+    pub tolerance: f64,
+    /// The precision the tolerance is counted in: `f32` or `f64`.
+    pub precision: &'static str,
+    /// Boundary edges before and after.
+    pub boundary_edges: [usize; 2],
 }
 
 impl Default for Checks {
@@ -55,6 +81,7 @@ impl Default for Checks {
             orient: true,
             resolve: true,
             force: false,
+            rounding_noise: true,
         }
     }
 }
@@ -68,6 +95,7 @@ impl Checks {
         orient: false,
         resolve: false,
         force: true,
+        rounding_noise: false,
     };
 }
 
@@ -86,6 +114,9 @@ pub struct OperandReport {
     /// stays as closed as it was. 0 when none, or when edges are not checked
     /// ([`Checks::edges`]). Triangle ids in reports and provenance still name the input's.
     pub collapsed_triangles: usize,
+    /// Boundary vertices merged as rounding noise ([`Checks::rounding_noise`]); `None`
+    /// when none were.
+    pub rounding_noise: Option<NoiseMerge>,
     /// Edges used twice in the same direction in the input; `None`: not checked.
     pub inconsistent_edges: Option<usize>,
     /// Triangles reversed at the door to make the orientation consistent (each component
@@ -109,6 +140,12 @@ pub struct OperandReport {
     /// only). The volume identities hold for it: vol(A ∪ B) + vol(A ∩ B) = vol(A) + vol(B)
     /// with these volumes.
     pub volume: f64,
+    /// For an operand with problems and boundary edges: the smallest weld distance tried
+    /// (1e-9 to 1e-4 of its diagonal, by steps of about 3) at which its boundary
+    /// vertices merge and no boundary edge is left, the cracks being near-equal
+    /// coordinates rather than holes (`meshbool repair --weld D` closes them); `None`
+    /// when no such distance was found, or not looked for (no problem, no boundary).
+    pub closes_at_weld: Option<f64>,
     /// True when problems were found and taken as given ([`Checks::force`]).
     pub forced: bool,
 }
@@ -167,6 +204,11 @@ impl OperandReport {
                 "{pairs} self-intersecting triangle pairs (first: triangles {i} and {j}, near {near:?}){why}"
             ));
         }
+        if let (Some(d), false) = (self.closes_at_weld, problems.is_empty()) {
+            problems.push(format!(
+                "its boundary edges close at a weld of {d:e} (`meshbool repair --weld {d:e}`)"
+            ));
+        }
         problems
     }
 
@@ -182,6 +224,12 @@ impl OperandReport {
         }
         if self.self_intersections.is_none() {
             lines.push(format!("{}: not checked for self-intersections", self.name));
+        }
+        if let Some(n) = &self.rounding_noise {
+            lines.push(format!(
+                "{}: {} boundary vertices within {ROUNDING_ULPS} {} units in the last place ({:.1e}) of another merged as one vertex (rounding noise): {} boundary edges before, {} after",
+                self.name, n.vertices, n.precision, n.tolerance, n.boundary_edges[0], n.boundary_edges[1]
+            ));
         }
         if self.collapsed_triangles > 0 {
             lines.push(format!(
@@ -280,7 +328,7 @@ impl Operand {
     /// a check finds a problem and `checks.force` is off.
     pub fn new(name: impl Into<String>, mesh: &Mesh, checks: &Checks) -> Result<Operand> {
         mesh.validate()?;
-        Operand::checked(name.into(), weld_exact(mesh).mesh, checks)
+        Operand::checked(name.into(), weld_exact(mesh).mesh, checks, false)
     }
 
     /// Reads a mesh file ([`super::read`]) and checks it as [`Operand::new`] does, named by
@@ -293,7 +341,8 @@ impl Operand {
         } else {
             weld_exact(&mesh).mesh
         };
-        Operand::checked(path.display().to_string(), mesh, checks)
+        let f32_stored = format == crate::Format::StlBinary;
+        Operand::checked(path.display().to_string(), mesh, checks, f32_stored)
     }
 
     /// Reads and checks two files side by side ([`Operand::read`]).
@@ -309,14 +358,14 @@ impl Operand {
     /// Checks a valid, welded mesh. A mesh of extreme magnitude (beyond 2^±200) is
     /// checked (and resolved) at unit size and scaled back, as the functions taking meshes
     /// do ([`super::extreme_scale`]); problems are judged on the report scaled back.
-    fn checked(name: String, mut mesh: Mesh, checks: &Checks) -> Result<Operand> {
+    fn checked(name: String, mut mesh: Mesh, checks: &Checks, f32_stored: bool) -> Result<Operand> {
         if let Some(e) = super::extreme_scale(&[&mesh]) {
             super::scale_points(&mut mesh.positions, e);
             let forced = Checks {
                 force: true,
                 ..*checks
             };
-            let mut op = Operand::checked(name, mesh, &forced)?;
+            let mut op = Operand::checked(name, mesh, &forced, f32_stored)?;
             op.scale(-e);
             op.report.forced = false;
             op.report = settle(op.report, checks)?;
@@ -329,6 +378,11 @@ impl Operand {
         // no area, and every edge they use they use once each way; they would make edges
         // of more than two triangles, so they go, the rest keeping their input ids.
         let input_triangles = mesh.triangles.len();
+        let rounding_noise = if checks.edges && checks.rounding_noise {
+            merge_rounding_noise(&mut mesh, f32_stored)
+        } else {
+            None
+        };
         let kept = if checks.edges {
             without_collapsed(&mut mesh)
         } else {
@@ -456,6 +510,7 @@ impl Operand {
         let report = OperandReport {
             name,
             collapsed_triangles: input_triangles - kept.as_ref().map_or(input_triangles, Vec::len),
+            rounding_noise,
             triangles: mesh.triangles.len(),
             vertices: mesh.positions.len(),
             inconsistent_edges: found_counts.map(|c| c.inconsistent),
@@ -465,7 +520,16 @@ impl Operand {
             reversed_components,
             resolved,
             volume: crate::measure::signed_volume(&mesh),
+            closes_at_weld: None,
             forced: false,
+        };
+        let closes_at_weld = match counts {
+            Some(c) if c.boundary > 0 && !report.problems().is_empty() => closing_weld(&mesh),
+            _ => None,
+        };
+        let report = OperandReport {
+            closes_at_weld,
+            ..report
         };
         Ok(Operand {
             mesh,
@@ -582,10 +646,92 @@ impl Operand {
     }
 }
 
+/// The smallest of the weld distances 1e-9, 3e-9, 1e-8, ..., 1e-4 times the diagonal of
+/// `mesh` (rounded up to one significant digit) at which welding its boundary vertices
+/// leaves no boundary edge and no more non-manifold edges than before; `None` if none
+/// does.
+fn closing_weld(mesh: &Mesh) -> Option<f64> {
+    let b = mesh.bounds()?;
+    let diag = crate::vec3::norm(&crate::vec3::sub(&b.max, &b.min));
+    if !(diag > 0.0 && diag.is_finite()) {
+        return None;
+    }
+    let before = EdgeCounts::of(mesh).non_manifold;
+    (-9..=-4)
+        .flat_map(|e| [1.0, 3.0].map(|m| m * 10f64.powi(e)))
+        .find_map(|k| {
+            let d = round_up(k * diag);
+            let (welded, _) = crate::repair::weld_boundary(mesh, d);
+            let c = EdgeCounts::of(&welded);
+            (c.boundary == 0 && c.non_manifold <= before && !welded.triangles.is_empty())
+                .then_some(d)
+        })
+}
+
+/// `x` (> 0) rounded up to one significant digit.
+fn round_up(x: f64) -> f64 {
+    let p = 10f64.powi(x.log10().floor() as i32);
+    let r = (x / p).ceil() * p;
+    // The decimal text of one digit, so that it prints as it reads.
+    format!("{r:.0e}").parse().unwrap_or(r)
+}
+
+/// Whether a triangle has two equal corners.
+fn collapsed(t: &[u32; 3]) -> bool {
+    t[0] == t[1] || t[1] == t[2] || t[2] == t[0]
+}
+
+/// Merges the boundary vertices of `mesh` within [`ROUNDING_ULPS`] units in the last place
+/// of its largest coordinate (`f32`'s where the file stored `f32`) of one another, where
+/// that lowers the boundary edges and raises neither the non-manifold nor the
+/// inconsistent ones; triangles keep their places (those that collapse are removed
+/// next, with their ids). `None` (and `mesh` as it was) otherwise.
+fn merge_rounding_noise(mesh: &mut Mesh, f32_stored: bool) -> Option<NoiseMerge> {
+    // Counted without the triangles that have two equal corners (removed next).
+    let counts = |m: &Mesh| {
+        if !m.triangles.iter().any(collapsed) {
+            return EdgeCounts::of(m);
+        }
+        let mut m = m.clone();
+        m.triangles.retain(|t| !collapsed(t));
+        EdgeCounts::of(&m)
+    };
+    let before = counts(mesh);
+    if before.boundary == 0 {
+        return None;
+    }
+    let b = mesh.bounds()?;
+    let largest = b.min.iter().chain(&b.max).fold(0f64, |m, x| m.max(x.abs()));
+    let (precision, bits) = if f32_stored { ("f32", 23) } else { ("f64", 52) };
+    // One unit in the last place of the largest coordinate, at most.
+    let ulp = largest * 2f64.powi(-bits);
+    let tolerance = ROUNDING_ULPS * ulp;
+    if !(tolerance > 0.0 && tolerance.is_finite()) {
+        return None;
+    }
+    let (welded, vertices) = crate::repair::weld_boundary_in_place(mesh, tolerance);
+    if vertices == 0 {
+        return None;
+    }
+    let after = counts(&welded);
+    let better = after.boundary < before.boundary
+        && after.non_manifold <= before.non_manifold
+        && after.inconsistent <= before.inconsistent;
+    if !better {
+        return None;
+    }
+    *mesh = welded;
+    Some(NoiseMerge {
+        vertices,
+        tolerance,
+        precision,
+        boundary_edges: [before.boundary, after.boundary],
+    })
+}
+
 /// Removes the triangles of `mesh` with two equal corners (indices); `None` when there
 /// are none, else the ids of the triangles kept, ascending.
 fn without_collapsed(mesh: &mut Mesh) -> Option<Vec<u32>> {
-    let collapsed = |t: &[u32; 3]| t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
     if !mesh.triangles.iter().any(collapsed) {
         return None;
     }

@@ -43,4 +43,5 @@ pub(crate) use snap::{
 pub use snap::{snap, snap_in_place, snap_with, SnapOptions, SnapReport, Snapped};
 pub use stitch::{stitch, zipper, StitchReport};
 pub use tjunction::{resolve_t_junctions, resolve_t_junctions_within, TJunctionReport};
+pub(crate) use weld::weld_boundary_in_place;
 pub use weld::{weld_boundary, weld_within, WeldReport};

@@ -137,20 +137,12 @@ pub fn weld_within(mesh: &Mesh, tolerance: f64) -> (Mesh, WeldReport) {
 /// removed and counted; unreferenced vertices are dropped. `tolerance` must be finite and
 /// ≥ 0 (0 welds exactly equal positions only).
 pub fn weld_boundary(mesh: &Mesh, tolerance: f64) -> (Mesh, WeldReport) {
-    let topo = EdgeTopology::new(mesh);
-    let mut boundary = vec![false; mesh.positions.len()];
-    for e in 0..topo.edge_count() {
-        if topo.uses_of(e).len() == 1 {
-            for v in topo.edges[e] {
-                boundary[v as usize] = true;
-            }
-        }
-    }
-    weld_among(mesh, tolerance, &boundary)
+    weld_among(mesh, tolerance, &boundary_vertices(mesh))
 }
 
-/// [`weld_within`] among the vertices marked `eligible`; the others stay as they are.
-fn weld_among(mesh: &Mesh, tolerance: f64, eligible: &[bool]) -> (Mesh, WeldReport) {
+/// Each vertex's representative under [`weld_among`]'s rule (index order, no chaining;
+/// itself when not merged) among the vertices marked `eligible`, and how many merged.
+fn representatives(mesh: &Mesh, tolerance: f64, eligible: &[bool]) -> (Vec<u32>, usize) {
     let tol = clamp_tolerance(tolerance);
     let n = mesh.positions.len();
     let grid = NearGrid::new(
@@ -159,7 +151,7 @@ fn weld_among(mesh: &Mesh, tolerance: f64, eligible: &[bool]) -> (Mesh, WeldRepo
         tol,
     );
     let mut rep = vec![u32::MAX; n];
-    let mut report = WeldReport::default();
+    let mut merged = 0;
     for v in 0..n {
         if rep[v] != u32::MAX {
             continue;
@@ -176,10 +168,49 @@ fn weld_among(mesh: &Mesh, tolerance: f64, eligible: &[bool]) -> (Mesh, WeldRepo
             }
             if within(&p, &mesh.positions[w], tol) {
                 rep[w] = v as u32;
-                report.merged_vertices += 1;
+                merged += 1;
             }
         }
     }
+    (rep, merged)
+}
+
+/// The boundary vertices of `mesh` merged within `tolerance` as [`weld_boundary`] merges
+/// them, every triangle kept in its place (one whose corners collapse stays, with two
+/// equal corners); unreferenced vertices are dropped. Also how many vertices merged.
+pub(crate) fn weld_boundary_in_place(mesh: &Mesh, tolerance: f64) -> (Mesh, usize) {
+    let (rep, merged) = representatives(mesh, tolerance, &boundary_vertices(mesh));
+    let triangles = mesh
+        .triangles
+        .iter()
+        .map(|t| t.map(|v| rep[v as usize]))
+        .collect();
+    let welded = Mesh::new_unchecked(mesh.positions.clone(), triangles);
+    (welded.without_unreferenced().0, merged)
+}
+
+/// Which vertices are ends of edges used by one triangle.
+fn boundary_vertices(mesh: &Mesh) -> Vec<bool> {
+    let topo = EdgeTopology::new(mesh);
+    let mut boundary = vec![false; mesh.positions.len()];
+    for e in 0..topo.edge_count() {
+        if topo.uses_of(e).len() == 1 {
+            for v in topo.edges[e] {
+                boundary[v as usize] = true;
+            }
+        }
+    }
+    boundary
+}
+
+/// [`weld_within`] among the vertices marked `eligible`; the others stay as they are.
+fn weld_among(mesh: &Mesh, tolerance: f64, eligible: &[bool]) -> (Mesh, WeldReport) {
+    let (rep, merged) = representatives(mesh, tolerance, eligible);
+    let mut report = WeldReport {
+        merged_vertices: merged,
+        ..WeldReport::default()
+    };
+    let n = mesh.positions.len();
     let mut new_id = vec![u32::MAX; n];
     let mut positions = Vec::new();
     let mut triangles = Vec::with_capacity(mesh.triangles.len());
