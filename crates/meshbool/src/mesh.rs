@@ -332,6 +332,12 @@ impl Mesh {
     /// The triangles `ids` (in range) of this mesh as a mesh of their own, with only the
     /// vertices they use, numbered in order of first use.
     pub(crate) fn subset(&self, ids: &[u32]) -> Mesh {
+        self.subset_renumbered(ids).0
+    }
+
+    /// [`Mesh::subset`], with the new id of each vertex of `self` (`u32::MAX` for those
+    /// the subset does not use).
+    pub(crate) fn subset_renumbered(&self, ids: &[u32]) -> (Mesh, Vec<u32>) {
         let mut id = vec![u32::MAX; self.positions.len()];
         let mut positions = Vec::new();
         let triangles = ids
@@ -346,16 +352,22 @@ impl Mesh {
                 })
             })
             .collect();
-        Mesh::new_unchecked(positions, triangles)
+        (Mesh::new_unchecked(positions, triangles), id)
     }
 
     /// The same mesh without the vertices no triangle uses, the rest renumbered in order of
     /// first use; also returns how many were dropped.
     pub fn without_unreferenced(self) -> (Mesh, usize) {
-        let all: Vec<u32> = (0..self.triangles.len() as u32).collect();
-        let kept = self.subset(&all);
+        let (kept, _) = self.without_unreferenced_renumbered();
         let dropped = self.positions.len() - kept.positions.len();
         (kept, dropped)
+    }
+
+    /// [`Mesh::without_unreferenced`], with the new id of each old vertex (`u32::MAX` for
+    /// those dropped).
+    pub(crate) fn without_unreferenced_renumbered(&self) -> (Mesh, Vec<u32>) {
+        let all: Vec<u32> = (0..self.triangles.len() as u32).collect();
+        self.subset_renumbered(&all)
     }
 }
 

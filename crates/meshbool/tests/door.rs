@@ -2,7 +2,7 @@
 //! corners are welded (distinct vertices at one position, as UV-seamed models and
 //! exports with duplicate vertices have them).
 
-// Only its check of parents' faces is used here.
+// Only part of it is used here.
 #[allow(dead_code)]
 mod common;
 
@@ -65,28 +65,9 @@ fn collapsed_triangles_are_removed_at_the_door_and_provenance_names_the_input() 
     }
 }
 
-/// The unit cube as a soup whose odd triangles' corners are one unit in the last place
-/// off (each coordinate raised to the next `f64`): shared corners that differ in the last
-/// bits, as floating-point exports write them. Exactly welded it is open along every
-/// edge between an odd and an even triangle.
-fn cube_off_by_an_ulp() -> Mesh {
-    let cube = Mesh::unit_cube();
-    let mut positions = Vec::new();
-    let mut triangles = Vec::new();
-    for (t, tri) in cube.triangles().iter().enumerate() {
-        let base = positions.len() as u32;
-        for &v in tri {
-            let p = cube.positions()[v as usize];
-            positions.push(if t % 2 == 1 { p.map(f64::next_up) } else { p });
-        }
-        triangles.push([base, base + 1, base + 2]);
-    }
-    Mesh::new(positions, triangles).unwrap()
-}
-
 #[test]
 fn positions_that_differ_by_rounding_are_one_vertex() {
-    let a = cube_off_by_an_ulp();
+    let a = common::cube_off_by_an_ulp();
     let open = mesh_stats(&meshbool::weld_exact(&a).mesh);
     assert!(open.boundary_edges > 0, "{open:?}");
     let b = Mesh::cuboid([0.5, -0.25, 0.5], [1.5, 0.75, 1.5]);
@@ -141,7 +122,7 @@ fn real_holes_and_gaps_beyond_rounding_stay_open() {
     let op = ops::Operand::new("holed", &holed, &forced).unwrap();
     assert!(op.report().rounding_noise.is_none());
     assert_eq!(mesh_stats(op.mesh()).boundary_edges, 3);
-    let (mut positions, triangles) = cube_off_by_an_ulp().into_parts();
+    let (mut positions, triangles) = common::cube_off_by_an_ulp().into_parts();
     positions[3][0] += 1e-9;
     let gapped = Mesh::new(positions, triangles).unwrap();
     let before = mesh_stats(&meshbool::weld_exact(&gapped).mesh).boundary_edges;

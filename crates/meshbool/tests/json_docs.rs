@@ -4,6 +4,10 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
+// Only its cube with corners that differ by rounding is used here.
+#[allow(dead_code)]
+mod common;
+
 use meshbool::ops::{self, BooleanOptions, Checks, CurvesOptions, PieceSpec, SplitOptions};
 use meshbool::repair::{CloseMode, CloseOptions, DegenerateOptions, Facing, RepairConfig};
 use meshbool::shapes::heightfield;
@@ -147,16 +151,7 @@ fn samples() -> BTreeMap<&'static str, Vec<Value>> {
     assert!(d.snap.as_ref().is_some_and(|s| s.collapsed > 0));
     s.entry("boolean").or_default().push(json(&d.report()));
     // Shared corners one unit in the last place apart: merged at the door.
-    let (mut positions, mut triangles) = (Vec::new(), Vec::new());
-    for (t, tri) in cube.triangles().iter().enumerate() {
-        for &v in tri {
-            let p = cube.positions()[v as usize];
-            positions.push(if t % 2 == 1 { p.map(f64::next_up) } else { p });
-        }
-        let base = 3 * t as u32;
-        triangles.push([base, base + 1, base + 2]);
-    }
-    let noisy = Mesh::new(positions, triangles).unwrap();
+    let noisy = common::cube_off_by_an_ulp();
     let merged = ops::boolean(&noisy, &other, Op::Union, &BooleanOptions::default()).unwrap();
     assert!(merged.report().operands[0].rounding_noise.is_some());
     s.entry("boolean").or_default().push(json(&merged.report()));

@@ -367,21 +367,10 @@ fn keep_in_one(
     })
 }
 
-/// `mesh` without the vertices no triangle uses (the rest renumbered in order of first
-/// use, as [`Mesh::without_unreferenced`] does), and `seam_vertices` renamed to match
-/// (those left out dropped; sorted).
+/// `mesh` without the vertices no triangle uses ([`Mesh::without_unreferenced`]), and
+/// `seam_vertices` renamed to match (those left out dropped; sorted).
 fn without_unreferenced(mesh: Mesh, seam_vertices: &[u32]) -> (Mesh, Vec<u32>) {
-    let mut new = vec![u32::MAX; mesh.positions.len()];
-    let mut next = 0u32;
-    for t in &mesh.triangles {
-        for &v in t {
-            if new[v as usize] == u32::MAX {
-                new[v as usize] = next;
-                next += 1;
-            }
-        }
-    }
-    let (mesh, _) = mesh.without_unreferenced();
+    let (mesh, new) = mesh.without_unreferenced_renumbered();
     let mut seam: Vec<u32> = seam_vertices
         .iter()
         .map(|&v| new[v as usize])

@@ -107,11 +107,11 @@ pub(super) fn read(bytes: &[u8]) -> Result<Mesh> {
             format!("{nv} vertices: at most 2^32 − 2 are read"),
         ));
     }
-    // Reserved within what the file can hold (a count larger than the file is an error
-    // found below, not an allocation).
-    let most = bytes.len() / 2;
-    let mut positions = Vec::with_capacity(nv.min(most));
-    let mut triangles = Vec::with_capacity(nf.min(most));
+    // Reserved within what the file can hold, a vertex line being at least 6 bytes and a
+    // face line 8 (a count larger than the file is an error found below, not an
+    // allocation).
+    let mut positions = Vec::with_capacity(nv.min(bytes.len() / 6));
+    let mut triangles = Vec::with_capacity(nf.min(bytes.len() / 8));
     let mut last = count_line;
     for k in 0..nv {
         let (n, l) = it.next().ok_or_else(|| {
@@ -129,7 +129,11 @@ pub(super) fn read(bytes: &[u8]) -> Result<Mesh> {
                 .ok_or_else(|| err(n, "vertex needs three coordinates".into()))?;
             *c = parse_f64(t, fmt, n)?;
         }
-        let extra = tok.count();
+        let mut extra = 0;
+        for t in tok {
+            parse_f64(t, fmt, n)?;
+            extra += 1;
+        }
         let wanted = 3 * usize::from(normals) + 2 * usize::from(texture);
         // A colour is 1 (an index), 3 or 4 numbers: taken as it comes.
         if !colours && extra != wanted {
@@ -272,6 +276,14 @@ mod tests {
                 "needs at least 3",
             ),
             ("OFF\nx 1 0\n", "bad count of vertices"),
+            (
+                "COFF\n3 1 0\n0 0 0 red\n1 0 0\n0 1 0\n3 0 1 2\n",
+                "expected a number",
+            ),
+            (
+                "OFF\n3 1 0\n0 0 0 1\n1 0 0\n0 1 0\n3 0 1 2\n",
+                "vertex has 4 numbers",
+            ),
             ("OFF BINARY\n", "binary OFF"),
             ("4OFF\n1 0 0\n", "three-dimensional"),
             (

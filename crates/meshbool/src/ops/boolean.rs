@@ -266,16 +266,7 @@ pub fn boolean<'a>(
             None
         };
         if resolved_in_one {
-            // Provenance names the triangles as orientation and resolve took them: named
-            // by input ids, with reversals at the door told.
-            for p in &mut r.provenance {
-                let o = match p.source {
-                    crate::Source::A => a,
-                    crate::Source::B => b,
-                };
-                p.triangle = o.unresolved_to_input(p.triangle);
-                p.flipped ^= o.reversed(p.triangle);
-            }
+            Operand::unresolved_to_input_triangles(&mut r.provenance, a, b);
         } else {
             Operand::to_input_triangles(&mut r.provenance, a, b);
         }

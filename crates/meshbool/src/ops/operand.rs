@@ -290,8 +290,7 @@ impl OperandReport {
 pub struct Operand {
     mesh: Mesh,
     report: OperandReport,
-    /// For a resolved operand, or one whose collapsed triangles were removed, the input
-    /// triangle each triangle of `mesh` is part of.
+    /// For a resolved operand, the input triangle each triangle of `mesh` is part of.
     parent: Option<Vec<u32>>,
     /// Where collapsed triangles were removed ([`OperandReport::collapsed_triangles`]):
     /// the input triangle of each triangle of the mesh that orientation and resolve then
@@ -371,25 +370,19 @@ impl Operand {
             op.report = settle(op.report, checks)?;
             return Ok(op);
         }
-        // On a large mesh and several threads, the components with negative volume are
-        // found beside the edge counts (their parallel parts leave threads idle), used
-        // below if the mesh is closed and its orientation stays as it is.
         // Triangles with two equal corners (distinct vertices at one position, welded):
         // no area, and every edge they use they use once each way; they would make edges
         // of more than two triangles, so they go, the rest keeping their input ids.
         let input_triangles = mesh.triangles.len();
-        let rounding_noise = if checks.edges && checks.rounding_noise {
-            merge_rounding_noise(&mut mesh, f32_stored)
-        } else {
-            None
-        };
-        let kept = if checks.edges {
+        let mut kept = if checks.edges {
             without_collapsed(&mut mesh)
         } else {
             None
         };
-        let to_input = |t: u32| kept.as_ref().map_or(t, |k| k[t as usize]);
-        let (found_counts, mut inward) = if checks.edges
+        // On a large mesh and several threads, the components with negative volume are
+        // found beside the edge counts (their parallel parts leave threads idle), used
+        // below if the mesh is closed and its orientation stays as it is.
+        let (mut found_counts, mut inward) = if checks.edges
             && mesh.triangles.len() >= 1 << 16
             && rayon::current_num_threads() > 2
         {
@@ -398,6 +391,23 @@ impl Operand {
         } else {
             (checks.edges.then(|| EdgeCounts::of(&mesh)), None)
         };
+        // Positions that differ by rounding are one vertex (boundary vertices only, so
+        // only where there are boundary edges); triangles that this collapses go too.
+        let mut rounding_noise = None;
+        if let Some(before) = found_counts.filter(|c| checks.rounding_noise && c.boundary > 0) {
+            if let Some((merge, after)) = merge_rounding_noise(&mut mesh, f32_stored, before) {
+                if let Some(more) = without_collapsed(&mut mesh) {
+                    kept = Some(match kept {
+                        Some(k) => more.iter().map(|&t| k[t as usize]).collect(),
+                        None => more,
+                    });
+                }
+                found_counts = Some(after);
+                inward = None;
+                rounding_noise = Some(merge);
+            }
+        }
+        let to_input = |t: u32| kept.as_ref().map_or(t, |k| k[t as usize]);
         // Triangles reversed at the door (orientation, inside-out components).
         let mut flipped = vec![false; mesh.triangles.len()];
         let mut counts = found_counts;
@@ -476,8 +486,6 @@ impl Operand {
                     Ok(r) => {
                         glued_result =
                             crate::repair::split_nonmanifold(&r.mesh).1.vertices_added > 0;
-                        // Glued inputs are separated into sheets by the resolve: only
-                        // sheets as given are kept for a boolean in one arrangement.
                         let before = std::mem::replace(&mut mesh, r.mesh);
                         // Glued parts as the resolve takes them: separated into closed
                         // sheets (triangle ids kept), their crossings found again.
@@ -501,11 +509,10 @@ impl Operand {
                 }
             }
         }
-        // Resolved triangles' parents, and the triangles kept, named by input ids.
+        // Resolved triangles' parents named by input ids.
         let parent = match (parent, &kept) {
             (Some(p), Some(_)) => Some(p.into_iter().map(to_input).collect()),
-            (None, Some(k)) => Some(k.clone()),
-            (p, None) => p,
+            (p, _) => p,
         };
         let report = OperandReport {
             name,
@@ -577,7 +584,7 @@ impl Operand {
     pub fn input_triangle(&self, t: u32) -> u32 {
         match &self.parent {
             Some(p) => p[t as usize],
-            None => t,
+            None => self.unresolved_to_input(t),
         }
     }
 
@@ -610,7 +617,29 @@ impl Operand {
         a: &Operand,
         b: &Operand,
     ) {
-        let plain = |o: &Operand| o.parent.is_none() && o.reversed.is_empty();
+        Operand::provenance_to_input(provenance, a, b, Operand::input_triangle);
+    }
+
+    /// [`Operand::to_input_triangles`] for provenance that names triangles of the meshes
+    /// as orientation and resolve took them ([`Operand::unresolved_to_input`]): a boolean
+    /// that resolved and combined in one arrangement.
+    pub(crate) fn unresolved_to_input_triangles(
+        provenance: &mut [crate::boolean::Provenance],
+        a: &Operand,
+        b: &Operand,
+    ) {
+        Operand::provenance_to_input(provenance, a, b, Operand::unresolved_to_input);
+    }
+
+    /// Rewrites provenance by `input` (an operand's triangle to its input triangle) and
+    /// tells the reversals at the door in `flipped`.
+    fn provenance_to_input(
+        provenance: &mut [crate::boolean::Provenance],
+        a: &Operand,
+        b: &Operand,
+        input: fn(&Operand, u32) -> u32,
+    ) {
+        let plain = |o: &Operand| o.parent.is_none() && o.kept.is_none() && o.reversed.is_empty();
         if plain(a) && plain(b) {
             return;
         }
@@ -619,7 +648,7 @@ impl Operand {
                 crate::Source::A => a,
                 crate::Source::B => b,
             };
-            p.triangle = o.input_triangle(p.triangle);
+            p.triangle = input(o, p.triangle);
             p.flipped ^= o.reversed(p.triangle);
         }
     }
@@ -681,25 +710,18 @@ fn collapsed(t: &[u32; 3]) -> bool {
     t[0] == t[1] || t[1] == t[2] || t[2] == t[0]
 }
 
-/// Merges the boundary vertices of `mesh` within [`ROUNDING_ULPS`] units in the last place
-/// of its largest coordinate (`f32`'s where the file stored `f32`) of one another, where
-/// that lowers the boundary edges and raises neither the non-manifold nor the
-/// inconsistent ones; triangles keep their places (those that collapse are removed
-/// next, with their ids). `None` (and `mesh` as it was) otherwise.
-fn merge_rounding_noise(mesh: &mut Mesh, f32_stored: bool) -> Option<NoiseMerge> {
-    // Counted without the triangles that have two equal corners (removed next).
-    let counts = |m: &Mesh| {
-        if !m.triangles.iter().any(collapsed) {
-            return EdgeCounts::of(m);
-        }
-        let mut m = m.clone();
-        m.triangles.retain(|t| !collapsed(t));
-        EdgeCounts::of(&m)
-    };
-    let before = counts(mesh);
-    if before.boundary == 0 {
-        return None;
-    }
+/// Merges the boundary vertices of `mesh` (without collapsed triangles; `before` its edge
+/// counts) within [`ROUNDING_ULPS`] units in the last place of its largest coordinate
+/// (`f32`'s where the file stored `f32`) of one another, where that lowers the boundary
+/// edges and raises neither the non-manifold nor the inconsistent ones; triangles keep
+/// their places (those that collapse are for the caller to remove). The merge and the
+/// edge counts after it (collapsed triangles left out); `None` (and `mesh` as it was)
+/// otherwise.
+fn merge_rounding_noise(
+    mesh: &mut Mesh,
+    f32_stored: bool,
+    before: EdgeCounts,
+) -> Option<(NoiseMerge, EdgeCounts)> {
     let b = mesh.bounds()?;
     let largest = b.min.iter().chain(&b.max).fold(0f64, |m, x| m.max(x.abs()));
     let (precision, bits) = if f32_stored { ("f32", 23) } else { ("f64", 52) };
@@ -709,11 +731,12 @@ fn merge_rounding_noise(mesh: &mut Mesh, f32_stored: bool) -> Option<NoiseMerge>
     if !(tolerance > 0.0 && tolerance.is_finite()) {
         return None;
     }
-    let (welded, vertices) = crate::repair::weld_boundary_in_place(mesh, tolerance);
-    if vertices == 0 {
-        return None;
-    }
-    let after = counts(&welded);
+    let (welded, vertices) = crate::repair::weld_boundary_in_place(mesh, tolerance)?;
+    let after = {
+        let mut m = welded.clone();
+        m.triangles.retain(|t| !collapsed(t));
+        EdgeCounts::of(&m)
+    };
     let better = after.boundary < before.boundary
         && after.non_manifold <= before.non_manifold
         && after.inconsistent <= before.inconsistent;
@@ -721,12 +744,13 @@ fn merge_rounding_noise(mesh: &mut Mesh, f32_stored: bool) -> Option<NoiseMerge>
         return None;
     }
     *mesh = welded;
-    Some(NoiseMerge {
+    let merge = NoiseMerge {
         vertices,
         tolerance,
         precision,
         boundary_edges: [before.boundary, after.boundary],
-    })
+    };
+    Some((merge, after))
 }
 
 /// Removes the triangles of `mesh` with two equal corners (indices); `None` when there

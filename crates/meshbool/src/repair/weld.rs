@@ -177,16 +177,20 @@ fn representatives(mesh: &Mesh, tolerance: f64, eligible: &[bool]) -> (Vec<u32>,
 
 /// The boundary vertices of `mesh` merged within `tolerance` as [`weld_boundary`] merges
 /// them, every triangle kept in its place (one whose corners collapse stays, with two
-/// equal corners); unreferenced vertices are dropped. Also how many vertices merged.
-pub(crate) fn weld_boundary_in_place(mesh: &Mesh, tolerance: f64) -> (Mesh, usize) {
+/// equal corners); unreferenced vertices are dropped. Also how many vertices merged;
+/// `None` when none did.
+pub(crate) fn weld_boundary_in_place(mesh: &Mesh, tolerance: f64) -> Option<(Mesh, usize)> {
     let (rep, merged) = representatives(mesh, tolerance, &boundary_vertices(mesh));
+    if merged == 0 {
+        return None;
+    }
     let triangles = mesh
         .triangles
         .iter()
         .map(|t| t.map(|v| rep[v as usize]))
         .collect();
     let welded = Mesh::new_unchecked(mesh.positions.clone(), triangles);
-    (welded.without_unreferenced().0, merged)
+    Some((welded.without_unreferenced().0, merged))
 }
 
 /// Which vertices are ends of edges used by one triangle.

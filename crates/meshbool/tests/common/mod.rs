@@ -1,4 +1,5 @@
-//! What the cube-and-cutter tests of snapping and of the exact clean-up share.
+//! What the tests share: the cube-and-cutter of snapping and the exact clean-up, and a
+//! cube whose shared corners differ by rounding.
 
 use meshbool::boolean::Provenance;
 use meshbool::{Mesh, Source};
@@ -45,4 +46,25 @@ pub fn skew_motion(seed: u64, a: &Mesh, b: &Mesh) -> (Mesh, Mesh) {
         rigid_motion(a, axis, angle, shift),
         rigid_motion(b, axis, angle, shift),
     )
+}
+
+/// The unit cube as a soup whose odd triangles' corners are one unit in the last place
+/// off (each coordinate raised to the next `f64`): shared corners that differ in the last
+/// bits, as floating-point exports write them. Exactly welded it is open along every
+/// edge between an odd and an even triangle.
+// Used by the door and report tests, not by the others that include this module.
+#[allow(dead_code)]
+pub fn cube_off_by_an_ulp() -> Mesh {
+    let cube = Mesh::unit_cube();
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for (t, tri) in cube.triangles().iter().enumerate() {
+        let base = positions.len() as u32;
+        for &v in tri {
+            let p = cube.positions()[v as usize];
+            positions.push(if t % 2 == 1 { p.map(f64::next_up) } else { p });
+        }
+        triangles.push([base, base + 1, base + 2]);
+    }
+    Mesh::new(positions, triangles).unwrap()
 }
