@@ -4,12 +4,15 @@
 // equal, zero area and T-junctions by exact predicates); a `tolerance` welds first.
 import { call } from "./native.js";
 import { arraysToSoup, parseReport, soupToArrays } from "./convert.js";
+import { conditioned, weldAligned } from "./solids.js";
 
 const GROUPS = ["aInside", "aOutside", "bInside", "bOutside"];
 
+// A soup's arrays welded: within `tolerance` when one is given, else by the library's
+// vertex-identity rule (equal, or equal up to rounding noise where that closes edges).
 function welded(soup, tolerance) {
 	const S = soupToArrays(soup, "soup");
-	return tolerance > 0 ? call("weld", S.positions, S.index, tolerance) : S;
+	return tolerance > 0 ? call("weld", S.positions, S.index, tolerance) : conditioned(S, false);
 }
 
 function repaired(M, config) {
@@ -20,43 +23,53 @@ function repaired(M, config) {
  * Read-only checks of a finished soup: no degenerate (zero-area, or at most `minArea`)
  * triangles, no duplicates, consistent winding, no non-manifold edges, no T-junctions
  * and, with `expectClosed`, no open edges. `{ok, checks: [{check, ok, count, detail}],
- * stats: {triangles, vertices, openEdges, nonManifoldEdges, area, components, volume}}`.
- * Vertices are the same when exactly equal, or within `tolerance` when one is given.
+ * stats: {triangles, vertices, openEdges, nonManifoldEdges, area, components, volume}}`;
+ * the check names are the reference's (`noDegenerateTriangles`, `noDuplicateTriangles`,
+ * `consistentWinding`, `manifoldEdges`, `noTJunctions`, `closed`). An empty soup is not
+ * ok: its only check is `nonEmpty` (count 0, as the reference reports it). Vertices are
+ * the same when equal up to rounding noise (the library's rule), or within `tolerance`
+ * when one is given.
  */
 export function verifyOutput(soup, options) {
 	const o = options || {};
-	const M = welded(soup, o.tolerance);
-	const empty = M.index.length === 0;
-	const info = empty ? null : JSON.parse(call("info", M.positions, M.index));
+	const M = welded(soup || [], o.tolerance);
+	const check = (name, count, what) => ({ check: name, ok: count === 0, count, detail: count === 0 ? `no ${what}` : `${count} ${what}` });
+	if (M.index.length === 0) {
+		return {
+			ok: false,
+			checks: [{ check: "nonEmpty", ok: false, count: 0, detail: "the soup has no triangles" }],
+			stats: { triangles: 0, vertices: 0, openEdges: 0, nonManifoldEdges: 0, area: 0, components: 0, volume: 0 },
+		};
+	}
+	const info = JSON.parse(call("info", M.positions, M.index));
 	let small = 0;
-	if (!empty && o.minArea > 0) {
+	if (o.minArea > 0) {
 		for (const t of arraysToSoup(M.positions, M.index)) {
 			const u = [t.v1.x - t.v0.x, t.v1.y - t.v0.y, t.v1.z - t.v0.z], v = [t.v2.x - t.v0.x, t.v2.y - t.v0.y, t.v2.z - t.v0.z];
 			const n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
 			if (0.5 * Math.hypot(n[0], n[1], n[2]) <= o.minArea) small++;
 		}
 	}
-	const tj = empty ? 0 : parseReport(repaired(M, { tjunctions: true }).report).tjunctions.vertices_inserted;
-	const check = (name, count, what) => ({ check: name, ok: count === 0, count, detail: count === 0 ? `no ${what}` : `${count} ${what}` });
+	const tj = parseReport(repaired(M, { tjunctions: true }).report).tjunctions.vertices_inserted;
 	const checks = [
-		check("noDegenerates", empty ? 0 : Math.max(info.degenerate_triangles, small), "degenerate triangles"),
-		check("noDuplicates", empty ? 0 : info.duplicate_triangles, "duplicate triangles"),
-		check("consistentWinding", empty ? 0 : info.inconsistent_edges, "inconsistently wound edges"),
-		check("manifoldEdges", empty ? 0 : info.non_manifold_edges, "edges of more than two triangles"),
+		check("noDegenerateTriangles", Math.max(info.degenerate_triangles, small), "degenerate triangles"),
+		check("noDuplicateTriangles", info.duplicate_triangles, "duplicate triangles"),
+		check("consistentWinding", info.inconsistent_edges, "inconsistently wound edges"),
+		check("manifoldEdges", info.non_manifold_edges, "edges of more than two triangles"),
 		check("noTJunctions", tj, "vertices on other triangles' edges (T-junctions)"),
 	];
-	if (o.expectClosed) checks.push(check("closed", empty ? 1 : info.boundary_edges, "open edges"));
+	if (o.expectClosed) checks.push(check("closed", info.boundary_edges, "open edges"));
 	return {
 		ok: checks.every((c) => c.ok),
 		checks,
 		stats: {
 			triangles: M.index.length / 3,
-			vertices: empty ? 0 : info.vertices,
-			openEdges: empty ? 0 : info.boundary_edges,
-			nonManifoldEdges: empty ? 0 : info.non_manifold_edges,
-			area: empty ? 0 : info.area,
-			components: empty ? 0 : info.components,
-			volume: empty ? 0 : info.volume,
+			vertices: info.vertices,
+			openEdges: info.boundary_edges,
+			nonManifoldEdges: info.non_manifold_edges,
+			area: info.area,
+			components: info.components,
+			volume: info.volume,
 		},
 	};
 }
@@ -67,24 +80,38 @@ export function violationCount(report) {
 }
 
 /**
- * Compares a soup before and after a candidate repair: `{harmful, recommend: "keep" |
- * "discard", benefits, damage, before, after, violationsBefore, violationsAfter,
- * trisDelta, volumeDeltaPct}`. "keep" only when violations strictly fall and nothing got
- * worse (no check's count rose, volume within `volumeTolPct` percent, default 0.5).
+ * Compares a soup before and after a candidate repair, both measured by `verifyOutput`
+ * at the same `tolerance`: `{harmful, recommend: "keep" | "discard", benefits, damage,
+ * before, after, violationsBefore, violationsAfter, trisDelta, volumeDeltaPct}`.
+ * "keep" only when violations strictly fall and nothing got worse: no check's count
+ * rose, a closed mesh was not opened ("Opens the mesh"), and, when the baseline is a
+ * sound solid (closed and manifold: the only case where its volume means something),
+ * the volume moved at most `volumeTolPct` percent (default 0.5).
  */
 export function assessRepair(before, after, options) {
 	const o = options || {};
 	const b = verifyOutput(before, o), a = verifyOutput(after, o);
 	const benefits = [], damage = [];
-	b.checks.forEach((c, i) => {
-		const d = a.checks[i].count - c.count;
-		if (d < 0) benefits.push(`${c.check}: ${c.count} → ${a.checks[i].count}`);
-		if (d > 0) damage.push(`${c.check}: ${c.count} → ${a.checks[i].count}`);
-	});
+	const countOf = (report, name) => {
+		const c = report.checks.find((x) => x.check === name);
+		return c ? c.count : 0;
+	};
+	for (const c of b.checks) {
+		if (c.check === "nonEmpty") continue;
+		const now = countOf(a, c.check);
+		if (now < c.count) benefits.push(`${c.check}: ${c.count} → ${now}`);
+		if (now > c.count) damage.push(`${c.check}: ${c.count} → ${now}`);
+	}
+	for (const c of a.checks) {
+		if (c.check !== "nonEmpty" && !b.checks.some((x) => x.check === c.check) && c.count > 0) damage.push(`${c.check}: 0 → ${c.count}`);
+	}
+	if (b.stats.triangles > 0 && a.stats.triangles === 0) damage.push("Empties the mesh: no triangles left");
+	const sound = b.stats.triangles > 0 && b.stats.openEdges === 0 && b.stats.nonManifoldEdges === 0;
+	if (sound && a.stats.openEdges > 0) damage.push(`Opens the mesh: 0 → ${a.stats.openEdges} open edges`);
 	const volBefore = b.stats.volume, volAfter = a.stats.volume;
 	const volumeDeltaPct = volBefore !== 0 ? (100 * (volAfter - volBefore)) / Math.abs(volBefore) : volAfter === 0 ? 0 : 100;
 	const tol = o.volumeTolPct !== undefined ? o.volumeTolPct : 0.5;
-	if (Math.abs(volumeDeltaPct) > tol) damage.push(`volume changed by ${volumeDeltaPct.toFixed(3)} %`);
+	if (sound && Math.abs(volumeDeltaPct) > tol) damage.push(`volume changed by ${volumeDeltaPct.toFixed(3)} %`);
 	const violationsBefore = violationCount(b), violationsAfter = violationCount(a);
 	const harmful = damage.length > 0;
 	return {
@@ -132,30 +159,52 @@ export const DEFAULT_STAGES = Object.freeze([
 ]);
 
 /**
- * Runs each stage on a copy and keeps its result only when `assessRepair` recommends it,
- * so the output is never worse than the input (`force`: keep every stage's result).
- * `{soup, ok, before, after, applied, skipped, stages}`.
+ * Runs each stage (`{name, run(soup, ctx)}`) on a copy and keeps its result only when
+ * `assessRepair` recommends it, so the output is never worse than the input (`force`:
+ * keep every stage's result that is not empty). `{soup, ok, before, after, applied,
+ * skipped: [{stage, reason, violations}], stages}`; reasons: "would damage the mesh",
+ * "no improvement", "produced nothing" (an empty or missing result), "threw" (then
+ * `violations` holds the error's message). When no stage is applied `soup` is the
+ * caller's own array. An empty soup is not ok (nothing to finish).
  */
 export function finishMesh(soup, options) {
 	const o = options || {};
 	const stages = o.stages || DEFAULT_STAGES;
 	const tolerance = o.tolerance || 0;
-	let current = soup;
+	const input = Array.isArray(soup) ? soup : [];
+	let current = input;
 	const applied = [], skipped = [], log = [];
-	for (const s of stages) {
-		const candidate = s.run(current, { tolerance, options: o });
-		const assessment = assessRepair(current, candidate, o);
-		log.push({ stage: s.name, assessment });
-		if (o.force || assessment.recommend === "keep") {
-			current = candidate;
-			applied.push(s.name);
-		} else {
-			const reason = assessment.harmful ? "harmful" : "no improvement";
-			skipped.push({ stage: s.name, reason, violations: `${assessment.violationsBefore} → ${assessment.violationsAfter}` });
+	if (input.length > 0) {
+		for (const s of stages) {
+			let candidate;
+			try {
+				candidate = s.run(copySoup(current), { tolerance, options: o });
+			} catch (e) {
+				skipped.push({ stage: s.name, reason: "threw", violations: e instanceof Error ? e.message : String(e) });
+				continue;
+			}
+			if (!Array.isArray(candidate) || candidate.length === 0) {
+				skipped.push({ stage: s.name, reason: "produced nothing", violations: null });
+				continue;
+			}
+			const assessment = assessRepair(current, candidate, o);
+			log.push({ stage: s.name, assessment });
+			if (o.force || assessment.recommend === "keep") {
+				current = candidate;
+				applied.push(s.name);
+			} else {
+				const reason = assessment.harmful ? "would damage the mesh" : "no improvement";
+				skipped.push({ stage: s.name, reason, violations: `${assessment.violationsBefore} → ${assessment.violationsAfter}` });
+			}
 		}
 	}
-	const before = verifyOutput(soup, o), after = verifyOutput(current, o);
+	const before = verifyOutput(input, o), after = current === input ? before : verifyOutput(current, o);
 	return { soup: current, ok: after.ok, before, after, applied, skipped, stages: log };
+}
+
+// A soup copied triangle by triangle (corners too), so a stage cannot change its input.
+function copySoup(soup) {
+	return soup.map((t) => ({ ...t, v0: { ...t.v0 }, v1: { ...t.v1 }, v2: { ...t.v2 } }));
 }
 
 /**
@@ -174,43 +223,13 @@ export function indexGroups(groups, tolerance) {
 	const out = { points, groups: { aInside: [], aOutside: [], bInside: [], bOutside: [] } };
 	if (all.length === 0) return out;
 	const S = soupToArrays(all, "groups");
-	const w = tolerance > 0 ? weldKeeping(S, tolerance) : call("weld", S.positions, S.index, 0);
+	const w = tolerance > 0 ? weldAligned(S, tolerance) : call("weld", S.positions, S.index, 0);
 	for (let i = 0; i < w.positions.length; i += 3) points.push({ x: w.positions[i], y: w.positions[i + 1], z: w.positions[i + 2] });
 	let t = 0;
 	GROUPS.forEach((g, k) => {
 		for (let n = 0; n < counts[k]; n++, t++) out.groups[g].push([w.index[3 * t], w.index[3 * t + 1], w.index[3 * t + 2]]);
 	});
 	return out;
-}
-
-// A weld within a tolerance that keeps every triangle (collapsed ones too), so that the
-// triples stay aligned with the groups: vertices snapped onto the welded positions.
-function weldKeeping(S, tolerance) {
-	const w = call("weld", S.positions, S.index, tolerance);
-	const snapped = new Float64Array(S.positions.length);
-	// Each input corner takes the position of the welded vertex nearest to it (the weld
-	// moved it at most `tolerance`), then an exact weld gives the shared pool.
-	const cell = 2 * tolerance;
-	const grid = new Map();
-	const key = (x, y, z) => `${Math.floor(x / cell)},${Math.floor(y / cell)},${Math.floor(z / cell)}`;
-	for (let v = 0; v < w.positions.length / 3; v++) {
-		const k = key(w.positions[3 * v], w.positions[3 * v + 1], w.positions[3 * v + 2]);
-		if (!grid.has(k)) grid.set(k, []);
-		grid.get(k).push(v);
-	}
-	for (let i = 0; i < S.positions.length; i += 3) {
-		const x = S.positions[i], y = S.positions[i + 1], z = S.positions[i + 2];
-		const cx = Math.floor(x / cell), cy = Math.floor(y / cell), cz = Math.floor(z / cell);
-		let best = -1, bestD = Infinity;
-		for (let dx = -1; dx <= 1; dx++) for (let dy = -1; dy <= 1; dy++) for (let dz = -1; dz <= 1; dz++) {
-			for (const v of grid.get(`${cx + dx},${cy + dy},${cz + dz}`) || []) {
-				const d = (w.positions[3 * v] - x) ** 2 + (w.positions[3 * v + 1] - y) ** 2 + (w.positions[3 * v + 2] - z) ** 2;
-				if (d < bestD) { bestD = d; best = v; }
-			}
-		}
-		snapped.set(best >= 0 ? w.positions.subarray(3 * best, 3 * best + 3) : [x, y, z], i);
-	}
-	return call("weld", snapped, S.index, 0);
 }
 
 /** Indexed groups as typed arrays: `{positions: Float64Array, index: {aInside, ...: Uint32Array}}`. */
@@ -262,9 +281,10 @@ export function mergeSmallIndexedComponents(comps, threshold) {
 }
 
 /**
- * The indexed counterpart of `splitToComponents`: `[{mesh, side, index, tris, triCount}]`
- * per group, components by shared vertices, pieces under `smallThreshold` folded into the
- * group's largest.
+ * The indexed counterpart of `splitToComponents`: `[{mesh, side, index, points,
+ * triangles, tris, triCount}]` per group, components by shared vertices, pieces under
+ * `smallThreshold` folded into the group's largest. `triangles` index the entry's own
+ * `points`; `tris` index the shared `indexed.points`.
  */
 export function decomposeIndexedGroups(indexed, smallThreshold = 0) {
 	const out = [];
@@ -272,7 +292,18 @@ export function decomposeIndexedGroups(indexed, smallThreshold = 0) {
 		const mesh = g[0] === "a" ? "A" : "B", side = g.endsWith("Inside") ? "inside" : "outside";
 		let comps = connectedComponentsIndexed(indexed.groups[g] || []);
 		if (smallThreshold > 0) comps = mergeSmallIndexedComponents(comps, smallThreshold);
-		comps.forEach((tris, index) => out.push({ mesh, side, index, tris, triCount: tris.length }));
+		comps.forEach((tris, index) => {
+			const local = new Map();
+			const points = [];
+			const triangles = tris.map((t) => t.map((v) => {
+				if (!local.has(v)) {
+					local.set(v, points.length);
+					points.push(indexed.points[v]);
+				}
+				return local.get(v);
+			}));
+			out.push({ mesh, side, index, points, triangles, tris, triCount: tris.length });
+		});
 	}
 	return out;
 }

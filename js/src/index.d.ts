@@ -261,10 +261,63 @@ export function fillOpenEdgeLoops(soup: TriangleSoup, tolerance?: number): Trian
 export function weldBoundaryVertices(tris: TriangleSoup, tolerance: number): TriangleSoup;
 export function buildCurtainAndCap(tris: TriangleSoup, floorOffset?: number): TriangleSoup;
 export function generateClosingTriangles(tris: TriangleSoup, maxDist: number): TriangleSoup;
-export function closeSolid(soup: TriangleSoup, options?: { snapTolerance?: number }): BooleanResult & { diagnostics: Report };
-export function orientSolid(soup: TriangleSoup, options?: { outward?: boolean; coherenceOnly?: boolean }): { soup: TriangleSoup; diagnostics: Report | null };
-export function bmsSelfResolve(soup: TriangleSoup, options?: { rule?: "positive" | "nonzero" | "evenodd"; keepNonmanifold?: boolean }): { soup: TriangleSoup; changed: boolean; diagnostics: Report | null };
-export function bmsSelfResolveIndexed(mesh: IndexedMesh, options?: { rule?: "positive" | "nonzero" | "evenodd"; keepNonmanifold?: boolean }): IndexedMesh & { changed: boolean; diagnostics: Report };
+/** What `closeSolid` did. */
+export interface CloseSolidDiagnostics {
+	closed: boolean;
+	openEdges: number;
+	nonManifoldEdges: number;
+	/** Triangles added as caps. */
+	capTriangles: number;
+	cappedLoops: number;
+	/** Vertex counts of the loops larger than `maxCapLoopVerts`, left open. */
+	skippedLargeLoops: number[];
+	/** Loops left open. */
+	openLoops: number;
+	/** Vertex counts of every boundary loop found first. */
+	loopSizes: number[];
+	/** Signed volume of the result. */
+	volume: number;
+}
+export function closeSolid(soup: TriangleSoup, options?: { snapTolerance?: number; maxCapLoopVerts?: number; maxPasses?: number }): { soup: TriangleSoup; diagnostics: CloseSolidDiagnostics };
+
+/** What `orientSolid` did. */
+export interface OrientDiagnostics {
+	/** Edges of two triangles running the same way, before and after. */
+	windingViolationsBefore: number;
+	windingViolationsAfter: number;
+	/** Triangles reversed to make the winding coherent. */
+	flippedForCoherence: number;
+	/** Closed components reversed to face outward. */
+	componentsFlippedForDirection: number;
+	components: number;
+	closedComponents: number;
+	openComponents: number;
+	signedVolume: number;
+}
+export function orientSolid(soup: TriangleSoup, options?: { outward?: boolean; coherenceOnly?: boolean }): { soup: TriangleSoup; diagnostics: OrientDiagnostics };
+
+/** Options of `bmsSelfResolve`. */
+export interface SelfResolveOptions {
+	/** Orient coherently and outward first (default true). */
+	preOrient?: boolean;
+	/** The fill rule (default "positive": winding number at least 1). */
+	rule?: "positive" | "nonzero" | "evenodd";
+	keepNonmanifold?: boolean;
+}
+/** What `bmsSelfResolve` found and did, beside the library's resolve report. */
+export interface SelfResolveDiagnostics extends Report {
+	coplanarPairs: number;
+	crossingPairs: number;
+	preOrient: boolean;
+	preOrientFlips: number;
+	preOrientSeamViolations: number;
+	outputTris: number;
+	orient?: OrientDiagnostics;
+	/** Why the mesh could not be resolved (the input is returned). */
+	error?: string;
+}
+export function bmsSelfResolve(soup: TriangleSoup, options?: SelfResolveOptions): { soup: TriangleSoup; changed: boolean; diagnostics: SelfResolveDiagnostics };
+export function bmsSelfResolveIndexed(mesh: IndexedMesh, options?: SelfResolveOptions): IndexedMesh & { changed: boolean; diagnostics: SelfResolveDiagnostics };
 
 // ── normals, measures, winding ─────────────────────────────────────────────────────────
 
@@ -302,21 +355,100 @@ export interface MegaTriangle extends Triangle {
 	origIdx: number;
 }
 
+/** A vertex of a pool. */
+export interface PoolVertex extends Vertex {
+	id: number;
+}
+
+/** A pool of vertices (see createVertexPool). */
+export interface VertexPool {
+	tolerance: number;
+	/** The pool's vertex at that position (within the tolerance), made when there is none; `triRef` is not used. */
+	getOrCreate(x: number, y: number, z: number, triRef?: unknown): PoolVertex;
+	find(x: number, y: number, z: number): PoolVertex | undefined;
+	get(id: number): PoolVertex | undefined;
+	getAll(): PoolVertex[];
+	size(): number;
+}
+
+/** A pool of vertices: positions within `tolerance` (default 0: equal) are one vertex. */
+export function createVertexPool(tolerance?: number): VertexPool;
+
+/** A seam segment whose ends are pool vertices. */
+export interface PoolSegment {
+	p0: PoolVertex;
+	p1: PoolVertex;
+	idxA: number;
+	idxB: number;
+}
+
+/** The result of `verifyBmsClassification`. */
+export interface BmsVerification {
+	ok: boolean;
+	counts: { A: { inside: number; outside: number }; B: { inside: number; outside: number } };
+	failures: Array<{ check: string; mesh: "A" | "B" | null; detail?: string; count?: number; polyline?: number }>;
+}
+
+/** Options of the BMS path. */
+export interface BmsOptions extends BooleanOptions {
+	/** "auto" (default), "hybrid" or "heffalump": names the reference path; sides are exact either way. */
+	classifier?: "auto" | "hybrid" | "heffalump";
+	/** Deprecated: `classifier: "heffalump"`. */
+	forceHeffalump?: boolean;
+	/** Report the outlines of coplanar overlaps as segments (default true). */
+	coplanar?: boolean;
+	/** The snap tolerance (default 0.001 × the mean edge; 0: the exact split). */
+	tolerance?: number;
+	/** Add `indexed` (indexGroups of the groups). */
+	indexed?: boolean;
+}
+
 export interface BmsResult {
 	groups: SoupGroups;
-	segments: TaggedSegment[];
-	polylines: Vertex[][];
-	rawPolylines: Vertex[][];
+	segments: PoolSegment[];
+	polylines: PoolVertex[][];
+	rawPolylines: PoolVertex[][];
 	meshEdgePolys: never[];
 	componentWalks: never[];
 	megaSoup: MegaTriangle[];
-	pool: null;
+	pool: VertexPool;
+	classifier: { A: string; B: string };
+	verification: BmsVerification | null;
+	splitReport: { lostSegments: number; segments: number; seamPoints: number; snap: Report | null };
 	result?: BooleanResult | null;
 	/** With the option `indexed: true`. */
 	indexed?: IndexedGroups;
 }
 
-export function bmsBooleanOp(soupA: TriangleSoup, soupB: TriangleSoup, operation?: Operation | null, options?: BooleanOptions & { indexed?: boolean }): BmsResult;
+export function bmsBooleanOp(soupA: TriangleSoup, soupB: TriangleSoup, operation?: Operation | null, options?: BmsOptions): BmsResult;
+export function bmsIntersect(soupA: TriangleSoup, soupB: TriangleSoup, options?: { coplanar?: boolean }): { segments: PoolSegment[]; crossedSetA: Record<number, PoolSegment[]>; crossedSetB: Record<number, PoolSegment[]>; pool: VertexPool; coplanarPairs: number };
+export function bmsSplit(soupA: TriangleSoup, soupB: TriangleSoup, isect?: { pool: VertexPool } | null, options?: BooleanOptions): MegaTriangle[];
+export function verifyBmsClassification(megaSoup: MegaTriangle[], sides: number[], segments: Array<{ p0: Vertex; p1: Vertex }>, polylines: Vertex[][], soupA: TriangleSoup, soupB: TriangleSoup, options?: { minBarrierViolations?: number }): BmsVerification;
+// ── the reference's inner stages, with its names and shapes (stages.js) ──────────────
+
+/** The reference's near-parallel gate, 1 − 1e-14 (meshbool's triangle tests are exact). */
+export const NEAR_PARALLEL: number;
+export function classifyByFloodFill(tris: TriangleSoup, crossedMap: Record<number, unknown> | null, otherTris: TriangleSoup, otherGrids?: unknown): Int8Array;
+export function retriangulateWithSteinerPoints(tri: Triangle, segments: Array<{ p0: Vertex; p1: Vertex }>): TriangleSoup;
+export function fanTriangulate(tri: Triangle, segments: Array<{ p0: Vertex; p1: Vertex }>): TriangleSoup;
+export function bmsChain(segments: Array<{ p0: Vertex; p1: Vertex }>): Vertex[][];
+export function bmsClosePolylines(polylines: Vertex[][], trisA: TriangleSoup, trisB: TriangleSoup, megaSoup?: MegaTriangle[], segments?: unknown[]): { closedPolylines: Vertex[][]; meshEdgePolys: { A: { segments: never[]; closed: boolean }; B: { segments: never[]; closed: boolean } } };
+export function chainedOpenEdge(tris: TriangleSoup): Vertex[];
+export function bmsClassify(megaSoup: MegaTriangle[], closedPolylines: unknown, segments: unknown, trisA: TriangleSoup, trisB: TriangleSoup, meshEdgePolys?: unknown): SoupGroups & { componentWalks: never[] };
+export function coplanarOverlap(triA: Triangle, triB: Triangle, options?: object): { polygon: Vertex[]; area: number; areaRatio: number } | null;
+export function emitCoplanarSegments(polygon: Vertex[], pool: VertexPool, refA: { mesh: string; triIdx: number }, refB: { mesh: string; triIdx: number }): PoolSegment[];
+export function bmsSelfIntersect(soup: TriangleSoup, options?: object): { segments: PoolSegment[]; crossedSet: Record<number, PoolSegment[]>; pool: VertexPool; stats: { candidatePairs: number; coplanarPairs: number; crossingPairs: number; refinementSplits: number } };
+export function bmsSelfArrange(soup: TriangleSoup, options?: object): { megaSoup: MegaTriangle[]; segments: PoolSegment[]; crossedSet: Record<number, PoolSegment[]>; pool: VertexPool; stats: { candidatePairs: number; coplanarPairs: number; crossingPairs: number; refinementSplits: number } };
+export function buildEdgeSteinerMap(triCount: number, triOf: (t: number) => Triangle, keyOf: (t: number, corner: number) => string | number, segments: Array<{ p0: Vertex; p1: Vertex }>, tol: number): Record<number, Vertex[]>;
+export function snapEndpointsToVertices(soup: TriangleSoup, segments: Array<{ p0: Vertex; p1: Vertex }>, snapTol: number): number;
+export function weldTaggedSoup(soup: Array<Triangle & { mesh?: string; origIdx?: number }>, tol: number, seedVertices?: Vertex[]): { soup: Array<Triangle & { mesh?: string; origIdx?: number }>; repOf: (x: number, y: number, z: number) => Vertex | null };
+export function conditionArrangement(soup: TriangleSoup, seamTol: number, maxPasses?: number): { soup: TriangleSoup; openBefore: number; openAfter: number; capsAdded: number; snaps: number };
+export function snapCoincidentSheets(soup: TriangleSoup, tol: number): { soup: TriangleSoup; snappedVertices: number; coincidentPairs: number };
+export function extractByWinding(subTris: TriangleSoup, windingFn: (x: number, y: number, z: number) => number, options?: { threshold?: number; offsetFactor?: number }): { kept: TriangleSoup; dropped: number; flipped: number; keptFlags: Uint8Array; flipFlags: Uint8Array };
+export function extractByWindingPatches(subTris: TriangleSoup, barrierKeys: Record<string, boolean>, windingFn: (x: number, y: number, z: number) => number, options?: { threshold?: number; offsetFactor?: number; samplesPerPatch?: number }): { kept: TriangleSoup; patches: number; keptPatches: number; droppedPatches: number };
+export function shouldUseHeffalump(soupA: TriangleSoup, soupB: TriangleSoup): boolean;
+export function heffalumpClassify(megaSoup: MegaTriangle[], segments: unknown, soupA: TriangleSoup, soupB: TriangleSoup, options?: object): SoupGroups & { componentWalks: never[] };
+export function extractByCellComplex(soup: TriangleSoup, windingFn?: ((x: number, y: number, z: number) => number) | null, options?: { threshold?: number }): { kept: TriangleSoup; diagnostics: { cells: number; propagationViolations: number; leakedFaceFraction: number; windingMax: number } };
 export function reclassifyTriangles(groups: SoupGroups, mesh: "A" | "B", fromSide: "inside" | "outside", indices: number[]): number;
 export function reclassifyAtPoint(groups: SoupGroups, x: number, y: number, z: number, tol?: number): { moved: boolean; mesh?: "A" | "B"; from?: string; to?: string };
 export function reclassifyRegion(groups: SoupGroups, mesh: "A" | "B", fromSide: "inside" | "outside", seedIdx: number): number;
@@ -379,6 +511,10 @@ export interface IndexedComponent {
 	mesh: "A" | "B";
 	side: "inside" | "outside";
 	index: number;
+	/** The component's own vertices; `triangles` index them. */
+	points: Vertex[];
+	triangles: number[][];
+	/** The same triangles as indices into the shared `indexed.points`. */
 	tris: number[][];
 	triCount: number;
 }
@@ -388,8 +524,8 @@ export interface BooleanAutoResult {
 	ok: boolean;
 	operation: string;
 	report: FinishMeshResult | null;
-	verification: null;
-	classifier: null;
+	verification: BmsVerification | null;
+	classifier: { A: string; B: string } | null;
 	boolean: BmsResult | null;
 }
 
@@ -399,7 +535,7 @@ export function assessRepair(before: TriangleSoup, after: TriangleSoup, options?
 export function describeAssessment(assessment: RepairAssessment): string;
 export const DEFAULT_STAGES: readonly FinishStage[];
 export function finishMesh(soup: TriangleSoup, options?: CheckOptionsOfOutput & { volumeTolPct?: number; stages?: FinishStage[]; force?: boolean }): FinishMeshResult;
-export function booleanAuto(soupA: TriangleSoup | null, soupB: TriangleSoup | null, operation: Operation, options?: BooleanOptions & CheckOptionsOfOutput & { quality?: "strict" | "raw"; volumeTolPct?: number }): BooleanAutoResult | null;
+export function booleanAuto(soupA: TriangleSoup | null, soupB: TriangleSoup | null, operation: Operation, options?: BmsOptions & CheckOptionsOfOutput & { quality?: "strict" | "raw"; volumeTolPct?: number }): BooleanAutoResult | null;
 export function indexGroups(groups: SoupGroups, tolerance?: number): IndexedGroups;
 export function indexGroupsToTypedArrays(indexed: IndexedGroups): { positions: Float64Array; index: { aInside: Uint32Array; aOutside: Uint32Array; bInside: Uint32Array; bOutside: Uint32Array } };
 export function connectedComponentsIndexed(tris: number[][]): number[][][];

@@ -39,6 +39,32 @@ export {
 	dedupCoincidentTriangles,
 } from "./finish.js";
 import { finishMesh, indexGroups, verifyOutput } from "./finish.js";
+export { orientSolid, closeSolid, cancelCoincidentFaces } from "./solids.js";
+import { closeSolid, conditioned, edgeTable, selfResolveArrays } from "./solids.js";
+import { boxesOverlapWithArea, chainById, createVertexPool, meanEdge, nonManifoldEdgeCount, overlapPairs, poolOfSplit, seamInPool, verifyBmsClassification } from "./bms.js";
+export { createVertexPool, verifyBmsClassification } from "./bms.js";
+export {
+	NEAR_PARALLEL,
+	bmsChain,
+	bmsClassify,
+	bmsClosePolylines,
+	bmsSelfArrange,
+	bmsSelfIntersect,
+	buildEdgeSteinerMap,
+	chainedOpenEdge,
+	classifyByFloodFill,
+	conditionArrangement,
+	coplanarOverlap,
+	emitCoplanarSegments,
+	extractByWinding,
+	extractByWindingPatches,
+	fanTriangulate,
+	retriangulateWithSteinerPoints,
+	snapCoincidentSheets,
+	snapEndpointsToVertices,
+	weldTaggedSoup,
+} from "./stages.js";
+import { classifyPieces, rememberSide, selfPieces } from "./stages.js";
 
 /** The version of meshbool inside this package. */
 export const version = nativeVersion;
@@ -441,7 +467,7 @@ export function selectSplits(groups, selection) {
 
 function componentSoups(soup) {
 	if (soup.length === 0) return [];
-	const S = soupToArrays(soup);
+	const S = conditioned(soupToArrays(soup), false);
 	const { count, ids } = call("components", S.positions, S.index);
 	const parts = Array.from({ length: count }, () => []);
 	for (let t = 0; t < soup.length; t++) parts[ids[t]].push(soup[t]);
@@ -450,11 +476,14 @@ function componentSoups(soup) {
 }
 
 /**
- * The edge-connected components of each group (triangles sharing an edge, exactly):
+ * The edge-connected components of each group (triangles sharing an edge, vertices
+ * taken as the library takes them: exactly equal, or equal up to rounding noise):
  * `[{mesh: "A"|"B", side: "inside"|"outside", index, soup, triCount}]`, largest first in
- * each group, groups in the order aInside, aOutside, bInside, bOutside.
+ * each group, groups in the order aInside, aOutside, bInside, bOutside. (`options`, the
+ * reference's `{pooled}`: the same components either way.)
  */
-export function splitToComponents(groups) {
+export function splitToComponents(groups, options) {
+	void options;
 	const out = [];
 	const keys = [["aInside", "A", "inside"], ["aOutside", "A", "outside"], ["bInside", "B", "inside"], ["bOutside", "B", "outside"]];
 	for (const [key, mesh, side] of keys) {
@@ -719,6 +748,8 @@ function repairSoup(soup, config, what = "soup") {
  * `sliverRatio` (smallest height / longest edge below which a triangle is a sliver),
  * `cleanCrossings` and `removeOverlapping` (remove exactly coincident triangles; opposite
  * pairs cancel), `overlapTolerance` (no effect: coincidence is exact).
+ * `closeMode: "closeSolid"` runs `closeSolid` (options `snapTolerance`, `maxCapLoopVerts`,
+ * `maxPasses`) and adds its `diagnostics`.
  * `{soup, points, triangles}`, the library's report as non-enumerable `report`.
  */
 export async function repairMesh(soup, config, onProgress) {
@@ -726,7 +757,18 @@ export async function repairMesh(soup, config, onProgress) {
 	const progress = typeof onProgress === "function" ? onProgress : () => {};
 	const rc = { orient: "majority" };
 	const mode = c.closeMode || "none";
-	if (!["none", "weld", "stitch"].includes(mode)) throw new Error(`meshbool: unknown closeMode ${JSON.stringify(mode)}`);
+	if (!["none", "weld", "stitch", "closeSolid"].includes(mode)) throw new Error(`meshbool: unknown closeMode ${JSON.stringify(mode)}: use "none", "weld", "stitch" or "closeSolid"`);
+	if (mode === "closeSolid") {
+		progress(0, "closeSolid");
+		await Promise.resolve();
+		const closed = closeSolid(soup, { snapTolerance: c.snapTolerance, maxCapLoopVerts: c.maxCapLoopVerts, maxPasses: c.maxPasses });
+		const S = soupToArrays(closed.soup, "soup");
+		const w = S.index.length > 0 ? call("weld", S.positions, S.index, 0) : S;
+		const r = toResult(w.positions, w.index, null);
+		r.diagnostics = closed.diagnostics;
+		progress(1, "done");
+		return r;
+	}
 	if (mode !== "none" || c.snapTolerance !== undefined) rc.weld = c.snapTolerance !== undefined ? c.snapTolerance : 0.001;
 	if (c.cleanCrossings || c.removeOverlapping) rc.remove_duplicates = true;
 	if (c.removeDegenerate !== false) {
@@ -899,12 +941,6 @@ export function cleanCrossingTriangles(tris) {
 export function removeOverlappingTriangles(tris, tolerance) {
 	void tolerance;
 	return cleanCrossingTriangles(tris);
-}
-
-/** Exactly coincident, oppositely wound face pairs removed (zero-thickness membranes). */
-export function cancelCoincidentFaces(soup, tolerance) {
-	void tolerance;
-	return cleanCrossingTriangles(soup);
 }
 
 /** An indexed mesh `{points, triangles}` closed by capping its holes: `{points, triangles}`. */
@@ -1131,35 +1167,33 @@ export function edgeKey(ka, kb) {
 }
 
 /**
- * Edge counts of a soup, vertices equal when their coordinates are exactly equal:
- * `{openEdges, overShared, total}` (edges used once; more than twice; all).
+ * Edge counts of a soup, vertices taken as the library takes them (exactly equal, or
+ * equal up to rounding noise where that closes edges): `{openEdges, overShared, total}`
+ * (edges used once; more than twice; all).
  */
 export function countOpenEdges(tris) {
-	const uses = new Map();
-	const k = (v) => v.x + "," + v.y + "," + v.z;
-	for (const t of tris) {
-		const ks = [k(t.v0), k(t.v1), k(t.v2)];
-		for (let e = 0; e < 3; e++) {
-			const a = ks[e], b = ks[(e + 1) % 3];
-			const key = a < b ? a + "|" + b : b + "|" + a;
-			uses.set(key, (uses.get(key) || 0) + 1);
-		}
+	const S = soupToArrays(tris, "tris");
+	let openEdges = 0, overShared = 0, total = 0;
+	if (S.index.length === 0) return { openEdges, overShared, total };
+	for (const e of edgeTable(conditioned(S, false).index).values()) {
+		total++;
+		if (e.uses.length === 1) openEdges++;
+		else if (e.uses.length > 2) overShared++;
 	}
-	let openEdges = 0, overShared = 0;
-	for (const n of uses.values()) {
-		if (n === 1) openEdges++;
-		else if (n > 2) overShared++;
-	}
-	return { openEdges, overShared, total: uses.size };
+	return { openEdges, overShared, total };
 }
 
-/** The edge-connected sub-soups of a soup (exactly shared edges), largest first. */
+/**
+ * The edge-connected sub-soups of a soup, largest first; vertices are shared when equal
+ * or equal up to rounding noise (the library's rule), so a grid whose shared corners
+ * differ in the last bits is one component.
+ */
 export function findConnectedComponents(soup) {
 	if (!Array.isArray(soup)) throw new Error("meshbool: findConnectedComponents takes a soup");
 	return componentSoups(soup);
 }
 
-/** The same (`tolerance`: no effect; vertices are shared when exactly equal). */
+/** The same (`tolerance`: no effect; vertices are shared as the library takes them). */
 export function findConnectedComponentsPooled(soup, options) {
 	void options;
 	return findConnectedComponents(soup);
@@ -1167,43 +1201,211 @@ export function findConnectedComponentsPooled(soup, options) {
 
 // ── BMS pipeline: the reference's default entry point, computed by meshbool ─────────────
 
+const CLASSIFIERS = ["auto", "hybrid", "heffalump"];
+
+// The side of each of the library's groups in the reference's four (see FOLD).
+const SIDE = { a_in_b: 1, a_on_b_same: 1, a_on_b_opposite: 1, a_out_b: -1, b_in_a: 1, b_on_a_opposite: 1, b_out_a: -1, b_on_a_same: -1 };
+
 /**
- * The reference's BMS boolean, computed exactly: `{groups, segments, polylines,
- * rawPolylines, meshEdgePolys, componentWalks, megaSoup, pool}` and, when `op` is given,
- * `result: {soup, points, triangles}`. `polylines` are the chained intersection curves
- * (arrays of points), `megaSoup` every split triangle tagged `{mesh: "A"|"B", origIdx}`;
- * `meshEdgePolys`, `componentWalks` are empty and `pool` is null (they are internals of the
- * reference's classifier, which meshbool does not need).
+ * The snap tolerance of the BMS path: `snap`, else `tolerance` (the reference's pool
+ * tolerance), else 0.001 × the mean edge of the first 200 triangles of each operand
+ * (the reference's default pool tolerance), so that crossing points closer than that
+ * do not leave needles. 0 gives the exact split.
+ */
+function bmsSnap(o, A, B) {
+	const given = o.snap !== undefined ? o.snap : o.tolerance;
+	if (given !== undefined) {
+		if (typeof given !== "number" || !Number.isFinite(given) || given < 0) throw new Error(`meshbool: option tolerance must be a distance >= 0, got ${given}`);
+		return given;
+	}
+	return 0.001 * 0.5 * (meanEdge(A) + meanEdge(B));
+}
+
+/**
+ * The reference's BMS boolean, computed by meshbool's exact split: `{groups, segments,
+ * polylines, rawPolylines, meshEdgePolys, componentWalks, megaSoup, pool, classifier,
+ * verification, splitReport}` and, when `op` is given, `result: {soup, points,
+ * triangles}`; with `indexed: true` also `indexed: {points, groups}` (indexGroups).
+ *
+ * - The split is snapped at `tolerance` (see below; the report's `splitReport.snap` says
+ *   what moved): crossing points closer than that are merged, needles removed, where that
+ *   makes no defect. Default 0.001 × the mean edge (the reference's pool tolerance);
+ *   `tolerance: 0` is the exact split.
+ * - `megaSoup` is every piece `{v0, v1, v2, mesh: "A" | "B", origIdx}` with corners from
+ *   `pool` (`getAll()`: vertices `{x, y, z, id}`); `segments` (`{p0, p1, idxA, idxB}`) are
+ *   the exact crossing segments with their ends on the pool's vertices (after the snap:
+ *   segments it shrank to a point are gone); `polylines` chain them. `coplanar: false`
+ *   leaves segments of coplanar contact out (the pieces are split there all the same).
+ * - `classifier` `{A, B}` names the reference's classifier for such inputs: "none (no
+ *   intersection)" without segments, "heffalump (forced)" for `classifier: "heffalump"`
+ *   (or `forceHeffalump`), "heffalump (census: non-manifold edges)" when an operand has
+ *   edges of more than two triangles (such operands are taken as given), else "hybrid".
+ *   Every side is decided by meshbool's exact classification whichever is named.
+ * - `verification` is `verifyBmsClassification` of the pieces (null for `classifier:
+ *   "hybrid"`, and without segments when the operands' boxes are apart or only touch;
+ *   a failure "no-segments-but-bboxes-overlap" without segments when they overlap).
+ * - `splitReport`: `{lostSegments, segments, seamPoints, snap}`: `lostSegments` counts
+ *   the exact crossing segments with an end that is no vertex of the pieces (within the
+ *   snap tolerance); `snap` is the library's report of the snap.
  */
 export function bmsBooleanOp(soupA, soupB, op, options) {
 	const o = options || {};
+	const choice = o.forceHeffalump ? "heffalump" : o.classifier === undefined ? "auto" : o.classifier;
+	if (!CLASSIFIERS.includes(choice)) throw new Error(`meshbool: unknown classifier ${JSON.stringify(choice)}: use "auto", "hybrid" or "heffalump"`);
 	const [A, B] = operands(soupA, soupB, o);
-	const s = splitArrays(A, B, o);
+	const census = nonManifoldEdgeCount(A) > 0 || nonManifoldEdgeCount(B) > 0;
+	const snap = bmsSnap(o, A, B);
+	const splitOptions = { ...o, snap };
+	delete splitOptions.tolerance;
+	if (census && o.force === undefined) splitOptions.force = true;
+	const raw = call("split", A.positions, A.index, B.positions, B.index, checkOptions(splitOptions));
+	const report = parseReport(raw.report);
+	const named = {};
+	for (const g of raw.groups) named[g.name] = g;
 	const groups = {};
-	for (const key of Object.keys(FOLD)) groups[key] = groupSoup(s.groups, FOLD[key]);
-	const segments = taggedSegments(A, B, false);
-	const c = call("curves", A.positions, A.index, B.positions, B.index, "{}");
-	const polylines = c.polylines.map((line, i) => {
-		const pts = arraysToPoints(line);
-		if (c.closed[i] === 1 && pts.length > 0) pts.push({ ...pts[0] });
-		return pts;
+	for (const key of Object.keys(FOLD)) groups[key] = groupSoup(named, FOLD[key]);
+	const { pool, pieces } = poolOfSplit(raw.groups);
+	const crossings = call("intersect", A.positions, A.index, B.positions, B.index, JSON.stringify({ withCoplanar: true }));
+	const { segments, lost } = seamInPool(crossings, pool, snap, o.coplanar !== false);
+	const sides = pieces.map((t) => SIDE[t.group]);
+	const megaSoup = pieces.map((t, i) => {
+		const piece = { v0: t.v0, v1: t.v1, v2: t.v2, mesh: t.mesh, origIdx: t.origIdx };
+		rememberSide(piece, sides[i]);
+		return piece;
 	});
-	const megaSoup = [];
-	for (const g of Object.values(s.groups)) {
-		const soup = arraysToSoup(g.positions, g.index);
-		soup.forEach((t, i) => {
-			t.mesh = g.source[i] === 1 ? "B" : "A";
-			t.origIdx = g.triangle[i];
-			megaSoup.push(t);
-		});
+	const polylines = chainById(segments);
+	const label = segments.length === 0 ? "none (no intersection)" : choice === "heffalump" ? "heffalump (forced)" : census ? "heffalump (census: non-manifold edges)" : "hybrid";
+	let verification = null;
+	if (choice !== "hybrid") {
+		if (segments.length > 0) {
+			verification = verifyBmsClassification(megaSoup, sides, segments, polylines, soupA, soupB);
+		} else if (boxesOverlapWithArea(soupA, soupB)) {
+			const counts = verifyBmsClassification(megaSoup, sides, [], [], soupA, soupB).counts;
+			verification = { ok: false, counts, failures: [{ check: "no-segments-but-bboxes-overlap", mesh: null, detail: "no crossing segments, yet the bounding boxes overlap with area: the meshes may lie on one another or be nested" }] };
+		}
 	}
-	const out = { groups, segments, polylines, rawPolylines: polylines, meshEdgePolys: [], componentWalks: [], megaSoup, pool: null };
+	const splitReport = { lostSegments: lost, segments: segments.length, seamPoints: report.seam_points, snap: report.snap || null };
+	const out = { groups, segments, polylines, rawPolylines: polylines, meshEdgePolys: [], componentWalks: [], megaSoup, pool, classifier: { A: label, B: label }, verification, splitReport };
 	if (op !== undefined && op !== null) {
 		out.result = mergeSplitGroups(groups, op);
 	}
 	if (o.indexed) out.indexed = indexGroups(groups);
-	Object.defineProperty(out, "report", { value: s.report, enumerable: false });
+	Object.defineProperty(out, "report", { value: report, enumerable: false });
 	return out;
+}
+
+/**
+ * The reference's intersection stage: the exact crossing segments of A and B with their
+ * ends in a vertex pool, `{segments: [{p0, p1, idxA, idxB}], crossedSetA, crossedSetB,
+ * pool, coplanarPairs}` (`crossedSetA`/`B`: crossed triangle → its segments; ends are
+ * pool vertices `{x, y, z, id}`, shared between segments). With `coplanar` (default
+ * true) the outlines of coplanar overlaps with area are segments too and `coplanarPairs`
+ * counts the overlapping pairs (coplanar neighbours that only share an edge touch, and
+ * give none); `coplanar: false` leaves both out.
+ */
+export function bmsIntersect(soupA, soupB, options) {
+	const o = options || {};
+	const coplanar = o.coplanar !== false;
+	const A = soupToArrays(soupA, "soupA"), B = soupToArrays(soupB, "soupB");
+	const pool = createVertexPool(0);
+	const out = { segments: [], crossedSetA: {}, crossedSetB: {}, pool, coplanarPairs: 0 };
+	if (A.index.length === 0 || B.index.length === 0) return out;
+	const raw = call("intersect", A.positions, A.index, B.positions, B.index, JSON.stringify({ withCoplanar: coplanar }));
+	const overlap = overlapPairs(raw);
+	const s = raw.segments;
+	for (let i = 0; i < raw.triA.length; i++) {
+		if (raw.coplanar[i] === 1 && !overlap.has(raw.triA[i] * 4294967296 + raw.triB[i])) continue;
+		const k = 6 * i;
+		const seg = { p0: pool.getOrCreate(s[k], s[k + 1], s[k + 2]), p1: pool.getOrCreate(s[k + 3], s[k + 4], s[k + 5]), idxA: raw.triA[i], idxB: raw.triB[i] };
+		out.segments.push(seg);
+		(out.crossedSetA[seg.idxA] ||= []).push(seg);
+		(out.crossedSetB[seg.idxB] ||= []).push(seg);
+	}
+	out.coplanarPairs = coplanar ? overlap.size : 0;
+	return out;
+}
+
+/**
+ * The reference's split stage: A and B cut along their intersection into pieces
+ * `{v0, v1, v2, mesh: "A" | "B", origIdx}` whose corners are vertices of `isect.pool`
+ * (from `bmsIntersect`, so seam points carry the segments' ids; a fresh pool without
+ * it). Exact: every piece lies wholly on one side of the other mesh. With `soupB` empty,
+ * `soupA` cut where it crosses itself (its self-arrangement, as for `bmsSelfIntersect`'s
+ * segments). Options as for the library's split (`snap`, `force`).
+ */
+export function bmsSplit(soupA, soupB, isect, options) {
+	const A = soupToArrays(soupA, "soupA"), B = soupToArrays(soupB || [], "soupB");
+	emptyCheck(A, "soupA");
+	if (B.index.length === 0) {
+		// One soup (bmsSelfIntersect's): its self-arrangement.
+		const pool = isect && isect.pool && typeof isect.pool.getOrCreate === "function" ? isect.pool : createVertexPool(0);
+		return selfPieces(A, pool);
+	}
+	const raw = call("split", A.positions, A.index, B.positions, B.index, checkOptions(options));
+	const pool = isect && isect.pool && typeof isect.pool.getOrCreate === "function" ? isect.pool : createVertexPool(0);
+	return poolOfSplit(raw.groups, pool).pieces.map((t) => {
+		const piece = { v0: t.v0, v1: t.v1, v2: t.v2, mesh: t.mesh, origIdx: t.origIdx };
+		rememberSide(piece, SIDE[t.group]);
+		return piece;
+	});
+}
+
+/**
+ * Whether the reference would route a pair to its "heffalump" classifier: true when an
+ * operand has edges of more than two triangles (meshbool takes such operands as given,
+ * and its classification is exact either way).
+ */
+export function shouldUseHeffalump(soupA, soupB) {
+	const A = soupToArrays(soupA || [], "soupA"), B = soupToArrays(soupB || [], "soupB");
+	return nonManifoldEdgeCount(A) > 0 || nonManifoldEdgeCount(B) > 0;
+}
+
+/**
+ * The reference's classifier for defective meshes, on split pieces `{v0, v1, v2, mesh:
+ * "A" | "B"}` (`megaSoup`): `{aInside, aOutside, bInside, bOutside, componentWalks}`.
+ * Pieces of `bmsSplit` keep the side the library's exact split gave them; others are
+ * classified by their centroid against the other input, exactly (see classifyPoints).
+ * `segments` and `options` are not needed; `componentWalks` is empty.
+ */
+export function heffalumpClassify(megaSoup, segments, soupA, soupB, options) {
+	void options;
+	return classifyPieces(megaSoup, segments, soupA, soupB);
+}
+
+/**
+ * The solid a soup bounds under a winding threshold, in the reference's terms: `kept`
+ * the triangles between space of winding number at least `threshold` and space below it
+ * (meshbool's exact resolve, fill rule "positive": `threshold` must lie in (0, 1], the
+ * thresholds that rule answers for integer winding numbers), `diagnostics: {cells,
+ * propagationViolations, leakedFaceFraction, windingMax}`. `windingMax` is the largest
+ * of `windingFn(x, y, z)` (default: the soup's own winding number) at points a hair to
+ * either side of up to 256 of the soup's triangles, rounded; `cells` the regions of
+ * distinct winding those points see (at least 2 for a non-empty solid); the exact
+ * resolve leaves nothing to propagate or leak, so those two are 0.
+ */
+export function extractByCellComplex(soup, windingFn, options) {
+	const o = options || {};
+	const threshold = o.threshold !== undefined ? o.threshold : 0.5;
+	if (!(threshold > 0 && threshold <= 1)) throw new Error(`meshbool: extractByCellComplex answers thresholds in (0, 1] (fill rule "positive"), got ${threshold}`);
+	const diagnostics = { cells: 0, propagationViolations: 0, leakedFaceFraction: 0, windingMax: 0 };
+	const S = soupToArrays(soup, "soup");
+	if (S.index.length === 0) return { kept: [], diagnostics };
+	const w = typeof windingFn === "function" ? windingFn : (x, y, z) => windingNumber({ x, y, z }, soup);
+	const seen = new Set([0]);
+	const box = computeBBox(soup);
+	const hair = 1e-7 * Math.max(box.maxX - box.minX, box.maxY - box.minY, box.maxZ - box.minZ, 1e-300);
+	const step = Math.max(1, Math.floor(soup.length / 256));
+	for (let t = 0; t < soup.length; t += step) {
+		const tri = soup[t];
+		const n = triNormal(tri);
+		if (n.x === 0 && n.y === 0 && n.z === 0) continue;
+		const c = { x: (tri.v0.x + tri.v1.x + tri.v2.x) / 3, y: (tri.v0.y + tri.v1.y + tri.v2.y) / 3, z: (tri.v0.z + tri.v1.z + tri.v2.z) / 3 };
+		for (const sgn of [1, -1]) seen.add(Math.round(w(c.x + sgn * hair * n.x, c.y + sgn * hair * n.y, c.z + sgn * hair * n.z)));
+	}
+	diagnostics.windingMax = Math.max(...seen);
+	diagnostics.cells = seen.size;
+	const out = call("resolve", S.positions, S.index, "positive", false);
+	return { kept: arraysToSoup(out.positions, out.index), diagnostics };
 }
 
 function otherSide(side) {
@@ -1261,79 +1463,48 @@ export function reclassifyRegion(groups, mesh, fromSide, seedIdx) {
 // ── meshbool's own soup-level extras ────────────────────────────────────────────────────
 
 /**
- * The solid a self-intersecting or self-overlapping soup encloses (fill rule `rule`,
- * default "positive"): `{soup, changed, diagnostics}` (the reference's `bmsSelfResolve`
- * shape; `diagnostics` is meshbool's resolve report).
+ * The solid a self-crossing or self-overlapping soup encloses: `{soup, changed,
+ * diagnostics}` (see `selfResolveArrays` in solids.js for the options `preOrient`, `rule`
+ * and the diagnostics). When nothing changed, `soup` is the caller's own array.
  */
 export function bmsSelfResolve(soup, options) {
-	const o = options || {};
 	const S = soupToArrays(soup, "soup");
-	if (S.index.length === 0) return { soup: [], changed: false, diagnostics: null };
-	const out = call("resolve", S.positions, S.index, o.rule || "positive", !!o.keepNonmanifold);
-	const report = parseReport(out.report);
-	return { soup: arraysToSoup(out.positions, out.index), changed: report.self_intersections > 0 || report.resolve.dropped_components > 0 || report.resolve.flipped_components > 0, diagnostics: report };
+	const r = selfResolveArrays(S, options);
+	return { soup: r.changed ? arraysToSoup(r.positions, r.index) : soup, changed: r.changed, diagnostics: r.diagnostics };
 }
 
-/** `bmsSelfResolve` on flat arrays: `{positions, index, changed, diagnostics}`. */
+/**
+ * `bmsSelfResolve` on flat arrays `{positions, index}`: `{positions, index, changed,
+ * diagnostics}`; when nothing changed, the caller's own typed arrays.
+ */
 export function bmsSelfResolveIndexed(m, options) {
-	const out = resolveIndexed(m, options);
-	const r = out.report;
-	return { positions: out.positions, index: out.index, changed: r.self_intersections > 0 || r.resolve.dropped_components > 0 || r.resolve.flipped_components > 0, diagnostics: r };
+	const M = indexedArrays(m, "mesh");
+	const r = selfResolveArrays(M, options);
+	if (!r.changed) return { positions: m.positions, index: m.index, changed: false, diagnostics: r.diagnostics };
+	return { positions: r.positions, index: r.index, changed: true, diagnostics: r.diagnostics };
 }
 
 /**
- * Makes winding consistent per component and, with `outward` (default true), points closed
- * components outward: `{soup, diagnostics}` (meshbool's orient report, with the signed volume).
- */
-export function orientSolid(soup, options) {
-	const o = options || {};
-	const facing = o.coherenceOnly || o.outward === false ? "majority" : "outward";
-	const S = soupToArrays(soup, "soup");
-	if (S.index.length === 0) return { soup: [], diagnostics: null };
-	const out = call("orient", S.positions, S.index, facing);
-	const diagnostics = parseReport(out.report);
-	diagnostics.signedVolume = call("measures", out.positions, out.index)[0];
-	return { soup: arraysToSoup(out.positions, out.index), diagnostics };
-}
-
-/**
- * Tries to make a soup watertight: vertices within `snapTolerance` welded (when given),
- * holes capped. `{soup, points, triangles, diagnostics}` with the open and non-manifold
- * edges left.
- */
-export function closeSolid(soup, options) {
-	const o = options || {};
-	let S = soupToArrays(soup, "soup");
-	if (S.index.length === 0) return { soup: [], points: [], triangles: [], diagnostics: { openEdges: 0, nonManifoldEdges: 0, closed: false } };
-	if (o.snapTolerance > 0) {
-		const w = call("weld", S.positions, S.index, o.snapTolerance);
-		S = { positions: w.positions, index: w.index };
-	}
-	const out = call("close", S.positions, S.index, "cap", "{}");
-	const m = call("measures", out.positions, out.index);
-	const r = toResult(out.positions, out.index);
-	return { ...r, diagnostics: { openEdges: m[3], nonManifoldEdges: m[4], closed: m[2] === 1, volume: m[0], close: parseReport(out.report) } };
-}
-
-/**
- * The reference's recommended entry point: the boolean, then (quality "strict", the
- * default) the gated finishing stages, so the result is never worse than the boolean's.
+ * The reference's recommended entry point: the BMS boolean (`bmsBooleanOp`, snapped at
+ * its `tolerance`), then (quality "strict", the default) the gated finishing stages
+ * (`finishMesh` at the same `tolerance`), so the result is never worse than the boolean's.
  * `{soup, ok, operation, report, verification, classifier, boolean}`: `report` the
- * finishMesh report (null for quality "raw" or an empty result), `boolean` the
- * `bmsBooleanOp` result (groups, segments, ...); `verification` and `classifier` are null
- * (meshbool's classification is exact, there is nothing to verify or choose). `null`
- * when an input is null.
+ * finishMesh report (null for quality "raw"), `boolean` the `bmsBooleanOp` result,
+ * `verification` and `classifier` its own. An empty result is not ok (`soup` [], `ok`
+ * false: the intersection of operands apart, say); operands apart still unite and
+ * subtract exactly. `null` when an input is null; an Error when `op` is missing.
  */
 export function booleanAuto(soupA, soupB, op, options) {
+	if (op === undefined || op === null || op === "") throw new Error("meshbool: booleanAuto requires an operation: \"union\", \"intersect\" or \"subtract\"");
 	if (soupA == null || soupB == null) return null;
 	const o = options || {};
+	const operation = { union: "union", intersection: "intersect", difference: "subtract", "reverse-difference": "reverse-difference" }[opName(op)];
 	const bms = bmsBooleanOp(soupA, soupB, op, o);
 	const soup = bms.result ? bms.result.soup : [];
-	const operation = { union: "union", intersection: "intersect", difference: "subtract", "reverse-difference": "reverse-difference" }[opName(op)];
-	const checks = { expectClosed: o.expectClosed, minArea: o.minArea, volumeTolPct: o.volumeTolPct };
-	if (o.quality === "raw" || soup.length === 0) {
-		return { soup, ok: verifyOutput(soup, checks).ok, operation, report: null, verification: null, classifier: null, boolean: bms };
+	const checks = { expectClosed: o.expectClosed, minArea: o.minArea, volumeTolPct: o.volumeTolPct, tolerance: o.tolerance };
+	if (o.quality === "raw") {
+		return { soup, ok: soup.length > 0 && verifyOutput(soup, checks).ok, operation, report: null, verification: bms.verification, classifier: bms.classifier, boolean: bms };
 	}
 	const report = finishMesh(soup, checks);
-	return { soup: report.soup, ok: report.ok, operation, report, verification: null, classifier: null, boolean: bms };
+	return { soup: report.soup, ok: report.ok, operation, report, verification: bms.verification, classifier: bms.classifier, boolean: bms };
 }

@@ -12,6 +12,22 @@ export interface MeshOptions {
 	doubleSide?: boolean;
 	/** Draw edges only (default false). */
 	wireframe?: boolean;
+	/**
+	 * Store positions relative to the soup's centroid (computed in double precision) and
+	 * put the centroid on the mesh's `position` (default true): keeps UTM-scale
+	 * coordinates exact to well under a millimetre in single precision.
+	 */
+	recenter?: boolean;
+}
+
+/** Options of `booleanFromMeshes`: the engine and its quality, and the material. */
+export interface BooleanMeshOptions extends MeshOptions {
+	/** "bms" (default): the core's `booleanAuto`; "classic": the core's `boolean`. */
+	engine?: "bms" | "classic";
+	/** `booleanAuto`'s quality: "strict" (default, finished) or "raw". */
+	quality?: "strict" | "raw";
+	/** `booleanAuto`'s tolerance. */
+	tolerance?: number;
 }
 
 /** The operations of the adapter's booleans. */
@@ -64,9 +80,10 @@ export function meshToSoup(object3d: Object3D): TriangleSoup;
 export function soupToMesh(soup: TriangleSoup, options?: MeshOptions): Mesh<BufferGeometry>;
 
 /**
- * The boolean of two THREE objects through the soup API; null when the result is empty.
+ * The boolean of two THREE objects (world coordinates) through `booleanAuto` (or, with
+ * `engine: "classic"`, `boolean`); null when the result is empty.
  */
-export function booleanFromMeshes(a: Object3D, b: Object3D, op: BooleanOperation, meshOptions?: MeshOptions): Mesh<BufferGeometry> | null;
+export function booleanFromMeshes(a: Object3D, b: Object3D, op: BooleanOperation, options?: BooleanMeshOptions): Mesh<BufferGeometry> | null;
 
 /**
  * The intersection segments of two THREE objects (world coordinates), tagged with the

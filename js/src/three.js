@@ -6,7 +6,7 @@
 // three is a peer dependency: this module imports "three" and leaves resolving it to the
 // application (node_modules, a bundler or an import map).
 import * as THREE from "three";
-import { boolean, booleanIndexed, intersectMeshPairTagged, repairMesh, typedToSoup } from "./index.js";
+import { boolean, booleanAuto, booleanIndexed, intersectMeshPairTagged, repairMesh, typedToSoup } from "./index.js";
 
 export { boolean, repairMesh as repair, intersectMeshPairTagged as intersect };
 
@@ -153,27 +153,60 @@ function makeMaterial(options) {
 }
 
 /**
+ * The centroid of a soup's corners (in double precision), rounded to a multiple of the
+ * power of two nearest below the soup's largest extent: the local positions stay within
+ * about twice the extent (full single precision for them), and corners on a coarse grid
+ * (small integers, say) stay exactly representable after the subtraction.
+ */
+function roundedCentroid(soup) {
+	const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity], sum = [0, 0, 0];
+	for (const t of soup) {
+		for (const v of [t.v0, t.v1, t.v2]) {
+			const p = [v.x, v.y, v.z];
+			for (let k = 0; k < 3; k++) {
+				sum[k] += p[k];
+				if (p[k] < lo[k]) lo[k] = p[k];
+				if (p[k] > hi[k]) hi[k] = p[k];
+			}
+		}
+	}
+	const extent = Math.max(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+	const step = extent > 0 && Number.isFinite(extent) ? 2 ** Math.floor(Math.log2(extent)) : 1;
+	return sum.map((s) => Math.round(s / (3 * soup.length) / step) * step);
+}
+
+/**
  * A THREE.Mesh of a soup: a non-indexed BufferGeometry (Float32 positions, vertex normals
- * computed, so each triangle is shaded flat) and a MeshPhongMaterial.
+ * computed, so each triangle is shaded flat) and a MeshPhongMaterial. With `recenter`
+ * (the default) the positions are stored relative to the soup's centroid, computed in
+ * double precision and rounded to a power-of-two step near the soup's size, and that
+ * point is the mesh's `position`: single-precision
+ * positions then keep sub-millimetre detail at UTM coordinates (x ≈ 750,000 rounds to
+ * 6 cm in Float32 on its own). `recenter: false` stores world coordinates as they are.
  *
  * @param {Array<{v0: {x: number, y: number, z: number}, v1: {x: number, y: number, z: number}, v2: {x: number, y: number, z: number}}>} soup
- * @param {{color?: number | string, doubleSide?: boolean, wireframe?: boolean}} [options]
- *   `color` default 0x4488ff, `doubleSide` default true, `wireframe` default false.
+ * @param {{recenter?: boolean, color?: number | string, doubleSide?: boolean, wireframe?: boolean}} [options]
+ *   `recenter` default true, `color` default 0x4488ff, `doubleSide` default true,
+ *   `wireframe` default false.
  * @returns {THREE.Mesh}
  */
 export function soupToMesh(soup, options) {
 	if (!Array.isArray(soup)) throw new Error("meshbool/three: soupToMesh takes an array of triangles {v0, v1, v2}");
+	const o = options || {};
+	const [cx, cy, cz] = o.recenter !== false && soup.length > 0 ? roundedCentroid(soup) : [0, 0, 0];
 	const positions = new Float32Array(9 * soup.length);
-	for (let t = 0, o = 0; t < soup.length; t++, o += 9) {
+	for (let t = 0, k = 0; t < soup.length; t++, k += 9) {
 		const { v0, v1, v2 } = soup[t];
-		positions[o] = v0.x; positions[o + 1] = v0.y; positions[o + 2] = v0.z;
-		positions[o + 3] = v1.x; positions[o + 4] = v1.y; positions[o + 5] = v1.z;
-		positions[o + 6] = v2.x; positions[o + 7] = v2.y; positions[o + 8] = v2.z;
+		positions[k] = v0.x - cx; positions[k + 1] = v0.y - cy; positions[k + 2] = v0.z - cz;
+		positions[k + 3] = v1.x - cx; positions[k + 4] = v1.y - cy; positions[k + 5] = v1.z - cz;
+		positions[k + 6] = v2.x - cx; positions[k + 7] = v2.y - cy; positions[k + 8] = v2.z - cz;
 	}
 	const geometry = new THREE.BufferGeometry();
 	geometry.setAttribute("position", new THREE.BufferAttribute(positions, 3));
 	geometry.computeVertexNormals();
-	return new THREE.Mesh(geometry, makeMaterial(options));
+	const mesh = new THREE.Mesh(geometry, makeMaterial(o));
+	mesh.position.set(cx, cy, cz);
+	return mesh;
 }
 
 /**
@@ -200,18 +233,32 @@ export function indexedToGeometry(mesh) {
 // ── one-call helpers ─────────────────────────────────────────────────────────────────────
 
 /**
- * The boolean of two THREE objects (their meshes in world coordinates) through the core's
- * soup API `boolean`: a new THREE.Mesh (see soupToMesh), or null when the result is empty.
+ * The boolean of two THREE objects (their meshes in world coordinates): a new THREE.Mesh
+ * (see soupToMesh), or null when the result is empty. `engine` "bms" (the default) runs
+ * the core's `booleanAuto` (with its `quality`, "strict" by default, and `tolerance`);
+ * "classic" runs the core's `boolean`. The material options (`color`, `doubleSide`,
+ * `wireframe`, `recenter`) come from the same object.
  *
  * @param {THREE.Object3D} a
  * @param {THREE.Object3D} b
  * @param {"union" | "intersect" | "subtract" | "intersection" | "difference" | "reverse-difference"} op
- * @param {{color?: number | string, doubleSide?: boolean, wireframe?: boolean}} [meshOptions]
+ * @param {{engine?: "bms" | "classic", quality?: "strict" | "raw", tolerance?: number, recenter?: boolean, color?: number | string, doubleSide?: boolean, wireframe?: boolean}} [options]
  * @returns {THREE.Mesh | null}
  */
-export function booleanFromMeshes(a, b, op, meshOptions) {
-	const result = boolean(meshToSoup(a), meshToSoup(b), op);
-	return result ? soupToMesh(result.soup, meshOptions) : null;
+export function booleanFromMeshes(a, b, op, options) {
+	const o = options || {};
+	const soupA = meshToSoup(a), soupB = meshToSoup(b);
+	let soup;
+	if (o.engine === "classic") {
+		const result = boolean(soupA, soupB, op);
+		soup = result ? result.soup : [];
+	} else {
+		const auto = { quality: o.quality };
+		if (o.tolerance !== undefined) auto.tolerance = o.tolerance;
+		const result = booleanAuto(soupA, soupB, op, auto);
+		soup = result ? result.soup : [];
+	}
+	return soup.length > 0 ? soupToMesh(soup, o) : null;
 }
 
 /**

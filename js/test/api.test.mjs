@@ -450,7 +450,7 @@ test("verification, finishing and the one-call boolean", () => {
 	const v = mb.verifyOutput(bad, { expectClosed: true });
 	const count = Object.fromEntries(v.checks.map((c) => [c.check, c.count]));
 	assert.equal(v.ok, false);
-	assert.equal(count.noDuplicates, 1);
+	assert.equal(count.noDuplicateTriangles, 1);
 	assert.ok(count.consistentWinding > 0);
 	assert.ok(count.closed > 0);
 	const t = mb.verifyOutput([
@@ -465,8 +465,17 @@ test("verification, finishing and the one-call boolean", () => {
 	assert.equal(finished.soup.length, 12);
 	assert.equal(finished.ok, true);
 	assert.equal(mb.violationCount(finished.before) > 0, true);
-	// removing a plain duplicate changes the signed volume by its tetrahedron: refused
-	assert.deepEqual(mb.finishMesh(a.concat([a[0]])).applied, []);
+	// a plain duplicate removed: the baseline is not a sound solid (three triangles on an
+	// edge), so its volume is not held against the repair, which closes the cube again
+	const dup = mb.finishMesh(a.concat([a[0]]));
+	assert.deepEqual(dup.applied, ["dedupCoincident"]);
+	assert.equal(dup.soup.length, 12);
+	assert.equal(mb.computeSignedVolume(dup.soup), 8);
+	// a stage that would open a closed mesh is refused, with the reason
+	const opener = { name: "opener", run: (s) => s.slice(1) };
+	const refused = mb.finishMesh(a, { stages: [opener] });
+	assert.equal(refused.soup, a);
+	assert.deepEqual(refused.skipped.map((x) => x.reason), ["would damage the mesh"]);
 	assert.deepEqual(mb.finishMesh(a.concat([a[0]]), { force: true }).applied.length, 3);
 	const assess = mb.assessRepair(a, a.slice(1));
 	assert.equal(assess.recommend, "discard");
@@ -588,6 +597,151 @@ test("envelopes of the folded Kirra terrain equal the CLI's", () => {
 		assert.equal(e.parent.length, e.index.length / 3);
 	}
 	assert.throws(() => mb.envelopeIndexed(mb.soupToTyped(cube(0, 0, 0, 1))), /closed/);
+});
+
+test("the BMS stages: pool, intersection, split, classification checks", () => {
+	const a = cube(0, 0, 0, 2), b = cube(1, 1, 1, 2);
+	// A pool: equal positions are one vertex, ids in order; within a tolerance too.
+	const pool = mb.createVertexPool();
+	const p = pool.getOrCreate(1, 2, 3);
+	assert.equal(pool.getOrCreate(1, 2, 3), p);
+	assert.equal(pool.getOrCreate(1, 2, 3 + 1e-9).id, 1);
+	assert.equal(pool.size(), 2);
+	const near = mb.createVertexPool(1e-6);
+	assert.equal(near.getOrCreate(1, 2, 3), near.getOrCreate(1, 2, 3 + 1e-9));
+	assert.deepEqual(pool.getAll().map((v) => v.id), [0, 1]);
+	// The cubes cross in a hexagon-like loop: segments on pool vertices, one closed chain,
+	// every segment an edge of a piece of A.
+	const isect = mb.bmsIntersect(a, b);
+	assert.ok(isect.segments.length >= 6);
+	assert.equal(isect.coplanarPairs, 0);
+	assert.ok(isect.segments.every((s) => typeof s.p0.id === "number" && isect.pool.get(s.p0.id) === s.p0));
+	const pieces = mb.bmsSplit(a, b, isect);
+	const edges = new Set();
+	for (const t of pieces.filter((t) => t.mesh === "A")) {
+		const ids = [t.v0.id, t.v1.id, t.v2.id];
+		for (let k = 0; k < 3; k++) edges.add(Math.min(ids[k], ids[(k + 1) % 3]) + "|" + Math.max(ids[k], ids[(k + 1) % 3]));
+	}
+	assert.ok(isect.segments.every((s) => edges.has(Math.min(s.p0.id, s.p1.id) + "|" + Math.max(s.p0.id, s.p1.id))));
+	// Sides of the pieces by centroid: A's pieces inside B and B's inside A bound the
+	// overlap, a unit cube.
+	const groups = mb.heffalumpClassify(pieces, isect.segments, a, b);
+	assert.equal(mb.computeSignedVolume(groups.aInside.concat(groups.bInside)), 1);
+	assert.equal(groups.aInside.length + groups.aOutside.length, pieces.filter((t) => t.mesh === "A").length);
+	const sides = pieces.map((t) => (groups.aInside.includes(t) || groups.bInside.includes(t) ? 1 : -1));
+	assert.equal(mb.verifyBmsClassification(pieces, sides, isect.segments, [], a, b).ok, true);
+	// All of A outside although the seam crosses it: the partition fails for A, and the
+	// seam edges have A's pieces on one side both ways; nothing is said of B.
+	const wrong = sides.map((s, i) => (pieces[i].mesh === "A" ? -1 : s));
+	const v = mb.verifyBmsClassification(pieces, wrong, isect.segments, [], a, b);
+	assert.deepEqual(v.failures.map((f) => [f.check, f.mesh]), [["partition", "A"], ["barrierConstraint", "A"]]);
+	// Census: an operand with an edge of three triangles.
+	assert.equal(mb.shouldUseHeffalump(a, b), false);
+	const fin = a.concat([{ v0: a[0].v0, v1: a[0].v1, v2: { x: 0, y: -3, z: -3 } }]);
+	assert.equal(mb.shouldUseHeffalump(fin, b), true);
+	assert.equal(mb.bmsBooleanOp(fin, b, "union").classifier.A, "heffalump (census: non-manifold edges)");
+	// A triangle split along a segment across it: the pieces tile it, the segment an edge.
+	const tri = { v0: { x: 0, y: 0, z: 0 }, v1: { x: 4, y: 0, z: 0 }, v2: { x: 0, y: 4, z: 0 } };
+	const cut = [{ p0: { x: 1, y: 0, z: 0 }, p1: { x: 1, y: 3, z: 0 } }];
+	for (const split of [mb.fanTriangulate(tri, cut), mb.retriangulateWithSteinerPoints(tri, cut)]) {
+		assert.ok(split.length >= 3);
+		assert.equal(mb.computeProjectedArea(split), 8);
+		assert.ok(split.every((t) => mb.triNormal(t).z > 0));
+		assert.ok(split.some((t) => [t.v0, t.v1, t.v2].some((v) => v.x === 1 && v.y === 3)));
+	}
+	// Nested cubes: winding 2 in the inner one; the solid of winding >= 1 is the outer.
+	const nested = cube(0, 0, 0, 6).concat(cube(0, 0, 0, 2));
+	const cells = mb.extractByCellComplex(nested, null, { threshold: 1 });
+	assert.equal(cells.diagnostics.windingMax, 2);
+	assert.equal(cells.diagnostics.cells, 3);
+	assert.equal(mb.computeSignedVolume(cells.kept), 216);
+	assert.throws(() => mb.extractByCellComplex(nested, null, { threshold: 2 }), /\(0, 1\]/);
+});
+
+test("the reference's inner stages, computed by the library", () => {
+	const a = cube(0, 0, 0, 2), b = cube(1, 1, 1, 2);
+	assert.equal(mb.NEAR_PARALLEL, 1 - 1e-14);
+	// Centroids classified exactly; the crossed triangle listed is left at 0.
+	const classes = mb.classifyByFloodFill(a, { 0: [] }, b);
+	assert.equal(classes[0], 0);
+	assert.ok(Array.from(classes).slice(1).every((c) => c === 1 || c === -1));
+	assert.equal(mb.classifyByFloodFill([{ v0: { x: 0.4, y: 0.4, z: 0.9 }, v1: { x: 0.6, y: 0.4, z: 0.9 }, v2: { x: 0.5, y: 0.6, z: 0.9 } }], {}, b)[0], 1);
+	// The seam of the two cubes chains into one loop; a cube without a triangle has a
+	// 3-vertex hole.
+	const loops = mb.bmsChain(mb.bmsIntersect(a, b).segments);
+	assert.equal(loops.length, 1);
+	assert.equal(loops[0][0], loops[0][loops[0].length - 1]);
+	assert.equal(mb.chainedOpenEdge(a.slice(1)).length, 3);
+	assert.deepEqual(mb.chainedOpenEdge(a), []);
+	const closing = mb.bmsClosePolylines(loops, a, b.slice(1), [], []);
+	assert.equal(closing.closedPolylines.length, 1);
+	assert.deepEqual([closing.meshEdgePolys.A.closed, closing.meshEdgePolys.B.closed], [true, false]);
+	// bmsClassify of bmsSplit's pieces: the split's own sides, the overlap a unit cube.
+	const isect = mb.bmsIntersect(a, b);
+	const g = mb.bmsClassify(mb.bmsSplit(a, b, isect), [], isect.segments, a, b, null);
+	assert.equal(mb.computeSignedVolume(g.aInside.concat(g.bInside)), 1);
+	// Coplanar triangles overlapping in a quad of area 19/12; neighbours sharing an edge
+	// touch and do not overlap.
+	const t1 = { v0: { x: 0, y: 0, z: 0 }, v1: { x: 4, y: 0, z: 0 }, v2: { x: 0, y: 4, z: 0 } };
+	const t2 = { v0: { x: 1, y: -1, z: 0 }, v1: { x: 3, y: 3, z: 0 }, v2: { x: 3, y: -1, z: 0 } };
+	const overlap = mb.coplanarOverlap(t1, t2);
+	assert.equal(overlap.polygon.length, 4);
+	assert.ok(Math.abs(overlap.area - 19 / 12) < 1e-12);
+	assert.equal(mb.coplanarOverlap(t1, { v0: { x: 4, y: 0, z: 0 }, v1: { x: 4, y: 4, z: 0 }, v2: { x: 0, y: 4, z: 0 } }), null);
+	const pool = mb.createVertexPool();
+	const segs = mb.emitCoplanarSegments(overlap.polygon, pool, { mesh: "A", triIdx: 0 }, { mesh: "B", triIdx: 3 });
+	assert.equal(segs.length, 4);
+	assert.equal(pool.size(), 4);
+	assert.ok(segs.every((s) => s.idxA === 0 && s.idxB === 3));
+	// Two overlapping cubes as one soup: 18 pairs meet; cut there, the pieces of winding
+	// straddling 1/2 bound the union (volume 15).
+	const two = a.concat(b);
+	const self = mb.bmsSelfIntersect(two);
+	assert.equal(self.stats.crossingPairs, 18);
+	assert.ok(self.segments.length > 0);
+	const arranged = mb.bmsSelfArrange(two);
+	assert.ok(arranged.megaSoup.length > two.length);
+	assert.equal(mb.compute3DSurfaceArea(arranged.megaSoup), 48);
+	assert.equal(mb.bmsSplit(two, [], self).length, arranged.megaSoup.length);
+	// A segment ending on the edge two triangles share splits that edge on both sides.
+	const T1 = { v0: { x: 0, y: 0, z: 0 }, v1: { x: 4, y: 0, z: 0 }, v2: { x: 0, y: 4, z: 0 } };
+	const T2 = { v0: { x: 4, y: 0, z: 0 }, v1: { x: 4, y: 4, z: 0 }, v2: { x: 0, y: 4, z: 0 } };
+	const T3 = { v0: { x: 1, y: 1, z: -1 }, v1: { x: 1, y: 1, z: 1 }, v2: { x: 2, y: 2, z: 0 } };
+	const fold = mb.bmsSelfArrange([T1, T2, T3]);
+	assert.equal(fold.stats.edgeSteinerPoints, 1);
+	assert.equal(fold.stats.edgeSteinerTris, 2);
+	const w = (x, y, z) => mb.windingNumber({ x, y, z }, two);
+	const kept = mb.extractByWinding(arranged.megaSoup, w);
+	assert.ok(Math.abs(mb.computeSignedVolume(kept.kept) - 15) < 1e-9);
+	assert.equal(kept.keptFlags.length, arranged.megaSoup.length);
+	// Patches split by the seam: one decision each; the same union.
+	const barrier = {};
+	for (const s of self.segments) barrier[mb.edgeKey(mb.vKey(s.p0), mb.vKey(s.p1))] = true;
+	const byPatch = mb.extractByWindingPatches(arranged.megaSoup, barrier, w);
+	assert.ok(byPatch.patches >= 4);
+	assert.ok(Math.abs(mb.computeSignedVolume(byPatch.kept) - 15) < 1e-9);
+	// Edge Steiner map: a point in the middle of the cube's bottom diagonal belongs to
+	// both triangles on it.
+	const bottom = a.slice(0, 2);
+	const mid = { x: 0, y: 0, z: -1 };
+	const map = mb.buildEdgeSteinerMap(2, (t) => bottom[t], (t, c) => mb.vKey([bottom[t].v0, bottom[t].v1, bottom[t].v2][c]), [{ p0: mid, p1: { x: 5, y: 5, z: 5 } }], 1e-9);
+	assert.deepEqual(Object.keys(map).sort(), ["0", "1"]);
+	// Snaps and welds within the caller's tolerance.
+	const seg = { p0: { x: 1 + 1e-7, y: 1, z: 1 }, p1: { x: 9, y: 9, z: 9 } };
+	assert.equal(mb.snapEndpointsToVertices(a, [seg], 1e-6), 1);
+	assert.equal(seg.p0.x, 1);
+	const welded = mb.weldTaggedSoup([{ ...a[0], mesh: "A", origIdx: 0 }, { v0: { x: a[0].v0.x + 1e-9, y: a[0].v0.y, z: a[0].v0.z }, v1: a[1].v1, v2: a[1].v2, mesh: "B", origIdx: 1 }], 1e-6);
+	assert.equal(welded.soup[0].v0, welded.soup[1].v0);
+	assert.equal(welded.soup[1].mesh, "B");
+	assert.equal(welded.repOf(a[0].v0.x, a[0].v0.y, a[0].v0.z + 1e-9), welded.soup[0].v0);
+	const cond = mb.conditionArrangement(a.slice(1), 1e-9);
+	assert.deepEqual([cond.openBefore, cond.openAfter, cond.capsAdded], [3, 0, 1]);
+	assert.equal(mb.conditionArrangement(a, 1e-9).soup, a);
+	const near = { v0: { x: a[0].v0.x + 1e-4, y: a[0].v0.y, z: a[0].v0.z }, v1: a[0].v2, v2: a[0].v1 };
+	const snapped = mb.snapCoincidentSheets([a[0], near], 0.01);
+	assert.deepEqual([snapped.coincidentPairs, snapped.snappedVertices], [1, 1]);
+	assert.deepEqual(snapped.soup[1].v0, a[0].v0);
+	assert.equal(mb.snapCoincidentSheets(a, 0.01).soup, a);
 });
 
 test("every export is exercised by this file", () => {

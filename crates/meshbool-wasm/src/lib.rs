@@ -264,7 +264,8 @@ pub fn groups_for_op(op: &str) -> Result<Vec<String>, JsError> {
 /// `{segments, triA, triB, coplanar}`: `segments` six numbers per segment (its two ends),
 /// `triA`/`triB` the triangle of each input it lies in (a segment along an edge is listed
 /// once per pair of triangles it lies in), `coplanar[s]` 1 for segments of coplanar
-/// overlaps. Options (JSON): `withCoplanar` (default true).
+/// overlaps. Options (JSON): `withCoplanar` (default true). With `b_positions` and
+/// `b_index` empty, the self-intersections of A (`triA`, `triB` both triangles of A).
 #[wasm_bindgen]
 pub fn intersect(
     a_positions: &[f64],
@@ -273,10 +274,19 @@ pub fn intersect(
     b_index: &[u32],
     opts: &str,
 ) -> Result<JsValue, JsError> {
-    let (a, b) = (mesh(a_positions, a_index)?, mesh(b_positions, b_index)?);
+    let a = mesh(a_positions, a_index)?;
     let o = options(opts)?;
     let with_coplanar = flag(&o, "withCoplanar", true)?;
-    let out = ops::curves(&a, &b, &CurvesOptions::default()).map_err(js_err)?;
+    let out = if b_positions.is_empty() && b_index.is_empty() {
+        let copts = CurvesOptions {
+            with_coplanar,
+            ..CurvesOptions::default()
+        };
+        ops::self_curves(&a, &copts)
+    } else {
+        ops::curves(&a, &mesh(b_positions, b_index)?, &CurvesOptions::default())
+    }
+    .map_err(js_err)?;
     let (mut segments, mut tri_a, mut tri_b, mut coplanar) =
         (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for s in out.tagged_segments() {
@@ -325,6 +335,18 @@ pub fn curves(
     Ok(Out::new()
         .polylines("polylines", &out.polylines)
         .report(&out.report())?
+        .done())
+}
+
+/// A mesh cut where it crosses itself (`ops::self_arrangement`), nothing classified:
+/// `{positions, index, parent}` (`parent[t]`: the input triangle of piece `t`).
+#[wasm_bindgen(js_name = selfArrange)]
+pub fn self_arrange(positions: &[f64], index: &[u32]) -> Result<JsValue, JsError> {
+    let m = mesh(positions, index)?;
+    let out = ops::self_arrangement(&m).map_err(js_err)?;
+    Ok(Out::new()
+        .mesh(&out.mesh)
+        .set("parent", Uint32Array::from(&out.parent[..]))
         .done())
 }
 
@@ -584,6 +606,25 @@ pub fn weld(positions: &[f64], index: &[u32], tolerance: f64) -> Result<JsValue,
     }
     let (welded, report) = meshbool::repair::weld_within(&m, tolerance);
     Ok(Out::new().mesh(&welded).report(&report)?.done())
+}
+
+/// The library's vertex-identity rule for soups (`ops::weld_rounding_noise`): exactly
+/// equal positions are one vertex, and boundary positions within rounding noise of each
+/// other are merged where that opens no edge and makes none non-manifold
+/// (nor, with `keep_consistent`, inconsistently wound). Triangles keep their places and
+/// count. `{positions, index, merged}` (`merged`: boundary vertices merged, 0 if none).
+#[wasm_bindgen]
+pub fn condition(
+    positions: &[f64],
+    index: &[u32],
+    keep_consistent: bool,
+) -> Result<JsValue, JsError> {
+    let m = mesh(positions, index)?;
+    let (welded, merge) = ops::weld_rounding_noise(&m, keep_consistent);
+    Ok(Out::new()
+        .mesh(&welded)
+        .set("merged", merge.map_or(0, |n| n.vertices) as u32)
+        .done())
 }
 
 /// Edge-connected components of a mesh welded exactly: `{count, ids}` (`ids[t]`: the

@@ -136,3 +136,74 @@ fn real_holes_and_gaps_beyond_rounding_stay_open() {
     assert!(n.boundary_edges[1] > 0, "{n:?}");
     assert_eq!(mesh_stats(op.mesh()).boundary_edges, n.boundary_edges[1]);
 }
+
+/// Ten squares of side 2.4 laid corner to corner along the diagonal, centres 2.4 apart in
+/// x and y, each corner computed from its own centre: the shared corners differ in the
+/// last bits (an overlap or a gap of ~1e-15).
+fn diagonal_sheet() -> Mesh {
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for i in 0..10 {
+        let c = 12.0 * (-1.0 + 0.2 * f64::from(i));
+        let v = positions.len() as u32;
+        for (dx, dy) in [(-1.2, -1.2), (1.2, -1.2), (1.2, 1.2), (-1.2, 1.2)] {
+            positions.push([c + dx, c + dy, 0.0]);
+        }
+        triangles.push([v, v + 1, v + 2]);
+        triangles.push([v, v + 2, v + 3]);
+    }
+    Mesh::new(positions, triangles).unwrap()
+}
+
+#[test]
+fn corners_that_touch_at_rounding_level_are_shared_not_crossing() {
+    let sheet = diagonal_sheet();
+    let exact = meshbool::weld_exact(&sheet).mesh;
+    assert!(
+        exact.positions().len() > 31,
+        "some corners differ in the last bits: {}",
+        exact.positions().len()
+    );
+    let b = Mesh::cuboid([-5.0, -5.0, -5.0], [5.0, 5.0, 5.0]);
+    let out = ops::boolean(&sheet, &b, Op::Intersection, &BooleanOptions::default()).unwrap();
+    let r = out.report();
+    let noise = r.operands[0]
+        .rounding_noise
+        .as_ref()
+        .expect("corners merged");
+    // No edge closes: the boundary stays the squares' outlines.
+    assert_eq!(noise.boundary_edges, [40, 40]);
+    assert_eq!(
+        r.operands[0]
+            .self_intersections
+            .as_ref()
+            .map_or(0, |s| s.pairs),
+        0
+    );
+    // The sheet's part inside the box: the squares centred at −2.4, 0 and 2.4 whole, and
+    // the corners [3.6, 5]² of the two centred at ±4.8: 3 · 2.4² + 2 · 1.4² = 21.2.
+    let p = out.mesh.positions();
+    let area: f64 = out
+        .mesh
+        .triangles()
+        .iter()
+        .zip(&out.provenance)
+        .filter(|(_, s)| s.source == meshbool::Source::A)
+        .map(|(t, _)| {
+            let [a, b, c] = t.map(|v| p[v as usize]);
+            // The sheet lies in z = 0: the area is half the cross product's z.
+            0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])).abs()
+        })
+        .sum();
+    assert!((area - 21.2).abs() < 1e-12, "{area}");
+    // Taken exactly as written, the corners overlap by an ulp: refused.
+    let exact_opts = BooleanOptions {
+        checks: meshbool::ops::Checks {
+            rounding_noise: false,
+            ..meshbool::ops::Checks::default()
+        },
+        ..BooleanOptions::default()
+    };
+    let err = ops::boolean(&sheet, &b, Op::Intersection, &exact_opts).unwrap_err();
+    assert!(err.to_string().contains("self-intersecting"), "{err}");
+}

@@ -11,7 +11,7 @@ use super::{with_threads, Checks, Input, Operand, RunOptions, SCHEMA};
 use crate::boolean::Stage;
 use crate::intersect::{chain, intersect, self_intersections, self_seam, PolylineXyz, Seam};
 use crate::io::write_polylines;
-use crate::{Error, Format, Result};
+use crate::{Error, Format, Mesh, Result};
 
 /// Options of [`curves`].
 #[derive(Clone, Debug)]
@@ -272,4 +272,31 @@ pub fn self_curves<'a>(mesh: impl Into<Input<'a>>, opts: &CurvesOptions) -> Resu
             seconds: start.elapsed().as_secs_f64(),
         })
     })?
+}
+
+/// A mesh cut where it crosses itself ([`self_arrangement`]).
+#[derive(Clone, Debug)]
+pub struct SelfArrangement {
+    /// The input with every triangle its own seam crosses re-triangulated along it, so
+    /// that the mesh conforms there (each seam segment an edge; seam points rounded to
+    /// `f64` once).
+    pub mesh: Mesh,
+    /// For every triangle of [`SelfArrangement::mesh`], the input triangle it is part of.
+    pub parent: Vec<u32>,
+}
+
+/// Cuts a mesh along where it crosses itself, deciding nothing else: the pieces of
+/// [`self_curves`]'s seam, for front ends whose users classify the pieces themselves (the
+/// JavaScript package's `bmsSelfArrange`). The input is validated and welded exactly
+/// (triangles in their order; no checks: a self-crossing mesh is what this cuts).
+pub fn self_arrangement<'a>(mesh: impl Into<Input<'a>>) -> Result<SelfArrangement> {
+    let input: Input<'a> = mesh.into();
+    let operand = input.operand("mesh", &Checks::NONE)?;
+    let m = operand.mesh();
+    let seam = self_seam(m, &self_intersections(m));
+    let arranged = crate::arrange::arrange_self(m, &seam);
+    Ok(SelfArrangement {
+        mesh: arranged.mesh,
+        parent: arranged.parent,
+    })
 }

@@ -68,14 +68,18 @@ pub use boolean::{
     boolean, boolean_many, BooleanManyOutput, BooleanOptions, BooleanOutput, BooleanReport,
     Combined,
 };
-pub use curves::{curves, self_curves, CurvesOptions, CurvesOutput, CurvesReport, TaggedSegment};
+pub use curves::{
+    curves, self_arrangement, self_curves, CurvesOptions, CurvesOutput, CurvesReport,
+    SelfArrangement, TaggedSegment,
+};
 pub use cutfill::{cutfill, CutFillOptions, CutFillOutput, CutFillReport};
 pub use envelope::{
     envelope, Envelope, EnvelopeCommandReport, EnvelopeOptions, EnvelopeOutput, EnvelopeReport,
 };
 pub use make::{make, MakeOutput, MakeReport, Shape};
 pub use operand::{
-    Checks, Input, NoiseMerge, Operand, OperandReport, SelfIntersections, ROUNDING_ULPS,
+    weld_rounding_noise, Checks, Input, NoiseMerge, Operand, OperandReport, SelfIntersections,
+    ROUNDING_ULPS,
 };
 pub use points::{
     classify_points, ClassifyOptions, ClassifyOutput, ClassifyReport, PointClass, PointResult,

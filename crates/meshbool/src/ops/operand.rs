@@ -47,8 +47,8 @@ pub struct Checks {
     /// Positions that differ by rounding are one vertex: boundary vertices within
     /// [`ROUNDING_ULPS`] units in the last place of the mesh's largest coordinate (in the
     /// precision the file stores: `f32` for binary STL, else `f64`) of one another are
-    /// merged, where that closes boundary edges and makes no edge non-manifold or
-    /// inconsistent ([`NoiseMerge`]). Off: only exactly equal positions are one vertex.
+    /// merged, where that opens no edge and makes none non-manifold or inconsistent
+    /// (it closes cracks, and corners laid on corners become shared; [`NoiseMerge`]). Off: only exactly equal positions are one vertex.
     /// Needs `edges`.
     pub rounding_noise: bool,
 }
@@ -712,8 +712,8 @@ fn collapsed(t: &[u32; 3]) -> bool {
 
 /// Merges the boundary vertices of `mesh` (without collapsed triangles; `before` its edge
 /// counts) within [`ROUNDING_ULPS`] units in the last place of its largest coordinate
-/// (`f32`'s where the file stored `f32`) of one another, where that lowers the boundary
-/// edges and raises neither the non-manifold nor the inconsistent ones; triangles keep
+/// (`f32`'s where the file stored `f32`) of one another, where that raises none of the
+/// boundary, non-manifold and inconsistent edge counts; triangles keep
 /// their places (those that collapse are for the caller to remove). The merge and the
 /// edge counts after it (collapsed triangles left out); `None` (and `mesh` as it was)
 /// otherwise.
@@ -721,6 +721,18 @@ fn merge_rounding_noise(
     mesh: &mut Mesh,
     f32_stored: bool,
     before: EdgeCounts,
+) -> Option<(NoiseMerge, EdgeCounts)> {
+    merge_rounding_noise_gated(mesh, f32_stored, before, true)
+}
+
+/// [`merge_rounding_noise`], with the gate on inconsistent edges only where
+/// `keep_consistent` (a caller about to orient the mesh lets the merge join triangles
+/// wound against each other: the orientation is its next step).
+fn merge_rounding_noise_gated(
+    mesh: &mut Mesh,
+    f32_stored: bool,
+    before: EdgeCounts,
+    keep_consistent: bool,
 ) -> Option<(NoiseMerge, EdgeCounts)> {
     let b = mesh.bounds()?;
     let largest = b.min.iter().chain(&b.max).fold(0f64, |m, x| m.max(x.abs()));
@@ -737,9 +749,11 @@ fn merge_rounding_noise(
         m.triangles.retain(|t| !collapsed(t));
         EdgeCounts::of(&m)
     };
-    let better = after.boundary < before.boundary
+    // Not worse is enough: corners that touch at rounding level (sheets laid corner to
+    // corner) close no edge when merged, but become the touch they are.
+    let better = after.boundary <= before.boundary
         && after.non_manifold <= before.non_manifold
-        && after.inconsistent <= before.inconsistent;
+        && (!keep_consistent || after.inconsistent <= before.inconsistent);
     if !better {
         return None;
     }
@@ -751,6 +765,25 @@ fn merge_rounding_noise(
         boundary_edges: [before.boundary, after.boundary],
     };
     Some((merge, after))
+}
+
+/// The vertex-identity rule of the operand door on its own, for front ends that take
+/// triangle soups (the JavaScript package): positions exactly equal are one vertex, and
+/// boundary positions within [`ROUNDING_ULPS`] units in the last place of the largest
+/// coordinate (`f64`) of one another are merged where that opens no edge and makes none
+/// non-manifold (nor, with `keep_consistent`, inconsistently wound).
+/// Triangles keep their places and count; those the merge collapses stay, with two equal
+/// corners, for the caller to judge. The welded mesh and the merge, if one was made.
+pub fn weld_rounding_noise(mesh: &Mesh, keep_consistent: bool) -> (Mesh, Option<NoiseMerge>) {
+    let mut welded = crate::weld_exact(mesh).mesh;
+    let mut rest = welded.clone();
+    rest.triangles.retain(|t| !collapsed(t));
+    let before = EdgeCounts::of(&rest);
+    if before.boundary == 0 {
+        return (welded, None);
+    }
+    let merge = merge_rounding_noise_gated(&mut welded, false, before, keep_consistent);
+    (welded, merge.map(|(m, _)| m))
 }
 
 /// Removes the triangles of `mesh` with two equal corners (indices); `None` when there
