@@ -1,16 +1,24 @@
-// The demo page: two meshes (files read by meshbool's WebAssembly readers, or the bundled
-// Kirra examples), a boolean or a split-and-pick of the two, the result drawn with three.js
-// and measured, and an STL download of it.
+// The demo page: two meshes (files read by meshbool's WebAssembly readers, the bundled
+// Kirra examples, or two generated spheres of a million triangles each), a boolean or a
+// split-and-pick of the two computed in a Web Worker (the page stays responsive; the
+// stages show as they begin; Cancel stops it), the result drawn with three.js and
+// measured, and an STL download of it.
 import * as THREE from "three";
 import { OrbitControls } from "three/addons/controls/OrbitControls.js";
-import { booleanIndexed, meshInfo, readMesh, splitIndexed, version, writeMesh } from "../src/index.js";
+import { meshInfo, readMesh, version, writeMesh } from "../src/index.js";
+import { createWorker } from "../src/async.js";
 import { indexedToGeometry } from "../src/three.js";
 
 const $ = (id) => document.getElementById(id);
 
 const COLORS = { a: 0x6fb3ff, b: 0xffb15e, result: 0x7fd18b };
 const GROUPS = ["a_in_b", "a_out_b", "b_in_a", "b_out_a"];
-const FORMATS = { stl: "stl", obj: "obj", ply: "ply", off: "off", dxf: "dxf", json: "json" };
+const FORMATS = { stl: "stl", obj: "obj", ply: "ply", off: "off", dxf: "dxf", json: "json", glb: "glb" };
+const STAGES = { check: "checking the inputs", intersect: "intersecting", arrange: "cutting along the seam", classify: "classifying", merge: "merging", snap: "snapping" };
+
+/** The worker the operations run in, and the controller of the running one. */
+const worker = createWorker();
+let running = null;
 
 /** What the page holds: the two inputs `{name, mesh}` and the last result `{mesh, name}`. */
 const state = { a: null, b: null, result: null };
@@ -197,6 +205,56 @@ async function loadExample(slot, file) {
 	setMessage("");
 }
 
+/**
+ * A UV sphere of radius 1 centred at (cx, 0, 0) with n rings: 2n(n − 1) triangles,
+ * closed (n = 708: 1,001,112 triangles).
+ */
+function sphere(n, cx) {
+	const rings = n - 1, around = 2 * n;
+	const positions = new Float64Array(3 * (rings * around + 2));
+	positions.set([cx, 0, 1], 0);
+	let v = 3;
+	for (let i = 1; i < n; i++) {
+		const th = (Math.PI * i) / n;
+		for (let j = 0; j < around; j++, v += 3) {
+			const ph = (Math.PI * j) / n;
+			positions[v] = cx + Math.sin(th) * Math.cos(ph);
+			positions[v + 1] = Math.sin(th) * Math.sin(ph);
+			positions[v + 2] = Math.cos(th);
+		}
+	}
+	positions.set([cx, 0, -1], v);
+	const last = v / 3;
+	const ring = (i, j) => 1 + (i - 1) * around + (j % around);
+	const index = new Uint32Array(3 * 2 * n * (n - 1));
+	let k = 0;
+	const tri = (a, b, c) => {
+		index[k++] = a;
+		index[k++] = b;
+		index[k++] = c;
+	};
+	for (let j = 0; j < around; j++) tri(0, ring(1, j), ring(1, j + 1));
+	for (let i = 1; i < n - 1; i++) {
+		for (let j = 0; j < around; j++) {
+			tri(ring(i, j), ring(i + 1, j), ring(i + 1, j + 1));
+			tri(ring(i, j), ring(i + 1, j + 1), ring(i, j + 1));
+		}
+	}
+	for (let j = 0; j < around; j++) tri(last, ring(n - 1, j + 1), ring(n - 1, j));
+	return { positions, index };
+}
+
+/** Puts a generated sphere into a slot ("a": centred at the origin, "b": moved by 0.5). */
+function loadSphere(slot) {
+	const mesh = sphere(708, slot === "a" ? 0 : 0.5);
+	const name = `sphere-${slot}`;
+	state[slot] = { name, mesh };
+	$(`info-${slot}`).textContent = `${name}: ${mesh.index.length / 3} triangles, closed (generated)`;
+	$(`slot-${slot}`).dataset.loaded = name;
+	$(`file-${slot}`).value = "";
+	inputsChanged();
+}
+
 async function loadFile(slot, input) {
 	const file = input.files && input.files[0];
 	if (!file) return;
@@ -264,10 +322,10 @@ function weldExact(mesh) {
 	return { positions: Float64Array.from(out), index: mesh.index.map((i) => remap[i]) };
 }
 
-/** A boolean of the two inputs: the result mesh and its statistics from the report. */
-function runBoolean(op) {
+/** A boolean of the two inputs (in the worker): the result mesh and its statistics. */
+async function runBoolean(op, control) {
 	const t0 = performance.now();
-	const out = booleanIndexed(state.a.mesh, state.b.mesh, op);
+	const out = await worker.booleanIndexed(state.a.mesh, state.b.mesh, op, {}, control);
 	const ms = performance.now() - t0;
 	const r = out.report;
 	return {
@@ -277,10 +335,10 @@ function runBoolean(op) {
 	};
 }
 
-/** A split of the inputs with the groups ticked in the table, concatenated and measured. */
-function runSplit() {
+/** A split of the inputs (in the worker) with the groups ticked in the table, concatenated and measured. */
+async function runSplit(control) {
 	const t0 = performance.now();
-	const { groups, report } = splitIndexed(state.a.mesh, state.b.mesh);
+	const { groups, report } = await worker.splitIndexed(state.a.mesh, state.b.mesh, {}, control);
 	const picks = [];
 	for (const g of GROUPS) {
 		const group = groups[g];
@@ -315,27 +373,37 @@ function setResult(result) {
 	}
 }
 
-/** Lets the browser paint (the operations run on this thread). */
-function nextPaint() {
-	return new Promise((resolve) => requestAnimationFrame(() => setTimeout(resolve, 0)));
-}
-
 async function run() {
 	if (!state.a || !state.b) throw new Error("load both meshes first");
 	const op = $("op").value;
 	$("stats").dataset.state = "running";
 	$("run").disabled = true;
+	$("cancel").disabled = false;
 	setMessage("computing…");
-	await nextPaint();
+	running = new AbortController();
+	const control = {
+		signal: running.signal,
+		onProgress: (stage) => {
+			$("stats").dataset.stage = stage;
+			setMessage(`computing: ${STAGES[stage] || stage}…`);
+		},
+	};
 	try {
-		const { mesh, stats, notes } = op === "split" ? runSplit() : runBoolean(op);
+		const { mesh, stats, notes } = op === "split" ? await runSplit(control) : await runBoolean(op, control);
 		const label = op === "split" ? "split" : op;
 		setResult({ mesh, name: `${stem(state.a.name)}-${label}-${stem(state.b.name)}` });
 		showStats(stats, notes);
 		setMessage(mesh.index.length === 0 ? "the result is empty" : "");
 		$("stats").dataset.state = "done";
+	} catch (e) {
+		if (e.name !== "AbortError") throw e;
+		setMessage("cancelled");
+		$("stats").dataset.state = "cancelled";
 	} finally {
+		running = null;
+		delete $("stats").dataset.stage;
 		$("run").disabled = false;
+		$("cancel").disabled = true;
 	}
 }
 
@@ -359,6 +427,9 @@ function download() {
 for (const button of document.querySelectorAll("button[data-file]")) {
 	button.addEventListener("click", guarded(() => loadExample(button.dataset.slot, button.dataset.file)));
 }
+for (const button of document.querySelectorAll("button[data-sphere]")) {
+	button.addEventListener("click", () => loadSphere(button.dataset.sphere));
+}
 for (const slot of ["a", "b"]) {
 	$(`file-${slot}`).addEventListener("change", guarded((e) => loadFile(slot, e.target)));
 }
@@ -377,11 +448,17 @@ $("op").addEventListener("change", () => {
 	$("picks").hidden = $("op").value !== "split";
 });
 $("run").addEventListener("click", guarded(run));
+$("cancel").addEventListener("click", () => running && running.abort());
 $("download").addEventListener("click", download);
 $("show-inputs").addEventListener("change", (e) => viewer && viewer.showInputs(e.target.checked));
 $("picks").hidden = $("op").value !== "split";
 $("version").textContent = `meshbool ${version}, three.js r${THREE.REVISION}`;
 
 // For tests and the console: the page's state and a rendering check.
-window.meshboolDemo = { state, colourCount: () => (viewer ? viewer.colourCount() : 0) };
+window.meshboolDemo = { state, colourCount: () => (viewer ? viewer.colourCount() : 0), inputEvents: 0 };
+// How long each input event waited before its handler ran (the page's responsiveness).
+$("show-inputs").addEventListener("change", (e) => {
+	window.meshboolDemo.inputEvents++;
+	window.meshboolDemo.inputDelay = performance.now() - e.timeStamp;
+});
 document.body.dataset.ready = "true";

@@ -51,3 +51,11 @@ export function call(name, ...args) {
 
 /** The version of the Rust library inside. */
 export const nativeVersion = wasm.version();
+
+/**
+ * Sets the function called with each stage's name as the long calls (boolean, split,
+ * resolve) begin it, or clears it with `null`.
+ */
+export function onStage(f) {
+	wasm.setProgress(typeof f === "function" ? f : null);
+}

@@ -28,6 +28,31 @@ use wasm_bindgen::prelude::*;
 
 thread_local! {
     static PANIC: RefCell<Option<String>> = const { RefCell::new(None) };
+    static PROGRESS: RefCell<Option<js_sys::Function>> = const { RefCell::new(None) };
+}
+
+/// Sets (or, with `null`, clears) the function called with each stage's name (`check`,
+/// `intersect`, `arrange`, `classify`, `merge`, `snap`, ...) as the long operations
+/// (boolean, split, resolve) begin it. Kept per thread: the callback is only ever called
+/// on the thread that set it, the one running the call in this single-threaded build.
+#[wasm_bindgen(js_name = setProgress)]
+pub fn set_progress(f: Option<js_sys::Function>) {
+    PROGRESS.with(|p| *p.borrow_mut() = f);
+}
+
+/// The run options of a long call: progress reported to the function of [`set_progress`].
+fn run_options() -> ops::RunOptions {
+    ops::RunOptions {
+        progress: Some(ops::Progress::new(|stage| {
+            PROGRESS.with(|p| {
+                if let Some(f) = &*p.borrow() {
+                    // A throwing callback does not stop the call.
+                    let _ = f.call1(&JsValue::NULL, &JsValue::from_str(stage.name()));
+                }
+            });
+        })),
+        ..ops::RunOptions::default()
+    }
 }
 
 /// Installs the panic hook that keeps a panic's message for [`last_panic`]. Runs when the
@@ -203,6 +228,7 @@ pub fn boolean(
         keep_nonmanifold: flag(&o, "keepNonmanifold", false)?,
         keep_seam_points: flag(&o, "keepSeamPoints", true)?,
         snap: number(&o, "snap")?.unwrap_or(0.0),
+        run: run_options(),
         ..BooleanOptions::default()
     };
     let out = ops::boolean(&a, &b, op, &opts).map_err(js_err)?;
@@ -228,6 +254,7 @@ pub fn split(
         checks: checks(&o)?,
         snap: number(&o, "snap")?.unwrap_or(0.0),
         keep_seam_points: flag(&o, "keepSeamPoints", true)?,
+        run: run_options(),
         ..SplitOptions::default()
     };
     let out = ops::split(&a, &b, &opts).map_err(js_err)?;
@@ -495,6 +522,7 @@ pub fn resolve(
     let opts = ResolveOptions {
         rule: rule.parse::<FillRule>().map_err(js_err)?,
         keep_nonmanifold,
+        run: run_options(),
         ..ResolveOptions::default()
     };
     let out = ops::resolve(&m, &opts).map_err(js_err)?;
