@@ -1,5 +1,5 @@
 // The demo page: two meshes (files read by meshbool's WebAssembly readers, the bundled
-// Kirra examples, or two generated spheres of a million triangles each), a boolean or a
+// Kirra examples, or two generated spheres of 998,000 triangles each), a boolean or a
 // split-and-pick of the two computed in a Web Worker (the page stays responsive; the
 // stages show as they begin; Cancel stops it), the result drawn with three.js and
 // measured, and an STL download of it.
@@ -206,8 +206,8 @@ async function loadExample(slot, file) {
 }
 
 /**
- * A UV sphere of radius 1 centred at (cx, 0, 0) with n rings: 2n(n − 1) triangles,
- * closed (n = 708: 1,001,112 triangles).
+ * A UV sphere of radius 1 centred at (cx, 0, 0): 2n meridians, n bands from pole to pole,
+ * 4n(n − 1) triangles, closed (n = 500: 998,000 triangles).
  */
 function sphere(n, cx) {
 	const rings = n - 1, around = 2 * n;
@@ -246,7 +246,7 @@ function sphere(n, cx) {
 
 /** Puts a generated sphere into a slot ("a": centred at the origin, "b": moved by 0.5). */
 function loadSphere(slot) {
-	const mesh = sphere(708, slot === "a" ? 0 : 0.5);
+	const mesh = sphere(500, slot === "a" ? 0 : 0.5);
 	const name = `sphere-${slot}`;
 	state[slot] = { name, mesh };
 	$(`info-${slot}`).textContent = `${name}: ${mesh.index.length / 3} triangles, closed (generated)`;

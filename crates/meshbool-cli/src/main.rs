@@ -97,7 +97,9 @@ enum Command {
 }
 
 fn main() -> ExitCode {
-    let result = match Cli::parse().command {
+    let cli = Cli::parse();
+    commands::cancel_on_ctrl_c();
+    let result = match cli.command {
         Command::Info(args) => info::run(&args),
         Command::Convert(args) => convert::run(&args),
         Command::Union(args) => args.run(meshbool::Op::Union),
@@ -119,6 +121,16 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         // A reader that stopped early (`meshbool info F | head -3`): nothing to report.
         Err(e) if closed_pipe(&e) => ExitCode::SUCCESS,
+        // Ctrl-C: the library stopped at a stage boundary and nothing was written.
+        Err(e)
+            if matches!(
+                e.downcast_ref::<meshbool::Error>(),
+                Some(meshbool::Error::Cancelled)
+            ) =>
+        {
+            eprintln!("meshbool: cancelled (Ctrl-C); nothing was written");
+            ExitCode::from(130)
+        }
         Err(e) => {
             // The library says how to proceed in its own terms; name the flag.
             let hint = match e.downcast_ref::<meshbool::Error>() {

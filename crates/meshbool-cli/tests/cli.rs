@@ -2450,3 +2450,60 @@ fn resolve_envelope_of_the_kirra_terrain_keeps_its_outline() {
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("closed"));
 }
+
+/// Ctrl-C (SIGINT) during a long boolean: the command stops at the library's next stage,
+/// says so, exits 130 and writes nothing (neither the output nor a temporary file).
+#[cfg(unix)]
+#[test]
+fn ctrl_c_cancels_a_boolean_and_writes_nothing() {
+    let dir = tmp("ctrl-c");
+    std::fs::create_dir_all(&dir).unwrap();
+    let (a, b, out) = (dir.join("a.ply"), dir.join("b.ply"), dir.join("union.ply"));
+    for (path, x) in [(&a, "0"), (&b, "0.5")] {
+        let made = meshbool(&[
+            "make",
+            "sphere",
+            "--segments",
+            "1000",
+            "--rings",
+            "500",
+            "--center",
+            &format!("{x},0,0"),
+            "-o",
+            path.to_str().unwrap(),
+        ]);
+        assert!(
+            made.status.success(),
+            "{}",
+            String::from_utf8_lossy(&made.stderr)
+        );
+    }
+    let child = Command::new(env!("CARGO_BIN_EXE_meshbool"))
+        .args([
+            "union",
+            a.to_str().unwrap(),
+            b.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ])
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(400));
+    let killed = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let done = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&done.stderr);
+    assert_eq!(done.status.code(), Some(130), "{stderr}");
+    assert!(stderr.contains("cancelled"), "{stderr}");
+    let left: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    let mut left = left;
+    left.sort();
+    assert_eq!(left, ["a.ply", "b.ply"], "nothing but the inputs");
+}

@@ -9,8 +9,8 @@
 #![forbid(unsafe_code)]
 
 use meshbool::ops::{
-    self, BooleanOptions, Checks, CurvesOptions, InfoReport, Measures, PickOptions, PieceSpec,
-    RunOptions, SplitOptions, SplitOutput,
+    self, BooleanOptions, Cancel, Checks, CurvesOptions, InfoReport, Measures, PickOptions,
+    PieceSpec, RunOptions, SplitOptions, SplitOutput,
 };
 use meshbool::repair::{CloseMode, CloseOptions, Facing, RepairConfig};
 use meshbool::{Error, Format, Mesh, Op, Source};
@@ -97,8 +97,65 @@ fn checks(force: bool, self_check: bool, resolve: bool, orient: bool) -> Checks 
 fn run(threads: Option<usize>) -> RunOptions {
     RunOptions {
         threads,
+        cancel: Some(Cancel::new()),
         ..RunOptions::default()
     }
+}
+
+/// Calls on at least this many triangles run on a thread of their own while the calling
+/// thread watches for Ctrl-C ([`interruptible`]); smaller ones end sooner than a key press
+/// is noticed, and run directly.
+const INTERRUPTIBLE_FROM: usize = 1 << 15;
+
+/// Runs `f` (a library call on `size` triangles, `run` its run options) without the GIL
+/// so that Ctrl-C stops it: the call runs on a thread of its own while this one waits for
+/// it, looking at Python's signals every 50 ms; on `KeyboardInterrupt` (or any exception
+/// a signal handler raises) the call is cancelled, stops at its next stage, and the
+/// exception is raised.
+fn interruptible<T: Send>(
+    py: Python<'_>,
+    run: &RunOptions,
+    size: usize,
+    f: impl FnOnce() -> T + Send,
+) -> PyResult<T> {
+    let cancel = match &run.cancel {
+        Some(c) if size >= INTERRUPTIBLE_FROM => c.clone(),
+        _ => return Ok(py.detach(f)),
+    };
+    std::thread::scope(|s| {
+        let (tx, mut rx) = std::sync::mpsc::channel();
+        s.spawn(move || {
+            let _ = tx.send(f());
+        });
+        loop {
+            // The receiver goes into the GIL-free wait and comes back.
+            let (got, back) = py.detach(move || {
+                let got = rx.recv_timeout(std::time::Duration::from_millis(50));
+                (got, rx)
+            });
+            rx = back;
+            match got {
+                Ok(v) => return Ok(v),
+                Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {
+                    if let Err(e) = py.check_signals() {
+                        cancel.cancel();
+                        // The call's result (Err(Cancelled), or what it finished with) is
+                        // not wanted; its thread ends at its next stage.
+                        py.detach(move || {
+                            let _ = rx.recv();
+                        });
+                        return Err(e);
+                    }
+                }
+                // The call's thread panicked: the scope raises its panic.
+                Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => {
+                    return Err(PyValueError::new_err(
+                        "meshbool: the call ended without a result",
+                    ))
+                }
+            }
+        }
+    })
 }
 
 fn parse<T: std::str::FromStr<Err = Error>>(s: &str) -> PyResult<T> {
@@ -212,9 +269,10 @@ fn boolean<'py>(
         run: run(threads),
         ..BooleanOptions::default()
     };
-    let out = py
-        .detach(move || ops::boolean(&a, &b, op, &opts))
-        .map_err(py_err)?;
+    let size = a.triangles().len() + b.triangles().len();
+    let run = opts.run.clone();
+    let out =
+        interruptible(py, &run, size, move || ops::boolean(&a, &b, op, &opts))?.map_err(py_err)?;
     boolean_result(py, out)
 }
 
@@ -301,9 +359,10 @@ fn boolean_operands<'py>(
         ..BooleanOptions::default()
     };
     let (a, b) = (&a.operand, &b.operand);
-    let out = py
-        .detach(move || ops::boolean(a, b, op, &opts))
-        .map_err(py_err)?;
+    let size = a.mesh().triangles().len() + b.mesh().triangles().len();
+    let run = opts.run.clone();
+    let out =
+        interruptible(py, &run, size, move || ops::boolean(a, b, op, &opts))?.map_err(py_err)?;
     boolean_result(py, out)
 }
 
@@ -411,9 +470,9 @@ fn split(
         keep_seam_points,
         run: run(threads),
     };
-    let out = py
-        .detach(move || ops::split(&a, &b, &opts))
-        .map_err(py_err)?;
+    let size = a.triangles().len() + b.triangles().len();
+    let run = opts.run.clone();
+    let out = interruptible(py, &run, size, move || ops::split(&a, &b, &opts))?.map_err(py_err)?;
     Ok(Split { out })
 }
 
@@ -455,14 +514,15 @@ fn boolean_many<'py>(
         one_arrangement,
         run: run(threads),
     };
-    let (out, report) = py
-        .detach(move || {
-            let inputs: Vec<ops::Input> = meshes.iter().map(ops::Input::from).collect();
-            let out = ops::boolean_many(&inputs, op, &opts)?;
-            let report = out.report();
-            Ok::<_, Error>((out, report))
-        })
-        .map_err(py_err)?;
+    let size = meshes.iter().map(|m| m.triangles().len()).sum();
+    let run = opts.run.clone();
+    let (out, report) = interruptible(py, &run, size, move || {
+        let inputs: Vec<ops::Input> = meshes.iter().map(ops::Input::from).collect();
+        let out = ops::boolean_many(&inputs, op, &opts)?;
+        let report = out.report();
+        Ok::<_, Error>((out, report))
+    })?
+    .map_err(py_err)?;
     let input = PyArray1::from_iter(py, out.provenance.iter().map(|p| p[0]));
     let triangle = PyArray1::from_iter(py, out.provenance.iter().map(|p| p[1]));
     let (v, f) = arrays(py, out.mesh)?;
@@ -566,9 +626,10 @@ fn cutfill<'py>(
 ) -> PyResult<(String, Vec<(Bound<'py, PyArray2<f64>>, bool)>)> {
     let (d, t) = (mesh(&dv, &df)?, mesh(&tv, &tf)?);
     let opts = ops::CutFillOptions { run: run(threads) };
-    let out = py
-        .detach(move || ops::cutfill(&d, &t, &opts))
-        .map_err(py_err)?;
+    let size = d.triangles().len() + t.triangles().len();
+    let run = opts.run.clone();
+    let out =
+        interruptible(py, &run, size, move || ops::cutfill(&d, &t, &opts))?.map_err(py_err)?;
     let report = json(&out.report())?;
     Ok((report, polylines(py, out.lines)?))
 }
@@ -644,7 +705,10 @@ fn resolve<'py>(
         snap,
         run: run(threads),
     };
-    let mut out = py.detach(move || ops::resolve(&m, &opts)).map_err(py_err)?;
+    let size = m.triangles().len();
+    let run = opts.run.clone();
+    let mut out =
+        interruptible(py, &run, size, move || ops::resolve(&m, &opts))?.map_err(py_err)?;
     let report = json(&py.detach(|| out.report()))?;
     let parent = PyArray1::from_vec(py, std::mem::take(&mut out.parent));
     let (v, f) = arrays(py, out.mesh)?;

@@ -538,3 +538,44 @@ def test_envelopes_of_the_folded_kirra_terrain():
         assert plan.min() > -1e-9
     with pytest.raises(ValueError, match="closed"):
         meshbool.envelope(meshbool.box([0, 0, 0], [1, 1, 1]))
+
+
+def grid_sphere(center, n):
+    """A closed UV sphere of radius 1 with 2n meridians and n bands (4n(n - 1)
+    triangles), built with numpy."""
+    i, j = np.meshgrid(np.arange(1, n), np.arange(2 * n), indexing="ij")
+    theta, phi = np.pi * i / n, np.pi * j / n
+    ring = np.stack([np.sin(theta) * np.cos(phi), np.sin(theta) * np.sin(phi), np.cos(theta)], -1)
+    verts = np.vstack([[[0, 0, 1], [0, 0, -1]], ring.reshape(-1, 3)]) + np.asarray(center, float)
+    at = lambda i, j: 2 + (i - 1) * 2 * n + j % (2 * n)  # noqa: E731
+    j = np.arange(2 * n)
+    faces = [np.stack([np.zeros_like(j), at(1, j), at(1, j + 1)], -1)]
+    faces.append(np.stack([np.ones_like(j), at(n - 1, j + 1), at(n - 1, j)], -1))
+    ii, jj = np.meshgrid(np.arange(1, n - 1), j, indexing="ij")
+    a, b, c, d = at(ii, jj), at(ii, jj + 1), at(ii + 1, jj), at(ii + 1, jj + 1)
+    faces.append(np.stack([a, c, b], -1).reshape(-1, 3))
+    faces.append(np.stack([b, c, d], -1).reshape(-1, 3))
+    return verts, np.vstack(faces).astype(np.uint32)
+
+
+def test_ctrl_c_stops_a_long_boolean_with_keyboard_interrupt():
+    """KeyboardInterrupt (Ctrl-C; here raised by interrupt_main from a timer) stops a
+    long boolean at the library's next stage instead of at its end; the next call works."""
+    import _thread
+    import threading
+    import time
+
+    a, b = grid_sphere([0, 0, 0], 400), grid_sphere([0.5, 0, 0], 400)
+    t0 = time.perf_counter()
+    assert meshbool.boolean(a, b, "union").is_closed
+    full = time.perf_counter() - t0
+    timer = threading.Timer(0.2 * full, _thread.interrupt_main)
+    t0 = time.perf_counter()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        meshbool.boolean(a, b, "union")
+    stopped = time.perf_counter() - t0
+    timer.join()
+    assert stopped < 0.8 * full, (stopped, full)
+    again = meshbool.boolean(grid_sphere([0, 0, 0], 12), grid_sphere([0.5, 0, 0], 12), "union")
+    assert again.is_closed

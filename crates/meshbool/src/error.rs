@@ -93,6 +93,10 @@ pub enum Error {
         /// Why.
         reason: String,
     },
+    /// The call was cancelled ([`crate::ops::Cancel`]) before it finished; it left no
+    /// result.
+    #[error("cancelled")]
+    Cancelled,
     /// Reading or writing a file failed; the message names the file, then the cause.
     #[error("{action} {}: {error}", path.display())]
     File {

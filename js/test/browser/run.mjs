@@ -2,7 +2,7 @@
 // page in headless Chromium (Debian's, through playwright-core), loads the Kirra terrain
 // as A and the cylinder as B, runs A − B, and checks the statistics shown against
 // booleanIndexed computed here in Node; then the STL download and the split-and-pick of
-// the same result; then the union of two generated spheres of a million triangles each,
+// the same result; then the union of two generated spheres of 998,000 triangles each,
 // during which the page must answer within 100 ms, cancelled. Any page error, console
 // error or failed request fails the test. Saves a screenshot of the A − B view.
 //
@@ -143,7 +143,7 @@ async function main() {
 		check("after split and pick");
 
 		// Responsive during a long boolean, and cancellable: two generated spheres of
-		// 1,001,112 triangles each, their union in the worker; while it runs the page
+		// 998,000 triangles each, their union in the worker; while it runs the page
 		// answers timers and an input event within 100 ms; Cancel stops it.
 		await page.click("#load-a-sphere");
 		await page.waitForSelector("#slot-a[data-loaded='sphere-a']");

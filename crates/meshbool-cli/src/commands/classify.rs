@@ -46,6 +46,7 @@ pub fn run(args: &Args) -> Result<()> {
         checks,
         run: ops::RunOptions {
             threads: args.flags.threads,
+            cancel: Some(super::cancel()),
             ..Default::default()
         },
     };

@@ -33,6 +33,7 @@ pub fn run(args: &Args) -> Result<()> {
     let opts = CutFillOptions {
         run: ops::RunOptions {
             threads: args.threads,
+            cancel: Some(super::cancel()),
             ..Default::default()
         },
     };

@@ -3,7 +3,10 @@
 //! the boolean operands' flags, the progress spinner and printing.
 
 use anyhow::Result;
-use meshbool::ops::{Checks, Progress, RunOptions};
+use std::sync::atomic::{AtomicU32, Ordering};
+use std::sync::OnceLock;
+
+use meshbool::ops::{Cancel, Checks, Progress, RunOptions};
 
 pub mod boolean;
 pub mod classify;
@@ -59,6 +62,27 @@ pub struct OperandFlags {
     pub timings: bool,
 }
 
+/// The command's cancellation flag: the first Ctrl-C sets it (the library stops at the
+/// next stage and writes nothing); a third ends the process at once.
+pub fn cancel() -> Cancel {
+    static CANCEL: OnceLock<Cancel> = OnceLock::new();
+    CANCEL.get_or_init(Cancel::new).clone()
+}
+
+/// Makes Ctrl-C cancel the command ([`cancel`]) instead of killing it mid-write. Where
+/// no handler can be installed, Ctrl-C keeps its default (the output files are written
+/// under temporary names and renamed when complete, so none is left half written).
+pub fn cancel_on_ctrl_c() {
+    let flag = cancel();
+    let presses = AtomicU32::new(0);
+    let _ = ctrlc::set_handler(move || {
+        if presses.fetch_add(1, Ordering::Relaxed) >= 2 {
+            std::process::exit(130);
+        }
+        flag.cancel();
+    });
+}
+
 impl OperandFlags {
     /// The checks the flags ask for.
     pub fn checks(&self) -> Checks {
@@ -72,12 +96,14 @@ impl OperandFlags {
         }
     }
 
-    /// Progress shown on `spinner` (the command runs in its thread pool as a whole).
+    /// Progress shown on `spinner` (the command runs in its thread pool as a whole),
+    /// cancelled by Ctrl-C ([`cancel`]).
     pub fn run(&self, spinner: &Spinner) -> RunOptions {
         let marker = spinner.0.clone();
         RunOptions {
             threads: None,
             progress: Some(Progress::new(move |s| marker.set_message(s.describe()))),
+            cancel: Some(cancel()),
         }
     }
 

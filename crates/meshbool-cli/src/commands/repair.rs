@@ -169,6 +169,7 @@ pub fn run(args: &Args) -> Result<()> {
     let run = RunOptions {
         threads: None,
         progress: Some(Progress::new(move |s| bar.set_message(s.describe()))),
+        cancel: Some(super::cancel()),
     };
     let out = ops::repair_with(&input, &config, &run)?;
     spinner.set_message("writing the result");

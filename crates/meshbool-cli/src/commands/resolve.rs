@@ -49,6 +49,7 @@ pub fn run(args: &Args) -> Result<()> {
     let run = RunOptions {
         threads: args.threads,
         progress: None,
+        cancel: Some(super::cancel()),
     };
     if let Some(side) = args.envelope {
         spinner.set_message("taking the envelope");

@@ -11,9 +11,12 @@ Numpy in, numpy out. A mesh is any of: a :class:`Mesh`, an object with ``.vertic
 >>> union.volume, union.is_closed
 (1.875, True)
 
-Every call releases the GIL while it works. Errors raise ``ValueError`` (bad geometry,
-arguments or file content) or ``OSError`` (files), with the library's message. The
-reports are the dicts the ``meshbool`` command line prints with ``--json``.
+Every call releases the GIL while it works, and Ctrl-C stops a long one (``boolean``,
+``boolean_many``, ``split``, ``resolve``, ``cutfill`` on 32k triangles or more): the
+library stops at its next stage and ``KeyboardInterrupt`` is raised. Errors raise
+``ValueError`` (bad geometry, arguments or file content) or ``OSError`` (files), with the
+library's message. The reports are the dicts the ``meshbool`` command line prints with
+``--json``.
 """
 
 from __future__ import annotations

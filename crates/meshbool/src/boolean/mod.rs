@@ -367,6 +367,10 @@ pub struct PipelineOptions<'p> {
     /// Called with each stage as it begins, on the thread running the call (a worker of
     /// the pool, or the calling thread for a small call: [`crate::ops::SERIAL_BELOW`]).
     pub progress: Option<&'p (dyn Fn(Stage) + Sync)>,
+    /// Set when the call is cancelled ([`crate::ops::Cancel`]): the pipeline stops at its
+    /// next stage with nothing computed (an empty split, an empty result), which the
+    /// caller discards.
+    pub cancel: Option<&'p std::sync::atomic::AtomicBool>,
     /// Candidate pairs from the grid from this many triangles in both meshes together
     /// ([`crate::intersect::GRID_FROM`]), below from two trees.
     pub grid_from: usize,
@@ -405,6 +409,7 @@ impl Default for PipelineOptions<'_> {
         PipelineOptions {
             split_everywhere: false,
             progress: None,
+            cancel: None,
             grid_from: crate::intersect::GRID_FROM,
             exact_winding_up_to: crate::classify::EXACT_WINDING_UP_TO,
             keep_nonmanifold: false,
@@ -416,10 +421,18 @@ impl Default for PipelineOptions<'_> {
 }
 
 impl PipelineOptions<'_> {
+    /// Tells the progress callback that `stage` begins (not once the call is cancelled:
+    /// what runs after that is discarded).
     fn stage(&self, stage: Stage) {
-        if let Some(p) = self.progress {
+        if let Some(p) = self.progress.filter(|_| !self.cancelled()) {
             p(stage);
         }
+    }
+
+    /// Whether the call was cancelled.
+    fn cancelled(&self) -> bool {
+        self.cancel
+            .is_some_and(|c| c.load(std::sync::atomic::Ordering::Relaxed))
     }
 }
 
@@ -432,9 +445,24 @@ pub fn split(a: &Mesh, b: &Mesh, opts: &PipelineOptions) -> Split {
 
 /// [`split`] on the thread it is called on.
 fn split_in_pool(a: &Mesh, b: &Mesh, opts: &PipelineOptions) -> Split {
+    // Cancelled, the call stops at the next stage with nothing computed (the caller
+    // discards what it gets).
+    let nothing = || Split {
+        seam: Seam::default(),
+        a: Arranged::default(),
+        b: Arranged::default(),
+        class_a: Classified::default(),
+        class_b: Classified::default(),
+    };
     opts.stage(Stage::Intersect);
+    if opts.cancelled() {
+        return nothing();
+    }
     let seam = intersect_with(a, b, opts.grid_from, opts.kept);
     opts.stage(Stage::Arrange);
+    if opts.cancelled() {
+        return nothing();
+    }
     let (arr_a, arr_b) = crate::par::join(
         || arrange(a, &seam, Source::A),
         || arrange(b, &seam, Source::B),
@@ -459,6 +487,9 @@ fn split_in_pool(a: &Mesh, b: &Mesh, opts: &PipelineOptions) -> Split {
         seam: Some((&seam.points, Source::B)),
     };
     opts.stage(Stage::Classify);
+    if opts.cancelled() {
+        return nothing();
+    }
     let votes = match opts.first_votes {
         true => Votes::FirstDeciding,
         false => Votes::All,

@@ -258,8 +258,8 @@ pub fn boolean<'a>(
             Some(r) => r,
             None => crate::boolean::boolean(a.mesh(), b.mesh(), op, &pipeline),
         };
-        let snap = if opts.snap > 0.0 {
-            opts.run.stage(Stage::Snap);
+        let snap = if opts.snap > 0.0 && !opts.run.cancelled() {
+            opts.run.report(Stage::Snap);
             // The tolerance was checked above: never an error here.
             crate::boolean::snap_result(&mut r, opts.snap).ok()
         } else {
@@ -394,7 +394,7 @@ pub fn boolean_many<'a>(
     let triangles = inputs.iter().map(|i| i.mesh().triangles.len()).sum();
     with_threads_for(opts.run.threads, triangles, || {
         if inputs.iter().any(|i| matches!(i, Input::Mesh(_))) {
-            opts.run.stage(Stage::Check);
+            opts.run.stage(Stage::Check)?;
         }
         let operands: Vec<_> = inputs
             .par_iter()
@@ -403,7 +403,7 @@ pub fn boolean_many<'a>(
             .map(|(k, i)| i.operand(&(k + 1).to_string(), &opts.checks))
             .collect::<Result<_>>()?;
         let start = Instant::now();
-        opts.run.stage(Stage::Intersect);
+        opts.run.stage(Stage::Intersect)?;
         let mut offsets = Vec::with_capacity(operands.len() + 1);
         offsets.push(0u32);
         for o in &operands {
@@ -434,6 +434,7 @@ pub fn boolean_many<'a>(
             None
         };
         let r = in_one.unwrap_or_else(|| reduce(parts, op, &pipeline));
+        opts.run.check()?;
         let input_of = |g: u32| {
             let k = offsets.partition_point(|&o| o <= g) - 1;
             [k as u32, g - offsets[k]]
@@ -443,7 +444,7 @@ pub fn boolean_many<'a>(
         let mut snap = None;
         if opts.snap > 0.0 {
             // Labels by input: no edge between two inputs' parts is flipped.
-            opts.run.stage(Stage::Snap);
+            opts.run.stage(Stage::Snap)?;
             let labels: Vec<u32> = provenance.iter().map(|p| p[0]).collect();
             let opts = SnapOptions {
                 tolerance: opts.snap,

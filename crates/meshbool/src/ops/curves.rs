@@ -230,7 +230,7 @@ pub fn curves<'a>(
         return out;
     }
     let run = |a: &Operand, b: &Operand| {
-        opts.run.stage(Stage::Intersect);
+        opts.run.report(Stage::Intersect);
         let seam = intersect(a.mesh(), b.mesh());
         let lines = opts.polylines(&seam);
         (seam, lines, [a.name().to_string(), b.name().to_string()])
@@ -258,7 +258,7 @@ pub fn self_curves<'a>(mesh: impl Into<Input<'a>>, opts: &CurvesOptions) -> Resu
     with_threads(opts.run.threads, || {
         let operand = input.operand("mesh", &Checks::NONE)?;
         let start = Instant::now();
-        opts.run.stage(Stage::Intersect);
+        opts.run.stage(Stage::Intersect)?;
         let m = operand.mesh();
         let seam = self_seam(m, &self_intersections(m));
         let (polylines, away) = opts.polylines(&seam);

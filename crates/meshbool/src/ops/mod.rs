@@ -116,8 +116,32 @@ impl fmt::Debug for Progress {
     }
 }
 
-/// How an operation runs: worker threads and progress reporting. Shared by the options of
-/// every command.
+/// A request to stop a running call, shared between the call and whoever may cancel it
+/// (another thread, a signal handler, a progress callback): the call checks it as each
+/// stage begins (and skips the intersection when it is set before that starts) and then
+/// returns [`Error::Cancelled`], leaving nothing half done behind. Clones share the flag.
+#[derive(Clone, Debug, Default)]
+pub struct Cancel(Arc<std::sync::atomic::AtomicBool>);
+
+impl Cancel {
+    /// A flag not set.
+    pub fn new() -> Self {
+        Cancel::default()
+    }
+
+    /// Asks the calls that hold this flag to stop.
+    pub fn cancel(&self) {
+        self.0.store(true, std::sync::atomic::Ordering::Relaxed);
+    }
+
+    /// Whether [`Cancel::cancel`] was called.
+    pub fn is_cancelled(&self) -> bool {
+        self.0.load(std::sync::atomic::Ordering::Relaxed)
+    }
+}
+
+/// How an operation runs: worker threads, progress reporting and cancellation. Shared by
+/// the options of every command.
 #[derive(Clone, Debug, Default)]
 pub struct RunOptions {
     /// Worker threads (`None` or `Some(0)`: rayon's current pool, by default one thread
@@ -128,22 +152,49 @@ pub struct RunOptions {
     pub threads: Option<usize>,
     /// Called as each stage begins.
     pub progress: Option<Progress>,
+    /// Checked as each stage begins: once set, the call returns [`Error::Cancelled`].
+    pub cancel: Option<Cancel>,
 }
 
 impl RunOptions {
     /// The most worker threads a call may ask for.
     pub const MAX_THREADS: usize = 1024;
 
-    fn stage(&self, stage: Stage) {
-        if let Some(p) = &self.progress {
+    /// Begins `stage`: [`Error::Cancelled`] when the call was cancelled, else the
+    /// progress callback is told.
+    fn stage(&self, stage: Stage) -> Result<()> {
+        self.check()?;
+        self.report(stage);
+        Ok(())
+    }
+
+    /// Tells the progress callback that `stage` begins (where the caller cannot stop:
+    /// the next [`RunOptions::check`] does), unless the call was cancelled.
+    fn report(&self, stage: Stage) {
+        if let Some(p) = self.progress.as_ref().filter(|_| !self.cancelled()) {
             (p.0)(stage);
         }
     }
 
-    /// The pipeline's options: this progress callback, the default crossovers.
+    /// [`Error::Cancelled`] when the call was cancelled.
+    fn check(&self) -> Result<()> {
+        match &self.cancel {
+            Some(c) if c.is_cancelled() => Err(Error::Cancelled),
+            _ => Ok(()),
+        }
+    }
+
+    /// Whether the call was cancelled.
+    fn cancelled(&self) -> bool {
+        self.cancel.as_ref().is_some_and(Cancel::is_cancelled)
+    }
+
+    /// The pipeline's options: this progress callback and cancellation flag, the default
+    /// crossovers.
     fn pipeline(&self) -> crate::boolean::PipelineOptions<'_> {
         crate::boolean::PipelineOptions {
             progress: self.progress.as_ref().map(|p| &*p.0 as _),
+            cancel: self.cancel.as_ref().map(|c| &*c.0),
             ..Default::default()
         }
     }

@@ -897,12 +897,15 @@ impl<'a> Input<'a> {
         let triangles = a.mesh().triangles.len() + b.mesh().triangles.len();
         with_threads_for(run.threads, triangles, || {
             if matches!(a, Input::Mesh(_)) || matches!(b, Input::Mesh(_)) {
-                run.stage(Stage::Check);
+                run.stage(Stage::Check)?;
             }
             let (a, b) = par::join(|| a.operand("A", checks), || b.operand("B", checks));
             let (a, b) = (a?, b?);
+            run.check()?;
             let start = Instant::now();
             let r = f(&a, &b);
+            // A call cancelled on the way leaves no result.
+            run.check()?;
             Ok((r, start.elapsed().as_secs_f64()))
         })?
     }

@@ -211,7 +211,9 @@ pub fn repair_with<'a>(
     }
     with_threads(run.threads, || {
         let input = welded(input)?;
-        let (mesh, repair) = repair::repair_with_progress(input.mesh(), config, &|s| run.stage(s))?;
+        let (mesh, repair) =
+            repair::repair_with_progress(input.mesh(), config, &|s| run.report(s))?;
+        run.check()?;
         Ok(RepairOutput { mesh, repair })
     })?
 }
@@ -311,9 +313,9 @@ pub fn resolve<'a>(mesh: impl Into<Input<'a>>, opts: &ResolveOptions) -> Result<
     with_threads(opts.run.threads, || {
         let start = web_time::Instant::now();
         let input = welded(input)?;
-        opts.run.stage(Stage::Check);
+        opts.run.stage(Stage::Check)?;
         let pairs = self_intersections(input.mesh());
-        opts.run.stage(Stage::Intersect);
+        opts.run.stage(Stage::Intersect)?;
         let pipeline = PipelineOptions {
             keep_nonmanifold: opts.keep_nonmanifold,
             ..opts.run.pipeline()
@@ -324,8 +326,9 @@ pub fn resolve<'a>(mesh: impl Into<Input<'a>>, opts: &ResolveOptions) -> Result<
                 reason,
             },
         )?;
+        opts.run.check()?;
         let snap = (opts.snap > 0.0).then(|| {
-            opts.run.stage(Stage::Snap);
+            opts.run.report(Stage::Snap);
             let snap = SnapOptions {
                 tolerance: opts.snap,
                 ..SnapOptions::default()

@@ -157,15 +157,15 @@ pub fn split<'a>(
             ..opts.run.pipeline()
         };
         let s = crate::boolean::split(a.mesh(), b.mesh(), &pipeline);
-        let (exact, snap, cleanup) = if opts.snap > 0.0 {
-            opts.run.stage(Stage::Snap);
+        let (exact, snap, cleanup) = if opts.snap > 0.0 && !opts.run.cancelled() {
+            opts.run.report(Stage::Snap);
             // The tolerance was checked above: never an error here.
             match crate::boolean::snap_split(&s, opts.snap) {
                 Ok((groups, report)) => (groups, Some(report), CleanupReport::default()),
                 Err(_) => (Vec::new(), None, CleanupReport::default()),
             }
         } else {
-            opts.run.stage(Stage::Merge);
+            opts.run.report(Stage::Merge);
             let (groups, cleanup) = s.groups(a.mesh(), b.mesh(), !opts.keep_seam_points);
             (groups, None, cleanup)
         };

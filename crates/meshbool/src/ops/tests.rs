@@ -331,6 +331,7 @@ fn stage_threads(
                 let here = (std::thread::current().id(), rayon::current_thread_index());
                 log.lock().unwrap().push(here);
             })),
+            cancel: None,
         },
         ..BooleanOptions::default()
     };
@@ -450,6 +451,7 @@ fn repair_progress_reports_the_steps_that_run_in_order() {
         let run = RunOptions {
             threads: Some(1),
             progress: Some(Progress::new(move |s| log.lock().unwrap().push(s))),
+            cancel: None,
         };
         let out = repair_with(&open_box, config, &run).unwrap();
         let plain = repair(&open_box, config).unwrap();
