@@ -96,7 +96,7 @@ function opName(op) {
 function checkOptions(opts) {
 	const o = opts || {};
 	const out = {};
-	for (const key of ["force", "selfCheck", "resolve", "orient", "keepNonmanifold", "keepSeamPoints", "withCoplanar"]) {
+	for (const key of ["force", "selfCheck", "resolve", "orient", "keepNonmanifold", "keepSeamPoints", "withCoplanar", "sliverGuard"]) {
 		if (o[key] !== undefined) {
 			if (typeof o[key] !== "boolean") throw new Error(`meshbool: option ${key} must be true or false`);
 			out[key] = o[key];
@@ -1230,7 +1230,8 @@ function bmsSnap(o, A, B) {
  * - The split is snapped at `tolerance` (see below; the report's `splitReport.snap` says
  *   what moved): crossing points closer than that are merged, needles removed, where that
  *   makes no defect. Default 0.001 × the mean edge (the reference's pool tolerance);
- *   `tolerance: 0` is the exact split.
+ *   `tolerance: 0` is the exact split. A large triangle cut by a dense seam gets points
+ *   inside it (`sliverGuard`, on by default here) so that its pieces are not needles.
  * - `megaSoup` is every piece `{v0, v1, v2, mesh: "A" | "B", origIdx}` with corners from
  *   `pool` (`getAll()`: vertices `{x, y, z, id}`); `segments` (`{p0, p1, idxA, idxB}`) are
  *   the exact crossing segments with their ends on the pool's vertices (after the snap:
@@ -1255,7 +1256,7 @@ export function bmsBooleanOp(soupA, soupB, op, options) {
 	const [A, B] = operands(soupA, soupB, o);
 	const census = nonManifoldEdgeCount(A) > 0 || nonManifoldEdgeCount(B) > 0;
 	const snap = bmsSnap(o, A, B);
-	const splitOptions = { ...o, snap };
+	const splitOptions = { ...o, snap, sliverGuard: o.sliverGuard !== false };
 	delete splitOptions.tolerance;
 	if (census && o.force === undefined) splitOptions.force = true;
 	const raw = call("split", A.positions, A.index, B.positions, B.index, checkOptions(splitOptions));
@@ -1331,7 +1332,9 @@ export function bmsIntersect(soupA, soupB, options) {
  * (from `bmsIntersect`, so seam points carry the segments' ids; a fresh pool without
  * it). Exact: every piece lies wholly on one side of the other mesh. With `soupB` empty,
  * `soupA` cut where it crosses itself (its self-arrangement, as for `bmsSelfIntersect`'s
- * segments). Options as for the library's split (`snap`, `force`).
+ * segments). Options as for the library's split (`snap`, `force`, and `sliverGuard`, on
+ * by default here: a large triangle cut by a dense seam gets points inside it, so that
+ * its pieces are not needles).
  */
 export function bmsSplit(soupA, soupB, isect, options) {
 	const A = soupToArrays(soupA, "soupA"), B = soupToArrays(soupB || [], "soupB");
@@ -1341,7 +1344,9 @@ export function bmsSplit(soupA, soupB, isect, options) {
 		const pool = isect && isect.pool && typeof isect.pool.getOrCreate === "function" ? isect.pool : createVertexPool(0);
 		return selfPieces(A, pool);
 	}
-	const raw = call("split", A.positions, A.index, B.positions, B.index, checkOptions(options));
+	const o = { ...(options || {}) };
+	if (o.sliverGuard === undefined) o.sliverGuard = true;
+	const raw = call("split", A.positions, A.index, B.positions, B.index, checkOptions(o));
 	const pool = isect && isect.pool && typeof isect.pool.getOrCreate === "function" ? isect.pool : createVertexPool(0);
 	return poolOfSplit(raw.groups, pool).pieces.map((t) => {
 		const piece = { v0: t.v0, v1: t.v1, v2: t.v2, mesh: t.mesh, origIdx: t.origIdx };

@@ -468,6 +468,7 @@ fn split(
         merge_small,
         snap,
         keep_seam_points,
+        sliver_guard: false,
         run: run(threads),
     };
     let size = a.triangles().len() + b.triangles().len();
@@ -512,6 +513,7 @@ fn boolean_many<'py>(
         keep_seam_points,
         snap,
         one_arrangement,
+        sliver_guard: false,
         run: run(threads),
     };
     let size = meshes.iter().map(|m| m.triangles().len()).sum();

@@ -207,7 +207,8 @@ fn provenance_arrays(out: Out, prov: &[meshbool::Provenance]) -> Out {
 /// input triangle it is part of; `flipped[t]`: 1 when reversed). `op`: `union`,
 /// `intersection` (`intersect`), `difference` (`subtract`), `reverse-difference`.
 /// Options (JSON): `force`, `selfCheck`, `resolve`, `orient`, `keepNonmanifold`, `snap`
-/// (a tolerance, [`BooleanOptions::snap`]), `keepSeamPoints`
+/// (a tolerance, [`BooleanOptions::snap`]), `sliverGuard`
+/// ([`BooleanOptions::sliver_guard`]), `keepSeamPoints`
 /// ([`BooleanOptions::keep_seam_points`]; **true** by default here, unlike the library:
 /// the reference library's contract is that a boolean equals its merged split groups,
 /// which keep every seam point; `false` turns the exact clean-up on).
@@ -228,6 +229,7 @@ pub fn boolean(
         keep_nonmanifold: flag(&o, "keepNonmanifold", false)?,
         keep_seam_points: flag(&o, "keepSeamPoints", true)?,
         snap: number(&o, "snap")?.unwrap_or(0.0),
+        sliver_guard: flag(&o, "sliverGuard", false)?,
         run: run_options(),
         ..BooleanOptions::default()
     };
@@ -254,6 +256,7 @@ pub fn split(
         checks: checks(&o)?,
         snap: number(&o, "snap")?.unwrap_or(0.0),
         keep_seam_points: flag(&o, "keepSeamPoints", true)?,
+        sliver_guard: flag(&o, "sliverGuard", false)?,
         run: run_options(),
         ..SplitOptions::default()
     };

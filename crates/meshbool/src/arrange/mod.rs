@@ -14,6 +14,7 @@ use crate::intersect::{Feature, Seam, Source};
 use crate::kernel::{orient2d_inputs, robust_safe, Enclosure, Point, Prepared, Sign, Triangle};
 use crate::Mesh;
 
+mod guard;
 mod local;
 mod own;
 
@@ -128,13 +129,42 @@ impl Arranged {
 /// Cuts `mesh` (side `side` of `seam`) along the seam. `mesh` must be the mesh the seam was
 /// computed from on that side.
 pub fn arrange(mesh: &Mesh, seam: &Seam, side: Source) -> Arranged {
-    let points = index_seam_points(mesh, seam, side);
+    arrange_with(mesh, seam, side, false)
+}
+
+/// [`arrange`], with the sliver guard where `sliver_guard` asks for it: a large triangle
+/// cut by a dense seam (at least [`guard::GUARD_FROM_POINTS`] seam points) gets a lattice
+/// of points inside it, clear of the seam, so that its pieces are not needles from its
+/// corners (see the `guard` module). The added points are vertices of this mesh only,
+/// inside one face each, after the seam points.
+pub fn arrange_with(mesh: &Mesh, seam: &Seam, side: Source, sliver_guard: bool) -> Arranged {
+    let mut points = index_seam_points(mesh, seam, side);
     let seam_edges = seam_edges(seam, &points.seam_vertex);
     let constraints = constraints(seam, side, &seam_edges);
-    let near = seam.near.as_ref().map(|n| match side {
-        Source::A => &n[0][..],
-        Source::B => &n[1][..],
-    });
+    let mut edges_guarded = false;
+    if sliver_guard {
+        // Triangles coplanar with the other mesh keep the pieces the other's match.
+        let coplanar: rustc_hash::FxHashSet<u32> = seam
+            .sources
+            .iter()
+            .filter(|s| seam.segments[s.segment as usize].coplanar)
+            .map(|s| match side {
+                Source::A => s.tri_a,
+                Source::B => s.tri_b,
+            })
+            .collect();
+        edges_guarded = guard::add_interior_points(mesh, &mut points, &constraints, &coplanar);
+    }
+    // Points the guard put on edges reach triangles the seam's candidates may not name
+    // (a guarded triangle's neighbour): then every triangle is looked at.
+    let near = seam
+        .near
+        .as_ref()
+        .filter(|_| !edges_guarded)
+        .map(|n| match side {
+            Source::A => &n[0][..],
+            Source::B => &n[1][..],
+        });
     let cut = cut_triangles(mesh, &points, &constraints, near);
     let results: Vec<(u32, CutResult)> = cut
         .par_iter()

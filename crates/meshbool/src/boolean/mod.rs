@@ -27,7 +27,7 @@ use crate::par::Grain;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::arrange::{arrange, Arranged, FailReason};
+use crate::arrange::{arrange_with, Arranged, FailReason};
 use crate::classify::{classify_with, Class, Classified, CutMesh, Votes};
 use crate::edges::SeamTopology;
 pub use crate::intersect::Source;
@@ -396,6 +396,10 @@ pub struct PipelineOptions<'p> {
     /// tree of its triangles near the other mesh. Each must be kept for the very mesh it
     /// is given with.
     pub kept: [Option<&'p Keeps>; 2],
+    /// Interior points for a large triangle cut by a dense seam
+    /// ([`crate::arrange::arrange_with`]): its pieces are not needles from its corners.
+    /// Off by default (it adds vertices inside flat faces).
+    pub sliver_guard: bool,
     /// Classify each patch by its first deciding seam vote against a closed other mesh
     /// ([`Votes::FirstDeciding`]) instead of asking every vote ([`Votes::All`]): for
     /// operands that are valid solids, checked or known to be clean, where all of a
@@ -416,6 +420,7 @@ impl Default for PipelineOptions<'_> {
             cleanup: true,
             kept: [None, None],
             first_votes: false,
+            sliver_guard: false,
         }
     }
 }
@@ -464,8 +469,8 @@ fn split_in_pool(a: &Mesh, b: &Mesh, opts: &PipelineOptions) -> Split {
         return nothing();
     }
     let (arr_a, arr_b) = crate::par::join(
-        || arrange(a, &seam, Source::A),
-        || arrange(b, &seam, Source::B),
+        || arrange_with(a, &seam, Source::A, opts.sliver_guard),
+        || arrange_with(b, &seam, Source::B, opts.sliver_guard),
     );
     // Closedness picks the winding-number threshold; the arranged mesh is closed exactly
     // when its input is (cutting keeps every edge's use count).

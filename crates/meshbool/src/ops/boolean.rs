@@ -48,6 +48,10 @@ pub struct BooleanOptions {
     /// buries too). Inputs it does not apply to go through the tree. Ignored by
     /// [`boolean`].
     pub one_arrangement: bool,
+    /// Interior points for large triangles cut by a dense seam (a floor crossed by a
+    /// fine fence), so that their pieces are not needles from their corners: flat faces
+    /// then hold extra vertices. Off by default ([`crate::arrange::arrange_with`]).
+    pub sliver_guard: bool,
     /// Threads and progress.
     pub run: RunOptions,
 }
@@ -234,6 +238,7 @@ pub fn boolean<'a>(
             split_everywhere: a.glued() || b.glued(),
             kept: [Some(a.keeps()), Some(b.keeps())],
             first_votes: a.clean() && b.clean(),
+            sliver_guard: opts.sliver_guard,
             ..opts.run.pipeline()
         };
         // An operand resolved at the door is resolved again together with the boolean,

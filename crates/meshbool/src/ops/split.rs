@@ -36,6 +36,9 @@ pub struct SplitOptions {
     /// rounding made flip within their group; no group changes shape and the groups stay
     /// conforming. As a boolean's [`super::BooleanOptions::keep_seam_points`].
     pub keep_seam_points: bool,
+    /// Interior points for large triangles cut by a dense seam, as a boolean's
+    /// [`super::BooleanOptions::sliver_guard`].
+    pub sliver_guard: bool,
     /// Threads and progress.
     pub run: RunOptions,
 }
@@ -154,6 +157,7 @@ pub fn split<'a>(
         let pipeline = PipelineOptions {
             kept: [Some(a.keeps()), Some(b.keeps())],
             first_votes: a.clean() && b.clean(),
+            sliver_guard: opts.sliver_guard,
             ..opts.run.pipeline()
         };
         let s = crate::boolean::split(a.mesh(), b.mesh(), &pipeline);
