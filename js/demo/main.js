@@ -244,9 +244,12 @@ function sphere(n, cx) {
 	return { positions, index };
 }
 
-/** Puts a generated sphere into a slot ("a": centred at the origin, "b": moved by 0.5). */
-function loadSphere(slot) {
-	const mesh = sphere(500, slot === "a" ? 0 : 0.5);
+/**
+ * Puts a generated sphere of `n` bands (default 500: 998,000 triangles) into a slot
+ * ("a": centred at the origin, "b": moved by 0.5).
+ */
+function loadSphere(slot, n = 500) {
+	const mesh = sphere(n, slot === "a" ? 0 : 0.5);
 	const name = `sphere-${slot}`;
 	state[slot] = { name, mesh };
 	$(`info-${slot}`).textContent = `${name}: ${mesh.index.length / 3} triangles, closed (generated)`;
@@ -455,7 +458,7 @@ $("picks").hidden = $("op").value !== "split";
 $("version").textContent = `meshbool ${version}, three.js r${THREE.REVISION}`;
 
 // For tests and the console: the page's state and a rendering check.
-window.meshboolDemo = { state, colourCount: () => (viewer ? viewer.colourCount() : 0), inputEvents: 0 };
+window.meshboolDemo = { state, colourCount: () => (viewer ? viewer.colourCount() : 0), inputEvents: 0, loadSphere };
 // How long each input event waited before its handler ran (the page's responsiveness).
 $("show-inputs").addEventListener("change", (e) => {
 	window.meshboolDemo.inputEvents++;
