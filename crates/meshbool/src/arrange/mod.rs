@@ -133,10 +133,11 @@ pub fn arrange(mesh: &Mesh, seam: &Seam, side: Source) -> Arranged {
 }
 
 /// [`arrange`], with the sliver guard where `sliver_guard` asks for it: a large triangle
-/// cut by a dense seam (at least [`guard::GUARD_FROM_POINTS`] seam points) gets a lattice
-/// of points inside it, clear of the seam, so that its pieces are not needles from its
-/// corners (see the `guard` module). The added points are vertices of this mesh only,
-/// inside one face each, after the seam points.
+/// cut by a dense seam (at least 16 seam points, its inradius at least 4 of its seam
+/// segments) gets points inside it and along its edges, clear of the seam, so that its
+/// pieces are not needles from its corners. The added points are vertices of this mesh
+/// only (inside one face, or on an edge and then in both of its triangles), after the
+/// seam points.
 pub fn arrange_with(mesh: &Mesh, seam: &Seam, side: Source, sliver_guard: bool) -> Arranged {
     let mut points = index_seam_points(mesh, seam, side);
     let seam_edges = seam_edges(seam, &points.seam_vertex);
