@@ -1,6 +1,8 @@
-// meshbool for JavaScript: the API of the trimesh-boolean library (0.5.6, and the newer
-// exports its users call), computed by meshbool's exact pipeline in WebAssembly, plus a
-// typed-array fast path (`*Indexed` functions, `readMesh`, `writeMesh`).
+// meshbool for JavaScript: the API of the trimesh-boolean library (every export of its
+// 0.7.5 index; the BMS stages in bms.js and stages.js, solids in solids.js, finishing in
+// finish.js), computed by meshbool's exact pipeline in WebAssembly, plus a typed-array
+// fast path (`*Indexed` functions, `readMesh`, `writeMesh`). The same in a Web Worker:
+// async.js (`meshbool/async`).
 //
 // The WebAssembly module is instantiated when this module is imported (top-level await):
 // `import * as mb from "meshbool"` resolves once it is ready, and every call is synchronous
