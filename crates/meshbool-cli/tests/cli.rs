@@ -2507,3 +2507,29 @@ fn ctrl_c_cancels_a_boolean_and_writes_nothing() {
     left.sort();
     assert_eq!(left, ["a.ply", "b.ply"], "nothing but the inputs");
 }
+
+/// A thread count out of range is a usage error (exit 2, clap's message), found before
+/// any file is read; in range it runs.
+#[test]
+fn a_thread_count_out_of_range_is_a_usage_error() {
+    let out = tmp("threads.stl");
+    let (a, b) = (data("kirra_cylinder.obj"), data("kirra_cup.obj"));
+    let (a, b, o) = (
+        a.to_str().unwrap(),
+        b.to_str().unwrap(),
+        out.to_str().unwrap(),
+    );
+    for args in [
+        vec!["union", a, b, "-o", o, "--threads", "5000"],
+        vec!["resolve", a, "-o", o, "--threads", "1025"],
+        vec!["union", a, b, "-o", o, "--threads", "many"],
+    ] {
+        let r = meshbool(&args);
+        assert_eq!(r.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert!(err.contains("--threads"), "{err}");
+        assert!(!out.exists());
+    }
+    let r = meshbool(&["union", a, b, "-o", o, "--threads", "1024"]);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+}

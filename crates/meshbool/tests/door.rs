@@ -207,3 +207,39 @@ fn corners_that_touch_at_rounding_level_are_shared_not_crossing() {
     let err = ops::boolean(&sheet, &b, Op::Intersection, &exact_opts).unwrap_err();
     assert!(err.to_string().contains("self-intersecting"), "{err}");
 }
+
+/// A non-manifold operand that cannot be resolved (an open sheet with a fin along one of
+/// its edges) is refused with the count and where the first such edge is.
+#[test]
+fn a_non_manifold_refusal_says_where() {
+    let sheet = Mesh::new(
+        vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.5, 0.5, 1.0],
+        ],
+        vec![[0, 1, 2], [0, 2, 3], [0, 2, 4]],
+    )
+    .unwrap();
+    let b = Mesh::cuboid([0.2, 0.2, -1.0], [0.8, 0.8, 1.0]);
+    let err = ops::boolean(&sheet, &b, Op::Union, &BooleanOptions::default()).unwrap_err();
+    let text = err.to_string();
+    assert!(
+        text.contains("1 non-manifold edges (the first near [0.5, 0.5, 0.0])"),
+        "{text}"
+    );
+    let forced = BooleanOptions {
+        checks: meshbool::ops::Checks {
+            force: true,
+            ..meshbool::ops::Checks::default()
+        },
+        ..BooleanOptions::default()
+    };
+    let out = ops::boolean(&sheet, &b, Op::Union, &forced).unwrap();
+    assert_eq!(
+        out.report().operands[0].non_manifold_near,
+        Some([0.5, 0.5, 0.0])
+    );
+}

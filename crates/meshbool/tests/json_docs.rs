@@ -152,6 +152,27 @@ fn samples() -> BTreeMap<&'static str, Vec<Value>> {
     s.entry("boolean").or_default().push(json(&d.report()));
     // Shared corners one unit in the last place apart: merged at the door.
     let noisy = common::cube_off_by_an_ulp();
+    // A non-manifold open sheet taken as given: where its first such edge is.
+    let finned = Mesh::new(
+        vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.5, 0.5, 1.0],
+        ],
+        vec![[0, 1, 2], [0, 2, 3], [0, 2, 4]],
+    )
+    .unwrap();
+    let forced = BooleanOptions {
+        checks: ops::Checks {
+            force: true,
+            ..ops::Checks::default()
+        },
+        ..BooleanOptions::default()
+    };
+    let fin = ops::boolean(&finned, &other, Op::Union, &forced).unwrap();
+    s.entry("boolean").or_default().push(json(&fin.report()));
     let merged = ops::boolean(&noisy, &other, Op::Union, &BooleanOptions::default()).unwrap();
     assert!(merged.report().operands[0].rounding_noise.is_some());
     s.entry("boolean").or_default().push(json(&merged.report()));

@@ -21,8 +21,8 @@ pub struct Args {
     /// Print a JSON report on stdout.
     #[arg(long)]
     json: bool,
-    /// Worker threads (default: all cores).
-    #[arg(long)]
+    /// Worker threads (default: all cores; at most 1024).
+    #[arg(long, value_parser = super::thread_count)]
     threads: Option<usize>,
 }
 

@@ -52,8 +52,8 @@ pub struct OperandFlags {
     /// precision the file stores) into one vertex.
     #[arg(long)]
     pub exact_positions: bool,
-    /// Worker threads (default: all cores).
-    #[arg(long)]
+    /// Worker threads (default: all cores; at most 1024).
+    #[arg(long, value_parser = thread_count)]
     pub threads: Option<usize>,
     /// Print on standard error how long each stage took (reading, each stage of the
     /// boolean, writing while the result is measured), in seconds; for the commands that
@@ -202,6 +202,21 @@ fn existing_parent(path: &std::path::Path) -> Result<(), String> {
         }
         _ => Ok(()),
     }
+}
+
+/// Parses a worker thread count: 0 (all cores) to [`RunOptions::MAX_THREADS`]; out of
+/// range is a usage error (exit 2), before any work.
+pub fn thread_count(s: &str) -> Result<usize, String> {
+    let n: usize = s
+        .parse()
+        .map_err(|_| format!("{s:?} is not a number of threads"))?;
+    if n > RunOptions::MAX_THREADS {
+        return Err(format!(
+            "at most {} threads, got {n}",
+            RunOptions::MAX_THREADS
+        ));
+    }
+    Ok(n)
 }
 
 /// Parses an output mesh path, refusing (a usage error, before any work) one whose format

@@ -34,8 +34,8 @@ pub struct Args {
     envelope: Option<Envelope>,
     #[command(flatten)]
     snap: super::Snap,
-    /// Worker threads (default: all cores).
-    #[arg(long)]
+    /// Worker threads (default: all cores; at most 1024).
+    #[arg(long, value_parser = super::thread_count)]
     threads: Option<usize>,
     /// Print a JSON report on stdout.
     #[arg(long)]

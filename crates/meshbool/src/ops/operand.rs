@@ -125,6 +125,10 @@ pub struct OperandReport {
     /// Edges used by more than two triangles in the input; `None`: not checked. Not a
     /// problem when the operand was resolved ([`OperandReport::resolved`] says how).
     pub non_manifold_edges: Option<usize>,
+    /// The midpoint of the first edge of more than two triangles (in the order of the
+    /// vertices), to find them, when there are any and the operand was not resolved.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub non_manifold_near: Option<[f64; 3]>,
     /// Self-intersecting triangle pairs; `None`: not checked.
     pub self_intersections: Option<SelfIntersections>,
     /// Closed components that faced inward without enclosing anything (inside out, as
@@ -174,6 +178,9 @@ impl OperandReport {
         {
             super::scale_points(std::slice::from_mut(near), e);
         }
+        if let Some(near) = self.non_manifold_near.as_mut() {
+            super::scale_points(std::slice::from_mut(near), e);
+        }
         self.volume = super::scaled_measure(self.volume, e, 3);
     }
 
@@ -184,7 +191,10 @@ impl OperandReport {
             problems.push(format!("{n} inconsistently oriented edges"));
         }
         if let (Some(n @ 1..), None) = (self.non_manifold_edges, &self.resolved) {
-            problems.push(format!("{n} non-manifold edges"));
+            problems.push(match self.non_manifold_near {
+                Some(p) => format!("{n} non-manifold edges (the first near {p:?})"),
+                None => format!("{n} non-manifold edges"),
+            });
         }
         if let (
             Some(SelfIntersections {
@@ -523,6 +533,10 @@ impl Operand {
             inconsistent_edges: found_counts.map(|c| c.inconsistent),
             reoriented_triangles,
             non_manifold_edges: counts.map(|c| c.non_manifold),
+            non_manifold_near: match (counts, &resolved) {
+                (Some(c), None) if c.non_manifold > 0 => first_non_manifold(&mesh),
+                _ => None,
+            },
             self_intersections,
             reversed_components,
             resolved,
@@ -703,6 +717,19 @@ fn round_up(x: f64) -> f64 {
     let r = (x / p).ceil() * p;
     // The decimal text of one digit, so that it prints as it reads.
     format!("{r:.0e}").parse().unwrap_or(r)
+}
+
+/// The midpoint of the first edge of `mesh` used by more than two triangles (edges in the
+/// order of their vertices), if any.
+fn first_non_manifold(mesh: &Mesh) -> Option<[f64; 3]> {
+    let topo = crate::EdgeTopology::new(mesh);
+    let e = (0..topo.edge_count()).find(|&e| topo.uses_of(e).len() > 2)?;
+    let [u, v] = topo.edges[e].map(|i| mesh.positions[i as usize]);
+    Some([
+        0.5 * (u[0] + v[0]),
+        0.5 * (u[1] + v[1]),
+        0.5 * (u[2] + v[2]),
+    ])
 }
 
 /// Whether a triangle has two equal corners.
