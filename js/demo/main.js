@@ -173,11 +173,23 @@ function setMessage(text, isError = false) {
 
 /** Reads a mesh file's bytes into slot "a" or "b" and shows it. */
 function loadInto(slot, name, bytes) {
-	const mesh = readMesh(new Uint8Array(bytes), formatOf(name));
+	let mesh;
+	try {
+		mesh = readMesh(new Uint8Array(bytes), formatOf(name));
+	} catch (e) {
+		// The slot keeps saying why (the message line is the last action's).
+		state[slot] = null;
+		delete $(`slot-${slot}`).dataset.loaded;
+		$(`info-${slot}`).textContent = `${name}: ${e.message}`;
+		$(`info-${slot}`).classList.add("error");
+		inputsChanged();
+		throw e;
+	}
 	state[slot] = { name, mesh: { positions: mesh.positions, index: mesh.index } };
 	const info = meshInfo(mesh);
 	const shape = info.closed ? "closed" : `open, ${info.boundary_edges} boundary edges`;
 	$(`info-${slot}`).textContent = `${name}: ${info.triangles} triangles, ${info.vertices} vertices, ${shape}`;
+	$(`info-${slot}`).classList.remove("error");
 	$(`slot-${slot}`).dataset.loaded = name;
 	inputsChanged();
 }
@@ -253,6 +265,7 @@ function loadSphere(slot, n = 500) {
 	const name = `sphere-${slot}`;
 	state[slot] = { name, mesh };
 	$(`info-${slot}`).textContent = `${name}: ${mesh.index.length / 3} triangles, closed (generated)`;
+	$(`info-${slot}`).classList.remove("error");
 	$(`slot-${slot}`).dataset.loaded = name;
 	$(`file-${slot}`).value = "";
 	inputsChanged();
@@ -441,6 +454,9 @@ $("swap").addEventListener("click", () => {
 	$("file-a").value = $("file-b").value = "";
 	const [infoA, infoB] = [$("info-a").textContent, $("info-b").textContent];
 	[$("info-a").textContent, $("info-b").textContent] = [infoB, infoA];
+	const [badA, badB] = [$("info-a").classList.contains("error"), $("info-b").classList.contains("error")];
+	$("info-a").classList.toggle("error", badB);
+	$("info-b").classList.toggle("error", badA);
 	for (const slot of ["a", "b"]) {
 		if (state[slot]) $(`slot-${slot}`).dataset.loaded = state[slot].name;
 		else delete $(`slot-${slot}`).dataset.loaded;

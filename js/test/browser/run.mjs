@@ -1,6 +1,7 @@
 // The demo in a real browser: serves js/ with demo/serve.mjs on a free port, opens the
-// page in headless Chromium (Debian's, through playwright-core), loads the Kirra terrain
-// as A and the cylinder as B, runs A − B, and checks the statistics shown against
+// page in headless Chromium (Debian's, through playwright-core), checks that a file that
+// does not read leaves its reason in its slot, loads the Kirra terrain as A and the
+// cylinder as B, runs A − B, and checks the statistics shown against
 // booleanIndexed computed here in Node; then the STL download and the split-and-pick of
 // the same result; then the union of two generated spheres of 2,002,224 triangles each,
 // during which the page must answer within 100 ms, cancelled. Any page error, console
@@ -88,8 +89,21 @@ async function main() {
 		const webgl = await page.getAttribute("#viewport", "data-webgl");
 		if (webgl !== "ok") fail(`WebGL did not start in Chromium (viewport data-webgl=${webgl})`);
 
+		// A file that does not read: its slot says why, and keeps saying it when the
+		// other slot is loaded (the message line is the last action's).
+		await page.setInputFiles("#file-a", { name: "broken.stl", mimeType: "model/stl", buffer: Buffer.from("solid broken\nfacet normal 0 0 1\n") });
+		await page.waitForSelector("#info-a.error");
+		const badInfo = await page.textContent("#info-a");
+		if (!badInfo.includes("broken.stl")) fail(`a file that does not read: slot A shows ${JSON.stringify(badInfo)}`);
+		await page.click("#load-b-cylinder");
+		await page.waitForSelector("#slot-b[data-loaded='kirra_cylinder.obj']");
+		if ((await page.textContent("#info-a")) !== badInfo) fail("slot A's error went when B was loaded");
+		if (!(await page.isDisabled("#run"))) fail("Run is enabled without a mesh A");
+		check("a file that does not read");
+
 		await page.click("#load-a-terrain");
 		await page.waitForSelector("#slot-a[data-loaded='kirra_terrain.obj']");
+		if (await page.$("#info-a.error")) fail("slot A still marked as an error after a good load");
 		await page.click("#load-b-cylinder");
 		await page.waitForSelector("#slot-b[data-loaded='kirra_cylinder.obj']");
 		await page.selectOption("#op", "subtract");
