@@ -15,6 +15,8 @@
 //
 // This module does not load the WebAssembly on the calling thread: only the worker does.
 
+import { buffersOf } from "./transfer.js";
+
 const inNode = typeof process !== "undefined" && process.versions != null && process.versions.node != null && typeof window === "undefined";
 
 /** The error a cancelled call rejects with: name "AbortError", as fetch's. */
@@ -25,17 +27,6 @@ function abortError(signal) {
 	const e = new Error(message);
 	e.name = "AbortError";
 	return e;
-}
-
-/** The ArrayBuffers of the typed arrays among `args` (two levels deep). */
-function buffersOf(value, out = new Set(), depth = 0) {
-	if (value == null || typeof value !== "object" || depth > 3) return out;
-	if (ArrayBuffer.isView(value)) {
-		out.add(value.buffer);
-		return out;
-	}
-	for (const v of Array.isArray(value) ? value : Object.values(value)) buffersOf(v, out, depth + 1);
-	return out;
 }
 
 /** A vertex pool rebuilt from what crossed (see worker.js): `get`, `getAll`, `size`, `find`. */

@@ -5,23 +5,13 @@
 // posted as each stage of a long call begins.
 import * as mb from "./index.js";
 import { onStage } from "./native.js";
+import { buffersOf } from "./transfer.js";
 
 const inNode = typeof process !== "undefined" && process.versions != null && process.versions.node != null && typeof self === "undefined";
 const port = inNode ? (await import("node:worker_threads")).parentPort : self;
 
 function post(message, transfer) {
 	port.postMessage(message, transfer || []);
-}
-
-/** The ArrayBuffers of the typed arrays in `value` (two levels of objects and arrays deep). */
-function buffersOf(value, out = new Set(), depth = 0) {
-	if (value == null || typeof value !== "object" || depth > 3) return out;
-	if (ArrayBuffer.isView(value)) {
-		out.add(value.buffer);
-		return out;
-	}
-	for (const v of Array.isArray(value) ? value : Object.values(value)) buffersOf(v, out, depth + 1);
-	return out;
 }
 
 /**

@@ -212,17 +212,7 @@ fn corners_that_touch_at_rounding_level_are_shared_not_crossing() {
 /// its edges) is refused with the count and where the first such edge is.
 #[test]
 fn a_non_manifold_refusal_says_where() {
-    let sheet = Mesh::new(
-        vec![
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [1.0, 1.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.5, 0.5, 1.0],
-        ],
-        vec![[0, 1, 2], [0, 2, 3], [0, 2, 4]],
-    )
-    .unwrap();
+    let sheet = common::finned_sheet();
     let b = Mesh::cuboid([0.2, 0.2, -1.0], [0.8, 0.8, 1.0]);
     let err = ops::boolean(&sheet, &b, Op::Union, &BooleanOptions::default()).unwrap_err();
     let text = err.to_string();

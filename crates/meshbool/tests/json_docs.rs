@@ -153,17 +153,7 @@ fn samples() -> BTreeMap<&'static str, Vec<Value>> {
     // Shared corners one unit in the last place apart: merged at the door.
     let noisy = common::cube_off_by_an_ulp();
     // A non-manifold open sheet taken as given: where its first such edge is.
-    let finned = Mesh::new(
-        vec![
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [1.0, 1.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.5, 0.5, 1.0],
-        ],
-        vec![[0, 1, 2], [0, 2, 3], [0, 2, 4]],
-    )
-    .unwrap();
+    let finned = common::finned_sheet();
     let forced = BooleanOptions {
         checks: ops::Checks {
             force: true,

@@ -370,7 +370,7 @@ pub struct PipelineOptions<'p> {
     /// Set when the call is cancelled ([`crate::ops::Cancel`]): the pipeline stops at its
     /// next stage with nothing computed (an empty split, an empty result), which the
     /// caller discards.
-    pub cancel: Option<&'p std::sync::atomic::AtomicBool>,
+    pub cancel: Option<&'p crate::ops::Cancel>,
     /// Candidate pairs from the grid from this many triangles in both meshes together
     /// ([`crate::intersect::GRID_FROM`]), below from two trees.
     pub grid_from: usize,
@@ -436,8 +436,7 @@ impl PipelineOptions<'_> {
 
     /// Whether the call was cancelled.
     fn cancelled(&self) -> bool {
-        self.cancel
-            .is_some_and(|c| c.load(std::sync::atomic::Ordering::Relaxed))
+        self.cancel.is_some_and(crate::ops::Cancel::is_cancelled)
     }
 }
 

@@ -178,9 +178,9 @@ impl RunOptions {
 
     /// [`Error::Cancelled`] when the call was cancelled.
     fn check(&self) -> Result<()> {
-        match &self.cancel {
-            Some(c) if c.is_cancelled() => Err(Error::Cancelled),
-            _ => Ok(()),
+        match self.cancelled() {
+            true => Err(Error::Cancelled),
+            false => Ok(()),
         }
     }
 
@@ -194,7 +194,7 @@ impl RunOptions {
     fn pipeline(&self) -> crate::boolean::PipelineOptions<'_> {
         crate::boolean::PipelineOptions {
             progress: self.progress.as_ref().map(|p| &*p.0 as _),
-            cancel: self.cancel.as_ref().map(|c| &*c.0),
+            cancel: self.cancel.as_ref(),
             ..Default::default()
         }
     }

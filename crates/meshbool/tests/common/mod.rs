@@ -68,3 +68,20 @@ pub fn cube_off_by_an_ulp() -> Mesh {
     }
     Mesh::new(positions, triangles).unwrap()
 }
+
+/// An open unit square (two triangles) with a fin along its diagonal: the edge
+/// (0.5, 0.5, 0) is used by three triangles.
+#[allow(dead_code)]
+pub fn finned_sheet() -> Mesh {
+    Mesh::new(
+        vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.5, 0.5, 1.0],
+        ],
+        vec![[0, 1, 2], [0, 2, 3], [0, 2, 4]],
+    )
+    .unwrap()
+}
