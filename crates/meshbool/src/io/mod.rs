@@ -371,7 +371,8 @@ pub fn write_file(
 /// per-CPU page lists, a cost that the measurements include). Only whole pages are
 /// advised, so that a page a neighbouring block is still writing is left to the sync.
 /// [`write_file`]'s final sync then waits for little: for a 117 MB binary STL written on
-/// 16 threads, write and sync took 59–67 ms instead of 98–103 ms (BENCHMARKS.md). A hint
+/// 16 threads, write and sync took 56–67 ms instead of 98–104 ms (BENCHMARKS.md, "Measured
+/// settings"). A hint
 /// only: on other systems, on file systems without write-back (tmpfs), or where it
 /// fails, nothing happens and the sync does all the work.
 #[cfg(unix)]
