@@ -4,6 +4,7 @@
 // reference's read-only classification checks. Nothing here decides a side: the split
 // is exact; these functions describe it in the reference's terms.
 import { call } from "./native.js";
+import { edgeKey } from "./convert.js";
 
 /**
  * A pool of vertices `{x, y, z, id}` (ids 0, 1, ... in order of creation):
@@ -151,8 +152,7 @@ function vertexKey(v) {
 }
 
 function edgeKeyOf(p, q) {
-	const a = vertexKey(p), b = vertexKey(q);
-	return a < b ? `${a}|${b}` : `${b}|${a}`;
+	return edgeKey(vertexKey(p), vertexKey(q));
 }
 
 /** The vertex keys on open edges (edges of one triangle) of a soup. */

@@ -133,3 +133,13 @@ export function flippedSoup(soup) {
 		v2: { x: t.v1.x, y: t.v1.y, z: t.v1.z },
 	}));
 }
+
+/** The reference's vertex key (coordinates to 6 decimals); meshbool itself never keys by it. */
+export function vKey(v) {
+	return v.x.toFixed(6) + "," + v.y.toFixed(6) + "," + v.z.toFixed(6);
+}
+
+/** An undirected edge key of two vertex keys. */
+export function edgeKey(ka, kb) {
+	return ka < kb ? ka + "|" + kb : kb + "|" + ka;
+}

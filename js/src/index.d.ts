@@ -197,6 +197,36 @@ export function orientIndexed(mesh: IndexedMesh, facing?: "majority" | "z-up" | 
 export function meshInfo(mesh: IndexedMesh | TriangleSoup): Report;
 export function readMesh(bytes: Uint8Array | ArrayBuffer, format?: string): IndexedMesh & { format: string };
 export function writeMesh(mesh: IndexedMesh | TriangleSoup, format?: string): Uint8Array;
+/** A format `readMesh` reads in this build. */
+export interface ReadFormat {
+	/** The name `readMesh` takes: "stl", "stl-ascii", "obj", "ply", ... */
+	name: string;
+	/** The file name extension, without its dot: "stl", "obj", ... */
+	extension: string;
+	/** As the messages name it: "binary STL", "OBJ", ... */
+	label: string;
+}
+/** The formats `readMesh` reads in this build (the WebAssembly's readers, asked). */
+export function readFormats(): ReadFormat[];
+
+// ── generated shapes (`meshbool make`) ─────────────────────────────────────────────────
+
+/** A point as three numbers [x, y, z]. */
+export type Point3 = [number, number, number];
+
+/** A generated shape: the mesh and `report` as `meshbool make --json` (shape, measures, bbox). */
+export type MadeMesh = IndexedResult;
+
+/** An axis-aligned box, 12 triangles, outward: `size` (one edge or three, default 1) about `center` (default origin), or `min` to `max`. */
+export function makeCube(options?: { center?: Point3; size?: number | Point3 } | { min: Point3; max: Point3 }): MadeMesh;
+/** A UV sphere, axis along z: `2 · segments · (rings − 1)` triangles, closed, outward. Defaults: centre origin, radius 1, 32 segments, 16 rings. */
+export function makeSphere(options?: { center?: Point3; radius?: number; segments?: number; rings?: number }): MadeMesh;
+/** A cylinder standing on `base` along +z: `4 · segments` triangles, closed, outward. Defaults: base origin, radius 1, height 1, 32 segments. */
+export function makeCylinder(options?: { base?: Point3; radius?: number; height?: number; segments?: number }): MadeMesh;
+/** A cone (apex; a frustum with `topRadius` > 0) standing on `base` along +z. Defaults as the cylinder's, `topRadius` 0. */
+export function makeCone(options?: { base?: Point3; radius?: number; topRadius?: number; height?: number; segments?: number }): MadeMesh;
+/** A flat rectangle facing +z, `nx` × `ny` cells of two triangles: an open surface. Defaults: centre origin, 1 × 1, one cell. */
+export function makePlane(options?: { center?: Point3; width?: number; depth?: number; nx?: number; ny?: number }): MadeMesh;
 export function soupToTyped(soup: TriangleSoup): IndexedMesh;
 export function typedToSoup(mesh: IndexedMesh): TriangleSoup;
 export function isIndexed(value: unknown): value is IndexedMesh;

@@ -17,15 +17,17 @@ import {
 	arraysOf,
 	arraysToPoints,
 	arraysToSoup,
+	edgeKey,
 	flippedSoup,
 	indexedArrays,
 	isIndexed,
 	parseReport,
 	soupToArrays,
 	toResult,
+	vKey,
 } from "./convert.js";
 
-export { isIndexed };
+export { isIndexed, vKey, edgeKey };
 export {
 	verifyOutput,
 	violationCount,
@@ -264,24 +266,104 @@ export function meshInfo(m) {
 	return JSON.parse(call("info", M.positions, M.index));
 }
 
+let readable = null;
+
 /**
- * Reads a mesh file from its bytes (Uint8Array or ArrayBuffer): STL, OBJ, PLY, OFF, DXF, JSON
- * soups or glTF `.glb` (the Rust library's GOCAD, Surpac and LandXML readers are not in
- * this WebAssembly build). `{positions, index, format}`. `format` names the format ("stl", "obj", ...)
- * or is the file's name (its extension is the hint); without it the format is detected
- * from the bytes.
+ * The formats `readMesh` reads in this build, as the WebAssembly's readers answer:
+ * `{name, extension, label}` each (`name` as `readMesh` takes it, `extension` without its
+ * dot, `label` as the messages name it). STL, OBJ, PLY, DXF, JSON soups, glTF `.glb` and
+ * OFF; the Rust library's GOCAD, Surpac and LandXML readers are not in this build.
+ */
+export function readFormats() {
+	readable ??= call("readFormats");
+	return readable.map((f) => ({ ...f }));
+}
+
+/**
+ * Reads a mesh file from its bytes (Uint8Array or ArrayBuffer) in one of the formats of
+ * `readFormats()`: `{positions, index, format}`. `format` names the format ("stl",
+ * "obj", ...) or is the file's name (its extension is the hint; an extension no format
+ * has leaves it to the bytes); without it the format is detected from the bytes. A
+ * format this build does not read, or bytes that fit none, throws an Error listing the
+ * formats it reads.
  */
 export function readMesh(bytes, format = "") {
 	const data = bytes instanceof Uint8Array ? bytes : new Uint8Array(bytes);
-	let hint = format || "";
-	if (hint.includes(".")) hint = hint.slice(hint.lastIndexOf(".") + 1).toLowerCase();
-	return call("read", data, hint);
+	return call("read", data, String(format || ""));
 }
 
 /** A mesh file's bytes (Uint8Array) in `format` ("stl", "obj", "ply", ...). */
 export function writeMesh(m, format = "stl") {
 	const M = arraysOf(m, "mesh");
 	return call("write", M.positions, M.index, format);
+}
+
+// ── generated shapes ───────────────────────────────────────────────────────────────────
+
+/** Options as JSON for the WebAssembly, a number that is not finite refused (JSON would make it null: the default). */
+function shapeOptions(name, options) {
+	if (options == null) return "{}";
+	if (typeof options !== "object" || Array.isArray(options)) {
+		throw new Error(`meshbool: ${name}'s options must be an object, got ${Array.isArray(options) ? "an array" : typeof options}`);
+	}
+	return JSON.stringify(options, (key, v) => {
+		if (typeof v === "number" && !Number.isFinite(v)) throw new Error(`meshbool: ${name} option ${key} must be finite, got ${v}`);
+		return v;
+	});
+}
+
+/** A generated shape of the library (`meshbool make`): `{positions, index, report}`. */
+function make(name, options) {
+	const out = call("make", name, shapeOptions(name, options));
+	out.report = parseReport(out.report);
+	return out;
+}
+
+/**
+ * An axis-aligned cube or box, outward-facing, 8 vertices and 12 triangles: `size` (one
+ * edge length or three, default 1) about `center` (default [0, 0, 0]), or from `min` to
+ * `max`. `{positions, index, report}` (the report as `meshbool make --json`).
+ */
+export function makeCube(options) {
+	return make("cube", options);
+}
+
+/**
+ * A UV sphere about `center` (default [0, 0, 0]) of `radius` (default 1), its axis along
+ * z: `segments` meridians (default 32, at least 3), `rings` bands from pole to pole
+ * (default 16, at least 2); `2 · segments · (rings − 1)` triangles, closed,
+ * outward-facing, every vertex on the sphere. `{positions, index, report}`.
+ */
+export function makeSphere(options) {
+	return make("sphere", options);
+}
+
+/**
+ * A cylinder standing on `base` (its bottom centre, default [0, 0, 0]) along +z, of
+ * `radius` and `height` (default 1 each), the circles as regular polygons of `segments`
+ * sides (default 32, the first vertex on +x): `4 · segments` triangles, closed,
+ * outward-facing (a drill hole). `{positions, index, report}`.
+ */
+export function makeCylinder(options) {
+	return make("cylinder", options);
+}
+
+/**
+ * A cone standing on `base` along +z up to an apex, or a frustum with `topRadius` > 0;
+ * `radius`, `height`, `segments` as for `makeCylinder`. Closed, outward-facing.
+ * `{positions, index, report}`.
+ */
+export function makeCone(options) {
+	return make("cone", options);
+}
+
+/**
+ * A flat rectangle about `center`, `width` along x by `depth` along y (default 1 each),
+ * in `nx` by `ny` cells (default 1) of two triangles, facing +z: an open surface.
+ * `{positions, index, report}`.
+ */
+export function makePlane(options) {
+	return make("plane", options);
 }
 
 /** A soup as an indexed mesh `{positions, index}` welded exactly (equal coordinates only). */
@@ -1156,16 +1238,6 @@ export function cross(a, b) {
 /** The point a + t (b − a). */
 export function lerpVert(a, b, t) {
 	return { x: a.x + t * (b.x - a.x), y: a.y + t * (b.y - a.y), z: a.z + t * (b.z - a.z) };
-}
-
-/** The reference's vertex key (coordinates to 6 decimals); meshbool itself never keys by it. */
-export function vKey(v) {
-	return v.x.toFixed(6) + "," + v.y.toFixed(6) + "," + v.z.toFixed(6);
-}
-
-/** An undirected edge key of two vertex keys. */
-export function edgeKey(ka, kb) {
-	return ka < kb ? ka + "|" + kb : kb + "|" + ka;
 }
 
 /**

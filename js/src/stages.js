@@ -6,7 +6,7 @@
 // utility of the reference (snaps, welds, edge maps), it keeps that tolerance, which the
 // caller names.
 import { call } from "./native.js";
-import { arraysToSoup, soupToArrays } from "./convert.js";
+import { arraysToSoup, edgeKey, soupToArrays, vKey } from "./convert.js";
 import { chainById, createVertexPool, overlapPairs, poolOfSplit } from "./bms.js";
 import { closeSolid, conditioned, simpleBoundaryLoops } from "./solids.js";
 
@@ -579,11 +579,7 @@ export function extractByWindingPatches(subTris, barrierKeys, windingFn, options
 	const samples = Math.max(1, o.samplesPerPatch || 5);
 	const tris = Array.isArray(subTris) ? subTris : [];
 	const barrier = barrierKeys || {};
-	const vk = (v) => v.x.toFixed(6) + "," + v.y.toFixed(6) + "," + v.z.toFixed(6);
-	const ek = (a, b) => {
-		const ka = vk(a), kb = vk(b);
-		return ka < kb ? ka + "|" + kb : kb + "|" + ka;
-	};
+	const ek = (a, b) => edgeKey(vKey(a), vKey(b));
 	const byEdge = new Map();
 	tris.forEach((t, i) => {
 		for (const [a, b] of [[t.v0, t.v1], [t.v1, t.v2], [t.v2, t.v0]]) {

@@ -6,8 +6,7 @@ import assert from "node:assert/strict";
 import { readFileSync } from "node:fs";
 import * as mb from "../src/index.js";
 import { call } from "../src/native.js";
-
-const data = (name) => new URL(`../../data/${name}`, import.meta.url);
+import { missing as noKirra, sharedData } from "./shared-data.mjs";
 
 function cube(cx, cy, cz, size) {
 	const h = size / 2;
@@ -189,11 +188,11 @@ test("reclassify functions move triangles between sides", () => {
 	assert.equal(g.bInside.length, 0);
 });
 
-test("Kirra terrain − cylinder and terrain ∩ cup equal the CLI's numbers", () => {
-	const read = (name) => mb.readMesh(readFileSync(data(name)), name);
+test("Kirra terrain − cylinder and terrain ∩ cup equal the CLI's numbers", { skip: noKirra }, () => {
+	const read = (name) => mb.readMesh(sharedData(name), name);
 	const terrain = read("kirra_terrain.obj"), cyl = read("kirra_cylinder.obj"), cup = read("kirra_cup.obj");
 	assert.equal(terrain.format, "obj");
-	// meshbool difference data/kirra_terrain.obj data/kirra_cylinder.obj -o out.ply --json
+	// meshbool difference ../shared/data/kirra_terrain.obj ../shared/data/kirra_cylinder.obj -o out.ply --json
 	// (with --keep-seam-points: the package keeps every seam point by default)
 	const d = mb.booleanIndexed(terrain, cyl, "subtract");
 	assert.equal(d.index.length / 3, 10846);
@@ -207,7 +206,7 @@ test("Kirra terrain − cylinder and terrain ∩ cup equal the CLI's numbers", (
 	assert.equal(d.report.area, 36079.86143207988);
 	assert.equal(d.report.boundary_edges, 560);
 	assert.ok(d.report.assumed[0].includes("46 inconsistently oriented edges"));
-	// meshbool intersection data/kirra_terrain.obj data/kirra_cup.obj -o out.ply --json
+	// meshbool intersection ../shared/data/kirra_terrain.obj ../shared/data/kirra_cup.obj -o out.ply --json
 	const i = mb.booleanIndexed(terrain, cup, "intersect");
 	assert.equal(i.index.length / 3, 846);
 	assert.equal(i.report.volume, 33457.89820801892);
@@ -218,6 +217,73 @@ test("Kirra terrain − cylinder and terrain ∩ cup equal the CLI's numbers", (
 	assert.equal(mb.computeSignedVolume(soup.soup), i.report.volume);
 	const s = mb.splitIndexed(terrain, cyl);
 	assert.ok(s.groups.a_in_b.index.length > 0 && s.groups.b_in_a.index.length > 0);
+});
+
+/** The z of each triangle's normal (twice its area projected on xy). */
+function normalZ(m, t) {
+	const [a, b, c] = [0, 1, 2].map((k) => 3 * m.index[3 * t + k]);
+	const p = m.positions;
+	return (p[b] - p[a]) * (p[c + 1] - p[a + 1]) - (p[b + 1] - p[a + 1]) * (p[c] - p[a]);
+}
+
+test("generated primitives: the library's counts, exact volumes and meshbool make's defaults", () => {
+	const box = mb.makeCube();
+	assert.deepEqual([box.index.length / 3, box.positions.length / 3, box.report.volume, box.report.closed], [12, 8, 1, true]);
+	assert.deepEqual(box.report.bbox, { min: [-0.5, -0.5, -0.5], max: [0.5, 0.5, 0.5] });
+	assert.equal(box.report.shape, "cube");
+	const slab = mb.makeCube({ center: [1, 2, 3], size: [1, 2, 4] });
+	assert.deepEqual([slab.report.volume, slab.report.bbox.min], [8, [0.5, 1, 1]]);
+	assert.equal(mb.makeCube({ min: [0, 0, 0], max: [1, 1, 2] }).report.volume, 2);
+	// The default sphere: 32 meridians, 16 bands, the inscribed polyhedron of radius 1.
+	const ball = mb.makeSphere();
+	assert.deepEqual([ball.index.length / 3, ball.positions.length / 3, ball.report.closed], [960, 482, true]);
+	assert.equal(ball.report.volume, 4.1219417407858465);
+	assert.ok(ball.report.volume < (4 / 3) * Math.PI);
+	assert.equal(mb.makeSphere({ segments: 4, rings: 2 }).report.volume, 4 / 3); // an octahedron, vertices on the axes
+	// Quarter turns are exact: a 4-sided cylinder is a square prism, a 4-sided cone a pyramid.
+	const prism = mb.makeCylinder({ height: 3, segments: 4 });
+	assert.deepEqual([prism.index.length / 3, prism.report.volume], [16, 6]);
+	assert.equal(mb.makeCylinder().index.length / 3, 128);
+	assert.equal(mb.makeCone({ height: 3, segments: 4 }).report.volume, 2);
+	assert.equal(mb.makeCone({ topRadius: 0.5, segments: 8 }).index.length / 3, 32);
+	const sheet = mb.makePlane({ center: [1, 1, 2], width: 4, depth: 2, nx: 4, ny: 2 });
+	assert.deepEqual([sheet.index.length / 3, sheet.positions.length / 3, sheet.report.boundary_edges, sheet.report.closed], [16, 15, 12, false]);
+	for (let t = 0; t < 16; t++) assert.ok(normalZ(sheet, t) > 0, `triangle ${t} faces down`);
+	// Bad options say what is wrong; a misspelt one is not silently the default.
+	assert.throws(() => mb.makeSphere({ radus: 2 }), /no option "radus" \(its options: center, radius, segments, rings\)/);
+	assert.throws(() => mb.makeSphere({ radius: NaN }), /radius must be finite/);
+	assert.throws(() => mb.makeSphere({ segments: 2.5 }), /segments must be a whole number/);
+	assert.throws(() => mb.makeSphere({ segments: 2 }), /segments must be at least 3/);
+	assert.throws(() => mb.makeCylinder({ base: [0, 0] }), /base must be an array of 3 numbers/);
+	assert.throws(() => mb.makeCube({ size: 1, min: [0, 0, 0], max: [1, 1, 1] }), /not both/);
+	assert.throws(() => mb.makeCube({ min: [0, 0, 0], max: [1, 0, 1] }), /min must be below its max/);
+	assert.throws(() => mb.makePlane([1, 2]), /options must be an object/);
+});
+
+test("readFormats lists what readMesh reads: each round-trips, the mining formats' errors list only these", () => {
+	const formats = mb.readFormats();
+	const names = formats.map((f) => f.name);
+	assert.deepEqual(names, ["stl", "stl-ascii", "obj", "ply", "ply-ascii", "ply-be", "dxf", "json", "kirra-json", "glb", "off"]);
+	assert.deepEqual([...new Set(formats.map((f) => f.extension))], ["stl", "obj", "ply", "dxf", "json", "glb", "off"]);
+	assert.equal(formats.find((f) => f.name === "glb").label, "binary glTF");
+	const box = mb.makeCube();
+	for (const f of formats) {
+		const bytes = mb.writeMesh(box, f.name);
+		for (const hint of [f.name, `box.${f.extension}`, ""]) {
+			const back = mb.readMesh(bytes, hint);
+			assert.equal(back.index.length / 3, 12, `${f.name} read with ${JSON.stringify(hint)}`);
+			assert.equal(mb.meshInfo(back).volume, 1);
+		}
+	}
+	// The list is a copy: changing it changes nothing.
+	formats[0].name = "changed";
+	assert.equal(mb.readFormats()[0].name, "stl");
+	const listed = " .stl .obj .ply .dxf .json .glb .off files";
+	const text = (t) => new TextEncoder().encode(t);
+	assert.throws(() => mb.readMesh(text("GOCAD TSurf 1\nTFACE\nEND\n"), "pit.ts"), (e) => e.message === `GOCAD TSurf files are not read by this build of meshbool; it reads${listed}`);
+	assert.throws(() => mb.readMesh(text("<LandXML/>"), "surface.xml"), /LandXML files are not read by this build of meshbool; it reads \.stl/);
+	assert.throws(() => mb.readMesh(text("hello"), "notes.txt"), (e) => e.message === `cannot tell the file's format from its contents; this build reads${listed}`);
+	assert.throws(() => mb.readMesh(text("hello"), "gocad"), (e) => e.message === `unknown format "gocad": this build reads ${names.join(", ")}`);
 });
 
 test("typed-array path equals the soup path", () => {
@@ -585,10 +651,10 @@ test("cut and fill of a slope against flat ground", () => {
 	assert.equal(r.zero_lines, 1);
 });
 
-test("envelopes of the folded Kirra terrain equal the CLI's", () => {
-	const terrain = mb.readMesh(readFileSync(data("kirra_terrain.obj")), "kirra_terrain.obj");
+test("envelopes of the folded Kirra terrain equal the CLI's", { skip: noKirra }, () => {
+	const terrain = mb.readMesh(sharedData("kirra_terrain.obj"), "kirra_terrain.obj");
 	for (const side of ["upper", "lower"]) {
-		// meshbool resolve data/kirra_terrain.obj --envelope SIDE -o out.ply --json
+		// meshbool resolve ../shared/data/kirra_terrain.obj --envelope SIDE -o out.ply --json
 		const e = mb.envelopeIndexed(terrain, side);
 		assert.equal(e.report.envelope.side, side);
 		assert.equal(e.report.envelope.folded_triangles, 22);

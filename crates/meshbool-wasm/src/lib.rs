@@ -691,17 +691,83 @@ pub fn boundary_loops(positions: &[f64], index: &[u32]) -> Result<JsValue, JsErr
         .done())
 }
 
-/// Reads a mesh file's bytes: `{positions, index, format}`. `format`: `stl`, `obj`,
-/// `ply`, `off`, ... or empty to detect it from the bytes.
+/// True when this build reads `format` from bytes: the readers behind a feature left out
+/// of the build answer with [`Error::InvalidParameter`] whatever the bytes, and a Surpac
+/// DTM is never read from its `.dtm` alone (its points are in the `.str` beside it).
+/// Asking the readers themselves keeps one list, the library's, whatever the features.
+fn reads(format: Format) -> bool {
+    format != Format::SurpacDtm
+        && !matches!(
+            meshbool::io::read_bytes(b"?", format),
+            Err(Error::InvalidParameter(_))
+        )
+}
+
+/// The formats [`read`] reads in this build, in the order of [`Format::NAMES`]: `{name,
+/// extension, label}` each (`name` as `read` takes it, `extension` without its dot,
+/// `label` as the library's messages name it: `binary STL`, `OBJ`, ...).
+#[wasm_bindgen(js_name = readFormats)]
+pub fn read_formats() -> Array {
+    let list = Array::new();
+    for (name, format) in Format::NAMES.into_iter().filter(|(_, f)| reads(*f)) {
+        let item = Out::new()
+            .set("name", name)
+            .set("extension", format.extension())
+            .set("label", format.to_string());
+        list.push(&item.done());
+    }
+    list
+}
+
+/// What this build reads, for error messages: the formats' extensions (`.stl .obj ...`)
+/// or, with `names`, the names `read` takes (`stl, stl-ascii, obj, ...`).
+fn readable(names: bool) -> String {
+    let mut list: Vec<String> = Vec::new();
+    for (name, format) in Format::NAMES.into_iter().filter(|(_, f)| reads(*f)) {
+        let item = if names {
+            name.to_string()
+        } else {
+            format!(".{}", format.extension())
+        };
+        if !list.contains(&item) {
+            list.push(item);
+        }
+    }
+    list.join(if names { ", " } else { " " })
+}
+
+/// Reads a mesh file's bytes: `{positions, index, format}`. `format`: a format's name
+/// (`stl`, `obj`, `ply`, ... as [`read_formats`] lists them), a file name (its extension
+/// is the hint; an extension no format has leaves the format to the bytes), or empty to
+/// detect the format from the bytes. A format this build does not read, or bytes that fit
+/// none, is an error listing the formats it reads.
 #[wasm_bindgen]
 pub fn read(bytes: &[u8], format: &str) -> Result<JsValue, JsError> {
     let hint = if format.is_empty() {
         None
+    } else if format.contains('.') {
+        Format::for_path(format)
     } else {
-        Some(format.parse::<Format>().map_err(js_err)?)
+        let named = format.parse::<Format>().ok();
+        Some(named.ok_or_else(|| {
+            bad(format!(
+                "unknown format {format:?}: this build reads {}",
+                readable(true)
+            ))
+        })?)
     };
-    let format = meshbool::io::detect_format(bytes, hint)
-        .ok_or_else(|| bad("cannot tell the file's format from its contents; name it"))?;
+    let format = meshbool::io::detect_format(bytes, hint).ok_or_else(|| {
+        bad(format!(
+            "cannot tell the file's format from its contents; this build reads {} files",
+            readable(false)
+        ))
+    })?;
+    if !reads(format) {
+        return Err(bad(format!(
+            "{format} files are not read by this build of meshbool; it reads {} files",
+            readable(false)
+        )));
+    }
     let m = meshbool::io::read_bytes(bytes, format).map_err(js_err)?;
     Ok(Out::new().mesh(&m).set("format", format.name()).done())
 }
@@ -716,6 +782,149 @@ pub fn write(positions: &[f64], index: &[u32], format: &str) -> Result<Vec<u8>, 
     Ok(bytes)
 }
 
+/// An error unless every key of the options object `o` is one of `keys` (a misspelt
+/// option would otherwise be ignored and its default used without a word).
+fn known_keys(o: &Value, what: &str, keys: &[&str]) -> Result<(), JsError> {
+    if let Some(map) = o.as_object() {
+        if let Some(k) = map.keys().find(|k| !keys.contains(&k.as_str())) {
+            return Err(bad(format!(
+                "{what} takes no option {k:?} (its options: {})",
+                keys.join(", ")
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Option `key` as `N` numbers (an array of them, or one number for all `N` where `one`
+/// allows it), `default` when absent.
+fn numbers<const N: usize>(
+    o: &Value,
+    key: &str,
+    default: [f64; N],
+    one: bool,
+) -> Result<[f64; N], JsError> {
+    let shape = if one {
+        format!("a number or an array of {N} numbers")
+    } else {
+        format!("an array of {N} numbers")
+    };
+    match o.get(key) {
+        None | Some(Value::Null) => Ok(default),
+        Some(Value::Number(n)) if one => Ok([n.as_f64().unwrap_or(f64::NAN); N]),
+        Some(Value::Array(a)) if a.len() == N && a.iter().all(Value::is_number) => {
+            Ok(std::array::from_fn(|k| a[k].as_f64().unwrap_or(f64::NAN)))
+        }
+        Some(v) => Err(bad(format!("option {key} must be {shape}, got {v}"))),
+    }
+}
+
+/// Option `key` as a whole number in `0..=u32::MAX` (`default` when absent).
+fn whole<T: TryFrom<u64>>(o: &Value, key: &str, default: T) -> Result<T, JsError> {
+    match o.get(key) {
+        None | Some(Value::Null) => Ok(default),
+        Some(v) => v
+            .as_u64()
+            .and_then(|n| T::try_from(n).ok())
+            .ok_or_else(|| bad(format!("option {key} must be a whole number ≥ 0, got {v}"))),
+    }
+}
+
+/// Option `key` as a number, `default` when absent.
+fn number_or(o: &Value, key: &str, default: f64) -> Result<f64, JsError> {
+    Ok(number(o, key)?.unwrap_or(default))
+}
+
+/// The shape `name` with its options (JSON; every option has a default, those of
+/// `meshbool make`): `cube` (`center` [0,0,0] and `size` 1 — a number or three — or
+/// `min` and `max`), `sphere` (`center` [0,0,0], `radius` 1, `segments` 32, `rings` 16),
+/// `cylinder` (`base` [0,0,0], `radius` 1, `height` 1, `segments` 32), `cone` (as the
+/// cylinder, with `topRadius` 0), `plane` (`center` [0,0,0], `width` 1, `depth` 1, `nx` 1,
+/// `ny` 1).
+fn shape(name: &str, o: &Value) -> Result<ops::Shape, JsError> {
+    use ops::Shape;
+    let keys: &[&str] = match name {
+        "cube" => &["center", "size", "min", "max"],
+        "sphere" => &["center", "radius", "segments", "rings"],
+        "cylinder" => &["base", "radius", "height", "segments"],
+        "cone" => &["base", "radius", "topRadius", "height", "segments"],
+        "plane" => &["center", "width", "depth", "nx", "ny"],
+        _ => {
+            return Err(bad(format!(
+                "unknown shape {name:?}: cube, sphere, cylinder, cone, plane, terrain or pit"
+            )))
+        }
+    };
+    known_keys(o, name, keys)?;
+    let origin = [0.0; 3];
+    Ok(match name {
+        "cube" => {
+            let corners = (o.get("min"), o.get("max"));
+            if corners.0.is_some() || corners.1.is_some() {
+                if o.get("center").is_some() || o.get("size").is_some() {
+                    return Err(bad(
+                        "a cube takes center and size, or min and max, not both",
+                    ));
+                }
+                if corners.0.is_none() || corners.1.is_none() {
+                    return Err(bad("a cube's min and max go together"));
+                }
+            }
+            let (min, max) = if corners.0.is_some() {
+                (
+                    numbers(o, "min", origin, false)?,
+                    numbers(o, "max", origin, false)?,
+                )
+            } else {
+                let c = numbers(o, "center", origin, false)?;
+                let s = numbers(o, "size", [1.0; 3], true)?;
+                (
+                    std::array::from_fn(|k| c[k] - s[k] / 2.0),
+                    std::array::from_fn(|k| c[k] + s[k] / 2.0),
+                )
+            };
+            Shape::Cube { min, max }
+        }
+        "sphere" => Shape::Sphere {
+            center: numbers(o, "center", origin, false)?,
+            radius: number_or(o, "radius", 1.0)?,
+            segments: whole(o, "segments", 32)?,
+            rings: whole(o, "rings", 16)?,
+        },
+        "cylinder" => Shape::Cylinder {
+            base: numbers(o, "base", origin, false)?,
+            radius: number_or(o, "radius", 1.0)?,
+            height: number_or(o, "height", 1.0)?,
+            segments: whole(o, "segments", 32)?,
+        },
+        "cone" => Shape::Cone {
+            base: numbers(o, "base", origin, false)?,
+            radius: number_or(o, "radius", 1.0)?,
+            top_radius: number_or(o, "topRadius", 0.0)?,
+            height: number_or(o, "height", 1.0)?,
+            segments: whole(o, "segments", 32)?,
+        },
+        _ => Shape::Plane {
+            center: numbers(o, "center", origin, false)?,
+            width: number_or(o, "width", 1.0)?,
+            depth: number_or(o, "depth", 1.0)?,
+            nx: whole(o, "nx", 1)?,
+            ny: whole(o, "ny", 1)?,
+        },
+    })
+}
+
+/// A generated shape (`meshbool make`): `{positions, index, report}` (the report as
+/// `meshbool make --json`: the shape's name, measures and bounding box). `name` and the
+/// options (JSON) as for [`shape`]. Parameters out of range (a radius ≤ 0, too few
+/// segments, a shape too fine for `f64`) are errors with the library's message.
+#[wasm_bindgen]
+pub fn make(name: &str, opts: &str) -> Result<JsValue, JsError> {
+    let o = options(opts)?;
+    let out = ops::make(&shape(name, &o)?).map_err(js_err)?;
+    Ok(Out::new().mesh(&out.mesh).report(&out.report())?.done())
+}
+
 /// The library's version.
 #[wasm_bindgen]
 pub fn version() -> String {
@@ -726,6 +935,33 @@ pub fn version() -> String {
 mod tests {
     use super::*;
     use meshbool::Group;
+
+    #[test]
+    fn the_readers_of_every_build_are_listed_and_a_dtm_alone_never() {
+        for f in [
+            Format::StlBinary,
+            Format::Obj,
+            Format::PlyAscii,
+            Format::Dxf,
+            Format::JsonSoup,
+            Format::Glb,
+            Format::Off,
+        ] {
+            assert!(reads(f), "{f}");
+        }
+        assert!(!reads(Format::SurpacDtm));
+        assert!(readable(false).starts_with(".stl .obj .ply .dxf .json .glb"));
+        assert!(readable(true).starts_with("stl, stl-ascii, obj, ply,"));
+    }
+
+    #[test]
+    fn shapes_take_meshbool_makes_defaults() {
+        let none = Value::Object(Default::default());
+        let made = |name| shape(name, &none).ok().and_then(|s| s.mesh().ok());
+        let counts = ["cube", "sphere", "cylinder", "cone", "plane"]
+            .map(|n| made(n).map_or(0, |m| m.triangle_count()));
+        assert_eq!(counts, [12, 960, 128, 64, 2]);
+    }
 
     #[test]
     fn groups_for_each_op_are_named() {
