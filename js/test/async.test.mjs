@@ -3,27 +3,12 @@
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { createWorker } from "../src/async.js";
-import { booleanIndexed, meshInfo } from "../src/index.js";
+import { booleanIndexed, makeSphere, meshInfo } from "../src/index.js";
 
 /** A UV sphere of radius 1 centred at (cx, 0, 0): 2n meridians, n bands, 4n(n − 1) triangles, closed. */
 function sphere(n, cx) {
-	const positions = [cx, 0, 1];
-	for (let i = 1; i < n; i++) {
-		for (let j = 0; j < 2 * n; j++) {
-			const th = (Math.PI * i) / n, ph = (Math.PI * j) / n;
-			positions.push(cx + Math.sin(th) * Math.cos(ph), Math.sin(th) * Math.sin(ph), Math.cos(th));
-		}
-	}
-	positions.push(cx, 0, -1);
-	const last = positions.length / 3 - 1;
-	const ring = (i, j) => 1 + (i - 1) * 2 * n + (j % (2 * n));
-	const index = [];
-	for (let j = 0; j < 2 * n; j++) index.push(0, ring(1, j), ring(1, j + 1));
-	for (let i = 1; i < n - 1; i++) {
-		for (let j = 0; j < 2 * n; j++) index.push(ring(i, j), ring(i + 1, j), ring(i + 1, j + 1), ring(i, j), ring(i + 1, j + 1), ring(i, j + 1));
-	}
-	for (let j = 0; j < 2 * n; j++) index.push(last, ring(n - 1, j + 1), ring(n - 1, j));
-	return { positions: new Float64Array(positions), index: new Uint32Array(index) };
+	const { positions, index } = makeSphere({ center: [cx, 0, 0], segments: 2 * n, rings: n });
+	return { positions, index };
 }
 
 test("a boolean in the worker equals the one on this thread, with its stages", async () => {
