@@ -36,9 +36,10 @@
 //!   stitching, curtains, orientation, folds) and the [`repair::repair`] pipeline.
 //! - [`edges`]: edge adjacency and components; [`intersect`]: the exact intersection of
 //!   two meshes and its curves.
-//! - [`shapes`]: primitives (cube, sphere, cylinder, cone, plane) and generators for
-//!   tests; [`Transform`] ([`transform`]): affine transforms by degrees, composed in the
-//!   order applied, and [`Mesh::transformed`].
+//! - [`shapes`]: primitives (cube, sphere, cylinder, cone, plane), mining examples (a
+//!   seeded terrain, an open-pit shell) and generators for tests; [`Transform`]
+//!   ([`transform`]): affine transforms by degrees, composed in the order applied, and
+//!   [`Mesh::transformed`].
 //! - The vocabulary of booleans: [`Op`] and its [`Rule`], [`Class`], [`Group`],
 //!   [`Provenance`] and [`Source`], [`Stage`].
 //!

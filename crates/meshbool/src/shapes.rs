@@ -11,6 +11,12 @@
 //! square prism with corners exactly on the axes. Orient or place them with
 //! [`crate::Transform`].
 //!
+//! Two mining examples are checked and exactly welded the same way: [`terrain`], a
+//! seeded height field with hills, hollows and a regional slope, and [`pit`], a benched
+//! open-pit shell. Both are open surfaces facing up; with the command line's defaults
+//! the pit crosses the terrain along one closed curve, as a pit design crosses a
+//! survey.
+//!
 //! ```
 //! use meshbool::shapes::{cube, cylinder};
 //! use meshbool::ops::{boolean, BooleanOptions};
@@ -255,6 +261,302 @@ pub fn plane(center: [f64; 3], width: f64, depth: f64, nx: u32, ny: u32) -> Resu
         |_, _| center[2],
     );
     checked("plane", m)
+}
+
+/// splitmix64 (Steele, Lea and Flood 2014), written out here rather than taken from a
+/// crate: it is a few lines, and a generated terrain must stay the same surface for the
+/// same seed whatever version of a random-number crate the lock file holds.
+struct SplitMix64(u64);
+
+impl SplitMix64 {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in `[lo, hi)`.
+    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * ((self.next() >> 11) as f64 / (1u64 << 53) as f64)
+    }
+
+    /// A direction in the plane, uniform (by rejection: no trigonometry).
+    fn direction(&mut self) -> [f64; 2] {
+        loop {
+            let (x, y) = (self.uniform(-1.0, 1.0), self.uniform(-1.0, 1.0));
+            let r2 = x * x + y * y;
+            if (0.01..=1.0).contains(&r2) {
+                let r = r2.sqrt();
+                return [x / r, y / r];
+            }
+        }
+    }
+}
+
+/// One hill (`amplitude > 0`) or hollow of a terrain: a smooth bump over an ellipse in
+/// plan, `amplitude · (1 − s)³` where `s < 1` is the squared elliptical distance from
+/// the centre, zero outside (flat to second order at its edge).
+struct Bump {
+    center: [f64; 2],
+    /// Unit vector of the major axis.
+    axis: [f64; 2],
+    /// 1 / semi-axis², major and minor.
+    inv2: [f64; 2],
+    amplitude: f64,
+}
+
+/// A seeded relief over normalized plan coordinates (the terrain's longer side is 1,
+/// centred on 0): a regional slope, a few hills and hollows, and three octaves of value
+/// noise (rolling ground and roughness). Only `+ − × ÷` and `√`, which IEEE 754 rounds exactly, so the
+/// same seed gives bit-identical heights on every platform.
+struct Relief {
+    slope: [f64; 2],
+    bumps: Vec<Bump>,
+    /// Lattices of values in `[−1, 1]` over `[−½, ½]²`: cells per side, amplitude, values.
+    noise: Vec<(usize, f64, Vec<f64>)>,
+}
+
+impl Relief {
+    fn new(seed: u64, half: [f64; 2]) -> Relief {
+        let mut rng = SplitMix64(seed);
+        let d = rng.direction();
+        let g = rng.uniform(0.25, 0.6);
+        let slope = [g * d[0], g * d[1]];
+        let bumps = (0..10)
+            .map(|_| {
+                let center = [
+                    rng.uniform(-1.2 * half[0], 1.2 * half[0]),
+                    rng.uniform(-1.2 * half[1], 1.2 * half[1]),
+                ];
+                let major = rng.uniform(0.15, 0.45);
+                let minor = major * rng.uniform(0.35, 1.0);
+                let axis = rng.direction();
+                let sign = if rng.uniform(0.0, 1.0) < 0.6 {
+                    1.0
+                } else {
+                    -1.0
+                };
+                Bump {
+                    center,
+                    axis,
+                    inv2: [1.0 / (major * major), 1.0 / (minor * minor)],
+                    amplitude: sign * rng.uniform(0.3, 1.0),
+                }
+            })
+            .collect();
+        let noise = [(5, 0.3), (16, 0.08), (48, 0.025)]
+            .into_iter()
+            .map(|(n, a)| {
+                let values = (0..(n + 1) * (n + 1))
+                    .map(|_| rng.uniform(-1.0, 1.0))
+                    .collect();
+                (n, a, values)
+            })
+            .collect();
+        Relief {
+            slope,
+            bumps,
+            noise,
+        }
+    }
+
+    fn height(&self, u: f64, v: f64) -> f64 {
+        let mut h = self.slope[0] * u + self.slope[1] * v;
+        for b in &self.bumps {
+            let (du, dv) = (u - b.center[0], v - b.center[1]);
+            let p = du * b.axis[0] + dv * b.axis[1];
+            let q = dv * b.axis[0] - du * b.axis[1];
+            let s = p * p * b.inv2[0] + q * q * b.inv2[1];
+            if s < 1.0 {
+                let t = 1.0 - s;
+                h += b.amplitude * t * t * t;
+            }
+        }
+        for (n, a, values) in &self.noise {
+            // Bilinear in smoothstep weights: smooth across the lattice's cells.
+            let cell = |w: f64| {
+                let g = ((w + 0.5) * *n as f64).clamp(0.0, *n as f64);
+                let i = (g.floor() as usize).min(n - 1);
+                let t = g - i as f64;
+                (i, t * t * (3.0 - 2.0 * t))
+            };
+            let ((i, s), (j, t)) = (cell(u), cell(v));
+            let at = |i: usize, j: usize| values[j * (n + 1) + i];
+            let bottom = at(i, j) + s * (at(i + 1, j) - at(i, j));
+            let top = at(i, j + 1) + s * (at(i + 1, j + 1) - at(i, j + 1));
+            h += a * (bottom + t * (top - bottom));
+        }
+        h
+    }
+}
+
+/// A seeded, realistic terrain: an open height field over the rectangle `center.xy ±
+/// size / 2`, `cells[0]` × `cells[1]` (each ≥ 1) cells of two triangles, facing +z. The
+/// relief is a gentle regional slope, ten hills and hollows (some elongated into
+/// ridges and valleys) and a little roughness, scaled so that the lowest vertex is at
+/// `center.z − relief / 2` and the highest at `center.z + relief / 2` (`relief` ≥ 0; 0
+/// gives a flat grid). `2 · cells[0] · cells[1]` triangles, `(cells[0] + 1)(cells[1] +
+/// 1)` vertices, one boundary loop of `2 (cells[0] + cells[1])` edges.
+///
+/// The same `seed` gives bit-identical positions on every run and platform (the relief
+/// uses only correctly rounded arithmetic). Other `cells` sample the same relief more or
+/// less finely (scaled to the range by the extremes they sample). The command line's and
+/// Python's defaults are centre 0,0,0, size 1000 × 1000, cells 100 × 100, relief 40,
+/// seed 1: crossed by the default [`pit`].
+///
+/// ```
+/// use meshbool::shapes::terrain;
+///
+/// let t = terrain([478600.0, 6772300.0, 400.0], [1000.0; 2], [100; 2], 40.0, 1)?;
+/// let b = t.bounds().unwrap();
+/// assert_eq!((t.triangle_count(), b.min[2], b.max[2]), (20000, 380.0, 420.0));
+/// # Ok::<(), meshbool::Error>(())
+/// ```
+pub fn terrain(
+    center: [f64; 3],
+    size: [f64; 2],
+    cells: [u32; 2],
+    relief: f64,
+    seed: u64,
+) -> Result<Mesh> {
+    finite_point("the terrain's centre", center)?;
+    positive("the terrain's width", size[0])?;
+    positive("the terrain's depth", size[1])?;
+    at_least("the terrain's cells along x", cells[0], 1)?;
+    at_least("the terrain's cells along y", cells[1], 1)?;
+    if !(relief.is_finite() && relief >= 0.0) {
+        return Err(Error::InvalidParameter(format!(
+            "the terrain's relief must be 0 or positive and finite, got {relief}"
+        )));
+    }
+    not_too_many("terrain", 2 * u64::from(cells[0]) * u64::from(cells[1]))?;
+    let (hw, hd) = (size[0] / 2.0, size[1] / 2.0);
+    let scale = size[0].max(size[1]);
+    let shape = Relief::new(seed, [hw / scale, hd / scale]);
+    let mut m = heightfield(
+        [center[0] - hw, center[1] - hd],
+        [center[0] + hw, center[1] + hd],
+        cells[0],
+        cells[1],
+        |x, y| shape.height((x - center[0]) / scale, (y - center[1]) / scale),
+    );
+    let (lo, hi) = m
+        .positions
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p[2]), hi.max(p[2]))
+        });
+    for p in &mut m.positions {
+        let t = if hi > lo {
+            (p[2] - lo) / (hi - lo)
+        } else {
+            0.5
+        };
+        p[2] = center[2] + relief * (t - 0.5);
+    }
+    checked("terrain", m)
+}
+
+/// An open-pit design shell: a benched bowl, elliptical in plan, its rim the ellipse of
+/// semi-axes `radius` (along x and y) about `center` at height `center.z`, its floor
+/// `depth` below. From the rim down: `benches` (≥ 1) faces, each `depth / benches` high
+/// at a batter of 2 vertical to 1 horizontal (63.4°), separated by flat berms `berm`
+/// (≥ 0) wide, then a flat floor. Each face and berm is a band between two elliptical
+/// rings of `segments` (≥ 3) vertices (a ring's semi-axes are the rim's less the
+/// horizontal distance from the rim, vertex `i` at angle `360° i / segments` from +x);
+/// the floor is a fan about a vertex at `center.xy`. The rings must fit: `depth / 2 +
+/// (benches − 1) · berm` less than both radii.
+///
+/// An open surface, single-valued in plan, facing up (into the pit's air): with berms,
+/// `2 · benches` rings, `segments · (4 · benches − 1)` triangles and `2 · benches ·
+/// segments + 1` vertices (without: `benches + 1` rings, `segments · (2 · benches + 1)`
+/// triangles, `(benches + 1) · segments + 1` vertices); one boundary loop, the rim, of
+/// `segments` edges. The command line's and Python's defaults are centre 0,0,60, radius
+/// 220 × 160, depth 140, 5 benches, berm 8, 64 segments: with the default [`terrain`] the
+/// rim stands above the ground all round and the floor below it.
+///
+/// ```
+/// let p = meshbool::shapes::pit([0.0, 0.0, 60.0], [220.0, 160.0], 140.0, 5, 8.0, 64)?;
+/// let b = p.bounds().unwrap();
+/// assert_eq!((p.triangle_count(), b.min[2], b.max), (1216, -80.0, [220.0, 160.0, 60.0]));
+/// # Ok::<(), meshbool::Error>(())
+/// ```
+pub fn pit(
+    center: [f64; 3],
+    radius: [f64; 2],
+    depth: f64,
+    benches: u32,
+    berm: f64,
+    segments: u32,
+) -> Result<Mesh> {
+    finite_point("the pit's centre", center)?;
+    positive("the pit's radius along x", radius[0])?;
+    positive("the pit's radius along y", radius[1])?;
+    positive("the pit's depth", depth)?;
+    at_least("the pit's benches", benches, 1)?;
+    if !(berm.is_finite() && berm >= 0.0) {
+        return Err(Error::InvalidParameter(format!(
+            "the pit's berm must be 0 or positive and finite, got {berm}"
+        )));
+    }
+    at_least("the pit's segments", segments, 3)?;
+    let inset = depth / 2.0 + f64::from(benches - 1) * berm;
+    if inset >= radius[0].min(radius[1]) {
+        return Err(Error::InvalidParameter(format!(
+            "the pit's faces and berms reach {inset} in from the rim (depth / 2 + \
+             (benches − 1) · berm), not less than its smaller radius {}: fewer benches, \
+             narrower berms or a shallower pit",
+            radius[0].min(radius[1])
+        )));
+    }
+    let rings_n = if berm > 0.0 { 2 * benches } else { benches + 1 };
+    let n = u64::from(segments);
+    not_too_many("pit", n * (2 * u64::from(rings_n) - 1))?;
+    // (distance in from the rim, height) of each ring, rim first.
+    let face = depth / f64::from(benches);
+    let mut rings = vec![(0.0, center[2])];
+    for k in 1..=benches {
+        let (top_in, _) = *rings.last().expect("the rim");
+        let z = if k == benches {
+            center[2] - depth
+        } else {
+            center[2] - face * f64::from(k)
+        };
+        rings.push((top_in + face / 2.0, z));
+        if berm > 0.0 && k < benches {
+            rings.push((top_in + face / 2.0 + berm, z));
+        }
+    }
+    let angles: Vec<(f64, f64)> = (0..segments)
+        .map(|i| sin_cos_deg(360.0 * f64::from(i) / f64::from(segments)))
+        .collect();
+    let mut positions = Vec::with_capacity(rings.len() * segments as usize + 1);
+    for &(inset, z) in &rings {
+        let (a, b) = (radius[0] - inset, radius[1] - inset);
+        positions.extend(
+            angles
+                .iter()
+                .map(|&(s, c)| [center[0] + a * c, center[1] + b * s, z]),
+        );
+    }
+    let floor = positions.len() as u32;
+    positions.push([center[0], center[1], center[2] - depth]);
+    let at = |ring: usize, i: u32| ring as u32 * segments + i % segments;
+    let mut triangles = Vec::with_capacity((n * (2 * u64::from(rings_n) - 1)) as usize);
+    for r in 0..rings.len() - 1 {
+        for i in 0..segments {
+            // Outer ring r, inner ring r + 1, angles counter-clockwise: faces up.
+            triangles.push([at(r, i), at(r, i + 1), at(r + 1, i)]);
+            triangles.push([at(r + 1, i), at(r, i + 1), at(r + 1, i + 1)]);
+        }
+    }
+    let last = rings.len() - 1;
+    for i in 0..segments {
+        triangles.push([floor, at(last, i), at(last, i + 1)]);
+    }
+    checked("pit", Mesh::new_unchecked(positions, triangles))
 }
 
 /// The triangles of a UV sphere: south pole 0, rings of `segments` from 1, north pole
@@ -619,6 +921,253 @@ mod tests {
         assert!(e.to_string().contains("more than"), "{e}");
         assert!(plane([0.0; 3], 1.0, 1.0, 1 << 14, 1 << 14).is_err());
         assert!(cube([f64::MAX, 0.0, 0.0], 1.0).is_err());
+    }
+
+    /// The z component of each triangle's (unnormalized) normal, and its length.
+    fn normals(m: &Mesh) -> Vec<(f64, f64)> {
+        (0..m.triangle_count())
+            .map(|t| {
+                let [a, b, c] = m.corners(t);
+                let n = crate::vec3::cross(&crate::vec3::sub(&b, &a), &crate::vec3::sub(&c, &a));
+                (n[2], crate::vec3::norm(&n))
+            })
+            .collect()
+    }
+
+    /// An open surface of one boundary loop: manifold, consistently oriented, welded,
+    /// no degenerate triangles; the loop's vertices.
+    fn assert_clean_sheet(m: &Mesh) -> (crate::measure::MeshStats, Vec<u32>) {
+        let s = mesh_stats(m);
+        assert!(!s.closed);
+        assert_eq!(
+            (
+                s.non_manifold_edges,
+                s.inconsistent_edges,
+                s.degenerate_triangles,
+                s.duplicate_triangles,
+                s.unreferenced_vertices,
+                s.components
+            ),
+            (0, 0, 0, 0, 0, 1)
+        );
+        assert_eq!(weld_exact(m).mesh.positions.len(), m.positions.len());
+        let (mut loops, open) = crate::repair::boundary_loops(m);
+        assert_eq!((loops.len(), open), (1, 0));
+        let rim = loops.pop().unwrap();
+        assert_eq!(rim.len(), s.boundary_edges);
+        // A disc: Euler characteristic 1.
+        assert_eq!(s.vertices + s.triangles - s.edges, 1);
+        (s, rim)
+    }
+
+    const TERRAIN: ([f64; 3], [f64; 2], [u32; 2], f64, u64) =
+        ([0.0; 3], [1000.0; 2], [100; 2], 40.0, 1);
+    const PIT: ([f64; 3], [f64; 2], f64, u32, f64, u32) =
+        ([0.0, 0.0, 60.0], [220.0, 160.0], 140.0, 5, 8.0, 64);
+
+    fn default_terrain() -> Mesh {
+        let (c, s, n, r, seed) = TERRAIN;
+        terrain(c, s, n, r, seed).unwrap()
+    }
+
+    fn default_pit() -> Mesh {
+        let (c, r, d, b, w, n) = PIT;
+        pit(c, r, d, b, w, n).unwrap()
+    }
+
+    #[test]
+    fn terrain_is_an_open_grid_facing_up_with_the_asked_relief() {
+        for center in [[0.0; 3], [478600.0, 6772300.0, 400.0]] {
+            let (_, size, cells, relief, seed) = TERRAIN;
+            let m = terrain(center, size, cells, relief, seed).unwrap();
+            let (s, rim) = assert_clean_sheet(&m);
+            assert_eq!(
+                (s.triangles, s.vertices, s.boundary_edges),
+                (20000, 10201, 400)
+            );
+            assert_eq!(rim.len(), 400);
+            let b = m.bounds().unwrap();
+            let [x, y, z] = center;
+            assert_eq!(b.min, [x - 500.0, y - 500.0, z - 20.0]);
+            assert_eq!(b.max, [x + 500.0, y + 500.0, z + 20.0]);
+            assert_eq!(s.projected_area.xy, 1e6);
+            // Facing up, and smooth: no triangle steeper than 30°, the roughness included.
+            for (nz, len) in normals(&m) {
+                assert!(
+                    nz > 0.0 && nz > len * 30f64.to_radians().cos(),
+                    "{nz} {len}"
+                );
+            }
+        }
+        let m = terrain([1.0, 2.0, 3.0], [30.0, 10.0], [3, 2], 0.0, 7).unwrap();
+        let s = assert_clean_sheet(&m).0;
+        assert_eq!((s.triangles, s.vertices, s.boundary_edges), (12, 12, 10));
+        assert!(m.positions.iter().all(|p| p[2] == 3.0));
+    }
+
+    #[test]
+    fn terrain_is_a_function_of_its_seed() {
+        let bits = |m: &Mesh| -> Vec<[u64; 3]> {
+            m.positions.iter().map(|p| p.map(f64::to_bits)).collect()
+        };
+        let (c, s, n, r, _) = TERRAIN;
+        let one = terrain(c, s, n, r, 1).unwrap();
+        assert_eq!(bits(&one), bits(&terrain(c, s, n, r, 1).unwrap()));
+        assert_eq!(one.triangles, terrain(c, s, n, r, 1).unwrap().triangles);
+        for seed in [0, 2, u64::MAX] {
+            let other = terrain(c, s, n, r, seed).unwrap();
+            let moved = one
+                .positions
+                .iter()
+                .zip(&other.positions)
+                .filter(|(p, q)| p[2] != q[2])
+                .count();
+            assert!(moved > 10000, "seed {seed}: {moved} heights differ");
+            assert!(one
+                .positions
+                .iter()
+                .zip(&other.positions)
+                .all(|(p, q)| p[..2] == q[..2]));
+        }
+        // The relief is not just its slope: hills and hollows, i.e. interior vertices
+        // higher (and lower) than their eight neighbours.
+        let z = |i: usize, j: usize| one.positions[j * 101 + i][2];
+        let (mut peaks, mut pits) = (0, 0);
+        for j in 1..100 {
+            for i in 1..100 {
+                let around = [
+                    (0, 0),
+                    (1, 0),
+                    (2, 0),
+                    (0, 1),
+                    (2, 1),
+                    (0, 2),
+                    (1, 2),
+                    (2, 2),
+                ]
+                .map(|(di, dj)| z(i + di - 1, j + dj - 1));
+                peaks += usize::from(around.iter().all(|&w| w < z(i, j)));
+                pits += usize::from(around.iter().all(|&w| w > z(i, j)));
+            }
+        }
+        assert!(peaks > 0 && pits > 0, "{peaks} peaks, {pits} pits");
+    }
+
+    #[test]
+    fn terrain_refuses_bad_parameters() {
+        let (c, s, n, r, seed) = TERRAIN;
+        assert!(terrain([f64::NAN, 0.0, 0.0], s, n, r, seed).is_err());
+        assert!(terrain(c, [0.0, 1.0], n, r, seed).is_err());
+        assert!(terrain(c, [1.0, -1.0], n, r, seed).is_err());
+        assert!(terrain(c, [f64::INFINITY, 1.0], n, r, seed).is_err());
+        assert!(terrain(c, s, [0, 1], r, seed).is_err());
+        assert!(terrain(c, s, [1, 0], r, seed).is_err());
+        assert!(terrain(c, s, n, -1.0, seed).is_err());
+        assert!(terrain(c, s, n, f64::NAN, seed).is_err());
+        let e = terrain(c, s, [1 << 14, 1 << 14], r, seed).unwrap_err();
+        assert!(e.to_string().contains("more than"), "{e}");
+        let e = terrain([1e9, 0.0, 0.0], [1e-9, 1e-9], [4, 4], r, seed).unwrap_err();
+        assert!(e.to_string().contains("too small"), "{e}");
+    }
+
+    #[test]
+    fn pit_is_a_benched_bowl_facing_up() {
+        let m = default_pit();
+        let (s, rim) = assert_clean_sheet(&m);
+        // 10 rings of 64 and the floor's centre; 9 bands of 128 triangles and a fan of 64.
+        assert_eq!((s.triangles, s.vertices, s.boundary_edges), (1216, 641, 64));
+        assert!(rim.iter().all(|&v| m.positions[v as usize][2] == 60.0));
+        let b = m.bounds().unwrap();
+        assert_eq!(
+            (b.min, b.max),
+            ([-220.0, -160.0, -80.0], [220.0, 160.0, 60.0])
+        );
+        // The plan is the rim's polygon (single-valued: no overlap in plan).
+        let rim_area = 32.0 * (2.0 * PI / 64.0).sin() * 220.0 * 160.0;
+        assert!((s.projected_area.xy - rim_area).abs() < 1e-9 * rim_area);
+        // Flat: four berms and the floor; steep: five faces, at the 2:1 batter on the
+        // axes and steeper between them (the rings are ellipses of equal insets).
+        let (mut flat, mut steep) = (0, 0);
+        let batter = 1.0 / 5f64.sqrt();
+        for (t, (nz, len)) in normals(&m).into_iter().enumerate() {
+            assert!(nz > 0.0);
+            let z = m.corners(t).map(|p| p[2]);
+            if z[0] == z[1] && z[1] == z[2] {
+                flat += 1;
+                assert!([-80.0, 32.0, 4.0, -24.0, -52.0].contains(&z[0]), "{z:?}");
+            } else {
+                steep += 1;
+                assert!(nz / len <= batter * (1.0 + 1e-12) && nz / len > 0.75 * batter);
+            }
+        }
+        assert_eq!((flat, steep), (4 * 128 + 64, 5 * 128));
+        // The floor: the 64 triangles at the bottom, 220 − 102 by 160 − 102.
+        let floor: Vec<_> = m.positions.iter().filter(|p| p[2] == -80.0).collect();
+        assert_eq!(floor.len(), 65);
+        assert!(floor.iter().any(|p| p[..2] == [118.0, 0.0]));
+        assert!(floor.iter().any(|p| p[..2] == [0.0, -58.0]));
+    }
+
+    #[test]
+    fn pit_without_berms_and_its_refusals() {
+        let m = pit([10.0, 20.0, 5.0], [50.0, 50.0], 30.0, 3, 0.0, 12).unwrap();
+        let s = assert_clean_sheet(&m).0;
+        // 4 rings of 12 and the centre: 3 bands of 24 and a fan of 12.
+        assert_eq!((s.triangles, s.vertices, s.boundary_edges), (84, 49, 12));
+        assert_eq!(m.bounds().unwrap().min[2], -25.0);
+        let (c, r, d, b, w, n) = PIT;
+        assert!(pit([0.0, f64::INFINITY, 0.0], r, d, b, w, n).is_err());
+        assert!(pit(c, [0.0, 1.0], d, b, w, n).is_err());
+        assert!(pit(c, r, -1.0, b, w, n).is_err());
+        assert!(pit(c, r, d, 0, w, n).is_err());
+        assert!(pit(c, r, d, b, -1.0, n).is_err());
+        assert!(pit(c, r, d, b, f64::NAN, n).is_err());
+        assert!(pit(c, r, d, b, w, 2).is_err());
+        // Faces and berms 70 + 4 · 8 in from a rim of radius 100 fit; of 102 do not.
+        assert!(pit(c, [300.0, 103.0], d, b, w, n).is_ok());
+        let e = pit(c, [300.0, 102.0], d, b, w, n).unwrap_err();
+        assert!(e.to_string().contains("reach 102"), "{e}");
+        assert!(pit(c, r, d, b, w, u32::MAX).is_err());
+    }
+
+    #[test]
+    fn default_pit_crosses_default_terrain_along_one_closed_curve() {
+        use crate::ops;
+        let (t, p) = (default_terrain(), default_pit());
+        let c = ops::curves(&t, &p, &ops::CurvesOptions::default()).unwrap();
+        let r = c.report();
+        assert_eq!((r.loops, r.open_chains, r.touching_points), (1, 0, 0));
+        // The rim stands above the ground all round and the floor below it: the seam
+        // runs round the pit between them, longer than the floor's ellipse.
+        let b = c.polylines[0]
+            .points
+            .iter()
+            .fold([f64::INFINITY, 0.0], |[lo, hi], q| {
+                [lo.min(q[2]), hi.max(q[2])]
+            });
+        assert!(b[0] > -20.0 && b[1] < 20.0, "{b:?}");
+        assert!(r.total_length > 2.0 * PI * 58.0, "{}", r.total_length);
+        // Split: the same seam; each surface in two groups whose areas add up to its own.
+        let split = ops::split(&t, &p, &ops::SplitOptions::default()).unwrap();
+        let sr = split.report(crate::Format::Obj);
+        assert_eq!(sr.seam_points, r.points);
+        let area = |names: [crate::Group; 2]| -> f64 {
+            names
+                .iter()
+                .map(|n| sr.groups.iter().find(|g| g.name == *n).unwrap().piece.area)
+                .sum()
+        };
+        use crate::Group::{AInB, AOutB, BInA, BOutA};
+        assert_eq!(sr.groups.len(), 4);
+        let (ta, pa) = (mesh_stats(&t).area, mesh_stats(&p).area);
+        assert!((area([AInB, AOutB]) - ta).abs() < 1e-9 * ta);
+        assert!((area([BInA, BOutA]) - pa).abs() < 1e-9 * pa);
+        // Cut and fill of the terrain against the pit: material to dig inside the seam,
+        // the pit's upper walls standing in the air outside it, over the pit's plan.
+        let cf = ops::cutfill(&p, &t, &ops::CutFillOptions::default()).unwrap();
+        assert!(cf.cut > 1e6 && cf.fill > 1e5, "{} {}", cf.cut, cf.fill);
+        assert!((cf.common_area - cf.design_area).abs() < 1e-9 * cf.design_area);
+        assert_eq!((cf.lines.len(), cf.topo_area), (1, 1e6));
     }
 
     #[test]

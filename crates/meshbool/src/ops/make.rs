@@ -1,4 +1,5 @@
-//! `make` at the front door: the primitives of [`crate::shapes`] by name, with a report.
+//! `make` at the front door: the primitives and mining examples of [`crate::shapes`] by
+//! name, with a report.
 
 use serde::Serialize;
 
@@ -65,10 +66,38 @@ pub enum Shape {
         /// Cells along y (≥ 1).
         ny: u32,
     },
+    /// A seeded terrain, an open height field facing +z ([`shapes::terrain`]).
+    Terrain {
+        /// Centre (of the plan rectangle, and of the heights' range).
+        center: [f64; 3],
+        /// Extent along x and y.
+        size: [f64; 2],
+        /// Cells along x and y (each ≥ 1).
+        cells: [u32; 2],
+        /// Highest less lowest height (≥ 0).
+        relief: f64,
+        /// The relief's seed.
+        seed: u64,
+    },
+    /// An open-pit design shell facing up ([`shapes::pit`]).
+    Pit {
+        /// Centre of the rim (its height is the rim's).
+        center: [f64; 3],
+        /// Semi-axes of the rim along x and y.
+        radius: [f64; 2],
+        /// Rim less floor height.
+        depth: f64,
+        /// Faces from rim to floor (≥ 1).
+        benches: u32,
+        /// Width of the flat berms between faces (≥ 0).
+        berm: f64,
+        /// Vertices of each ring (≥ 3).
+        segments: u32,
+    },
 }
 
 impl Shape {
-    /// The shape's name: `cube`, `sphere`, `cylinder`, `cone` or `plane`.
+    /// The shape's name: `cube`, `sphere`, `cylinder`, `cone`, `plane`, `terrain` or `pit`.
     pub fn name(&self) -> &'static str {
         match self {
             Shape::Cube { .. } => "cube",
@@ -76,6 +105,8 @@ impl Shape {
             Shape::Cylinder { .. } => "cylinder",
             Shape::Cone { .. } => "cone",
             Shape::Plane { .. } => "plane",
+            Shape::Terrain { .. } => "terrain",
+            Shape::Pit { .. } => "pit",
         }
     }
 
@@ -109,6 +140,21 @@ impl Shape {
                 nx,
                 ny,
             } => shapes::plane(center, width, depth, nx, ny),
+            Shape::Terrain {
+                center,
+                size,
+                cells,
+                relief,
+                seed,
+            } => shapes::terrain(center, size, cells, relief, seed),
+            Shape::Pit {
+                center,
+                radius,
+                depth,
+                benches,
+                berm,
+                segments,
+            } => shapes::pit(center, radius, depth, benches, berm, segments),
         }
     }
 }
@@ -194,16 +240,38 @@ mod tests {
                 nx: 2,
                 ny: 1,
             },
+            Shape::Terrain {
+                center: [0.0; 3],
+                size: [10.0, 20.0],
+                cells: [2, 4],
+                relief: 3.0,
+                seed: 5,
+            },
+            Shape::Pit {
+                center: [0.0; 3],
+                radius: [10.0, 8.0],
+                depth: 6.0,
+                benches: 2,
+                berm: 1.0,
+                segments: 8,
+            },
         ];
-        let volumes = [6.0, f64::NAN, 4.0, 2.0, f64::NAN];
-        for (s, v) in shapes.iter().zip(volumes) {
+        let volumes = [6.0, f64::NAN, 4.0, 2.0, f64::NAN, f64::NAN, f64::NAN];
+        let triangles = [12, 48, 16, 8, 4, 16, 56];
+        let names = [
+            "cube", "sphere", "cylinder", "cone", "plane", "terrain", "pit",
+        ];
+        for ((s, v), (n, name)) in shapes.iter().zip(volumes).zip(triangles.iter().zip(names)) {
             let r = make(s).unwrap().report();
-            assert_eq!(r.shape, s.name());
-            assert_eq!(r.result.closed, s.name() != "plane");
+            assert_eq!((r.shape, s.name()), (name, name));
+            assert_eq!(r.result.triangles, *n, "{name}");
+            assert_eq!(r.result.closed, v.is_finite() || name == "sphere");
             if !v.is_nan() {
                 assert!((r.result.volume - v).abs() < 1e-14, "{}", s.name());
             }
         }
+        let b = make(&shapes[5]).unwrap().report().bbox.unwrap();
+        assert_eq!((b.min, b.max), ([-5.0, -10.0, -1.5], [5.0, 10.0, 1.5]));
         let bad = Shape::Cube {
             min: [0.0; 3],
             max: [1.0, 0.0, 1.0],
