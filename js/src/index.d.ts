@@ -227,6 +227,10 @@ export function makeCylinder(options?: { base?: Point3; radius?: number; height?
 export function makeCone(options?: { base?: Point3; radius?: number; topRadius?: number; height?: number; segments?: number }): MadeMesh;
 /** A flat rectangle facing +z, `nx` × `ny` cells of two triangles: an open surface. Defaults: centre origin, 1 × 1, one cell. */
 export function makePlane(options?: { center?: Point3; width?: number; depth?: number; nx?: number; ny?: number }): MadeMesh;
+/** A seeded terrain, an open height field facing +z spanning `relief` in height. Defaults: centre origin, size 1000 × 1000, 100 × 100 cells, relief 40, seed 1. */
+export function makeTerrain(options?: { center?: Point3; size?: number | [number, number]; cells?: number | [number, number]; relief?: number; seed?: number }): MadeMesh;
+/** An open benched pit shell facing up, rim at `center.z`. Defaults: centre [0, 0, 60], radius 220 × 160, depth 140, 5 benches, berm 8, 64 segments. */
+export function makePit(options?: { center?: Point3; radius?: number | [number, number]; depth?: number; benches?: number; berm?: number; segments?: number }): MadeMesh;
 export function soupToTyped(soup: TriangleSoup): IndexedMesh;
 export function typedToSoup(mesh: IndexedMesh): TriangleSoup;
 export function isIndexed(value: unknown): value is IndexedMesh;

@@ -1,8 +1,9 @@
 // meshbool for JavaScript: the API of the trimesh-boolean library (every export of its
 // 0.7.5 index; the BMS stages in bms.js and stages.js, solids in solids.js, finishing in
 // finish.js), computed by meshbool's exact pipeline in WebAssembly, plus a typed-array
-// fast path (`*Indexed` functions, `readMesh`, `writeMesh`). The same in a Web Worker:
-// async.js (`meshbool/async`).
+// fast path (`*Indexed` functions, `readMesh`, `writeMesh`) and the library's generated
+// shapes (`make*`: primitives, a terrain and a pit to try things on). The same in a Web
+// Worker: async.js (`meshbool/async`).
 //
 // The WebAssembly module is instantiated when this module is imported (top-level await):
 // `import * as mb from "meshbool"` resolves once it is ready, and every call is synchronous
@@ -364,6 +365,32 @@ export function makeCone(options) {
  */
 export function makePlane(options) {
 	return make("plane", options);
+}
+
+/**
+ * A seeded terrain (an example to try the operations on, in place of survey data): an
+ * open height field over `center.xy ± size / 2` (default centre [0, 0, 0], size [1000,
+ * 1000]; one number for both), `cells` (default [100, 100]) of two triangles, facing +z;
+ * hills, hollows, ridges and valleys scaled so that the heights span `relief` (default
+ * 40) about `center.z`. The same `seed` (default 1) gives the same mesh, bit for bit.
+ * `2 · cells[0] · cells[1]` triangles, one boundary loop of `2 (cells[0] + cells[1])`
+ * edges. `{positions, index, report}`.
+ */
+export function makeTerrain(options) {
+	return make("terrain", options);
+}
+
+/**
+ * An open-pit design shell facing up (into the pit's air): a benched bowl, its rim the
+ * ellipse of semi-axes `radius` (default [220, 160]) about `center` (default [0, 0, 60])
+ * at height `center.z`, its floor `depth` (default 140) below, `benches` faces (default
+ * 5) at a batter of 2:1 with flat berms `berm` wide (default 8) between them, rings of
+ * `segments` vertices (default 64). With the defaults it crosses the default terrain,
+ * its rim above the ground all round. One boundary loop, the rim, of `segments` edges.
+ * `{positions, index, report}`.
+ */
+export function makePit(options) {
+	return make("pit", options);
 }
 
 /** A soup as an indexed mesh `{positions, index}` welded exactly (equal coordinates only). */

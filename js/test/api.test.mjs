@@ -260,6 +260,71 @@ test("generated primitives: the library's counts, exact volumes and meshbool mak
 	assert.throws(() => mb.makePlane([1, 2]), /options must be an object/);
 });
 
+test("a generated terrain: an open grid facing up, one boundary loop, its relief's range, the same for the same seed", () => {
+	const t = mb.makeTerrain();
+	const info = mb.meshInfo(t);
+	assert.deepEqual(
+		[info.triangles, info.vertices, info.boundary_edges, info.non_manifold_edges, info.inconsistent_edges, info.degenerate_triangles, info.components, info.closed],
+		[20000, 10201, 400, 0, 0, 0, 1, false],
+	);
+	assert.deepEqual(info.bbox, { min: [-500, -500, -20], max: [500, 500, 20] });
+	assert.equal(info.projected_area.xy, 1e6);
+	const rim = mb.extractBoundaryLoops(mb.typedToSoup(t));
+	assert.deepEqual([rim.loops.length, rim.loops[0].length], [1, 400]);
+	for (let k = 0; k < 20000; k++) assert.ok(normalZ(t, k) > 0, `triangle ${k} faces down`);
+	// Deterministic by seed: bit-identical again, every height different for another seed.
+	assert.deepEqual(mb.makeTerrain({ seed: 1 }).positions, t.positions);
+	const other = mb.makeTerrain({ seed: 2 });
+	assert.deepEqual(other.index, t.index);
+	let moved = 0;
+	for (let k = 2; k < t.positions.length; k += 3) if (other.positions[k] !== t.positions[k]) moved++;
+	assert.equal(moved, 10201);
+	assert.deepEqual(mb.meshInfo(other).bbox, info.bbox);
+	// Placed, sized and sampled as asked; relief 0 is flat.
+	const small = mb.makeTerrain({ center: [478600, 6772300, 400], size: [300, 200], cells: [6, 4], relief: 10, seed: 7 });
+	assert.deepEqual([small.index.length / 3, small.report.boundary_edges], [48, 20]);
+	assert.deepEqual(small.report.bbox, { min: [478450, 6772200, 395], max: [478750, 6772400, 405] });
+	assert.equal(mb.makeTerrain({ cells: 4, relief: 0 }).report.volume, 0);
+	assert.throws(() => mb.makeTerrain({ cells: [4, 0] }), /cells along y must be at least 1/);
+	assert.throws(() => mb.makeTerrain({ relief: -1 }), /relief must be 0 or positive/);
+});
+
+test("a generated pit: an open benched shell facing up, its rim one loop, crossing the terrain", () => {
+	const p = mb.makePit();
+	const info = mb.meshInfo(p);
+	// 5 benches with berms: 10 rings of 64, 64 · (4 · 5 − 1) triangles, the rim open.
+	assert.deepEqual(
+		[info.triangles, info.vertices, info.boundary_edges, info.non_manifold_edges, info.inconsistent_edges, info.components, info.closed],
+		[1216, 641, 64, 0, 0, 1, false],
+	);
+	assert.deepEqual(info.bbox, { min: [-220, -160, -80], max: [220, 160, 60] });
+	for (let k = 0; k < 1216; k++) assert.ok(normalZ(p, k) > 0, `triangle ${k} faces down`);
+	const rim = mb.extractBoundaryLoops(mb.typedToSoup(p)).loops;
+	assert.deepEqual([rim.length, rim[0].length, rim[0].every((v) => v.z === 60)], [1, 64, true]);
+	assert.equal(mb.makePit({ berm: 0, benches: 3, segments: 16 }).index.length / 3, 16 * 7);
+	assert.throws(() => mb.makePit({ radius: 60 }), /faces and berms reach 102 in from the rim .* radius 60/);
+	// The default pit crosses the default terrain in one closed curve, its rim above the
+	// ground all round and its floor below.
+	const t = mb.makeTerrain();
+	const c = mb.curvesIndexed(t, p);
+	assert.deepEqual([c.polylines.length, c.closed[0], c.polylines[0].length / 3], [1, true, 314]);
+	const s = mb.splitIndexed(t, p);
+	const counts = Object.fromEntries(["a_in_b", "a_out_b", "b_in_a", "b_out_a"].map((g) => [g, s.groups[g].index.length / 3]));
+	assert.deepEqual(counts, { a_in_b: 19166, a_out_b: 1462, b_in_a: 954, b_out_a: 890 });
+	// terrain ∩ pit: the ground after mining, one open sheet over the whole plan whose
+	// only boundary is the terrain's.
+	const after = mb.meshInfo(mb.booleanIndexed(t, p, "intersect"));
+	assert.deepEqual([after.triangles, after.boundary_edges, after.non_manifold_edges, after.inconsistent_edges, after.components], [19166 + 954, 400, 0, 0, 1]);
+	assert.equal(after.projected_area.xy, 1e6);
+	// terrain − pit: the closed solid mined out, its volume the cut of the pit design
+	// against the terrain (cut and fill, computed another way).
+	const mined = mb.booleanIndexed(t, p, "subtract");
+	assert.deepEqual([mined.report.triangles, mined.report.closed, mined.report.boundary_edges], [1462 + 954, true, 0]);
+	assert.equal(mined.report.volume, 2389263.205998871);
+	const cf = mb.cutFill(p, t);
+	assert.ok(Math.abs(cf.cut - mined.report.volume) < 1e-9 * mined.report.volume, `${cf.cut} vs ${mined.report.volume}`);
+});
+
 test("readFormats lists what readMesh reads: each round-trips, the mining formats' errors list only these", () => {
 	const formats = mb.readFormats();
 	const names = formats.map((f) => f.name);

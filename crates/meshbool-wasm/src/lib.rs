@@ -830,6 +830,28 @@ fn whole<T: TryFrom<u64>>(o: &Value, key: &str, default: T) -> Result<T, JsError
     }
 }
 
+/// Option `key` as `N` whole numbers (an array of them, or one for all `N`), `default`
+/// when absent.
+fn wholes<const N: usize>(o: &Value, key: &str, default: [u32; N]) -> Result<[u32; N], JsError> {
+    let one = |v: &Value| v.as_u64().and_then(|n| u32::try_from(n).ok());
+    let err = |v: &Value| {
+        bad(format!(
+            "option {key} must be a whole number ≥ 0 or an array of {N} of them, got {v}"
+        ))
+    };
+    match o.get(key) {
+        None | Some(Value::Null) => Ok(default),
+        Some(Value::Array(a)) if a.len() == N => {
+            let mut out = [0; N];
+            for (k, v) in a.iter().enumerate() {
+                out[k] = one(v).ok_or_else(|| err(&o[key]))?;
+            }
+            Ok(out)
+        }
+        Some(v) => Ok([one(v).ok_or_else(|| err(v))?; N]),
+    }
+}
+
 /// Option `key` as a number, `default` when absent.
 fn number_or(o: &Value, key: &str, default: f64) -> Result<f64, JsError> {
     Ok(number(o, key)?.unwrap_or(default))
@@ -840,7 +862,10 @@ fn number_or(o: &Value, key: &str, default: f64) -> Result<f64, JsError> {
 /// `min` and `max`), `sphere` (`center` [0,0,0], `radius` 1, `segments` 32, `rings` 16),
 /// `cylinder` (`base` [0,0,0], `radius` 1, `height` 1, `segments` 32), `cone` (as the
 /// cylinder, with `topRadius` 0), `plane` (`center` [0,0,0], `width` 1, `depth` 1, `nx` 1,
-/// `ny` 1).
+/// `ny` 1), `terrain` (`center` [0,0,0], `size` [1000,1000], `cells` [100,100], `relief`
+/// 40, `seed` 1) and `pit` (`center` [0,0,60], `radius` [220,160], `depth` 140, `benches`
+/// 5, `berm` 8, `segments` 64): the pit crosses the terrain, its rim above the ground all
+/// round. `size`, `cells` and the pit's `radius` take one number for both axes.
 fn shape(name: &str, o: &Value) -> Result<ops::Shape, JsError> {
     use ops::Shape;
     let keys: &[&str] = match name {
@@ -849,6 +874,8 @@ fn shape(name: &str, o: &Value) -> Result<ops::Shape, JsError> {
         "cylinder" => &["base", "radius", "height", "segments"],
         "cone" => &["base", "radius", "topRadius", "height", "segments"],
         "plane" => &["center", "width", "depth", "nx", "ny"],
+        "terrain" => &["center", "size", "cells", "relief", "seed"],
+        "pit" => &["center", "radius", "depth", "benches", "berm", "segments"],
         _ => {
             return Err(bad(format!(
                 "unknown shape {name:?}: cube, sphere, cylinder, cone, plane, terrain or pit"
@@ -904,12 +931,27 @@ fn shape(name: &str, o: &Value) -> Result<ops::Shape, JsError> {
             height: number_or(o, "height", 1.0)?,
             segments: whole(o, "segments", 32)?,
         },
-        _ => Shape::Plane {
+        "plane" => Shape::Plane {
             center: numbers(o, "center", origin, false)?,
             width: number_or(o, "width", 1.0)?,
             depth: number_or(o, "depth", 1.0)?,
             nx: whole(o, "nx", 1)?,
             ny: whole(o, "ny", 1)?,
+        },
+        "terrain" => Shape::Terrain {
+            center: numbers(o, "center", origin, false)?,
+            size: numbers(o, "size", [1000.0; 2], true)?,
+            cells: wholes(o, "cells", [100; 2])?,
+            relief: number_or(o, "relief", 40.0)?,
+            seed: whole(o, "seed", 1)?,
+        },
+        _ => Shape::Pit {
+            center: numbers(o, "center", [0.0, 0.0, 60.0], false)?,
+            radius: numbers(o, "radius", [220.0, 160.0], true)?,
+            depth: number_or(o, "depth", 140.0)?,
+            benches: whole(o, "benches", 5)?,
+            berm: number_or(o, "berm", 8.0)?,
+            segments: whole(o, "segments", 64)?,
         },
     })
 }
@@ -958,9 +1000,11 @@ mod tests {
     fn shapes_take_meshbool_makes_defaults() {
         let none = Value::Object(Default::default());
         let made = |name| shape(name, &none).ok().and_then(|s| s.mesh().ok());
-        let counts = ["cube", "sphere", "cylinder", "cone", "plane"]
-            .map(|n| made(n).map_or(0, |m| m.triangle_count()));
-        assert_eq!(counts, [12, 960, 128, 64, 2]);
+        let counts = [
+            "cube", "sphere", "cylinder", "cone", "plane", "terrain", "pit",
+        ]
+        .map(|n| made(n).map_or(0, |m| m.triangle_count()));
+        assert_eq!(counts, [12, 960, 128, 64, 2, 20000, 1216]);
     }
 
     #[test]
