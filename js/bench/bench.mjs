@@ -3,19 +3,21 @@
 //   node bench/bench.mjs [--reps N (default 11)] [--slow]
 // Peers are optional, named by environment variables (they are not dependencies):
 //   REF=/path/to/trimesh-boolean/src/index.js   MANIFOLD=/path/to/manifold-3d/manifold.js
-// Cases: Kirra terrain − cylinder (open surface, soup API and typed arrays), and unions of
-// two overlapping UV spheres of 50k and 200k triangles in all (closed). Each time is the
+// Cases: the generated terrain − pit (open surfaces), the Kirra terrain − cylinder (open
+// surface, soup API and typed arrays; read from ../shared/data beside the repository,
+// skipped with a note where absent), and unions of two overlapping UV spheres of 50k and
+// 200k triangles in all (closed; the package's makeSphere). Each time is the
 // median of N runs (the reference: one run; its 200k case only with --slow) and includes
 // the conversions in and out of each library's own mesh type.
 import { readFileSync, statSync } from "node:fs";
 import { gzipSync } from "node:zlib";
 import { performance } from "node:perf_hooks";
 import * as mb from "../src/index.js";
+import { missing as noKirra, sharedData } from "../test/shared-data.mjs";
 
 const args = process.argv.slice(2);
 const reps = Number(args[args.indexOf("--reps") + 1]) || 11;
 const slow = args.includes("--slow");
-const data = (name) => new URL(`../../data/${name}`, import.meta.url);
 
 function median(f, n) {
 	const times = [];
@@ -27,29 +29,6 @@ function median(f, n) {
 	}
 	times.sort((a, b) => a - b);
 	return { ms: times[Math.floor(times.length / 2)], out };
-}
-
-/** A welded UV sphere: `slices * (stacks - 1) * 2` triangles. */
-function sphere(cx, cy, cz, r, slices, stacks) {
-	const pos = [cx, cy, cz + r];
-	for (let i = 1; i < stacks; i++) {
-		const th = (Math.PI * i) / stacks;
-		for (let j = 0; j < slices; j++) {
-			const ph = (2 * Math.PI * j) / slices;
-			pos.push(cx + r * Math.sin(th) * Math.cos(ph), cy + r * Math.sin(th) * Math.sin(ph), cz + r * Math.cos(th));
-		}
-	}
-	pos.push(cx, cy, cz - r);
-	const south = pos.length / 3 - 1, ring = (i, j) => 1 + (i - 1) * slices + (j % slices);
-	const idx = [];
-	for (let j = 0; j < slices; j++) idx.push(0, ring(1, j), ring(1, j + 1));
-	for (let i = 1; i < stacks - 1; i++) {
-		for (let j = 0; j < slices; j++) {
-			idx.push(ring(i, j), ring(i + 1, j), ring(i + 1, j + 1), ring(i, j), ring(i + 1, j + 1), ring(i, j + 1));
-		}
-	}
-	for (let j = 0; j < slices; j++) idx.push(south, ring(stacks - 1, j + 1), ring(stacks - 1, j));
-	return { positions: Float64Array.from(pos), index: Uint32Array.from(idx) };
 }
 
 const ref = process.env.REF ? await import(process.env.REF) : null;
@@ -77,11 +56,20 @@ const row = (name, ms, note = "") => {
 	console.log(`${name.padEnd(52)} ${ms.toFixed(1).padStart(10)} ms  ${note}`);
 };
 
-// Kirra terrain − cylinder
-const terrain = mb.readMesh(readFileSync(data("kirra_terrain.obj")), "obj");
-const cylinder = mb.readMesh(readFileSync(data("kirra_cylinder.obj")), "obj");
-const tSoup = mb.typedToSoup(terrain), cSoup = mb.typedToSoup(cylinder);
+// Generated terrain − pit (both open; the result is the mined-out solid)
 {
+	const terrain = mb.makeTerrain(), pit = mb.makePit();
+	const t = median(() => mb.booleanIndexed(terrain, pit, "subtract"), reps);
+	row("terrain − pit (generated): meshbool booleanIndexed", t.ms, `${t.out.index.length / 3} triangles, volume ${t.out.report.volume.toFixed(3)}`);
+}
+
+// Kirra terrain − cylinder (other projects' data, beside the repository)
+if (noKirra) {
+	console.log(`kirra terrain − cylinder: skipped, ${noKirra}`);
+} else {
+	const terrain = mb.readMesh(sharedData("kirra_terrain.obj"), "obj");
+	const cylinder = mb.readMesh(sharedData("kirra_cylinder.obj"), "obj");
+	const tSoup = mb.typedToSoup(terrain), cSoup = mb.typedToSoup(cylinder);
 	const r = median(() => mb.boolean(tSoup, cSoup, "subtract"), reps);
 	row("kirra terrain − cylinder: meshbool boolean (soups)", r.ms, `${r.out.soup.length} triangles`);
 	const t = median(() => mb.booleanIndexed(terrain, cylinder, "subtract"), reps);
@@ -96,7 +84,8 @@ const tSoup = mb.typedToSoup(terrain), cSoup = mb.typedToSoup(cylinder);
 
 // Sphere unions
 for (const [label, slices, stacks, refOk] of [["50k", 125, 101, true], ["200k", 250, 201, slow]]) {
-	const a = sphere(0, 0, 0, 1, slices, stacks), b = sphere(0.3, 0.2, 0.1, 1, slices, stacks);
+	// `2 · slices · (stacks − 1)` triangles each.
+	const a = mb.makeSphere({ segments: slices, rings: stacks }), b = mb.makeSphere({ center: [0.3, 0.2, 0.1], segments: slices, rings: stacks });
 	const n = (a.index.length + b.index.length) / 3;
 	const r = median(() => mb.booleanIndexed(a, b, "union", { selfCheck: false }), reps);
 	row(`union of two spheres, ${label} (${n}): meshbool, no self-check`, r.ms, `volume ${r.out.report.volume.toFixed(6)}`);

@@ -3,8 +3,10 @@
 //   node bench/browser.mjs [--reps N (default 3)]
 // manifold-3d is optional (not a dependency): `npm install --no-save manifold-3d@3.5.4`
 // puts it where the page loads it (/node_modules/manifold-3d/manifold.js).
-// Cases: unions of two UV spheres of 998,000 and of 2,002,224 triangles each (closed), and the
-// Kirra terrain − cylinder (an open surface: manifold-3d takes closed meshes only). Each
+// Cases: unions of two UV spheres of 998,000 and of 2,002,224 triangles each (closed; the
+// demo's bigSphere), the generated terrain − pit and the Kirra terrain − cylinder (open
+// surfaces: manifold-3d takes closed meshes only; the Kirra files are read here from
+// ../shared/data beside the repository and handed to the page, skipped where absent). Each
 // time is the median of N runs, conversions into each library's mesh type included;
 // meshbool runs on the page's thread (single-threaded WebAssembly) and through
 // meshbool/async (the same in a Web Worker, inputs copied across).
@@ -12,11 +14,14 @@ import fs from "node:fs";
 import path from "node:path";
 import { chromium } from "playwright-core";
 import { startServer, packageRoot } from "../demo/serve.mjs";
+import { missing as noKirra, sharedData } from "../test/shared-data.mjs";
 
 const args = process.argv.slice(2);
 const reps = Number(args[args.indexOf("--reps") + 1]) || 3;
 const executablePath = process.env.CHROMIUM || "/usr/bin/chromium";
 const hasManifold = fs.existsSync(path.join(packageRoot, "node_modules", "manifold-3d", "manifold.js"));
+// The Kirra files' text (OBJ), or null.
+const kirra = noKirra ? null : Object.fromEntries(["kirra_terrain.obj", "kirra_cylinder.obj"].map((n) => [n, sharedData(n).toString("latin1")]));
 
 const server = await startServer({ port: 0 });
 const browser = await chromium.launch({ executablePath, headless: true, args: ["--headless", "--no-sandbox", "--disable-gpu"] });
@@ -24,7 +29,7 @@ try {
 	const page = await browser.newPage();
 	page.on("pageerror", (e) => console.error(`page error: ${e.message}`));
 	await page.goto(`${server.url}bench/browser.html`);
-	const rows = await page.evaluate(async ({ reps, hasManifold }) => {
+	const rows = await page.evaluate(async ({ reps, hasManifold, kirra }) => {
 		const mb = await import("/src/index.js");
 		const { createWorker } = await import("/src/async.js");
 		const out = [];
@@ -39,22 +44,7 @@ try {
 			times.sort((a, b) => a - b);
 			return { ms: times[Math.floor(times.length / 2)], r };
 		};
-		// A UV sphere of radius 1 centred at (cx, 0, 0): 2n meridians, n bands, 4n(n − 1) triangles, closed.
-		const sphere = (n, cx) => {
-			const around = 2 * n, positions = [cx, 0, 1];
-			for (let i = 1; i < n; i++) {
-				for (let j = 0; j < around; j++) {
-					const th = (Math.PI * i) / n, ph = (Math.PI * j) / n;
-					positions.push(cx + Math.sin(th) * Math.cos(ph), Math.sin(th) * Math.sin(ph), Math.cos(th));
-				}
-			}
-			positions.push(cx, 0, -1);
-			const last = positions.length / 3 - 1, ring = (i, j) => 1 + (i - 1) * around + (j % around), index = [];
-			for (let j = 0; j < around; j++) index.push(0, ring(1, j), ring(1, j + 1));
-			for (let i = 1; i < n - 1; i++) for (let j = 0; j < around; j++) index.push(ring(i, j), ring(i + 1, j), ring(i + 1, j + 1), ring(i, j), ring(i + 1, j + 1), ring(i, j + 1));
-			for (let j = 0; j < around; j++) index.push(last, ring(n - 1, j + 1), ring(n - 1, j));
-			return { positions: Float64Array.from(positions), index: Uint32Array.from(index) };
-		};
+		const { bigSphere } = await import("/demo/examples.js");
 		const worker = createWorker();
 		await worker.start();
 		let manifold = null;
@@ -64,7 +54,7 @@ try {
 			manifold.setup();
 		}
 		for (const k of [500, 708]) {
-			const a = sphere(k, 0), b = sphere(k, 0.5);
+			const a = bigSphere("a", k), b = bigSphere("b", k);
 			const n = (a.index.length + b.index.length) / 3;
 			const label = `union of two spheres, ${n} triangles`;
 			let m = await median(() => mb.booleanIndexed(a, b, "union"));
@@ -88,17 +78,23 @@ try {
 			}
 		}
 		let m;
-		const read = async (name) => mb.readMesh(new Uint8Array(await (await fetch(`/data/${name}`)).arrayBuffer()), "obj");
-		const terrain = await read("kirra_terrain.obj"), cylinder = await read("kirra_cylinder.obj");
-		m = await median(() => mb.booleanIndexed(terrain, cylinder, "subtract"));
-		out.push(["kirra terrain − cylinder: meshbool, page thread", m.ms, `${m.r.index.length / 3} triangles`]);
-		m = await median(() => worker.booleanIndexed(terrain, cylinder, "subtract"));
-		out.push(["kirra terrain − cylinder: meshbool/async (Web Worker)", m.ms, `${m.r.index.length / 3} triangles`]);
+		const pairs = [["terrain − pit (generated)", mb.makeTerrain(), mb.makePit()]];
+		if (kirra) {
+			const read = (name) => mb.readMesh(Uint8Array.from(kirra[name], (c) => c.charCodeAt(0)), name);
+			pairs.push(["kirra terrain − cylinder", read("kirra_terrain.obj"), read("kirra_cylinder.obj")]);
+		}
+		for (const [label, a, b] of pairs) {
+			m = await median(() => mb.booleanIndexed(a, b, "subtract"));
+			out.push([`${label}: meshbool, page thread`, m.ms, `${m.r.index.length / 3} triangles`]);
+			m = await median(() => worker.booleanIndexed(a, b, "subtract"));
+			out.push([`${label}: meshbool/async (Web Worker)`, m.ms, `${m.r.index.length / 3} triangles`]);
+		}
 		worker.terminate();
 		return out;
-	}, { reps, hasManifold });
+	}, { reps, hasManifold, kirra });
 	for (const [name, ms, note] of rows) console.log(`${name.padEnd(60)} ${ms.toFixed(0).padStart(8)} ms  ${note}`);
 	console.log(`\nChromium ${browser.version()}, ${reps} runs each (median)${hasManifold ? "" : "; manifold-3d not installed (npm install --no-save manifold-3d@3.5.4)"}`);
+	if (noKirra) console.log(`kirra terrain − cylinder: skipped, ${noKirra}`);
 } finally {
 	await browser.close();
 	await server.close();

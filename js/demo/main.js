@@ -1,19 +1,22 @@
-// The demo page: two meshes (files read by meshbool's WebAssembly readers, the bundled
-// Kirra examples, or two generated spheres of 998,000 triangles each), a boolean or a
-// split-and-pick of the two computed in a Web Worker (the page stays responsive; the
-// stages show as they begin; Cancel stops it), the result drawn with three.js and
-// measured, and an STL download of it.
+// The demo page: two meshes (files read by meshbool's WebAssembly readers, or examples
+// generated in the page: a terrain, a pit, a drill hole, a sphere, and two spheres of
+// 998,000 triangles each), a boolean or a split-and-pick of the two computed in a Web
+// Worker (the page stays responsive; the stages show as they begin; Cancel stops it), the
+// result drawn with three.js and measured, and an STL download of it. Needs no data
+// files and no network.
 import * as THREE from "three";
 import { OrbitControls } from "three/addons/controls/OrbitControls.js";
-import { meshInfo, readMesh, version, writeMesh } from "../src/index.js";
+import { meshInfo, readFormats, readMesh, version, writeMesh } from "../src/index.js";
 import { createWorker } from "../src/async.js";
 import { indexedToGeometry } from "../src/three.js";
+import { EXAMPLES, bigSphere } from "./examples.js";
 
 const $ = (id) => document.getElementById(id);
 
 const COLORS = { a: 0x6fb3ff, b: 0xffb15e, result: 0x7fd18b };
 const GROUPS = ["a_in_b", "a_out_b", "b_in_a", "b_out_a"];
-const FORMATS = { stl: "stl", obj: "obj", ply: "ply", off: "off", dxf: "dxf", json: "json", glb: "glb" };
+/** The file picker's choices: the extensions of the formats this build reads. */
+const ACCEPT = [...new Set(readFormats().map((f) => `.${f.extension}`))].join(",");
 const STAGES = { check: "checking the inputs", intersect: "intersecting", arrange: "cutting along the seam", classify: "classifying", merge: "merging", snap: "snapping" };
 
 /** The worker the operations run in, and the controller of the running one. */
@@ -160,22 +163,29 @@ function createViewer(container) {
 
 // ── inputs ───────────────────────────────────────────────────────────────────────────────
 
-/** The format name readMesh takes for a file name ("" to let it detect the format). */
-function formatOf(name) {
-	const ext = name.toLowerCase().split(".").pop();
-	return FORMATS[ext] || "";
-}
-
 function setMessage(text, isError = false) {
 	$("message").textContent = text;
 	$("message").classList.toggle("error", isError);
 }
 
-/** Reads a mesh file's bytes into slot "a" or "b" and shows it. */
+/**
+ * Puts a mesh into slot "a" or "b" and shows it: `counts` (a report's or meshInfo's
+ * `triangles`, `vertices`, `closed`, `boundary_edges`) for the slot's line.
+ */
+function setSlot(slot, name, mesh, counts, note = "") {
+	state[slot] = { name, mesh: { positions: mesh.positions, index: mesh.index } };
+	const shape = counts.closed ? "closed" : `open, ${counts.boundary_edges} boundary edges`;
+	$(`info-${slot}`).textContent = `${name}: ${counts.triangles} triangles, ${counts.vertices} vertices, ${shape}${note}`;
+	$(`info-${slot}`).classList.remove("error");
+	$(`slot-${slot}`).dataset.loaded = name;
+	inputsChanged();
+}
+
+/** Reads a mesh file's bytes into slot "a" or "b" (the file's name tells the format). */
 function loadInto(slot, name, bytes) {
 	let mesh;
 	try {
-		mesh = readMesh(new Uint8Array(bytes), formatOf(name));
+		mesh = readMesh(new Uint8Array(bytes), name);
 	} catch (e) {
 		// The slot keeps saying why (the message line is the last action's).
 		state[slot] = null;
@@ -185,13 +195,7 @@ function loadInto(slot, name, bytes) {
 		inputsChanged();
 		throw e;
 	}
-	state[slot] = { name, mesh: { positions: mesh.positions, index: mesh.index } };
-	const info = meshInfo(mesh);
-	const shape = info.closed ? "closed" : `open, ${info.boundary_edges} boundary edges`;
-	$(`info-${slot}`).textContent = `${name}: ${info.triangles} triangles, ${info.vertices} vertices, ${shape}`;
-	$(`info-${slot}`).classList.remove("error");
-	$(`slot-${slot}`).dataset.loaded = name;
-	inputsChanged();
+	setSlot(slot, name, mesh, meshInfo(mesh));
 }
 
 /** After an input changes: forget the result, redraw and reframe. */
@@ -208,52 +212,11 @@ function inputsChanged() {
 	for (const g of GROUPS) $(`count-${g}`).textContent = "";
 }
 
-async function loadExample(slot, file) {
-	setMessage(`loading ${file}…`);
+/** Generates an example (EXAMPLES) into a slot. */
+function loadExample(slot, example) {
 	$(`file-${slot}`).value = "";
-	const response = await fetch(new URL(`../data/${file}`, document.baseURI));
-	if (!response.ok) throw new Error(`cannot load ${file}: HTTP ${response.status}`);
-	loadInto(slot, file, await response.arrayBuffer());
-	setMessage("");
-}
-
-/**
- * A UV sphere of radius 1 centred at (cx, 0, 0): 2n meridians, n bands from pole to pole,
- * 4n(n − 1) triangles, closed (n = 500: 998,000 triangles).
- */
-function sphere(n, cx) {
-	const rings = n - 1, around = 2 * n;
-	const positions = new Float64Array(3 * (rings * around + 2));
-	positions.set([cx, 0, 1], 0);
-	let v = 3;
-	for (let i = 1; i < n; i++) {
-		const th = (Math.PI * i) / n;
-		for (let j = 0; j < around; j++, v += 3) {
-			const ph = (Math.PI * j) / n;
-			positions[v] = cx + Math.sin(th) * Math.cos(ph);
-			positions[v + 1] = Math.sin(th) * Math.sin(ph);
-			positions[v + 2] = Math.cos(th);
-		}
-	}
-	positions.set([cx, 0, -1], v);
-	const last = v / 3;
-	const ring = (i, j) => 1 + (i - 1) * around + (j % around);
-	const index = new Uint32Array(3 * 2 * n * (n - 1));
-	let k = 0;
-	const tri = (a, b, c) => {
-		index[k++] = a;
-		index[k++] = b;
-		index[k++] = c;
-	};
-	for (let j = 0; j < around; j++) tri(0, ring(1, j), ring(1, j + 1));
-	for (let i = 1; i < n - 1; i++) {
-		for (let j = 0; j < around; j++) {
-			tri(ring(i, j), ring(i + 1, j), ring(i + 1, j + 1));
-			tri(ring(i, j), ring(i + 1, j + 1), ring(i, j + 1));
-		}
-	}
-	for (let j = 0; j < around; j++) tri(last, ring(n - 1, j + 1), ring(n - 1, j));
-	return { positions, index };
+	const mesh = example.make();
+	setSlot(slot, example.key, mesh, mesh.report, " (generated)");
 }
 
 /**
@@ -261,14 +224,9 @@ function sphere(n, cx) {
  * ("a": centred at the origin, "b": moved by 0.5).
  */
 function loadSphere(slot, n = 500) {
-	const mesh = sphere(n, slot === "a" ? 0 : 0.5);
-	const name = `sphere-${slot}`;
-	state[slot] = { name, mesh };
-	$(`info-${slot}`).textContent = `${name}: ${mesh.index.length / 3} triangles, closed (generated)`;
-	$(`info-${slot}`).classList.remove("error");
-	$(`slot-${slot}`).dataset.loaded = name;
 	$(`file-${slot}`).value = "";
-	inputsChanged();
+	const mesh = bigSphere(slot, n);
+	setSlot(slot, `sphere-${slot}`, mesh, mesh.report, " (generated)");
 }
 
 async function loadFile(slot, input) {
@@ -440,13 +398,29 @@ function download() {
 
 // ── wiring ───────────────────────────────────────────────────────────────────────────────
 
-for (const button of document.querySelectorAll("button[data-file]")) {
-	button.addEventListener("click", guarded(() => loadExample(button.dataset.slot, button.dataset.file)));
+/** A button of a slot's examples row: `load-SLOT-KEY`, which runs `action` when clicked. */
+function exampleButton(slot, key, label, title, action) {
+	const button = Object.assign(document.createElement("button"), { type: "button", id: `load-${slot}-${key}`, textContent: label, title });
+	button.addEventListener("click", () => {
+		try {
+			action();
+			setMessage("");
+		} catch (e) {
+			setMessage(e.message, true);
+		}
+	});
+	return button;
 }
-for (const button of document.querySelectorAll("button[data-sphere]")) {
-	button.addEventListener("click", () => loadSphere(button.dataset.sphere));
+
+for (const row of document.querySelectorAll(".examples")) {
+	const slot = row.dataset.slot;
+	for (const example of EXAMPLES) {
+		row.append(exampleButton(slot, example.key, example.label, example.title, () => loadExample(slot, example)));
+	}
+	row.append(exampleButton(slot, "sphere-1m", "sphere 1M", "a sphere of 998,000 triangles (radius 1; B's moved by 0.5)", () => loadSphere(slot)));
 }
 for (const slot of ["a", "b"]) {
+	$(`file-${slot}`).accept = ACCEPT;
 	$(`file-${slot}`).addEventListener("change", guarded((e) => loadFile(slot, e.target)));
 }
 $("swap").addEventListener("click", () => {

@@ -1,6 +1,6 @@
 // The demo's static server (node:http only, no dependencies): the package folder js/ at
-// `/` (so /demo/, /src/, /wasm/ and /node_modules/ resolve as the page imports them) and
-// the repository's example meshes data/ at `/data/`.
+// `/` (so /demo/, /src/, /wasm/ and /node_modules/ resolve as the page imports them).
+// The page generates its example meshes; it needs no data files.
 //
 //   node demo/serve.mjs [port]        (or PORT=8377; port 0 picks a free one)
 //
@@ -14,8 +14,6 @@ import { fileURLToPath, pathToFileURL } from "node:url";
 const here = path.dirname(fileURLToPath(import.meta.url));
 /** The folder served at `/` (js/). */
 export const packageRoot = path.resolve(here, "..");
-/** The folder served at `/data/` (the repository's data/). */
-export const dataRoot = path.resolve(packageRoot, "..", "data");
 
 const MIME = {
 	".html": "text/html; charset=utf-8",
@@ -38,7 +36,7 @@ const MIME = {
 	".dxf": "text/plain; charset=utf-8",
 };
 
-/** The file a URL path names, or null when it leaves the served folders. */
+/** The file a URL path names, or null when it leaves the served folder. */
 function resolvePath(urlPath) {
 	let decoded;
 	try {
@@ -47,9 +45,8 @@ function resolvePath(urlPath) {
 		return null;
 	}
 	if (decoded.includes("\0")) return null;
-	const [root, rest] = decoded === "/data" || decoded.startsWith("/data/") ? [dataRoot, decoded.slice(5)] : [packageRoot, decoded];
-	const file = path.resolve(root, "." + path.posix.normalize("/" + rest));
-	return file === root || file.startsWith(root + path.sep) ? file : null;
+	const file = path.resolve(packageRoot, "." + path.posix.normalize("/" + decoded));
+	return file === packageRoot || file.startsWith(packageRoot + path.sep) ? file : null;
 }
 
 function send(res, status, body, type = "text/plain; charset=utf-8") {
@@ -57,7 +54,7 @@ function send(res, status, body, type = "text/plain; charset=utf-8") {
 	res.end(body);
 }
 
-/** Answers one request from the served folders (GET and HEAD). */
+/** Answers one request from the served folder (GET and HEAD). */
 function handle(req, res) {
 	if (req.method !== "GET" && req.method !== "HEAD") {
 		res.setHeader("Allow", "GET, HEAD");

@@ -1,11 +1,13 @@
 // The demo in a real browser: serves js/ with demo/serve.mjs on a free port, opens the
-// page in headless Chromium (Debian's, through playwright-core), checks that a file that
-// does not read leaves its reason in its slot, loads the Kirra terrain as A and the
-// cylinder as B, runs A − B, and checks the statistics shown against
-// booleanIndexed computed here in Node; then the STL download and the split-and-pick of
-// the same result; then the union of two generated spheres of 2,002,224 triangles each,
-// during which the page must answer within 100 ms, cancelled. Any page error, console
-// error or failed request fails the test. Saves a screenshot of the A − B view.
+// page in headless Chromium (Debian's, through playwright-core), checks that the file
+// pickers offer exactly the formats this build reads and that files that do not read
+// leave their reason in their slots, generates the terrain as A and the pit as B (the
+// page's own examples, no data files), runs A − B, and checks the statistics shown
+// against booleanIndexed of the same examples computed here in Node; then the STL
+// download and the split-and-pick of the same result; then the union of two generated
+// spheres of 2,002,224 triangles each, during which the page must answer within 100 ms,
+// cancelled. Any page error, console error or failed request fails the test. Saves a
+// screenshot of the A − B view.
 //
 //   node test/browser/run.mjs            (npm run test:browser)
 //   CHROMIUM=/path/to/chrome SCREENSHOT=out.png node test/browser/run.mjs
@@ -13,8 +15,9 @@ import fs from "node:fs";
 import path from "node:path";
 import { fileURLToPath } from "node:url";
 import { chromium } from "playwright-core";
-import { booleanIndexed, readMesh } from "../../src/index.js";
-import { startServer, dataRoot, packageRoot } from "../../demo/serve.mjs";
+import { booleanIndexed, readFormats, readMesh } from "../../src/index.js";
+import { startServer, packageRoot } from "../../demo/serve.mjs";
+import { EXAMPLES } from "../../demo/examples.js";
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const screenshot = path.resolve(process.env.SCREENSHOT || path.join(here, "..", "..", "test-out", "demo.png"));
@@ -25,11 +28,21 @@ function fail(message) {
 	throw new Error(message);
 }
 
-/** What the page must show for terrain − cylinder, computed in Node. */
+/** What the page must show for terrain − pit (the mined-out solid), computed in Node. */
 function expected() {
-	const read = (name) => readMesh(fs.readFileSync(path.join(dataRoot, name)), "obj");
-	const out = booleanIndexed(read("kirra_terrain.obj"), read("kirra_cylinder.obj"), "subtract");
+	const make = (key) => EXAMPLES.find((e) => e.key === key).make();
+	const out = booleanIndexed(make("terrain"), make("pit"), "subtract");
 	return { triangles: out.report.triangles, volume: out.report.volume, area: out.report.area, closed: out.report.closed };
+}
+
+/** The message readMesh gives for `bytes` named `name`, here in Node (the page must show the same). */
+function readError(bytes, name) {
+	try {
+		readMesh(bytes, name);
+	} catch (e) {
+		return e.message;
+	}
+	return fail(`${name} reads in Node`);
 }
 
 /** A number shown on the page (digits, sign, point), or NaN. */
@@ -89,27 +102,43 @@ async function main() {
 		const webgl = await page.getAttribute("#viewport", "data-webgl");
 		if (webgl !== "ok") fail(`WebGL did not start in Chromium (viewport data-webgl=${webgl})`);
 
+		// The file pickers offer the extensions of the formats this build reads, no others.
+		const accept = [...new Set(readFormats().map((f) => `.${f.extension}`))].join(",");
+		for (const slot of ["a", "b"]) {
+			const shown = await page.getAttribute(`#file-${slot}`, "accept");
+			if (shown !== accept) fail(`file picker ${slot} accepts ${JSON.stringify(shown)}, this build reads ${accept}`);
+		}
+
 		// A file that does not read: its slot says why, and keeps saying it when the
 		// other slot is loaded (the message line is the last action's).
 		await page.setInputFiles("#file-a", { name: "broken.stl", mimeType: "model/stl", buffer: Buffer.from("solid broken\nfacet normal 0 0 1\n") });
 		await page.waitForSelector("#info-a.error");
 		const badInfo = await page.textContent("#info-a");
 		if (!badInfo.includes("broken.stl")) fail(`a file that does not read: slot A shows ${JSON.stringify(badInfo)}`);
-		await page.click("#load-b-cylinder");
-		await page.waitForSelector("#slot-b[data-loaded='kirra_cylinder.obj']");
+		await page.click("#load-b-drill-hole");
+		await page.waitForSelector("#slot-b[data-loaded='drill-hole']");
 		if ((await page.textContent("#info-a")) !== badInfo) fail("slot A's error went when B was loaded");
 		if (!(await page.isDisabled("#run"))) fail("Run is enabled without a mesh A");
-		check("a file that does not read");
+		// A format this build does not read (GOCAD TSurf): the slot names the ones it reads.
+		const tsurf = Buffer.from("GOCAD TSurf 1\nHEADER {\nname: pit\n}\nTFACE\nVRTX 1 0 0 0\nEND\n");
+		await page.setInputFiles("#file-b", { name: "pit.ts", mimeType: "text/plain", buffer: tsurf });
+		await page.waitForSelector("#info-b.error");
+		const tsInfo = await page.textContent("#info-b");
+		const tsWant = `pit.ts: ${readError(tsurf, "pit.ts")}`;
+		if (tsInfo !== tsWant) fail(`a GOCAD file: slot B shows ${JSON.stringify(tsInfo)}, not ${JSON.stringify(tsWant)}`);
+		if (!tsInfo.endsWith(`it reads ${accept.replaceAll(",", " ")} files`)) fail(`the GOCAD file's error does not list what this build reads: ${tsInfo}`);
+		check("files that do not read");
 
 		await page.click("#load-a-terrain");
-		await page.waitForSelector("#slot-a[data-loaded='kirra_terrain.obj']");
+		await page.waitForSelector("#slot-a[data-loaded='terrain']");
 		if (await page.$("#info-a.error")) fail("slot A still marked as an error after a good load");
-		await page.click("#load-b-cylinder");
-		await page.waitForSelector("#slot-b[data-loaded='kirra_cylinder.obj']");
+		if ((await page.textContent("#info-b")) !== tsInfo) fail("slot B's error went when A was loaded");
+		await page.click("#load-b-pit");
+		await page.waitForSelector("#slot-b[data-loaded='pit']");
 		await page.selectOption("#op", "subtract");
 		await page.click("#run");
 		await page.waitForSelector("#stats[data-state=done], #stats[data-state=error]");
-		check("running terrain − cylinder");
+		check("running terrain − pit");
 		const state = await page.getAttribute("#stats", "data-state");
 		if (state !== "done") fail(`the demo failed: ${await page.textContent("#message")}`);
 
@@ -160,7 +189,7 @@ async function main() {
 		// 2,002,224 triangles each (the page's sphere generator, 708 bands), their union
 		// in the worker; while it runs the page answers timers and an input event within
 		// 100 ms; Cancel stops it. (The buttons load spheres of 998,000 triangles.)
-		await page.click("#load-a-sphere");
+		await page.click("#load-a-sphere-1m");
 		await page.waitForSelector("#slot-a[data-loaded='sphere-a']");
 		await page.evaluate(() => {
 			window.meshboolDemo.loadSphere("a", 708);
@@ -194,9 +223,9 @@ async function main() {
 		check("the union, cancelled");
 		// A fresh worker serves the next run.
 		await page.click("#load-a-terrain");
-		await page.waitForSelector("#slot-a[data-loaded='kirra_terrain.obj']");
-		await page.click("#load-b-cylinder");
-		await page.waitForSelector("#slot-b[data-loaded='kirra_cylinder.obj']");
+		await page.waitForSelector("#slot-a[data-loaded='terrain']");
+		await page.click("#load-b-pit");
+		await page.waitForSelector("#slot-b[data-loaded='pit']");
 		await page.selectOption("#op", "subtract");
 		await page.click("#run");
 		await page.waitForSelector("#stats[data-state=done], #stats[data-state=error]");
@@ -206,10 +235,11 @@ async function main() {
 			`ok: during the union of 4M triangles (stage ${stage}) timers answered in at most ${Math.max(...lags).toFixed(1)} ms and an input event in ${inputMs} ms; Cancel stopped it in ${cancelMs} ms; the next run matches`,
 		);
 		console.log(
-			`ok: terrain − cylinder shows ${shown.triangles} triangles, volume ${shown.volume}, area ${shown.area}, ` +
+			`ok: terrain − pit shows ${shown.triangles} triangles, volume ${shown.volume}, area ${shown.area}, ` +
 				`closed ${shown.closed}, ${shown.time} ms (Chromium ${browser.version()}, ${colours} colours drawn)`,
 		);
 		console.log(`ok: the STL download holds them; split and pick (A outside B + flipped B inside A) shows the same`);
+		console.log(`ok: the file pickers accept ${accept}; a broken STL and a GOCAD file leave their reasons in their slots`);
 		console.log(`screenshot: ${screenshot}`);
 	} finally {
 		await browser.close();
