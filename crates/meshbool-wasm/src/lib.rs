@@ -819,14 +819,17 @@ fn numbers<const N: usize>(
     }
 }
 
-/// Option `key` as a whole number in `0..=u32::MAX` (`default` when absent).
+/// Option `key` as a whole number ≥ 0 that fits `T` (`u32` counts, the `u64` seed),
+/// `default` when absent.
 fn whole<T: TryFrom<u64>>(o: &Value, key: &str, default: T) -> Result<T, JsError> {
     match o.get(key) {
         None | Some(Value::Null) => Ok(default),
-        Some(v) => v
-            .as_u64()
-            .and_then(|n| T::try_from(n).ok())
-            .ok_or_else(|| bad(format!("option {key} must be a whole number ≥ 0, got {v}"))),
+        Some(v) => v.as_u64().and_then(|n| T::try_from(n).ok()).ok_or_else(|| {
+            let kind = std::any::type_name::<T>();
+            bad(format!(
+                "option {key} must be a whole number ≥ 0 (a {kind}), got {v}"
+            ))
+        }),
     }
 }
 
