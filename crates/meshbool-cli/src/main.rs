@@ -80,7 +80,8 @@ enum Command {
     /// (16 numbers, row-major), applied in the order given. Mirroring reverses the
     /// triangles.
     Transform(transform::Args),
-    /// Make a primitive: `make cube|sphere|cylinder|cone|plane -o OUT [options]`
+    /// Make a primitive or a mining example: `make
+    /// cube|sphere|cylinder|cone|plane|terrain|pit -o OUT [options]`
     /// (closed ones outward-facing, exactly welded).
     Make(make::Args),
     /// Compute the exact intersection curves of two meshes (of one mesh: where it crosses

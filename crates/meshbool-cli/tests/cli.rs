@@ -1652,7 +1652,7 @@ fn make_every_shape_prints_the_library_report() {
     use meshbool::ops::{self, Shape};
     let out = tmp("mk_shape.ply");
     let so = out.to_str().unwrap();
-    let cases: [(&[&str], Shape); 5] = [
+    let cases: [(&[&str], Shape); 9] = [
         (
             &["cube", "--min", "-1,0,0", "--max", "1,2,0.5"],
             Shape::Cube {
@@ -1720,6 +1720,75 @@ fn make_every_shape_prints_the_library_report() {
                 ny: 2,
             },
         ),
+        // The defaults the library documents for the command line.
+        (
+            &["terrain"],
+            Shape::Terrain {
+                center: [0.0; 3],
+                size: [1000.0; 2],
+                cells: [100; 2],
+                relief: 40.0,
+                seed: 1,
+            },
+        ),
+        (
+            &[
+                "terrain",
+                "--center",
+                "478600,6772300,400",
+                "--size",
+                "300,200",
+                "--cells",
+                "30,20",
+                "--relief",
+                "12.5",
+                "--seed",
+                "18446744073709551615",
+            ],
+            Shape::Terrain {
+                center: [478600.0, 6772300.0, 400.0],
+                size: [300.0, 200.0],
+                cells: [30, 20],
+                relief: 12.5,
+                seed: u64::MAX,
+            },
+        ),
+        (
+            &["pit"],
+            Shape::Pit {
+                center: [0.0, 0.0, 60.0],
+                radius: [220.0, 160.0],
+                depth: 140.0,
+                benches: 5,
+                berm: 8.0,
+                segments: 64,
+            },
+        ),
+        (
+            &[
+                "pit",
+                "--center",
+                "1,2,-3",
+                "--radius",
+                "50",
+                "--depth",
+                "30",
+                "--benches",
+                "3",
+                "--berm",
+                "0",
+                "--segments",
+                "12",
+            ],
+            Shape::Pit {
+                center: [1.0, 2.0, -3.0],
+                radius: [50.0; 2],
+                depth: 30.0,
+                benches: 3,
+                berm: 0.0,
+                segments: 12,
+            },
+        ),
     ];
     for (args, shape) in cases {
         let cli = report(&[&["make"], args, &["-o", so, "--json"]].concat());
@@ -1737,8 +1806,33 @@ fn make_every_shape_prints_the_library_report() {
             (Some(0), Some(0), Some(0)),
             "{args:?}"
         );
-        assert_eq!(info["closed"], shape.name() != "plane");
+        let open = ["plane", "terrain", "pit"].contains(&shape.name());
+        assert_eq!(info["closed"], !open, "{args:?}");
     }
+    // The figures the defaults give (quoted in the README).
+    let t = report(&["make", "terrain", "-o", so, "--json"]);
+    let p = report(&["make", "pit", "-o", so, "--json"]);
+    let counts = |v: &serde_json::Value| {
+        ["triangles", "vertices", "boundary_edges"].map(|k| v[k].as_u64().unwrap())
+    };
+    assert_eq!(
+        (counts(&t), counts(&p)),
+        ([20000, 10201, 400], [1216, 641, 64])
+    );
+    assert_eq!(
+        (&t["bbox"]["min"], &t["bbox"]["max"]),
+        (
+            &serde_json::json!([-500.0, -500.0, -20.0]),
+            &serde_json::json!([500.0, 500.0, 20.0])
+        )
+    );
+    assert_eq!(
+        (&p["bbox"]["min"], &p["bbox"]["max"]),
+        (
+            &serde_json::json!([-220.0, -160.0, -80.0]),
+            &serde_json::json!([220.0, 160.0, 60.0])
+        )
+    );
     // Frustum of squares with corners on the axes (areas 8 and 2): h/3 (8 + 4 + 2) = 14.
     let v = report(&[
         "make",
@@ -1811,6 +1905,20 @@ fn transform_and_make_refuse_bad_arguments_with_usage_errors() {
         ],
         "too small",
     );
+    m(&["terrain", "--size", "0"], "must be positive");
+    m(&["terrain", "--size", "1,2,3"], "one number or two");
+    m(&["terrain", "--cells", "0"], "at least 1");
+    m(&["terrain", "--cells", "4,x"], "not a whole number");
+    m(&["terrain", "--relief", "-1"], "0 or positive");
+    m(&["terrain", "--relief", "inf"], "finite");
+    m(&["terrain", "--seed=-1"], "--seed");
+    m(&["terrain", "--cells", "20000"], "more than");
+    m(&["pit", "--radius", "0,1"], "must be positive");
+    m(&["pit", "--depth", "0"], "must be positive");
+    m(&["pit", "--benches", "0"], "--benches");
+    m(&["pit", "--berm", "-1"], "0 or positive");
+    m(&["pit", "--segments", "2"], "--segments");
+    m(&["pit", "--radius", "100"], "reach 102 in from the rim");
     m(&["torus"], "torus");
     assert!(!tmp("tf_bad_out.ply").exists());
 }

@@ -790,6 +790,56 @@ fn repair<'py>(
     Ok((v, f, report))
 }
 
+/// A generated shape's arrays and its report (`meshbool make ... --json`).
+fn made(py: Python<'_>, shape: ops::Shape) -> PyResult<WithReport<'_>> {
+    let out = py.detach(move || ops::make(&shape)).map_err(py_err)?;
+    let report = json(&out.report())?;
+    let (v, f) = arrays(py, out.mesh)?;
+    Ok((v, f, report))
+}
+
+/// A seeded terrain (`meshbool::shapes::terrain`).
+#[pyfunction]
+fn terrain(
+    py: Python<'_>,
+    center: [f64; 3],
+    size: [f64; 2],
+    cells: [u32; 2],
+    relief: f64,
+    seed: u64,
+) -> PyResult<WithReport<'_>> {
+    let shape = ops::Shape::Terrain {
+        center,
+        size,
+        cells,
+        relief,
+        seed,
+    };
+    made(py, shape)
+}
+
+/// An open-pit design shell (`meshbool::shapes::pit`).
+#[pyfunction]
+fn pit(
+    py: Python<'_>,
+    center: [f64; 3],
+    radius: [f64; 2],
+    depth: f64,
+    benches: u32,
+    berm: f64,
+    segments: u32,
+) -> PyResult<WithReport<'_>> {
+    let shape = ops::Shape::Pit {
+        center,
+        radius,
+        depth,
+        benches,
+        berm,
+        segments,
+    };
+    made(py, shape)
+}
+
 /// Reads a mesh file as the file has it (operations weld their inputs themselves): its
 /// arrays and the name of the format it was read as.
 #[pyfunction]
@@ -854,6 +904,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
         wrap_pyfunction!(orient, m)?,
         wrap_pyfunction!(close, m)?,
         wrap_pyfunction!(repair, m)?,
+        wrap_pyfunction!(terrain, m)?,
+        wrap_pyfunction!(pit, m)?,
         wrap_pyfunction!(read, m)?,
         wrap_pyfunction!(write, m)?,
     ] {

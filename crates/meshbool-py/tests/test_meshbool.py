@@ -429,6 +429,66 @@ def test_readme_python_example_runs(monkeypatch, capsys):
     assert out[3].endswith("True True")
 
 
+def test_terrain_and_pit_generators():
+    t, p = meshbool.terrain(), meshbool.pit()
+    # The documented defaults: the figures of `meshbool make terrain|pit --json`.
+    assert (len(t.faces), len(t.vertices), t.report["boundary_edges"]) == (20000, 10201, 400)
+    assert (len(p.faces), len(p.vertices), p.report["boundary_edges"]) == (1216, 641, 64)
+    assert t.report["shape"] == "terrain" and p.report["shape"] == "pit"
+    assert t.vertices.min(axis=0).tolist() == [-500.0, -500.0, -20.0]
+    assert t.vertices.max(axis=0).tolist() == [500.0, 500.0, 20.0]
+    assert p.vertices.min(axis=0).tolist() == [-220.0, -160.0, -80.0]
+    assert p.vertices.max(axis=0).tolist() == [220.0, 160.0, 60.0]
+    for m in (t, p):
+        assert not m.is_closed and m.report["non_manifold_edges"] == 0
+        # Facing up: every triangle's normal has a positive z.
+        q = m.vertices[m.faces]
+        nz = (q[:, 1, 0] - q[:, 0, 0]) * (q[:, 2, 1] - q[:, 0, 1]) - (
+            q[:, 2, 0] - q[:, 0, 0]
+        ) * (q[:, 1, 1] - q[:, 0, 1])
+        assert nz.min() > 0
+    # A function of its seed; one number for both sizes and counts; at UTM coordinates.
+    again = meshbool.terrain(seed=1)
+    assert again.vertices.tobytes() == t.vertices.tobytes()
+    assert (meshbool.terrain(seed=2).vertices != t.vertices).any()
+    utm = meshbool.terrain((478600, 6772300, 400), size=300, cells=(30, 20), relief=12.5)
+    assert len(utm.faces) == 1200 and utm.report["boundary_edges"] == 100
+    assert utm.vertices.min(axis=0).tolist() == [478450.0, 6772150.0, 393.75]
+    circle = meshbool.pit((1, 2, -3), radius=50, depth=30, benches=3, berm=0, segments=12)
+    assert (len(circle.faces), len(circle.vertices)) == (84, 49)
+    # They cross along one closed curve. Split there, the terrain outside the rim and the
+    # shell below the ground are the ground after digging, the terrain's outline its only
+    # boundary; the cut is the material above the shell.
+    s = meshbool.split(t, p)
+    assert s.groups == ["a_in_b", "a_out_b", "b_in_a", "b_out_a"]
+    after = s.pick("a_in_b", "b_in_a")
+    assert after.report["boundary_edges"] == 400 and after.report["non_manifold_edges"] == 0
+    assert len(after) == len(s.a_in_b) + len(s.b_in_a)
+    assert abs(after.area - s.a_in_b.area - s.b_in_a.area) < 1e-9 * after.area
+    report, lines = meshbool.cutfill(p, t)
+    assert report["zero_lines"] == 1 and len(lines) == 1 and lines[0].closed
+    assert report["cut"] > 1e6 and report["fill"] > 1e5
+    assert abs(report["common_plan_area"] - report["design_plan_area"]) < 1e-6
+    for bad in [
+        lambda: meshbool.terrain(size=0),
+        lambda: meshbool.terrain(size=(1, 2, 3)),
+        lambda: meshbool.terrain(cells=0),
+        lambda: meshbool.terrain(cells=(4, -1)),
+        lambda: meshbool.terrain(relief=-1),
+        lambda: meshbool.terrain(seed=-1),
+        lambda: meshbool.terrain(seed=2**64),
+        lambda: meshbool.terrain(center=(0, 0)),
+        lambda: meshbool.pit(radius=100),
+        lambda: meshbool.pit(benches=0),
+        lambda: meshbool.pit(segments=2.5),
+        lambda: meshbool.pit(berm=float("nan")),
+    ]:
+        with pytest.raises(ValueError):
+            bad()
+    with pytest.raises(ValueError, match="reach 102 in from the rim"):
+        meshbool.pit(radius=100)
+
+
 def test_cutfill_of_a_slope_against_flat_ground():
     # Ground z = 0 and a slope z = x - 2 over [0, 4] x [0, 1]: the wedges above and below
     # are 1 * 2 * 2 / 2 = 2 each, meeting along x = 2.

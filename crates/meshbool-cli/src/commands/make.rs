@@ -1,4 +1,5 @@
-//! `meshbool make`: a primitive (cube, sphere, cylinder, cone, plane) written to a file.
+//! `meshbool make`: a primitive (cube, sphere, cylinder, cone, plane) or a mining example
+//! (terrain, pit) written to a file.
 
 use std::path::PathBuf;
 
@@ -33,6 +34,17 @@ enum ShapeArgs {
     /// A flat rectangle about --center, --width along x by --depth along y, in --nx by
     /// --ny cells of two triangles, facing +z (an open surface).
     Plane(PlaneArgs),
+    /// A seeded, realistic terrain: an open height field over --size about --center, in
+    /// --cells of two triangles, facing +z; hills, hollows, a regional slope and a little
+    /// roughness, its heights spanning exactly --relief about the centre's z. The same
+    /// --seed gives the same surface on every platform. With the defaults, crossed by the
+    /// default pit along one closed curve.
+    Terrain(TerrainArgs),
+    /// An open-pit design shell: a benched bowl, elliptical in plan (--radius at the rim,
+    /// rim at the centre's z, floor --depth below), --benches faces at a 2:1 batter with
+    /// flat berms --berm wide between them and a flat floor, rings of --segments
+    /// vertices; open (the rim its one boundary), facing up.
+    Pit(PitArgs),
 }
 
 /// What every shape takes.
@@ -80,6 +92,36 @@ fn sizes(s: &str) -> Result<[f64; 3], String> {
         return Err(format!("sizes must be positive, got {s}"));
     }
     Ok(v)
+}
+
+/// One length `A` (for both) or two `A,B`, each positive.
+fn lengths(s: &str) -> Result<[f64; 2], String> {
+    let v = match super::transform::numbers(s)?[..] {
+        [a] => [a; 2],
+        [a, b] => [a, b],
+        ref v => return Err(format!("expected one number or two A,B, got {}", v.len())),
+    };
+    if v.iter().any(|&k| k <= 0.0) {
+        return Err(format!("must be positive, got {s}"));
+    }
+    Ok(v)
+}
+
+/// One count `N` (for both) or two `N,M`, each at least 1.
+fn counts(s: &str) -> Result<[u32; 2], String> {
+    let v = s
+        .split(',')
+        .map(|t| match t.trim().parse::<u32>() {
+            Ok(0) => Err("counts must be at least 1, got 0".to_string()),
+            Ok(n) => Ok(n),
+            Err(_) => Err(format!("`{}` is not a whole number", t.trim())),
+        })
+        .collect::<Result<Vec<u32>, String>>()?;
+    match v[..] {
+        [n] => Ok([n; 2]),
+        [n, m] => Ok([n, m]),
+        _ => Err(format!("expected one count N or two N,M, got {}", v.len())),
+    }
 }
 
 /// `--min X,Y,Z --max X,Y,Z`, or `--size` about `--center`.
@@ -183,6 +225,53 @@ struct PlaneArgs {
     ny: u32,
 }
 
+/// A terrain's options.
+#[derive(clap::Args)]
+struct TerrainArgs {
+    #[command(flatten)]
+    out: Out,
+    /// Centre: of the plan rectangle, and the middle of the heights' range.
+    #[arg(long, value_name = "X,Y,Z", default_value = "0,0,0", value_parser = point, allow_hyphen_values = true)]
+    center: [f64; 3],
+    /// Extent along x and y (one number: a square).
+    #[arg(long, value_name = "W[,D]", default_value = "1000", value_parser = lengths, allow_hyphen_values = true)]
+    size: [f64; 2],
+    /// Cells along x and y, each two triangles (one number: both).
+    #[arg(long, value_name = "N[,M]", default_value = "100", value_parser = counts)]
+    cells: [u32; 2],
+    /// Highest less lowest height (0: flat).
+    #[arg(long, default_value = "40", value_parser = non_negative, allow_hyphen_values = true)]
+    relief: f64,
+    /// Seed of the relief (any whole number from 0 to 2^64 − 1).
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+}
+
+/// A pit's options.
+#[derive(clap::Args)]
+struct PitArgs {
+    #[command(flatten)]
+    out: Out,
+    /// Centre of the rim, at the rim's height.
+    #[arg(long, value_name = "X,Y,Z", default_value = "0,0,60", value_parser = point, allow_hyphen_values = true)]
+    center: [f64; 3],
+    /// Semi-axes of the rim along x and y (one number: a circle).
+    #[arg(long, value_name = "R[,R2]", default_value = "220,160", value_parser = lengths, allow_hyphen_values = true)]
+    radius: [f64; 2],
+    /// Rim less floor height.
+    #[arg(long, default_value = "140", value_parser = positive, allow_hyphen_values = true)]
+    depth: f64,
+    /// Faces from rim to floor (at least 1).
+    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..))]
+    benches: u32,
+    /// Width of the flat berms between faces (0: none).
+    #[arg(long, default_value = "8", value_parser = non_negative, allow_hyphen_values = true)]
+    berm: f64,
+    /// Vertices of each ring (at least 3).
+    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(3..))]
+    segments: u32,
+}
+
 impl ShapeArgs {
     /// The shape asked for and where to write it.
     fn shape(&self) -> (Shape, &Out) {
@@ -238,12 +327,34 @@ impl ShapeArgs {
                 },
                 &a.out,
             ),
+            ShapeArgs::Terrain(a) => (
+                Shape::Terrain {
+                    center: a.center,
+                    size: a.size,
+                    cells: a.cells,
+                    relief: a.relief,
+                    seed: a.seed,
+                },
+                &a.out,
+            ),
+            ShapeArgs::Pit(a) => (
+                Shape::Pit {
+                    center: a.center,
+                    radius: a.radius,
+                    depth: a.depth,
+                    benches: a.benches,
+                    berm: a.berm,
+                    segments: a.segments,
+                },
+                &a.out,
+            ),
         }
     }
 }
 
 /// Generates the shape, writes it, prints the report. Parameters the library refuses
-/// (a box's min not below its max, a shape too fine for `f64`) are usage errors (exit 2).
+/// (a box's min not below its max, a pit's benches wider than its radius, a shape too
+/// fine for `f64`) are usage errors (exit 2).
 pub fn run(args: &Args) -> Result<()> {
     let (shape, out) = args.shape.shape();
     let made = match ops::make(&shape) {

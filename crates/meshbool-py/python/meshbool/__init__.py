@@ -51,6 +51,8 @@ __all__ = [
     "read",
     "write",
     "box",
+    "terrain",
+    "pit",
     "OPERATIONS",
     "GROUPS",
     "SCHEMA",
@@ -227,6 +229,88 @@ def box(lo: Sequence[float], hi: Sequence[float]) -> Mesh:
         [2, 6, 3], [3, 6, 7], [0, 4, 2], [2, 4, 6], [1, 3, 5], [3, 7, 5],
     ]  # fmt: skip
     return Mesh(corners, faces)
+
+
+def _pair(value: Any, name: str, kind: type) -> Tuple[Any, Any]:
+    """One value (for both) or two, as ``kind``; ``ValueError`` otherwise."""
+    values = [value] * 2 if np.ndim(value) == 0 else list(np.asarray(value).ravel())
+    if len(values) != 2:
+        raise ValueError(f"{name} takes one value or two, got {len(values)}")
+    if kind is int:
+        return _count(values[0], name), _count(values[1], name)
+    return float(values[0]), float(values[1])
+
+
+def _point(value: Sequence[float], name: str) -> Tuple[float, float, float]:
+    """Three numbers x, y, z; ``ValueError`` otherwise."""
+    p = [float(v) for v in np.asarray(value, dtype=np.float64).ravel()]
+    if len(p) != 3:
+        raise ValueError(f"{name} takes three numbers x, y, z, got {len(p)}")
+    return p[0], p[1], p[2]
+
+
+def _count(value: Any, name: str) -> int:
+    """A whole number, 0 or more (the native side's unsigned types); ``ValueError``
+    otherwise."""
+    if int(value) != value or value < 0:
+        raise ValueError(f"{name} must be a whole number, 0 or more, got {value!r}")
+    return int(value)
+
+
+def terrain(
+    center: Sequence[float] = (0.0, 0.0, 0.0),
+    size: Union[float, Sequence[float]] = (1000.0, 1000.0),
+    cells: Union[int, Sequence[int]] = (100, 100),
+    relief: float = 40.0,
+    seed: int = 1,
+) -> Mesh:
+    """A seeded, realistic terrain (``meshbool make terrain``): an open height field over
+    the rectangle ``center[:2] ± size / 2`` in ``cells`` (x, y; one number for both) of
+    two triangles, facing +z, with hills, hollows, a regional slope and a little
+    roughness; its lowest vertex at ``center[2] − relief / 2``, its highest at
+    ``center[2] + relief / 2``. The same ``seed`` (0 to 2⁶⁴ − 1) gives the same
+    coordinates, bit for bit, on every platform. ``2 · cells[0] · cells[1]`` triangles,
+    one boundary loop. With the defaults it is crossed by the default :func:`pit` along
+    one closed curve. ``ValueError`` for a non-positive size, zero cells, a negative
+    relief. ``report`` is the ``meshbool make terrain --json`` dict.
+
+    >>> t = meshbool.terrain()
+    >>> len(t.faces), t.report["boundary_edges"], t.report["bbox"]["max"][2]
+    (20000, 400, 20.0)
+    """
+    seed = _count(seed, "seed")
+    if seed >= 1 << 64:
+        raise ValueError(f"seed must be below 2**64, got {seed}")
+    cx, cy = _pair(cells, "cells", int)
+    args = (_point(center, "center"), _pair(size, "size", float), (cx, cy))
+    return Mesh._from(*_native.terrain(*args, float(relief), seed))
+
+
+def pit(
+    center: Sequence[float] = (0.0, 0.0, 60.0),
+    radius: Union[float, Sequence[float]] = (220.0, 160.0),
+    depth: float = 140.0,
+    benches: int = 5,
+    berm: float = 8.0,
+    segments: int = 64,
+) -> Mesh:
+    """An open-pit design shell (``meshbool make pit``): a benched bowl, elliptical in plan
+    with semi-axes ``radius`` (x, y; one number for a circle) at the rim, the rim at
+    ``center[2]``, the floor ``depth`` below; ``benches`` faces at a 2:1 batter
+    separated by flat berms ``berm`` wide, then a flat floor, in rings of ``segments``
+    vertices. Open (the rim its one boundary loop), single-valued in plan, facing up.
+    With the defaults, its rim stands above the default :func:`terrain` all round and
+    its floor below it. ``ValueError`` when the faces and berms (``depth / 2 + (benches
+    − 1) · berm`` in from the rim) do not fit in the radius, or for other bad values.
+    ``report`` is the ``meshbool make pit --json`` dict.
+
+    >>> p = meshbool.pit()
+    >>> len(p.faces), len(p.vertices), p.report["bbox"]["min"]
+    (1216, 641, [-220.0, -160.0, -80.0])
+    """
+    args = (_point(center, "center"), _pair(radius, "radius", float), float(depth))
+    counts = (_count(benches, "benches"), float(berm), _count(segments, "segments"))
+    return Mesh._from(*_native.pit(*args, *counts))
 
 
 MeshLike = Union[Mesh, Tuple[Any, Any], Any]

@@ -132,5 +132,20 @@ def close(
     v: F64, f: U32, mode: str, floor_offset: float, max_gap: Optional[float]
 ) -> Tuple[F64, U32, str]: ...
 def repair(v: F64, f: U32, config: str) -> Tuple[F64, U32, str]: ...
+def terrain(
+    center: Tuple[float, float, float],
+    size: Tuple[float, float],
+    cells: Tuple[int, int],
+    relief: float,
+    seed: int,
+) -> Tuple[F64, U32, str]: ...
+def pit(
+    center: Tuple[float, float, float],
+    radius: Tuple[float, float],
+    depth: float,
+    benches: int,
+    berm: float,
+    segments: int,
+) -> Tuple[F64, U32, str]: ...
 def read(path: str, format: Optional[str] = None) -> Tuple[F64, U32, str]: ...
 def write(path: str, v: F64, f: U32, format: Optional[str] = None) -> None: ...
