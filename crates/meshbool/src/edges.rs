@@ -106,6 +106,18 @@ impl EdgeTopology {
         }
     }
 
+    /// The first edge of `kind` (edges in the order of their vertices), if any.
+    pub fn first_of(&self, kind: EdgeKind) -> Option<usize> {
+        (0..self.edge_count()).find(|&e| self.kind(e) == kind)
+    }
+
+    /// The midpoint of edge `e` of `mesh` (the mesh of this adjacency): where to find it,
+    /// in a message.
+    pub fn midpoint(&self, mesh: &Mesh, e: usize) -> [f64; 3] {
+        let [u, v] = self.edges[e].map(|i| mesh.positions[i as usize]);
+        std::array::from_fn(|k| 0.5 * (u[k] + v[k]))
+    }
+
     /// How many edges there are of each [`EdgeKind`].
     pub fn kind_counts(&self) -> EdgeCounts {
         let mut c = EdgeCounts::default();

@@ -1,5 +1,5 @@
-//! Booleans of many meshes: union or intersection, pairwise in a balanced tree or in one
-//! arrangement of all of them.
+//! Booleans of many meshes: union or intersection, or the first less all the others,
+//! pairwise in a balanced tree or in one arrangement of all of them.
 //!
 //! **The tree** ([`reduce`], the default): both operations are associative and
 //! commutative, so `k` meshes take `⌈log2 k⌉` rounds of pairwise booleans, the pairs of a
@@ -7,7 +7,9 @@
 //! `log2 k` of them instead of up to `k − 1`, and a round uses every core. Shared
 //! topology (solids touching along an edge or at a vertex) is kept between rounds and
 //! split once at the end. Each round's result has its seam points rounded to `f64`, and
-//! the next round takes them as exact input vertices.
+//! the next round takes them as exact input vertices. A difference of many, the first
+//! mesh less all the others, is the first less the tree's union of the others: one
+//! difference at the end.
 //!
 //! **One arrangement** ([`reduce_in_one`], on request; closed meshes): the meshes'
 //! triangles together are cut along every crossing at once
@@ -70,10 +72,11 @@ pub struct Reduced {
 /// winding numbers it keeps).
 const MOST_WINDINGS: usize = 1 << 24;
 
-/// `op` ([`Op::Union`] or [`Op::Intersection`]) of `parts` (at least two) in one
-/// arrangement of all of them (see the module's text); split where it is not manifold
-/// unless `opts.keep_nonmanifold`. A part must not cross itself (as the operands of a
-/// pairwise boolean): only pairs of triangles of different parts are cut.
+/// `op` ([`Op::Union`], [`Op::Intersection`], or [`Op::Difference`]: the first part less
+/// all the others) of `parts` (at least two) in one arrangement of all of them (see the
+/// module's text); split where it is not manifold unless `opts.keep_nonmanifold`. A part
+/// must not cross itself (as the operands of a pairwise boolean): only pairs of triangles
+/// of different parts are cut.
 ///
 /// `None`, for [`reduce`] to do it, where a part is not closed and edge-manifold, a
 /// triangle could not be cut, the winding numbers are not decided exactly, or a part
@@ -81,9 +84,9 @@ const MOST_WINDINGS: usize = 1 << 24;
 /// pairwise boolean takes it to be).
 ///
 /// # Panics
-/// When `op` is a difference.
+/// When `op` is a reverse difference.
 pub fn reduce_in_one(parts: &[Part], op: Op, opts: &PipelineOptions) -> Option<Reduced> {
-    assert!(matches!(op, Op::Union | Op::Intersection));
+    assert!(op != Op::ReverseDifference);
     if parts.len() < 2 {
         return None;
     }
@@ -103,6 +106,7 @@ pub fn reduce_in_one(parts: &[Part], op: Op, opts: &PipelineOptions) -> Option<R
     let pairs = crossings_between(&meshes, &all, &starts);
     let inside = |w: &[i64]| match op {
         Op::Union => w.iter().any(|&x| x >= 1),
+        Op::Difference => w[0] >= 1 && w[1..].iter().all(|&x| x < 1),
         _ => w.iter().all(|&x| x >= 1),
     };
     let kept = keep_in_one(&all, &inputs, &pairs, Windings::ZeroOrOne, inside, opts)?;
@@ -380,19 +384,23 @@ fn without_unreferenced(mesh: Mesh, seam_vertices: &[u32]) -> (Mesh, Vec<u32>) {
     (mesh, seam)
 }
 
-/// `op` ([`Op::Union`] or [`Op::Intersection`]) of `parts`, pairwise in a balanced tree.
-/// The result is split where it is not manifold unless `opts.keep_nonmanifold`.
+/// `op` of `parts`, pairwise in a balanced tree: [`Op::Union`] or [`Op::Intersection`] of
+/// them all, or [`Op::Difference`], the first part less the union of the others (their
+/// tree, then one difference). The result is split where it is not manifold unless
+/// `opts.keep_nonmanifold`.
 ///
 /// # Panics
-/// When `op` is a difference or `parts` is empty (callers check both).
+/// When `op` is a reverse difference or `parts` is empty (callers check both).
 pub fn reduce(mut parts: Vec<Part>, op: Op, opts: &PipelineOptions) -> Reduced {
-    assert!(matches!(op, Op::Union | Op::Intersection) && !parts.is_empty());
+    assert!(op != Op::ReverseDifference && !parts.is_empty());
     let pipeline = PipelineOptions {
         progress: None,
         keep_nonmanifold: true,
         ..*opts
     };
     let mut out = Reduced::default();
+    let minuend = (op == Op::Difference).then(|| parts.remove(0));
+    let tree_op = if minuend.is_some() { Op::Union } else { op };
     while parts.len() > 1 {
         let odd = (parts.len() % 2 == 1).then(|| parts.pop().expect("non-empty"));
         let mut pairs = Vec::with_capacity(parts.len() / 2);
@@ -400,43 +408,79 @@ pub fn reduce(mut parts: Vec<Part>, op: Op, opts: &PipelineOptions) -> Reduced {
         while let (Some(a), Some(b)) = (it.next(), it.next()) {
             pairs.push((a, b));
         }
-        let done: Vec<_> = pairs
+        let done: Vec<Step> = pairs
             .into_par_iter()
             .grained()
-            .map(|(a, b)| {
-                let r = boolean(&a.mesh, &b.mesh, op, &pipeline);
-                let of = |s: Source, t: u32| match s {
-                    Source::A => a.parent[t as usize],
-                    Source::B => b.parent[t as usize],
-                };
-                let parent = r.provenance.iter().map(|p| of(p.source, p.triangle));
-                let part = Part {
-                    parent: parent.collect(),
-                    mesh: r.mesh,
-                };
-                let failed: Vec<_> = r
-                    .failed
-                    .iter()
-                    .map(|f| (of(f.source, f.triangle), f.reason))
-                    .collect();
-                (part, r.seam_points, failed, r.rounding_flips, r.cleanup)
-            })
+            .map(|(a, b)| Step::of(&a, &b, tree_op, &pipeline))
             .collect();
         parts = Vec::with_capacity(done.len() + 1);
-        for (part, seam_points, failed, flips, cleanup) in done {
-            out.cleanup.add(&cleanup);
-            out.seam_points += seam_points;
-            out.failed.extend(failed);
-            out.rounding_flips += flips;
-            parts.push(part);
+        for step in done {
+            parts.push(out.add(step));
         }
         parts.extend(odd);
     }
-    out.part = parts.pop().expect("one part left");
+    let mut last = parts.pop();
+    if let Some(a) = minuend {
+        last = Some(match last {
+            Some(b) => out.add(Step::of(&a, &b, Op::Difference, &pipeline)),
+            None => a,
+        });
+    }
+    out.part = last.expect("one part left");
     if !opts.keep_nonmanifold {
         let (mesh, report) = split_nonmanifold(&out.part.mesh);
         out.part.mesh = mesh;
         out.nonmanifold = report;
     }
     out
+}
+
+/// One pairwise boolean of [`reduce`]: its result as a part (parents named across all
+/// inputs) and what it found.
+struct Step {
+    part: Part,
+    seam_points: usize,
+    failed: Vec<(u32, FailReason)>,
+    rounding_flips: usize,
+    cleanup: CleanupReport,
+}
+
+impl Step {
+    /// `op` of `a` and `b`.
+    fn of(a: &Part, b: &Part, op: Op, pipeline: &PipelineOptions) -> Step {
+        let r = boolean(&a.mesh, &b.mesh, op, pipeline);
+        let of = |s: Source, t: u32| match s {
+            Source::A => a.parent[t as usize],
+            Source::B => b.parent[t as usize],
+        };
+        Step {
+            part: Part {
+                parent: r
+                    .provenance
+                    .iter()
+                    .map(|p| of(p.source, p.triangle))
+                    .collect(),
+                mesh: r.mesh,
+            },
+            seam_points: r.seam_points,
+            failed: r
+                .failed
+                .iter()
+                .map(|f| (of(f.source, f.triangle), f.reason))
+                .collect(),
+            rounding_flips: r.rounding_flips,
+            cleanup: r.cleanup,
+        }
+    }
+}
+
+impl Reduced {
+    /// Adds what `step` found to the totals; its part.
+    fn add(&mut self, step: Step) -> Part {
+        self.cleanup.add(&step.cleanup);
+        self.seam_points += step.seam_points;
+        self.failed.extend(step.failed);
+        self.rounding_flips += step.rounding_flips;
+        step.part
+    }
 }

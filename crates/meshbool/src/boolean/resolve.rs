@@ -189,16 +189,23 @@ fn resolve_sheets(
         components: count,
         ..ResolveReport::default()
     };
-    // Components whose edges are not all used twice in opposite directions.
-    let mut bad = vec![false; count];
+    // Components whose edges are not all used twice in opposite directions: the first
+    // such edge of each, to say where.
+    let mut bad = vec![None; count];
     for e in 0..topo.edge_count() {
         if topo.kind(e) != EdgeKind::Manifold {
-            bad[component[topo.uses_of(e)[0].triangle as usize] as usize] = true;
+            bad[component[topo.uses_of(e)[0].triangle as usize] as usize].get_or_insert(e);
         }
     }
-    if let Some(c) = bad.iter().position(|&b| b) {
+    if let Some((c, e)) = bad.iter().enumerate().find_map(|(c, e)| Some((c, (*e)?))) {
+        let what = match topo.kind(e) {
+            EdgeKind::Boundary => "an open edge",
+            EdgeKind::Inconsistent => "an inconsistently oriented edge",
+            _ => "an edge of more than two triangles",
+        };
         return Err(format!(
-            "component {c} is not closed and consistently oriented (resolving needs closed components)"
+            "component {c} is not closed and consistently oriented ({what} near {:?}; resolving needs closed components)",
+            topo.midpoint(mesh, e)
         ));
     }
     // Clusters of crossing components (union-find, the lowest id the root).
@@ -252,7 +259,10 @@ fn resolve_sheets(
         })
         .unzip();
     if let Some(c) = volumes.iter().position(|&v| v == 0.0) {
-        return Err(format!("component {c} encloses no volume"));
+        return Err(format!(
+            "component {c} encloses no volume (its first triangle near {:?})",
+            mesh.centroid(members[c][0] as usize)
+        ));
     }
     for cluster in clusters.iter().filter(|c| c.len() > 1) {
         if cluster.iter().any(|&c| components[c].facing < 0) {
@@ -998,5 +1008,48 @@ mod tests {
                 assert_eq!(Some(measured.round() as i64), got[i], "{i}, turned {turn}");
             }
         }
+    }
+
+    /// What cannot be resolved is refused with where it is: the first open or
+    /// inconsistent edge of the component, a triangle of a component of no volume.
+    #[test]
+    fn refusals_name_where() {
+        let opts = PipelineOptions::default();
+        let refusal = |m: &Mesh| resolve(m, &[], FillRule::Positive, &opts).unwrap_err();
+        let (positions, mut triangles) = Mesh::cuboid([0.0; 3], [1.0, 2.0, 4.0]).into_parts();
+        let open = Mesh::new(positions.clone(), triangles[1..].to_vec()).unwrap();
+        let topo = EdgeTopology::new(&open);
+        let first = topo.first_of(EdgeKind::Boundary).unwrap();
+        let [u, v] = topo.edges[first].map(|i| positions[i as usize]);
+        let e = refusal(&open);
+        let near = std::array::from_fn::<f64, 3, _>(|k| 0.5 * (u[k] + v[k]));
+        assert!(
+            e.starts_with(
+                "component 0 is not closed and consistently oriented (an open edge near "
+            ) && e.contains(&format!("{near:?}")),
+            "{e}"
+        );
+        triangles[0].swap(1, 2);
+        let flipped = Mesh::new(positions, triangles).unwrap();
+        let e = refusal(&flipped);
+        assert!(e.contains("(an inconsistently oriented edge near ["), "{e}");
+        // A closed tetrahedron flattened into the plane z = 7.
+        let flat = Mesh::new(
+            vec![
+                [0.0, 0.0, 7.0],
+                [1.0, 0.0, 7.0],
+                [0.0, 1.0, 7.0],
+                [1.0, 1.0, 7.0],
+            ],
+            vec![[0, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]],
+        )
+        .unwrap();
+        assert_eq!(
+            refusal(&flat),
+            format!(
+                "component 0 encloses no volume (its first triangle near {:?})",
+                flat.centroid(0)
+            )
+        );
     }
 }

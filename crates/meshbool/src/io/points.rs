@@ -19,15 +19,16 @@ fn bad(message: String) -> Error {
 pub fn read_points(bytes: &[u8]) -> Result<Vec<[f64; 3]>> {
     let text = std::str::from_utf8(bytes).map_err(|e| bad(format!("not UTF-8 text: {e}")))?;
     let trimmed = text.trim_start();
-    let points = if trimmed.starts_with('[') || trimmed.starts_with('{') {
-        from_json(trimmed)?
+    if trimmed.starts_with('[') || trimmed.starts_with('{') {
+        from_json(trimmed)
     } else {
-        from_lines(text)?
-    };
-    if let Some(i) = points.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
-        return Err(bad(format!("point {i} is not finite: {:?}", points[i])));
+        from_lines(text)
     }
-    Ok(points)
+}
+
+/// Whether every coordinate of `p` is finite.
+fn finite(p: &[f64; 3]) -> bool {
+    p.iter().all(|x| x.is_finite())
 }
 
 fn from_json(text: &str) -> Result<Vec<[f64; 3]>> {
@@ -49,7 +50,10 @@ fn from_json(text: &str) -> Result<Vec<[f64; 3]>> {
                 _ => [None; 3],
             };
             match p {
-                [Some(x), Some(y), Some(z)] => Ok([x, y, z]),
+                [Some(x), Some(y), Some(z)] if finite(&[x, y, z]) => Ok([x, y, z]),
+                [Some(x), Some(y), Some(z)] => {
+                    Err(bad(format!("element {i} is not finite: {:?}", [x, y, z])))
+                }
                 _ => Err(bad(format!(
                     "element {i} is not [x, y, z] nor {{\"x\", \"y\", \"z\"}}: {item}"
                 ))),
@@ -77,7 +81,14 @@ fn from_lines(text: &str) -> Result<Vec<[f64; 3]>> {
         }
         seen_data = true;
         match numbers.as_slice() {
-            [Some(x), Some(y), Some(z)] => points.push([*x, *y, *z]),
+            [Some(x), Some(y), Some(z)] if finite(&[*x, *y, *z]) => points.push([*x, *y, *z]),
+            [Some(_), Some(_), Some(_)] => {
+                return Err(bad(format!(
+                    "line {}: point {} is not finite: {line:?}",
+                    n + 1,
+                    points.len()
+                )))
+            }
             _ => {
                 return Err(bad(format!(
                     "line {}: expected three numbers, found {line:?}",
@@ -110,6 +121,7 @@ mod tests {
             (&b"1 2 3\n4 5\n"[..], "line 2"),
             (b"1 2 3\n4 5 x\n", "line 2"),
             (b"1 2 nan\n", "not finite"),
+            (b"# x\n1 2 3\n\n4 inf 6\n", "line 4: point 1 is not finite"),
             (b"[[1, 2]]", "element 0"),
             (b"[1, 2", "not JSON"),
             (b"{\"x\": 1}", "must be an array"),

@@ -300,11 +300,12 @@ pub fn boolean<'a>(
     })
 }
 
-/// The result of [`boolean_many`]: as [`BooleanOutput`], with provenance naming the input
-/// by its position.
+/// The result of [`boolean_many`] and [`difference_many`]: as [`BooleanOutput`], with
+/// provenance naming the input by its position.
 #[derive(Clone, Debug)]
 pub struct BooleanManyOutput {
-    /// The operation ([`Op::Union`] or [`Op::Intersection`]).
+    /// The operation ([`Op::Union`], [`Op::Intersection`], or [`Op::Difference`]: the
+    /// first input less the others).
     pub op: Op,
     /// The result.
     pub mesh: Mesh,
@@ -367,8 +368,8 @@ impl BooleanManyOutput {
 /// `boolean::nary`, [`Combined`]). Inputs are meshes, checked as `opts.checks` say and named `1`,
 /// `2`, ..., or [`Operand`]s.
 ///
-/// Errors: a difference (not associative: use [`boolean`]), no input, an invalid mesh, an
-/// operand failing its checks, a thread count out of range.
+/// Errors: a difference (not associative: use [`difference_many`] or [`boolean`]), no
+/// input, an invalid mesh, an operand failing its checks, a thread count out of range.
 pub fn boolean_many<'a>(
     inputs: &[Input<'a>],
     op: Op,
@@ -376,9 +377,41 @@ pub fn boolean_many<'a>(
 ) -> Result<BooleanManyOutput> {
     if !matches!(op, Op::Union | Op::Intersection) {
         return Err(Error::InvalidParameter(format!(
-            "{op} of many inputs: only union and intersection take more than two"
+            "{op} of many inputs: only union and intersection take more than two \
+             (difference_many: the first less the others)"
         )));
     }
+    many(inputs, op, opts)
+}
+
+/// The first input less all the others, in one call: the others united ([`boolean_many`]'s
+/// tree, or one arrangement of all of them with [`BooleanOptions::one_arrangement`]),
+/// then one difference; the report lists every input. Inputs as for [`boolean_many`].
+///
+/// Errors: as [`boolean_many`].
+///
+/// ```
+/// use meshbool::ops::{difference_many, BooleanOptions, Input};
+/// use meshbool::Mesh;
+///
+/// let block = Mesh::cuboid([0.0; 3], [4.0, 1.0, 1.0]);
+/// let (a, b) = (Mesh::cuboid([0.5, -1.0, -1.0], [1.0, 2.0, 2.0]), Mesh::cuboid([2.5, -1.0, -1.0], [3.0, 2.0, 2.0]));
+/// let inputs = [Input::from(&block), Input::from(&a), Input::from(&b)];
+/// let out = difference_many(&inputs, &BooleanOptions::default())?;
+/// assert_eq!(meshbool::measure::signed_volume(&out.mesh), 3.0);
+/// assert_eq!(out.operands.len(), 3);
+/// # Ok::<(), meshbool::Error>(())
+/// ```
+pub fn difference_many<'a>(
+    inputs: &[Input<'a>],
+    opts: &BooleanOptions,
+) -> Result<BooleanManyOutput> {
+    many(inputs, Op::Difference, opts)
+}
+
+/// [`boolean_many`] and [`difference_many`]: `op` a union, an intersection or a
+/// difference (the first less the others).
+fn many<'a>(inputs: &[Input<'a>], op: Op, opts: &BooleanOptions) -> Result<BooleanManyOutput> {
     if inputs.is_empty() {
         return Err(Error::InvalidParameter(format!("{op} of no inputs")));
     }
@@ -392,7 +425,7 @@ pub fn boolean_many<'a>(
             snap: super::scaled(opts.snap, e).min(f64::MAX),
             ..opts.clone()
         };
-        let mut out = boolean_many(&unit, op, &unit_opts)?;
+        let mut out = many(&unit, op, &unit_opts)?;
         scale_back(&mut out.mesh, &mut out.operands, &mut out.snap, -e);
         return Ok(out);
     }

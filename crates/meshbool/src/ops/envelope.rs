@@ -22,7 +22,7 @@ use web_time::Instant;
 
 use super::{BooleanOptions, Checks, Input, Measures, RunOptions, SCHEMA};
 use crate::boolean::Op;
-use crate::edges::{EdgeCounts, EdgeTopology};
+use crate::edges::{EdgeCounts, EdgeKind, EdgeTopology};
 use crate::repair::{curtain_to, orient, Facing};
 use crate::{Error, Mesh, Result};
 
@@ -153,8 +153,18 @@ pub fn envelope<'a>(mesh: impl Into<Input<'a>>, opts: &EnvelopeOptions) -> Resul
         ));
     }
     if counts.inconsistent > 0 || counts.non_manifold > 0 {
+        // Where the first such edge is, in the input's coordinates (not the mirror's).
+        let topo = EdgeTopology::new(&surface);
+        let near = [EdgeKind::NonManifold, EdgeKind::Inconsistent]
+            .into_iter()
+            .find_map(|kind| topo.first_of(kind))
+            .map(|e| {
+                let [x, y, z] = topo.midpoint(&surface, e);
+                format!("; the first near {:?}", [x, y, if mirror { -z } else { z }])
+            })
+            .unwrap_or_default();
         return Err(refuse(&format!(
-            "the surface cannot be oriented consistently ({} inconsistent, {} non-manifold edges)",
+            "the surface cannot be oriented consistently ({} inconsistent, {} non-manifold edges{near})",
             counts.inconsistent, counts.non_manifold
         )));
     }

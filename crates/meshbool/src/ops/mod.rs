@@ -65,8 +65,8 @@ mod transform;
 
 pub use crate::boolean::FailedTriangle;
 pub use boolean::{
-    boolean, boolean_many, BooleanManyOutput, BooleanOptions, BooleanOutput, BooleanReport,
-    Combined,
+    boolean, boolean_many, difference_many, BooleanManyOutput, BooleanOptions, BooleanOutput,
+    BooleanReport, Combined,
 };
 pub use curves::{
     curves, self_arrangement, self_curves, CurvesOptions, CurvesOutput, CurvesReport,

@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize};
 
 use super::{with_threads_for, RunOptions};
 use crate::boolean::{resolve, FillRule, PipelineOptions, ResolveReport, Stage};
-use crate::edges::EdgeCounts;
+use crate::edges::{EdgeCounts, EdgeKind};
 use crate::intersect::self_intersections;
 use crate::kept::Keeps;
 use crate::par;
@@ -119,6 +119,10 @@ pub struct OperandReport {
     pub rounding_noise: Option<NoiseMerge>,
     /// Edges used twice in the same direction in the input; `None`: not checked.
     pub inconsistent_edges: Option<usize>,
+    /// The midpoint of the first edge used twice in the same direction (in the order of
+    /// the vertices), to find them, when some are left: not made consistent at the door.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub inconsistent_near: Option<[f64; 3]>,
     /// Triangles reversed at the door to make the orientation consistent (each component
     /// facing as most of its triangles did; [`Checks::orient`]); 0 when none.
     pub reoriented_triangles: usize,
@@ -178,7 +182,10 @@ impl OperandReport {
         {
             super::scale_points(std::slice::from_mut(near), e);
         }
-        if let Some(near) = self.non_manifold_near.as_mut() {
+        for near in [&mut self.non_manifold_near, &mut self.inconsistent_near]
+            .into_iter()
+            .flatten()
+        {
             super::scale_points(std::slice::from_mut(near), e);
         }
         self.volume = super::scaled_measure(self.volume, e, 3);
@@ -188,7 +195,10 @@ impl OperandReport {
     pub fn problems(&self) -> Vec<String> {
         let mut problems = Vec::new();
         if let (Some(n @ 1..), 0) = (self.inconsistent_edges, self.reoriented_triangles) {
-            problems.push(format!("{n} inconsistently oriented edges"));
+            problems.push(match self.inconsistent_near {
+                Some(p) => format!("{n} inconsistently oriented edges (the first near {p:?})"),
+                None => format!("{n} inconsistently oriented edges"),
+            });
         }
         if let (Some(n @ 1..), None) = (self.non_manifold_edges, &self.resolved) {
             problems.push(match self.non_manifold_near {
@@ -531,10 +541,18 @@ impl Operand {
             triangles: mesh.triangles.len(),
             vertices: mesh.positions.len(),
             inconsistent_edges: found_counts.map(|c| c.inconsistent),
+            inconsistent_near: match found_counts {
+                Some(c) if c.inconsistent > 0 && reoriented_triangles == 0 => {
+                    first_edge_near(&mesh, EdgeKind::Inconsistent)
+                }
+                _ => None,
+            },
             reoriented_triangles,
             non_manifold_edges: counts.map(|c| c.non_manifold),
             non_manifold_near: match (counts, &resolved) {
-                (Some(c), None) if c.non_manifold > 0 => first_non_manifold(&mesh),
+                (Some(c), None) if c.non_manifold > 0 => {
+                    first_edge_near(&mesh, EdgeKind::NonManifold)
+                }
                 _ => None,
             },
             self_intersections,
@@ -719,17 +737,11 @@ fn round_up(x: f64) -> f64 {
     format!("{r:.0e}").parse().unwrap_or(r)
 }
 
-/// The midpoint of the first edge of `mesh` used by more than two triangles (edges in the
-/// order of their vertices), if any.
-fn first_non_manifold(mesh: &Mesh) -> Option<[f64; 3]> {
+/// The midpoint of the first edge of `mesh` of `kind` (edges in the order of their
+/// vertices), if any.
+fn first_edge_near(mesh: &Mesh, kind: EdgeKind) -> Option<[f64; 3]> {
     let topo = crate::EdgeTopology::new(mesh);
-    let e = (0..topo.edge_count()).find(|&e| topo.uses_of(e).len() > 2)?;
-    let [u, v] = topo.edges[e].map(|i| mesh.positions[i as usize]);
-    Some([
-        0.5 * (u[0] + v[0]),
-        0.5 * (u[1] + v[1]),
-        0.5 * (u[2] + v[2]),
-    ])
+    topo.first_of(kind).map(|e| topo.midpoint(mesh, e))
 }
 
 /// Whether a triangle has two equal corners.

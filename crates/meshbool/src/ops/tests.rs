@@ -136,7 +136,11 @@ fn operands_with_problems_are_refused_unless_forced() {
         panic!("{err}")
     };
     assert_eq!(name, "A");
-    assert_eq!(problems, &["46 inconsistently oriented edges"]);
+    assert_eq!(problems.len(), 1);
+    assert!(
+        problems[0].starts_with("46 inconsistently oriented edges (the first near ["),
+        "{problems:?}"
+    );
     let opts = BooleanOptions {
         checks: Checks {
             force: true,
@@ -147,9 +151,12 @@ fn operands_with_problems_are_refused_unless_forced() {
     let out = boolean(&terrain, &cylinder, Op::Difference, &opts).unwrap();
     assert!(out.operands[0].forced);
     assert!(!out.operands[1].forced);
+    let near = out.operands[0].inconsistent_near.unwrap();
     assert_eq!(
         out.assumed(),
-        ["A: 46 inconsistently oriented edges (input taken as given)"]
+        [format!(
+            "A: 46 inconsistently oriented edges (the first near {near:?}) (input taken as given)"
+        )]
     );
     assert_eq!(out.report().result.boundary_edges, 560);
 
