@@ -1,12 +1,16 @@
 //! `meshbool`: the command-line client of the meshbool library. Parses arguments, calls the
 //! library's front door (`meshbool::ops`, one function per command) and prints or writes
-//! what it returns; errors become messages with exit codes (1: failure, 2: usage).
+//! what it returns; errors become messages with exit codes by one rule ([`exit`]: 1 an
+//! input or the work failed, 2 usage, 130 Ctrl-C), and every output is written by one
+//! rule ([`output`]).
 
 use std::process::ExitCode;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 
 mod commands;
+mod exit;
+mod output;
 
 use commands::{
     boolean, classify, close, convert, curves, cutfill, info, make, orient, pick, repair, resolve,
@@ -44,7 +48,8 @@ enum Command {
     /// A ∩ B (∩ C ...): the intersection of two meshes or more.
     #[command(alias = "intersect")]
     Intersection(boolean::ManyArgs),
-    /// A − B (or B − A with --reverse).
+    /// A − B (− C ...): A less every other input (those united first), in one call; B − A
+    /// with --reverse (two inputs).
     #[command(alias = "subtract")]
     Difference(boolean::DifferenceArgs),
     /// Split both meshes along their intersection into groups (a_in_b, a_out_b, b_in_a,
@@ -98,14 +103,46 @@ enum Command {
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let matches = Cli::command().get_matches();
+    let cli =
+        Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.format(&mut Cli::command()).exit());
     commands::cancel_on_ctrl_c();
-    let result = match cli.command {
+    let result = output::prepare(&matches).and_then(|prepared| {
+        let result = run(cli.command);
+        if result.is_err() {
+            prepared.undo();
+        }
+        result
+    });
+    let Err(e) = result else {
+        return ExitCode::SUCCESS;
+    };
+    let code = exit::code(&e);
+    match code {
+        // A reader that stopped early (`meshbool info F | head -3`): nothing to report.
+        0 => {}
+        // Ctrl-C: the library stopped at a stage boundary and nothing was written.
+        exit::CANCELLED => eprintln!("meshbool: cancelled (Ctrl-C); nothing was written"),
+        _ => {
+            // The library says how to proceed in its own terms; name the flag.
+            let hint = match e.downcast_ref::<meshbool::Error>() {
+                Some(meshbool::Error::Operand { .. }) => " (--force)",
+                _ => "",
+            };
+            eprintln!("meshbool: error: {e:#}{hint}");
+        }
+    }
+    ExitCode::from(code)
+}
+
+/// Runs the command.
+fn run(command: Command) -> anyhow::Result<()> {
+    match command {
         Command::Info(args) => info::run(&args),
         Command::Convert(args) => convert::run(&args),
         Command::Union(args) => args.run(meshbool::Op::Union),
         Command::Intersection(args) => args.run(meshbool::Op::Intersection),
-        Command::Difference(args) => boolean::run(&args.args, args.op()),
+        Command::Difference(args) => args.run(),
         Command::Split(args) => split::run(&args),
         Command::Pick(args) => pick::run(&args),
         Command::Close(args) => close::run(&args),
@@ -117,39 +154,7 @@ fn main() -> ExitCode {
         Command::Curves(args) => curves::run(&args),
         Command::Classify(args) => classify::run(&args),
         Command::Cutfill(args) => cutfill::run(&args),
-    };
-    match result {
-        Ok(()) => ExitCode::SUCCESS,
-        // A reader that stopped early (`meshbool info F | head -3`): nothing to report.
-        Err(e) if closed_pipe(&e) => ExitCode::SUCCESS,
-        // Ctrl-C: the library stopped at a stage boundary and nothing was written.
-        Err(e)
-            if matches!(
-                e.downcast_ref::<meshbool::Error>(),
-                Some(meshbool::Error::Cancelled)
-            ) =>
-        {
-            eprintln!("meshbool: cancelled (Ctrl-C); nothing was written");
-            ExitCode::from(130)
-        }
-        Err(e) => {
-            // The library says how to proceed in its own terms; name the flag.
-            let hint = match e.downcast_ref::<meshbool::Error>() {
-                Some(meshbool::Error::Operand { .. }) => " (--force)",
-                _ => "",
-            };
-            eprintln!("meshbool: error: {e:#}{hint}");
-            ExitCode::FAILURE
-        }
     }
-}
-
-/// Whether the error is standard output's pipe closed by its reader.
-fn closed_pipe(e: &anyhow::Error) -> bool {
-    e.chain().any(|c| {
-        c.downcast_ref::<std::io::Error>()
-            .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
-    })
 }
 
 #[cfg(test)]

@@ -1,5 +1,5 @@
-//! `meshbool union | intersection | difference`: a boolean of two mesh files (union and
-//! intersection: of two or more).
+//! `meshbool union | intersection | difference`: a boolean of two mesh files or more (a
+//! difference of more: the first less all the others).
 
 use std::path::{Path, PathBuf};
 
@@ -17,8 +17,7 @@ pub struct Args {
     a: PathBuf,
     /// Second mesh (B).
     b: PathBuf,
-    /// Output mesh file (its extension names the format).
-    #[arg(short, long, value_parser = super::mesh_output)]
+    #[arg(short, long, help = super::MESH_OUTPUT, value_parser = super::mesh_output)]
     output: PathBuf,
     /// Keep the result's non-manifold edges and vertices (solids touching along an edge or
     /// at a vertex) instead of splitting them.
@@ -35,7 +34,7 @@ pub struct Args {
     flags: OperandFlags,
 }
 
-/// `union` and `intersection`: two inputs or more.
+/// `union`, `intersection` and `difference`: two inputs or more.
 #[derive(clap::Args, Clone)]
 pub struct ManyArgs {
     /// The meshes: A and B, or more (computed in one call, pairwise in a balanced tree).
@@ -47,8 +46,7 @@ pub struct ManyArgs {
     /// `combined` says which was used.
     #[arg(long)]
     one_arrangement: bool,
-    /// Output mesh file (its extension names the format).
-    #[arg(short, long, value_parser = super::mesh_output)]
+    #[arg(short, long, help = super::MESH_OUTPUT, value_parser = super::mesh_output)]
     output: PathBuf,
     /// Keep the result's non-manifold edges and vertices (solids touching along an edge or
     /// at a vertex) instead of splitting them.
@@ -66,7 +64,8 @@ pub struct ManyArgs {
 }
 
 impl ManyArgs {
-    /// Runs `op` (union or intersection): the two-input boolean for two inputs.
+    /// Runs `op` (union, intersection or difference): the two-input boolean for two
+    /// inputs.
     pub fn run(&self, op: Op) -> Result<()> {
         if let [a, b] = &self.inputs[..] {
             let args = Args {
@@ -97,7 +96,10 @@ impl ManyArgs {
                 run: flags.run(&spinner),
                 ..BooleanOptions::default()
             };
-            let out = ops::boolean_many(&inputs, op, &opts)?;
+            let out = match op {
+                Op::Difference => ops::difference_many(&inputs, &opts)?,
+                op => ops::boolean_many(&inputs, op, &opts)?,
+            };
             finish(
                 spinner,
                 &out.mesh,
@@ -109,23 +111,28 @@ impl ManyArgs {
     }
 }
 
-/// `difference`: the boolean's arguments and the direction.
+/// `difference`: the inputs and the direction.
 #[derive(clap::Args, Clone)]
 pub struct DifferenceArgs {
     #[command(flatten)]
-    pub args: Args,
-    /// Compute B − A instead.
+    args: ManyArgs,
+    /// Compute B − A instead (two inputs only).
     #[arg(long)]
     reverse: bool,
 }
 
 impl DifferenceArgs {
-    /// A − B, or B − A with `--reverse`.
-    pub fn op(&self) -> Op {
-        if self.reverse {
-            Op::ReverseDifference
-        } else {
-            Op::Difference
+    /// A − B − C ..., or B − A with `--reverse` (more inputs with it: a usage error).
+    pub fn run(&self) -> Result<()> {
+        if !self.reverse {
+            return self.args.run(Op::Difference);
+        }
+        match self.args.inputs.len() {
+            2 => self.args.run(Op::ReverseDifference),
+            n => Err(crate::exit::usage(format!(
+                "--reverse takes two inputs (it computes B − A), got {n}: put the mesh to \
+                 keep first instead (`difference A B C` is A − B − C)"
+            ))),
         }
     }
 }

@@ -17,10 +17,12 @@ pub struct Args {
     /// The points: a text file with `x y z` (or `x,y,z`) per line, or a JSON array of
     /// `[x, y, z]`; `-` reads standard input.
     points: PathBuf,
-    /// Write one line per point (`x,y,z,class,winding`) to this file (`.csv`), or a JSON
-    /// array of `{class, winding}` (`.json`). Without it the lines go to standard output
-    /// (with --json: into the report).
-    #[arg(short, long, value_parser = super::any_output)]
+    #[arg(short, long, help = concat!(
+        "Write one line per point (`x,y,z,class,winding`) to this file (`.csv`), or a JSON \
+         array of `{class, winding}` (`.json`). Without it the lines go to standard output \
+         (with --json: into the report). ",
+        output_rule!()
+    ))]
     output: Option<PathBuf>,
     /// The mesh's checks (as for a boolean operand), --json and --threads.
     #[command(flatten)]

@@ -14,8 +14,7 @@ use super::{one_of, print_json};
 pub struct Args {
     /// Input mesh.
     input: PathBuf,
-    /// Output mesh file (its extension names the format).
-    #[arg(short, long, value_parser = super::mesh_output)]
+    #[arg(short, long, help = super::MESH_OUTPUT, value_parser = super::mesh_output)]
     output: PathBuf,
     /// How to close.
     #[arg(long, ignore_case = true, default_value = "cap", value_parser = one_of::<CloseMode>(CloseMode::ALL.map(CloseMode::name)))]

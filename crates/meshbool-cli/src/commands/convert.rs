@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use meshbool::ops;
 use meshbool::Format;
 
@@ -13,7 +13,10 @@ use super::{format_names, one_of};
 pub struct Args {
     /// Input mesh file.
     input: PathBuf,
-    /// Output mesh file.
+    #[arg(help = concat!(
+        "Output mesh file (in the format --to names, else its extension does). ",
+        output_rule!()
+    ))]
     output: PathBuf,
     /// Read the input as this format whatever its name says.
     #[arg(long, ignore_case = true, value_parser = one_of::<Format>(format_names()))]
@@ -23,16 +26,17 @@ pub struct Args {
     to: Option<Format>,
 }
 
-/// Reads the input and writes it in the format `--to` or the output's name says.
+/// Reads the input and writes it in the format `--to` or the output's name says (neither:
+/// a usage error, before reading).
 pub fn run(args: &Args) -> Result<()> {
     let format = args
         .to
         .or_else(|| Format::for_path(&args.output))
-        .with_context(|| {
-            format!(
-                "cannot tell the output format from {}: use --to",
-                args.output.display()
-            )
+        .ok_or_else(|| {
+            crate::exit::usage(format!(
+                "{}, or name it with --to",
+                super::unknown_mesh_extension(&args.output.display().to_string())
+            ))
         })?;
     let (mesh, _) = ops::read(&args.input, args.from)?;
     ops::write(&args.output, &mesh, Some(format))?;

@@ -10,13 +10,13 @@ use super::{print_json, warn};
 
 /// Arguments of `curves`.
 #[derive(clap::Args)]
+#[command(allow_negative_numbers = true)]
 pub struct Args {
     /// First mesh.
     a: PathBuf,
     /// Second mesh; without it, the curves where the first crosses itself.
     b: Option<PathBuf>,
-    /// Output file for the polylines (.obj, .dxf or .json).
-    #[arg(short, long, value_parser = super::polyline_output)]
+    #[arg(short, long, help = super::POLYLINE_OUTPUT, value_parser = super::polyline_output)]
     output: Option<PathBuf>,
     /// Leave out segments that only bound coplanar overlaps (shared faces).
     #[arg(long)]

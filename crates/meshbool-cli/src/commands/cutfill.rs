@@ -14,9 +14,11 @@ pub struct Args {
     design: PathBuf,
     /// The topography (the surveyed ground).
     topo: PathBuf,
-    /// Write the lines where the surfaces meet (zero thickness) as polylines (.obj, .dxf
-    /// or .json).
-    #[arg(short, long, value_parser = super::polyline_output)]
+    #[arg(short, long, value_parser = super::polyline_output, help = concat!(
+        "Write the lines where the surfaces meet (zero thickness) as polylines (.obj, .dxf \
+         or .json). ",
+        output_rule!()
+    ))]
     output: Option<PathBuf>,
     /// Print a JSON report on stdout.
     #[arg(long)]
@@ -30,6 +32,16 @@ pub struct Args {
 /// report.
 pub fn run(args: &Args) -> Result<()> {
     let (design, topo) = Operand::read_pair(&args.design, &args.topo, &Checks::NONE)?;
+    // The library's refusal names neither: an input's, not a parameter's.
+    if let Some(empty) = [&design, &topo]
+        .into_iter()
+        .find(|o| o.mesh().triangles().is_empty())
+    {
+        anyhow::bail!(
+            "{}: no triangles; cut and fill need two surfaces",
+            empty.name()
+        );
+    }
     let opts = CutFillOptions {
         run: ops::RunOptions {
             threads: args.threads,

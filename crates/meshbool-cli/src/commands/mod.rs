@@ -8,6 +8,14 @@ use std::sync::OnceLock;
 
 use meshbool::ops::{Cancel, Checks, Progress, RunOptions};
 
+/// What `--help` says of every output file: the rule of [`crate::output`].
+macro_rules! output_rule {
+    () => {
+        "Missing directories are created; an existing file is replaced whole (written beside \
+         it, then renamed over it)"
+    };
+}
+
 pub mod boolean;
 pub mod classify;
 pub mod close;
@@ -194,15 +202,17 @@ impl Drop for Spinner {
     }
 }
 
-/// The directory a path will be written into must exist: checked before any work.
-fn existing_parent(path: &std::path::Path) -> Result<(), String> {
-    match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() && !d.is_dir() => {
-            Err(format!("the directory {} does not exist", d.display()))
-        }
-        _ => Ok(()),
-    }
-}
+/// `--help` of a mesh output.
+pub const MESH_OUTPUT: &str = concat!(
+    "Output mesh file (its extension names the format). ",
+    output_rule!()
+);
+
+/// `--help` of a polyline output.
+pub const POLYLINE_OUTPUT: &str = concat!(
+    "Output file for the polylines (.obj, .dxf or .json). ",
+    output_rule!()
+);
 
 /// Parses a worker thread count: 0 (all cores) to [`RunOptions::MAX_THREADS`]; out of
 /// range is a usage error (exit 2), before any work.
@@ -220,23 +230,27 @@ pub fn thread_count(s: &str) -> Result<usize, String> {
 }
 
 /// Parses an output mesh path, refusing (a usage error, before any work) one whose format
-/// the extension does not name or whose directory does not exist.
+/// the extension does not name. Where it is written is [`crate::output`]'s.
 pub fn mesh_output(s: &str) -> Result<std::path::PathBuf, String> {
     let path = std::path::PathBuf::from(s);
     if meshbool::Format::for_path(&path).is_none() {
-        return Err(format!(
-            "cannot tell the mesh format of {s} from its extension: use one of {}",
-            meshbool::Format::NAMES
-                .iter()
-                .map(|(_, f)| format!(".{}", f.extension()))
-                .collect::<std::collections::BTreeSet<_>>()
-                .into_iter()
-                .collect::<Vec<_>>()
-                .join(" ")
-        ));
+        return Err(unknown_mesh_extension(s));
     }
-    existing_parent(&path)?;
     Ok(path)
+}
+
+/// The message for an output whose extension names no mesh format: it lists those that do.
+pub fn unknown_mesh_extension(path: &str) -> String {
+    format!(
+        "cannot tell the mesh format of {path} from its extension: use one of {}",
+        meshbool::Format::NAMES
+            .iter()
+            .map(|(_, f)| format!(".{}", f.extension()))
+            .collect::<std::collections::BTreeSet<_>>()
+            .into_iter()
+            .collect::<Vec<_>>()
+            .join(" ")
+    )
 }
 
 /// Parses an output polyline path (.obj, .dxf or .json), checked as [`mesh_output`] is.
@@ -251,7 +265,6 @@ pub fn polyline_output(s: &str) -> Result<std::path::PathBuf, String> {
             "polylines are written as .obj, .dxf or .json, not {s}"
         ));
     }
-    existing_parent(&path)?;
     Ok(path)
 }
 
@@ -285,13 +298,6 @@ pub fn snap_tolerance(s: &str) -> Result<f64, String> {
         )),
         _ => Err("expected one number".into()),
     }
-}
-
-/// Parses any output file path: its directory must exist.
-pub fn any_output(s: &str) -> Result<std::path::PathBuf, String> {
-    let path = std::path::PathBuf::from(s);
-    existing_parent(&path)?;
-    Ok(path)
 }
 
 /// Writes `text` to standard output: a failure (a closed pipe, a full disk) is an error

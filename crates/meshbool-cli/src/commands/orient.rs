@@ -13,8 +13,7 @@ use super::print_json;
 pub struct Args {
     /// Input mesh.
     input: PathBuf,
-    /// Output mesh file (its extension names the format).
-    #[arg(short, long, value_parser = super::mesh_output)]
+    #[arg(short, long, help = super::MESH_OUTPUT, value_parser = super::mesh_output)]
     output: PathBuf,
     /// Normals up (positive projected XY area): terrain and other open surfaces.
     #[arg(long, conflicts_with = "outward")]

@@ -21,8 +21,7 @@ pub struct Args {
     /// `reverse-difference` (the same result as the boolean of the split's inputs).
     #[arg(long, ignore_case = true, value_parser = one_of::<Op>(Op::ALL.map(Op::name)))]
     op: Option<Op>,
-    /// Output mesh file (its extension names the format).
-    #[arg(short, long, value_parser = super::mesh_output)]
+    #[arg(short, long, help = super::MESH_OUTPUT, value_parser = super::mesh_output)]
     output: PathBuf,
     /// Keep the merged mesh's non-manifold edges and vertices (pieces touching along an
     /// edge or at a vertex) instead of splitting them.

@@ -14,8 +14,7 @@ use super::{one_of, print_json, Spinner};
 pub struct Args {
     /// Input mesh.
     input: PathBuf,
-    /// Output mesh file (its extension names the format).
-    #[arg(short, long, value_parser = super::mesh_output)]
+    #[arg(short, long, help = super::MESH_OUTPUT, value_parser = super::mesh_output)]
     output: PathBuf,
     /// A JSON configuration (fields of `RepairConfig`; left-out fields default).
     #[arg(long)]

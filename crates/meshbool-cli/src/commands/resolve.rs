@@ -13,8 +13,7 @@ use super::{one_of, print_json, Spinner};
 pub struct Args {
     /// Input mesh.
     input: PathBuf,
-    /// Output mesh file (its extension names the format).
-    #[arg(short, long, value_parser = super::mesh_output)]
+    #[arg(short, long, help = super::MESH_OUTPUT, value_parser = super::mesh_output)]
     output: PathBuf,
     /// Which points are inside, by winding number w: `positive` (w >= 1, the union of the
     /// parts), `nonzero` (w != 0), `evenodd` (w odd).

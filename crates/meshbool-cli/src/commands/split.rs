@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use meshbool::ops::{self, Operand, SplitOptions};
 use meshbool::Format;
 
@@ -11,14 +11,21 @@ use super::{format_names, one_of, print_json, warn, OperandFlags};
 
 /// Arguments of `split`.
 #[derive(clap::Args)]
+#[command(allow_negative_numbers = true)]
 pub struct Args {
     /// First mesh.
     a: PathBuf,
     /// Second mesh.
     b: PathBuf,
-    /// Output directory.
+    /// Output directory, made with its missing parents. One that is not empty is refused
+    /// unless --overwrite is given.
     #[arg(short, long)]
     output: PathBuf,
+    /// Replace the split in the output directory: its files (manifest.json and the pieces
+    /// it lists) are removed before the new pieces are written, so none is left stale. A
+    /// directory holding anything else is still refused (nothing of it is removed).
+    #[arg(long)]
+    overwrite: bool,
     /// File format of the pieces (obj, ply, ...; f64-exact formats keep seam vertices shared).
     #[arg(long, ignore_case = true, default_value = "ply", value_parser = one_of::<Format>(format_names()))]
     format: Format,
@@ -57,6 +64,10 @@ pub fn run(args: &Args) -> Result<()> {
         };
         let out = ops::split(&a, &b, &opts)?;
         spinner.set_message("writing");
+        for file in crate::output::split_leftovers(&args.output, args.overwrite)? {
+            std::fs::remove_file(&file)
+                .with_context(|| format!("removing the earlier split's {}", file.display()))?;
+        }
         let manifest = out.write_dir(&args.output, args.format)?;
         drop(spinner);
         if flags.json {

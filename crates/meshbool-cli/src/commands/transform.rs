@@ -189,8 +189,8 @@ impl clap::Args for Args {
                 .long("output")
                 .required(true)
                 .value_name("OUTPUT")
-                .value_parser(clap::value_parser!(PathBuf))
-                .help("Output mesh file"),
+                .value_parser(super::mesh_output)
+                .help(super::MESH_OUTPUT),
         )
         .arg(
             step("translate", translate)
