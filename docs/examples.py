@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Run the examples of the documentation as a reader would paste them, and check what they print.
 
-Usage: python3 docs/examples.py [--bin DIR] [--python PY] [FILE.md ...]
+Usage: python3 docs/examples.py [--bin DIR] [--python PY] [--keep] [FILE.md ...]
 
 Default files: README.md, the guides docs/*.md and crates/meshbool-py/README.md (js/README.md
 is checked by the JavaScript package's own test, js/test/readme.test.mjs).
@@ -10,7 +10,8 @@ What runs, per file, in order, in one fresh scratch directory (with `docs/` of t
 linked into it, so `python3 docs/render.py` works as it does from a clone):
 
 - ```console blocks: each `$ COMMAND` line (a trailing backslash continues it) runs in bash
-  with `meshbool` found on PATH (`--bin`, default target/release). The lines after it, up
+  with `meshbool` found on PATH (`--bin`, default target/release) and `python3` the
+  interpreter of `--python`. The lines after it, up
   to the next `$`, are what it prints (standard output and error together, as a terminal
   shows them): each must match a line of the output, in the order given (lines left out
   of the example are allowed), where `…` stands for any text and trailing spaces do not
@@ -19,6 +20,9 @@ linked into it, so `python3 docs/render.py` works as it does from a clone):
 - ```python blocks (in files whose name contains "python" or that are the Python README):
   joined into one script and run by `--python` (default: .venv/bin/python when it exists,
   else python3) in the scratch directory; they check themselves with `assert`.
+
+`--keep` leaves the scratch directories (and what the examples wrote, the README's pictures
+among them) in place and prints where they are.
 
 Other blocks (```sh set-up commands, ```text, ```rust: doctests run by cargo) are not run.
 Exits 1 naming the file, line, command and the first expected line that was not printed.
@@ -137,10 +141,18 @@ def run_file(path, args, failures):
     if not scripts and not consoles:
         return
     print(f"== {relative}")
-    with tempfile.TemporaryDirectory(prefix="meshbool-examples-") as scratch:
+    with tempfile.TemporaryDirectory(prefix="meshbool-examples-") as temporary:
+        scratch = temporary
+        if args.keep:
+            scratch = tempfile.mkdtemp(prefix="meshbool-examples-")
+            print(f"  (scratch directory kept: {scratch})")
         os.symlink(REPO / "docs", Path(scratch) / "docs")
         env = dict(os.environ)
-        env["PATH"] = f"{args.bin}{os.pathsep}{env.get('PATH', '')}"
+        # `meshbool` from --bin; `python3` the interpreter of --python (a virtual
+        # environment's, with docs/requirements.txt installed, for docs/render.py).
+        python_dir = str(Path(args.python).parent) if os.sep in args.python else ""
+        paths = [args.bin, python_dir, env.get("PATH", "")]
+        env["PATH"] = os.pathsep.join(p for p in paths if p)
         for start, body in consoles:
             if not run_console(relative, start, body, scratch, env, failures):
                 return
@@ -171,6 +183,7 @@ def main():
     parser.add_argument("--bin", default=str(REPO / "target" / "release"))
     venv = REPO / ".venv" / "bin" / "python"
     parser.add_argument("--python", default=str(venv) if venv.exists() else "python3")
+    parser.add_argument("--keep", action="store_true")
     parser.add_argument("files", nargs="*", type=Path)
     args = parser.parse_args()
     args.bin = str(Path(args.bin).resolve())

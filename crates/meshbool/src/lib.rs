@@ -29,8 +29,8 @@
 //!   [`ops::repair`], [`ops::close`], [`ops::orient`], [`ops::info`], [`ops::read`] and
 //!   [`ops::write`] — each with an options struct and an output whose `report()` is the
 //!   tool's `--json`. Inputs are checked at the door ([`ops::Operand`]).
-//! - [`io`]: readers and writers (STL, OBJ, PLY, DXF, JSON soups, binary glTF, GOCAD
-//!   TSurf, Surpac DTM, LandXML) in `f64`.
+//! - [`io`]: readers and writers (STL, OBJ, PLY, OFF (read only), DXF, JSON soups, binary
+//!   glTF, GOCAD TSurf, Surpac DTM, LandXML) in `f64`.
 //! - [`measure`]: volume, areas, edge statistics ([`measure::mesh_stats`]).
 //! - [`repair`]: each repair step on its own (weld, T-junctions, degenerates, capping,
 //!   stitching, curtains, orientation, folds) and the [`repair::repair`] pipeline.
@@ -110,6 +110,11 @@ pub mod transform;
 #[cfg(doctest)]
 #[doc = include_str!("../../../README.md")]
 struct ReadmeDoctests;
+
+/// The library guide's examples (docs/library.md), compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../docs/library.md")]
+struct LibraryGuideDoctests;
 mod vec3;
 mod welder;
 
