@@ -3,11 +3,101 @@
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
-fn data(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../data")
-        .join(name)
+/// A file of other projects' data in `../shared/data` beside the checkout (the Kirra
+/// surfaces of the reference JS library, kept out of the repository), or `None`, saying
+/// the test is skipped, where that folder is absent.
+fn shared_data(name: &str) -> Option<PathBuf> {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data");
+    if dir.is_dir() {
+        Some(dir.join(name))
+    } else {
+        eprintln!("skipped: ../shared/data not found");
+        None
+    }
 }
+
+/// A mesh made by `meshbool make ARGS`, in a file of its own.
+fn made(args: &[&str]) -> PathBuf {
+    static MADE: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let n = MADE.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let path = tmp(&format!("made_{n}.ply"));
+    let r = meshbool(&[&["make"], args, &["-o", path.to_str().unwrap()]].concat());
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    path
+}
+
+/// A centre at UTM-like coordinates (metres east and north, elevation).
+const UTM: [f64; 3] = [478_600.0, 6_772_300.0, 400.0];
+
+/// `center` moved by `d`, as `X,Y,Z`.
+fn at(center: [f64; 3], d: [f64; 3]) -> String {
+    format!(
+        "{},{},{}",
+        center[0] + d[0],
+        center[1] + d[1],
+        center[2] + d[2]
+    )
+}
+
+/// A generated survey about `center`: 600 m square in 60 × 60 cells (7200 triangles, 240
+/// boundary edges), heights `center.z ± 20`.
+fn terrain(center: [f64; 3]) -> PathBuf {
+    let c = at(center, [0.0; 3]);
+    made(&["terrain", "--center", &c, "--size", "600", "--cells", "60"])
+}
+
+/// [`terrain`] badly wound, as surveys often are: five triangles far from [`drill`] and
+/// from one another reversed (15 inconsistently oriented edges).
+fn wound_terrain(center: [f64; 3]) -> PathBuf {
+    let path = terrain(center);
+    let (positions, mut triangles) = meshbool::io::read_path(&path).unwrap().into_parts();
+    for (i, j) in [(5, 5), (5, 50), (50, 5), (50, 50), (10, 30)] {
+        triangles[2 * (j * 60 + i)].swap(1, 2);
+    }
+    let m = meshbool::Mesh::new(positions, triangles).unwrap();
+    meshbool::io::write_path(&path, &m).unwrap();
+    path
+}
+
+/// A drill hole through [`terrain`]: a cylinder of radius 35 and 30 sides (120
+/// triangles) from 60 below to 60 above the centre, 20 m east and 10 m south of it.
+fn drill(center: [f64; 3]) -> PathBuf {
+    let base = at(center, [20.0, -10.0, -60.0]);
+    made(&[
+        "cylinder",
+        "--base",
+        &base,
+        "--radius",
+        "35",
+        "--height",
+        "120",
+        "--segments",
+        "30",
+    ])
+}
+
+/// An open bowl crossing [`terrain`]: a pit of radius 60 in 16 segments (16 boundary
+/// edges), its rim above the ground and its floor below, 100 m west and 80 m north.
+fn bowl(center: [f64; 3]) -> PathBuf {
+    let c = at(center, [-100.0, 80.0, 30.0]);
+    made(&[
+        "pit",
+        "--center",
+        &c,
+        "--radius",
+        "60",
+        "--depth",
+        "70",
+        "--benches",
+        "2",
+        "--berm",
+        "5",
+        "--segments",
+        "16",
+    ])
+}
+
+const O: [f64; 3] = [0.0; 3];
 
 fn meshbool(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_meshbool"))
@@ -24,11 +114,10 @@ fn tmp(name: &str) -> PathBuf {
 
 #[test]
 fn info_json_reports_terrain_counts() {
-    let out = meshbool(&[
-        "info",
-        "--json",
-        data("kirra_terrain.obj").to_str().unwrap(),
-    ]);
+    let Some(terrain) = shared_data("kirra_terrain.obj") else {
+        return;
+    };
+    let out = meshbool(&["info", "--json", terrain.to_str().unwrap()]);
     assert!(out.status.success());
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["triangles"], 11200);
@@ -48,22 +137,18 @@ fn info_json_several_files_is_an_array() {
     let out = meshbool(&[
         "info",
         "--json",
-        data("kirra_cylinder.obj").to_str().unwrap(),
-        data("kirra_cup.stl").to_str().unwrap(),
+        drill(O).to_str().unwrap(),
+        bowl(O).to_str().unwrap(),
     ]);
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v[0]["closed"], true);
-    assert_eq!(v[1]["boundary_edges"], 6);
+    assert_eq!(v[1]["boundary_edges"], 16);
 }
 
 #[test]
 fn convert_round_trip_keeps_measures() {
-    let ply = tmp("t.ply");
-    let out = meshbool(&[
-        "convert",
-        data("kap_terrain.obj").to_str().unwrap(),
-        ply.to_str().unwrap(),
-    ]);
+    let (input, ply) = (wound_terrain(UTM), tmp("t.ply"));
+    let out = meshbool(&["convert", input.to_str().unwrap(), ply.to_str().unwrap()]);
     assert!(
         out.status.success(),
         "{}",
@@ -78,7 +163,7 @@ fn convert_round_trip_keeps_measures() {
     let info = |p: &PathBuf| -> serde_json::Value {
         serde_json::from_slice(&meshbool(&["info", "--json", p.to_str().unwrap()]).stdout).unwrap()
     };
-    let (a, b) = (info(&data("kap_terrain.obj")), info(&dxf));
+    let (a, b) = (info(&input), info(&dxf));
     for k in [
         "triangles",
         "vertices",
@@ -94,12 +179,8 @@ fn convert_round_trip_keeps_measures() {
 
 #[test]
 fn convert_to_glb_keeps_triangles_and_volume() {
-    let glb = tmp("cylinder.glb");
-    let out = meshbool(&[
-        "convert",
-        data("kirra_cylinder.obj").to_str().unwrap(),
-        glb.to_str().unwrap(),
-    ]);
+    let (cylinder, glb) = (drill(O), tmp("cylinder.glb"));
+    let out = meshbool(&["convert", cylinder.to_str().unwrap(), glb.to_str().unwrap()]);
     assert!(
         out.status.success(),
         "{}",
@@ -115,7 +196,7 @@ fn convert_to_glb_keeps_triangles_and_volume() {
         );
         serde_json::from_slice(&out.stdout).unwrap()
     };
-    let (a, b) = (info(&data("kirra_cylinder.obj")), info(&glb));
+    let (a, b) = (info(&cylinder), info(&glb));
     assert_eq!(a["triangles"], b["triangles"]);
     assert_eq!(a["vertices"], b["vertices"]);
     let (va, vb) = (a["volume"].as_f64().unwrap(), b["volume"].as_f64().unwrap());
@@ -158,12 +239,13 @@ fn usage_errors_exit_2() {
 
 #[test]
 fn curves_of_terrain_and_cylinder_is_one_loop_in_every_format() {
+    let (terrain, cylinder) = (terrain(UTM), drill(UTM));
     for ext in ["obj", "dxf", "json"] {
         let out = tmp(&format!("curve.{ext}"));
         let r = meshbool(&[
             "curves",
-            data("kap_terrain.obj").to_str().unwrap(),
-            data("kap_cylinder.obj").to_str().unwrap(),
+            terrain.to_str().unwrap(),
+            cylinder.to_str().unwrap(),
             "-o",
             out.to_str().unwrap(),
             "--json",
@@ -198,8 +280,8 @@ fn curves_of_terrain_and_cylinder_is_one_loop_in_every_format() {
 fn curves_rejects_an_unknown_output_extension() {
     let r = meshbool(&[
         "curves",
-        data("kirra_cup.obj").to_str().unwrap(),
-        data("kirra_terrain.obj").to_str().unwrap(),
+        bowl(O).to_str().unwrap(),
+        terrain(O).to_str().unwrap(),
         "-o",
         tmp("c.stl").to_str().unwrap(),
     ]);
@@ -211,7 +293,7 @@ fn curves_rejects_an_unknown_output_extension() {
     );
     // Mesh outputs likewise: an unknown extension (a missing directory is made:
     // cli_rules.rs).
-    let (a, b) = (data("kirra_cup.obj"), data("kirra_cylinder.obj"));
+    let (a, b) = (bowl(O), drill(O));
     for (out, says) in [("u.xyz".to_string(), "cannot tell the mesh format")] {
         for cmd in [
             vec![
@@ -367,8 +449,7 @@ fn timings_name_every_stage_and_add_up() {
 
 #[test]
 fn boolean_orients_inconsistent_input_or_refuses_it_with_no_orient() {
-    let t = data("kirra_terrain.obj");
-    let c = data("kirra_cylinder.obj");
+    let (t, c) = (wound_terrain(O), drill(O));
     let out = tmp("forced.ply");
     let args = [
         "difference",
@@ -379,7 +460,7 @@ fn boolean_orients_inconsistent_input_or_refuses_it_with_no_orient() {
     ];
     // Oriented at the door by default, with a line in `assumed`.
     let v = report(&[&args[..], &["--json"]].concat());
-    assert_eq!(v["operands"][0]["reoriented_triangles"], 22);
+    assert_eq!(v["operands"][0]["reoriented_triangles"], 5);
     let assumed = v["assumed"].as_array().unwrap();
     assert_eq!(assumed.len(), 1);
     assert!(assumed[0].as_str().unwrap().contains("made consistent"));
@@ -387,11 +468,11 @@ fn boolean_orients_inconsistent_input_or_refuses_it_with_no_orient() {
     let strict = [&args[..], &["--no-orient"]].concat();
     let r = meshbool(&strict);
     assert_eq!(r.status.code(), Some(1));
-    assert!(String::from_utf8_lossy(&r.stderr).contains("46 inconsistently oriented edges"));
+    assert!(String::from_utf8_lossy(&r.stderr).contains("15 inconsistently oriented edges"));
     let mut forced = strict.to_vec();
     forced.extend(["--force", "--json"]);
     let v = report(&forced);
-    assert_eq!(v["boundary_edges"], 560);
+    assert_eq!(v["boundary_edges"], 240);
     assert_eq!(v["assumed"].as_array().unwrap().len(), 1);
 }
 
@@ -450,27 +531,27 @@ fn oriented_terrain_needs_no_force() {
     let oriented = tmp("oriented.ply");
     let r = report(&[
         "orient",
-        data("kap_terrain.obj").to_str().unwrap(),
+        wound_terrain(UTM).to_str().unwrap(),
         "-o",
         oriented.to_str().unwrap(),
         "--z-up",
         "--json",
     ]);
-    assert_eq!(r["flipped"], 22);
+    assert_eq!(r["flipped"], 5);
     assert_eq!(r["conflicting_edges"], 0);
     let info = report(&["info", "--json", oriented.to_str().unwrap()]);
     assert_eq!(info["inconsistent_edges"], 0);
-    assert_eq!(info["boundary_edges"], 560);
+    assert_eq!(info["boundary_edges"], 240);
     let out = tmp("mined.ply");
     let v = report(&[
         "difference",
         oriented.to_str().unwrap(),
-        data("kap_cylinder.obj").to_str().unwrap(),
+        drill(UTM).to_str().unwrap(),
         "-o",
         out.to_str().unwrap(),
         "--json",
     ]);
-    assert_eq!(v["boundary_edges"], 560);
+    assert_eq!(v["boundary_edges"], 240);
     assert_eq!(v["assumed"].as_array().unwrap().len(), 0);
 }
 
@@ -547,7 +628,7 @@ fn oriented_terrain_curtained_is_a_closed_solid() {
     let oriented = tmp("curt_oriented.ply");
     report(&[
         "orient",
-        data("kap_terrain.obj").to_str().unwrap(),
+        wound_terrain(UTM).to_str().unwrap(),
         "-o",
         oriented.to_str().unwrap(),
         "--z-up",
@@ -567,7 +648,7 @@ fn oriented_terrain_curtained_is_a_closed_solid() {
     ]);
     assert_eq!(r["closed"], true);
     assert_eq!(r["boundary_edges"], 0);
-    assert_eq!(r["curtain"]["wall_triangles"], 1120);
+    assert_eq!(r["curtain"]["wall_triangles"], 2 * 240);
     assert!(r["volume"].as_f64().unwrap() > 0.0);
     let info = report(&["info", "--json", out.to_str().unwrap()]);
     assert_eq!(info["inconsistent_edges"], 0);
@@ -946,10 +1027,13 @@ fn close_stitch_joins_two_open_boxes_into_one_cuboid() {
 
 #[test]
 fn repair_pipeline_orients_and_curtains_the_terrain() {
+    let Some(terrain) = shared_data("kap_terrain.obj") else {
+        return;
+    };
     let out = tmp("terrain_solid.ply");
     let r = report(&[
         "repair",
-        data("kap_terrain.obj").to_str().unwrap(),
+        terrain.to_str().unwrap(),
         "-o",
         out.to_str().unwrap(),
         "--z-up",
@@ -1925,7 +2009,7 @@ fn convert_to_mining_formats_and_back_keeps_triangles_and_volume() {
         );
         serde_json::from_slice(&out.stdout).unwrap()
     };
-    let input = data("kirra_terrain.obj");
+    let input = terrain(UTM);
     let want = info(&input);
     for ext in ["ts", "xml", "dtm"] {
         let written = tmp(&format!("mining.{ext}"));
@@ -2002,7 +2086,7 @@ fn cutfill_of_a_slope_against_flat_ground() {
 
 #[test]
 fn a_failing_standard_output_is_an_error_or_a_quiet_end_never_a_panic() {
-    let terrain = data("kirra_terrain.obj");
+    let terrain = terrain(O);
     // A full disk: exit 1 with a message naming standard output.
     if let Ok(full) = std::fs::File::create("/dev/full") {
         let out = Command::new(env!("CARGO_BIN_EXE_meshbool"))
@@ -2091,8 +2175,7 @@ fn killing_a_large_write_leaves_the_earlier_file_or_the_whole_new_one() {
 
 #[test]
 fn thresholds_that_would_empty_or_overflow_a_mesh_are_refused() {
-    let cyl = data("kirra_cylinder.obj");
-    let terrain = data("kirra_terrain.obj");
+    let (cyl, terrain) = (drill(O), terrain(O));
     let out = tmp("refused.ply");
     let o = out.to_str().unwrap();
     for (args, says) in [
@@ -2156,11 +2239,18 @@ fn thresholds_that_would_empty_or_overflow_a_mesh_are_refused() {
 }
 
 #[test]
-fn the_convoluted_block_is_oriented_and_cut_by_the_terrain() {
-    // Closed, 6 inconsistent edges: the door orients it; the parts above and below the
-    // terrain add up to the oriented block.
-    let block = data("kirra_convoluted.obj");
-    let terrain = data("kirra_terrain.obj");
+fn a_badly_wound_block_is_oriented_and_cut_by_the_terrain() {
+    // A closed block through the terrain, two of its triangles (on its bottom and its top:
+    // no edge in common) reversed, 6 inconsistent edges: the door orients it; the parts
+    // above and below the terrain add up to the oriented block.
+    let block = tmp("wound_block.ply");
+    let (positions, mut triangles) =
+        meshbool::Mesh::cuboid([-47.5, -38.75, -60.0], [71.25, 52.5, 60.0]).into_parts();
+    triangles[0].swap(1, 2);
+    triangles[3].swap(1, 2);
+    let wound = meshbool::Mesh::new(positions, triangles).unwrap();
+    meshbool::io::write_path(&block, &wound).unwrap();
+    let terrain = terrain(O);
     let info = report(&["info", "--json", block.to_str().unwrap()]);
     assert_eq!(
         (&info["inconsistent_edges"], &info["closed"]),
@@ -2175,10 +2265,14 @@ fn the_convoluted_block_is_oriented_and_cut_by_the_terrain() {
         "--outward",
         "--json",
     ]);
-    assert_eq!(o["conflicting_edges"], 0);
+    assert_eq!(
+        (&o["conflicting_edges"], &o["flipped"]),
+        (&0.into(), &2.into())
+    );
     let whole = report(&["info", "--json", oriented.to_str().unwrap()])["volume"]
         .as_f64()
         .unwrap();
+    assert_eq!(whole, 118.75 * 91.25 * 120.0);
     let part = |op: &str| {
         let out = tmp(&format!("conv_{op}.ply"));
         let v = report(&[
@@ -2480,13 +2574,20 @@ fn split_and_pick_snap() {
 }
 
 #[test]
-fn resolve_envelope_of_the_kirra_terrain_keeps_its_outline() {
-    let terrain = data("kirra_terrain.obj");
-    for side in ["upper", "lower"] {
-        let out_path = tmp(&format!("envelope_{side}.ply"));
+fn resolve_envelope_of_a_terrain_keeps_its_outline() {
+    // A generated terrain has no folds: its envelopes are itself. The real one folds over
+    // itself in one place: 22 triangles under (over) another sheet.
+    let terrain = terrain(O);
+    let mut cases = vec![(terrain.clone(), 0, 240)];
+    cases.extend(shared_data("kirra_terrain.obj").map(|t| (t, 22, 560)));
+    for ((input, folded, boundary), side) in cases
+        .iter()
+        .flat_map(|c| ["upper", "lower"].map(|side| (c, side)))
+    {
+        let out_path = tmp(&format!("envelope_{side}_{folded}.ply"));
         let out = meshbool(&[
             "resolve",
-            terrain.to_str().unwrap(),
+            input.to_str().unwrap(),
             "--envelope",
             side,
             "-o",
@@ -2500,9 +2601,9 @@ fn resolve_envelope_of_the_kirra_terrain_keeps_its_outline() {
         );
         let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
         assert_eq!(v["envelope"]["side"], side);
-        assert_eq!(v["envelope"]["folded_triangles"], 22);
-        assert_eq!(v["envelope"]["hidden_triangles"], 22);
-        assert_eq!(v["boundary_edges"], 560);
+        assert_eq!(v["envelope"]["folded_triangles"], *folded);
+        assert_eq!(v["envelope"]["hidden_triangles"], *folded);
+        assert_eq!(v["boundary_edges"], *boundary);
         assert_eq!(v["non_manifold_edges"], 0);
         // Written as reported, and no longer folded: every edge consistent.
         let info = meshbool(&["info", "--json", out_path.to_str().unwrap()]);
@@ -2540,7 +2641,7 @@ fn resolve_envelope_of_the_kirra_terrain_keeps_its_outline() {
     // A closed mesh: a clear error.
     let out = meshbool(&[
         "resolve",
-        data("kirra_cylinder.obj").to_str().unwrap(),
+        drill(O).to_str().unwrap(),
         "--envelope",
         "lower",
         "-o",
@@ -2612,7 +2713,7 @@ fn ctrl_c_cancels_a_boolean_and_writes_nothing() {
 #[test]
 fn a_thread_count_out_of_range_is_a_usage_error() {
     let out = tmp("threads.stl");
-    let (a, b) = (data("kirra_cylinder.obj"), data("kirra_cup.obj"));
+    let (a, b) = (drill(O), bowl(O));
     let (a, b, o) = (
         a.to_str().unwrap(),
         b.to_str().unwrap(),

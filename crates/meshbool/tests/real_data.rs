@@ -1,23 +1,45 @@
-//! Measures and format round-trips on the real Kirra surfaces shipped in `data/`.
+//! Measures of the real Kirra surfaces (other projects' data, read from `../shared/data`
+//! beside the checkout; skipped where it is absent), and format round trips of terrains:
+//! a generated one always, the real one where it is there.
+
+#[allow(dead_code)]
+mod common;
 
 use meshbool::io::{self, Format};
 use meshbool::measure::{mesh_stats, MeshStats};
-use meshbool::Mesh;
+use meshbool::{shapes, Mesh};
 
-fn data(name: &str) -> std::path::PathBuf {
-    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../data")
-        .join(name)
+/// A real surface, or `None` (the test skipped) without `../shared/data`.
+fn real(name: &str) -> Option<Mesh> {
+    common::shared_data(name).map(|p| io::read_path(p).unwrap())
 }
 
-fn stats(name: &str) -> MeshStats {
-    mesh_stats(&io::read_path(data(name)).unwrap())
+fn stats(name: &str) -> Option<MeshStats> {
+    real(name).map(|m| mesh_stats(&m))
 }
+
+/// A generated terrain about `center` (7200 triangles, five of them reversed: badly
+/// wound, as surveys are), and the real terrain `name` where `../shared/data` has it.
+fn terrains(center: [f64; 3], name: &str) -> Vec<Mesh> {
+    let mut t = shapes::terrain(center, [600.0; 2], [60; 2], 40.0, 1).unwrap();
+    let mut triangles = t.triangles().to_vec();
+    for k in [610, 1100, 6010, 6500, 3620] {
+        triangles[k].swap(1, 2);
+    }
+    t = Mesh::new(t.positions().to_vec(), triangles).unwrap();
+    assert_eq!(mesh_stats(&t).inconsistent_edges, 15);
+    let mut all = vec![t];
+    all.extend(real(name));
+    all
+}
+
+/// A centre at UTM-like coordinates (metres east and north, elevation).
+const UTM: [f64; 3] = [478_600.0, 6_772_300.0, 400.0];
 
 #[test]
 fn kirra_terrain_counts() {
     for name in ["kirra_terrain.obj", "kap_terrain.obj"] {
-        let s = stats(name);
+        let Some(s) = stats(name) else { return };
         assert_eq!(s.triangles, 11200, "{name}");
         assert_eq!(s.vertices, 5881, "{name}");
         assert_eq!(s.boundary_edges, 560, "{name}");
@@ -31,7 +53,7 @@ fn kirra_terrain_counts() {
 #[test]
 fn kirra_cylinder_is_closed_and_cup_is_open() {
     for name in ["kirra_cylinder.obj", "kap_cylinder.obj"] {
-        let s = stats(name);
+        let Some(s) = stats(name) else { return };
         assert_eq!(
             (
                 s.triangles,
@@ -50,7 +72,7 @@ fn kirra_cylinder_is_closed_and_cup_is_open() {
         "kirra_cup.stl",
         "kirra_cup.json",
     ] {
-        let s = stats(name);
+        let Some(s) = stats(name) else { return };
         assert_eq!(
             (
                 s.triangles,
@@ -64,26 +86,33 @@ fn kirra_cylinder_is_closed_and_cup_is_open() {
     }
 }
 
-/// Volume is computed about the bounding-box centre: moving the cylinder to UTM
+/// Volume is computed about the bounding-box centre: moving a cylinder to UTM
 /// coordinates changes it only by the rounding of the moved coordinates.
 #[test]
 fn volume_keeps_precision_at_utm_offsets() {
-    let m = io::read_path(data("kirra_cylinder.obj")).unwrap();
-    let mut far = m.clone();
-    for p in far.positions_mut() {
-        *p = [p[0] + 478_600.0, p[1] + 6_772_300.0, p[2] + 350.0];
+    let drill = shapes::cylinder([20.0, -10.0, -60.0], 35.0, 120.0, 30).unwrap();
+    let kirra = real("kirra_cylinder.obj");
+    for m in std::iter::once(&drill).chain(&kirra) {
+        let mut far = m.clone();
+        for p in far.positions_mut() {
+            *p = [p[0] + 478_600.0, p[1] + 6_772_300.0, p[2] + 350.0];
+        }
+        let (a, b) = (mesh_stats(m).volume, mesh_stats(&far).volume);
+        assert!((a - b).abs() <= 1e-9 * a.abs(), "{a} vs {b}");
     }
-    let (a, b) = (mesh_stats(&m).volume, mesh_stats(&far).volume);
-    assert!((a - b).abs() <= 1e-9 * a.abs(), "{a} vs {b}");
-    // The shipped UTM cylinder is a separately rounded copy: equal to 4-decimal precision.
-    let kap = stats("kap_cylinder.obj").volume;
+    // The real UTM cylinder is a separately rounded copy: equal to 4-decimal precision.
+    let (Some(m), Some(kap)) = (kirra, stats("kap_cylinder.obj")) else {
+        return;
+    };
+    let (a, kap) = (mesh_stats(&m).volume, kap.volume);
     assert!((a - kap).abs() <= 1e-6 * a.abs(), "{a} vs {kap}");
 }
 
 #[test]
 fn json_and_obj_cup_are_the_same_soup() {
-    let obj = io::read_path(data("kirra_cup.obj")).unwrap();
-    let json = io::read_path(data("kirra_cup.json")).unwrap();
+    let (Some(obj), Some(json)) = (real("kirra_cup.obj"), real("kirra_cup.json")) else {
+        return;
+    };
     assert_eq!(obj.to_soup(), json.to_soup());
 }
 
@@ -91,20 +120,21 @@ fn json_and_obj_cup_are_the_same_soup() {
 /// same topology, same volume and area.
 #[test]
 fn utm_terrain_round_trips_every_exact_format() {
-    let m = io::read_path(data("kap_terrain.obj")).unwrap();
-    let want = mesh_stats(&m);
     let dir = std::env::temp_dir().join(format!("meshbool-rt-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    for (name, f) in Format::NAMES {
-        // f32 formats: binary STL below, glTF in `utm_terrain_round_trips_glb`.
-        if matches!(f, Format::StlBinary | Format::Glb) {
-            continue;
+    for m in terrains(UTM, "kap_terrain.obj") {
+        let want = mesh_stats(&m);
+        for (name, f) in Format::NAMES {
+            // f32 formats: binary STL below, glTF in `utm_terrain_round_trips_glb`.
+            if matches!(f, Format::StlBinary | Format::Glb) {
+                continue;
+            }
+            let path = dir.join(format!("t.{name}"));
+            io::write_path_as(&path, &m, f).unwrap();
+            let back = io::read_path(&path).unwrap();
+            assert_eq!(back.to_soup(), m.to_soup(), "{name}");
+            assert_eq!(mesh_stats(&back), want, "{name}");
         }
-        let path = dir.join(format!("t.{name}"));
-        io::write_path_as(&path, &m, f).unwrap();
-        let back = io::read_path(&path).unwrap();
-        assert_eq!(back.to_soup(), m.to_soup(), "{name}");
-        assert_eq!(mesh_stats(&back), want, "{name}");
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -114,9 +144,14 @@ fn utm_terrain_round_trips_every_exact_format() {
 /// box's size (plus an `f64` rounding), and the same area to about that.
 #[test]
 fn utm_terrain_round_trips_glb() {
-    let m = io::read_path(data("kap_terrain.obj")).unwrap();
+    for m in terrains(UTM, "kap_terrain.obj") {
+        round_trips_glb(&m);
+    }
+}
+
+fn round_trips_glb(m: &Mesh) {
     let mut bytes = Vec::new();
-    io::write(&mut bytes, &m, Format::Glb).unwrap();
+    io::write(&mut bytes, m, Format::Glb).unwrap();
     let back = io::read_bytes(&bytes, Format::Glb).unwrap();
     assert_eq!(back.triangles(), m.triangles());
     let half = m.bounds().unwrap().size().map(|s| s / 2.0);
@@ -126,7 +161,7 @@ fn utm_terrain_round_trips_glb() {
             assert!((p[k] - q[k]).abs() <= bound, "{p:?} came back as {q:?}");
         }
     }
-    let (a, b) = (mesh_stats(&m), mesh_stats(&back));
+    let (a, b) = (mesh_stats(m), mesh_stats(&back));
     assert_eq!(
         (a.vertices, a.edges, a.boundary_edges, a.inconsistent_edges),
         (b.vertices, b.edges, b.boundary_edges, b.inconsistent_edges)
@@ -141,11 +176,16 @@ fn utm_terrain_round_trips_glb() {
 
 #[test]
 fn binary_stl_keeps_topology_of_centred_terrain() {
-    let m = io::read_path(data("kirra_terrain.obj")).unwrap();
+    for m in terrains([0.0; 3], "kirra_terrain.obj") {
+        binary_stl_keeps_topology(&m);
+    }
+}
+
+fn binary_stl_keeps_topology(m: &Mesh) {
     let mut bytes = Vec::new();
-    io::write(&mut bytes, &m, Format::StlBinary).unwrap();
+    io::write(&mut bytes, m, Format::StlBinary).unwrap();
     let back = io::read_bytes(&bytes, Format::StlBinary).unwrap();
-    let (a, b) = (mesh_stats(&back), mesh_stats(&m));
+    let (a, b) = (mesh_stats(&back), mesh_stats(m));
     assert_eq!(
         (
             a.triangles,

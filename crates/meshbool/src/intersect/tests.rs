@@ -194,19 +194,19 @@ fn sphere_and_its_rotated_copy_shifted_1e9_give_closed_loops() {
     }
 }
 
-use crate::test_util::data as read;
+use crate::test_util::{bowl, shared_data, terrain_and_drill, UTM};
 
 #[test]
-fn kirra_terrain_and_cylinder_meet_in_one_closed_loop() {
-    for (t, c) in [
-        ("kirra_terrain.obj", "kirra_cylinder.obj"),
-        ("kap_terrain.obj", "kap_cylinder.obj"),
-    ] {
-        let seam = intersect(&read(t), &read(c));
-        let curves = chain(&seam, true);
-        assert_eq!(curves.len(), 1, "{t}");
-        assert!(curves[0].closed, "{t}");
-        assert!(seam.touching.is_empty());
+fn terrain_and_cylinder_meet_in_one_closed_loop() {
+    for center in [[0.0; 3], UTM] {
+        let (terrain, drill) = terrain_and_drill(center);
+        for tool in [drill, bowl(center)] {
+            let seam = intersect(&terrain, &tool);
+            let curves = chain(&seam, true);
+            assert_eq!(curves.len(), 1, "{center:?}");
+            assert!(curves[0].closed, "{center:?}");
+            assert!(seam.touching.is_empty());
+        }
     }
 }
 
@@ -330,11 +330,14 @@ fn tritri_is_symmetric_and_its_points_lie_in_both_triangles() {
 
 #[test]
 fn self_intersections_found_exactly() {
-    // Valid closed meshes and the terrains: none (folded-but-not-overlapping neighbours
-    // are not intersections).
+    // Valid closed meshes and the terrains: none (the real one's folded-but-not-overlapping
+    // neighbours are not intersections).
     assert!(self_intersections(&uv_sphere([0.0; 3], 1.0, 32, 16)).is_empty());
     assert!(self_intersections(&Mesh::unit_cube()).is_empty());
-    assert!(self_intersections(&read("kirra_terrain.obj")).is_empty());
+    assert!(self_intersections(&terrain_and_drill(UTM).0).is_empty());
+    if let Some(folded) = shared_data("kirra_terrain.obj") {
+        assert!(self_intersections(&folded).is_empty());
+    }
     // Two spheres in one mesh, overlapping: every crossing pair is reported.
     let a = uv_sphere([0.0; 3], 1.0, 32, 16);
     let b = uv_sphere([0.5, 0.1, 0.0], 1.0, 24, 12);

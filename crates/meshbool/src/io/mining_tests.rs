@@ -43,7 +43,7 @@ const MINING: [Format; 3] = [Format::GocadTs, Format::SurpacDtm, Format::LandXml
 
 #[test]
 fn mining_formats_round_trip_bit_exact() {
-    let terrain = crate::test_util::data("kirra_terrain.obj");
+    let terrain = crate::test_util::terrain_and_drill(crate::test_util::UTM).0;
     for mesh in [Mesh::unit_cube(), awkward(), terrain] {
         // Compared as text: the awkward mesh's area overflows to NaN.
         let want = format!("{:?}", mesh_stats(&mesh));

@@ -250,14 +250,15 @@ mod tests {
         assert!(same.cut.abs() < 1e-12 && same.fill.abs() < 1e-12);
     }
 
-    #[test]
-    fn kirra_terrain_against_a_plane_at_its_mean_height() {
-        let terrain = crate::test_util::data("kirra_terrain.obj");
-        let (up, _) = orient(&crate::weld_exact(&terrain).mesh, Facing::ZUp);
+    /// Cut and fill of `terrain` against a plane at its mean height covering it: the
+    /// common footprint is the terrain's, and cut − fill is the volume between them, ∫ (z −
+    /// mean) dA = 0 by the choice of mean. The output, and how much the terrain's plan area
+    /// exceeds its signed plan area (its folds' extra layers).
+    fn against_its_mean_plane(terrain: &Mesh) -> (CutFillOutput, f64) {
+        let (up, _) = orient(&crate::weld_exact(terrain).mesh, Facing::ZUp);
         // ∫ z dA over the terrain's plan (prisms down to z = 0) and its plan area, both
-        // with signed plan areas: the terrain folds over itself in one place (the 22
-        // triangles reversed to make it consistent face down), and a fold's three layers
-        // count once.
+        // with signed plan areas: where a terrain folds over itself (the triangles reversed
+        // to make it consistent face down), a fold's three layers count once.
         let (mut prisms, mut area) = (0.0, 0.0);
         for t in &up.triangles {
             let [a, b, c] = t.map(|v| up.positions[v as usize]);
@@ -265,7 +266,6 @@ mod tests {
             prisms += s * (a[2] + b[2] + c[2]) / 3.0;
             area += s;
         }
-        assert!(projected_area(&up, Plane::XY) > area + 2.0);
         let mean = prisms / area;
         let b = up.bounds().unwrap();
         let plane = heightfield(
@@ -275,9 +275,7 @@ mod tests {
             3,
             |_, _| mean,
         );
-        let out = cutfill(&plane, &terrain, &CutFillOptions::default()).unwrap();
-        // The plane covers the terrain: the common footprint is the terrain's, and cut −
-        // fill is the volume between them, ∫ (z − mean) dA = 0 by the choice of mean.
+        let out = cutfill(&plane, terrain, &CutFillOptions::default()).unwrap();
         assert!(
             rel(out.common_area, area) < 1e-9,
             "{} vs {area}",
@@ -290,6 +288,25 @@ mod tests {
             out.cut,
             out.fill
         );
-        assert_eq!(out.faced_up[1], 22);
+        (out, projected_area(&up, Plane::XY) - area)
+    }
+
+    #[test]
+    fn terrain_against_a_plane_at_its_mean_height() {
+        use crate::test_util::{shared_data, terrain_and_drill, wound_badly, UTM};
+        for center in [[0.0; 3], UTM] {
+            // Badly wound, not folded: faced up, its plan area is its signed plan area.
+            let terrain = wound_badly(&terrain_and_drill(center).0);
+            let (out, folds) = against_its_mean_plane(&terrain);
+            assert_eq!(out.faced_up[1], 5);
+            assert!(folds.abs() < 1e-9 * 360_000.0, "{folds}");
+        }
+        // The real terrain folds over itself in one place: the 22 triangles reversed to
+        // make it consistent face down.
+        if let Some(terrain) = shared_data("kirra_terrain.obj") {
+            let (out, folds) = against_its_mean_plane(&terrain);
+            assert_eq!(out.faced_up[1], 22);
+            assert!(folds > 2.0, "{folds}");
+        }
     }
 }

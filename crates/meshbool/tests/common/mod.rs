@@ -1,5 +1,5 @@
-//! What the tests share: the cube-and-cutter of snapping and the exact clean-up, and a
-//! cube whose shared corners differ by rounding.
+//! What the tests share: the cube-and-cutter of snapping and the exact clean-up, a cube
+//! whose shared corners differ by rounding, and the way to other projects' data.
 
 use meshbool::boolean::Provenance;
 use meshbool::{Mesh, Source};
@@ -84,4 +84,18 @@ pub fn finned_sheet() -> Mesh {
         vec![[0, 1, 2], [0, 2, 3], [0, 2, 4]],
     )
     .unwrap()
+}
+
+/// A file of other projects' data in `../shared/data` beside the checkout (the Kirra
+/// surfaces of the reference JS library, kept out of the repository), or `None`, saying
+/// the test is skipped, where that folder is absent.
+#[allow(dead_code)]
+pub fn shared_data(name: &str) -> Option<std::path::PathBuf> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data");
+    if dir.is_dir() {
+        Some(dir.join(name))
+    } else {
+        eprintln!("skipped: ../shared/data not found");
+        None
+    }
 }
