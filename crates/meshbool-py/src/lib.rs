@@ -21,7 +21,7 @@ use pyo3::prelude::*;
 /// mimalloc, as the command line uses it: a boolean's stages allocate and free large
 /// buffers one after another on the thread pool's workers, where the system allocator
 /// maps and zeroes fresh pages each time (2M-triangle union in process: see
-/// BENCHMARKS.md, "Calls from outside the thread pool").
+/// BENCHMARKS.md, "Measured settings").
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
