@@ -163,6 +163,22 @@ fn samples() -> BTreeMap<&'static str, Vec<Value>> {
     };
     let fin = ops::boolean(&finned, &other, Op::Union, &forced).unwrap();
     s.entry("boolean").or_default().push(json(&fin.report()));
+    // A cube with one triangle wound the wrong way, not oriented at the door but taken as
+    // given: where its first inconsistent edge is.
+    let (positions, mut triangles) = Mesh::unit_cube().into_parts();
+    triangles[0].swap(1, 2);
+    let flipped = Mesh::new(positions, triangles).unwrap();
+    let unoriented = BooleanOptions {
+        checks: ops::Checks {
+            force: true,
+            orient: false,
+            ..ops::Checks::default()
+        },
+        ..BooleanOptions::default()
+    };
+    let wound = ops::boolean(&flipped, &other, Op::Union, &unoriented).unwrap();
+    assert!(wound.report().operands[0].inconsistent_near.is_some());
+    s.entry("boolean").or_default().push(json(&wound.report()));
     let merged = ops::boolean(&noisy, &other, Op::Union, &BooleanOptions::default()).unwrap();
     assert!(merged.report().operands[0].rounding_noise.is_some());
     s.entry("boolean").or_default().push(json(&merged.report()));
