@@ -4,7 +4,6 @@
 use std::path::PathBuf;
 
 use anyhow::Result;
-use clap::error::ErrorKind;
 use meshbool::ops::{self, Shape};
 
 use super::print_json;
@@ -50,8 +49,7 @@ enum ShapeArgs {
 /// What every shape takes.
 #[derive(clap::Args)]
 struct Out {
-    /// Output mesh file (its extension names the format).
-    #[arg(short, long, value_parser = super::mesh_output)]
+    #[arg(short, long, help = super::MESH_OUTPUT, value_parser = super::mesh_output)]
     output: PathBuf,
     /// Print a JSON report on stdout.
     #[arg(long)]
@@ -357,13 +355,9 @@ impl ShapeArgs {
 /// fine for `f64`) are usage errors (exit 2).
 pub fn run(args: &Args) -> Result<()> {
     let (shape, out) = args.shape.shape();
-    let made = match ops::make(&shape) {
-        Ok(m) => m,
-        Err(meshbool::Error::InvalidParameter(m)) => {
-            clap::Error::raw(ErrorKind::ValueValidation, format!("{m}\n")).exit()
-        }
-        Err(e) => return Err(e.into()),
-    };
+    // The library's `InvalidParameter` maps to exit 2 in `main` (exit.rs), which also
+    // removes directories made for the output.
+    let made = ops::make(&shape)?;
     ops::write(&out.output, &made.mesh, None)?;
     let report = made.report();
     if out.json {
