@@ -3,7 +3,8 @@
 // 998,000 triangles each), a boolean or a split-and-pick of the two computed in a Web
 // Worker (the page stays responsive; the stages show as they begin; Cancel stops it), the
 // result drawn with three.js and measured, and an STL download of it. Needs no data
-// files and no network.
+// files and no network. Served cross-origin isolated (serve.mjs --isolated), the worker
+// runs the threaded build where it is installed; the footer says which build runs.
 import * as THREE from "three";
 import { OrbitControls } from "three/addons/controls/OrbitControls.js";
 import { meshInfo, readFormats, readMesh, version, writeMesh } from "../src/index.js";
@@ -22,6 +23,20 @@ const STAGES = { check: "checking the inputs", intersect: "intersecting", arrang
 /** The worker the operations run in, and the controller of the running one. */
 const worker = createWorker();
 let running = null;
+
+// Started now (its WebAssembly loads while the page is read): which build it runs.
+worker.buildInfo().then(
+	(info) => {
+		const shown = info.build === "threads" ? `threaded, ${info.threads} threads` : "single-threaded";
+		$("build").textContent = `WebAssembly build: ${shown} (${info.reason})`;
+		document.body.dataset.build = info.build;
+		document.body.dataset.threads = String(info.threads);
+	},
+	(e) => {
+		$("build").textContent = `WebAssembly build: failed to start (${e.message})`;
+		setMessage(e.message, true);
+	},
+);
 
 /** What the page holds: the two inputs `{name, mesh}` and the last result `{mesh, name}`. */
 const state = { a: null, b: null, result: null };
@@ -329,6 +344,8 @@ async function runSplit(control) {
 }
 
 function showStats(stats, notes) {
+	// The figures unrounded, for tests and the console.
+	if (window.meshboolDemo) window.meshboolDemo.stats = stats;
 	$("stat-triangles").textContent = stats ? String(stats.triangles) : "–";
 	$("stat-closed").textContent = stats ? (stats.closed ? "yes" : "no") : "–";
 	$("stat-volume").textContent = stats ? stats.volume.toFixed(3) : "–";

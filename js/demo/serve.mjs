@@ -2,7 +2,12 @@
 // `/` (so /demo/, /src/, /wasm/ and /node_modules/ resolve as the page imports them).
 // The page generates its example meshes; it needs no data files.
 //
-//   node demo/serve.mjs [port]        (or PORT=8377; port 0 picks a free one)
+//   node demo/serve.mjs [--isolated] [port]        (or PORT=8377; port 0 picks a free one)
+//
+// --isolated (or ISOLATED=1) sends Cross-Origin-Opener-Policy: same-origin and
+// Cross-Origin-Embedder-Policy: require-corp with every answer: the page is then
+// cross-origin isolated (SharedArrayBuffer), and its worker runs the threaded build where
+// it is installed (npm run build:threads).
 //
 // Binds 127.0.0.1 unless HOST says otherwise. Importing this module starts nothing; call
 // `startServer`.
@@ -49,6 +54,9 @@ function resolvePath(urlPath) {
 	return file === packageRoot || file.startsWith(packageRoot + path.sep) ? file : null;
 }
 
+/** The headers that make a page cross-origin isolated (`startServer({isolated: true})`). */
+export const ISOLATION_HEADERS = { "Cross-Origin-Opener-Policy": "same-origin", "Cross-Origin-Embedder-Policy": "require-corp" };
+
 function send(res, status, body, type = "text/plain; charset=utf-8") {
 	res.writeHead(status, { "Content-Type": type, "Content-Length": Buffer.byteLength(body), "Cache-Control": "no-store" });
 	res.end(body);
@@ -92,13 +100,16 @@ function serveFile(req, res, file, stat) {
  * Starts the server: resolves to `{server, url, port, close()}` once it listens, `url`
  * the demo page's address.
  *
- * @param {{port?: number, host?: string}} [options] port default 8377 (0: a free one), host default 127.0.0.1
+ * @param {{port?: number, host?: string, isolated?: boolean}} [options] port default 8377 (0: a free one), host default 127.0.0.1, isolated: send ISOLATION_HEADERS
  * @returns {Promise<{server: http.Server, url: string, port: number, close: () => Promise<void>}>}
  */
 export function startServer(options = {}) {
 	const port = options.port ?? 8377;
 	const host = options.host ?? "127.0.0.1";
-	const server = http.createServer(handle);
+	const server = http.createServer((req, res) => {
+		if (options.isolated) for (const [k, v] of Object.entries(ISOLATION_HEADERS)) res.setHeader(k, v);
+		handle(req, res);
+	});
 	return new Promise((resolve, reject) => {
 		server.once("error", reject);
 		server.listen(port, host, () => {
@@ -115,14 +126,17 @@ export function startServer(options = {}) {
 }
 
 if (process.argv[1] && import.meta.url === pathToFileURL(path.resolve(process.argv[1])).href) {
-	const arg = process.argv[2] ?? process.env.PORT ?? "8377";
+	const args = process.argv.slice(2);
+	const isolated = args.includes("--isolated") || process.env.ISOLATED === "1";
+	const rest = args.filter((a) => a !== "--isolated");
+	const arg = rest[0] ?? process.env.PORT ?? "8377";
 	const port = Number(arg);
-	if (!Number.isInteger(port) || port < 0 || port > 65535) {
-		console.error(`serve.mjs: not a port: ${arg}`);
+	if (rest.length > 1 || !Number.isInteger(port) || port < 0 || port > 65535) {
+		console.error(`serve.mjs: usage: node demo/serve.mjs [--isolated] [port] (not a port: ${arg})`);
 		process.exit(2);
 	}
-	startServer({ port, host: process.env.HOST || "127.0.0.1" }).then(
-		({ url }) => console.log(`meshbool demo: ${url}`),
+	startServer({ port, host: process.env.HOST || "127.0.0.1", isolated }).then(
+		({ url }) => console.log(`meshbool demo: ${url}${isolated ? " (cross-origin isolated)" : ""}`),
 		(err) => {
 			console.error(`serve.mjs: cannot listen on port ${port}: ${err.message}`);
 			process.exit(1);

@@ -1,7 +1,7 @@
 // Types of meshbool/async: the package's functions in a Web Worker (Node.js: a worker
 // thread), as Promises, with progress and cancellation.
 
-import type { IndexedMesh, Operation, TriangleSoup } from "./index.js";
+import type { BuildInfo, IndexedMesh, Operation, TriangleSoup } from "./index.js";
 
 /** How one call runs. */
 export interface CallControl {
@@ -15,9 +15,12 @@ export interface CallControl {
 
 /** A worker running the package. Calls run one after another in the order made. */
 export class MeshboolWorker {
-	constructor(options?: { url?: string | URL });
+	/** `threads`: the threaded build's pool size in the worker (1: the single-threaded build; default navigator.hardwareConcurrency where the page is cross-origin isolated). */
+	constructor(options?: { url?: string | URL; threads?: number });
 	/** The package version in the worker, once started. */
 	version?: string;
+	/** Which build the worker runs, as `buildInfo()` there (starts the worker). */
+	buildInfo(): Promise<BuildInfo>;
 	/** Starts the worker (calls start it when needed); resolves once its WebAssembly is loaded. */
 	start(): Promise<void>;
 	/** Calls the package's export `name` with `args` in the worker. */
@@ -38,4 +41,4 @@ export class MeshboolWorker {
 }
 
 /** A worker running the package. */
-export function createWorker(options?: { url?: string | URL }): MeshboolWorker;
+export function createWorker(options?: { url?: string | URL; threads?: number }): MeshboolWorker;

@@ -14,7 +14,12 @@
 //   });
 //
 // This module does not load the WebAssembly on the calling thread: only the worker does.
+// In a cross-origin isolated page the worker runs the threaded build where it is
+// installed (its pool: `threads`, default navigator.hardwareConcurrency; `buildInfo()`
+// says which build runs); its stages, and a panic on its pool, arrive here through a
+// BroadcastChannel of the call's own, since the worker's thread waits for the pool.
 
+import { checkThreads } from "./threads.js";
 import { buffersOf } from "./transfer.js";
 
 const inNode = typeof process !== "undefined" && process.versions != null && process.versions.node != null && typeof window === "undefined";
@@ -60,10 +65,22 @@ function revive(value, report) {
  * Calls run one after another in the order made. `terminate()` stops the worker.
  */
 export class MeshboolWorker {
-	/** `options.url`: the worker script (default: worker.js beside this module). */
+	/**
+	 * `options.url`: the worker script (default: worker.js beside this module);
+	 * `options.threads`: the size of the threaded build's pool in the worker (1: the
+	 * single-threaded build; default: navigator.hardwareConcurrency where the page is
+	 * cross-origin isolated; browsers only).
+	 */
 	constructor(options) {
 		const o = options || {};
 		this.url = o.url || new URL("./worker.js", import.meta.url);
+		if (o.threads !== undefined) checkThreads(o.threads);
+		if (o.threads != null && !inNode) {
+			this.url = new URL(this.url, import.meta.url);
+			this.url.searchParams.set("threads", String(o.threads));
+		}
+		this.channelPrefix = `meshbool-${Date.now().toString(36)}-${Math.random().toString(36).slice(2)}`;
+		this.build = null;
 		this.worker = null;
 		this.ready = null;
 		this.pending = new Map();
@@ -107,6 +124,7 @@ export class MeshboolWorker {
 	receive(data, ready) {
 		if (data.ready) {
 			this.version = data.version;
+			this.build = data.build;
 			ready();
 			return;
 		}
@@ -136,6 +154,15 @@ export class MeshboolWorker {
 		this.pending.clear();
 	}
 
+	/**
+	 * Which build the worker runs: `{build: "single" | "threads", threads, reason}`, as
+	 * `buildInfo()` of the package there (starts the worker).
+	 */
+	async buildInfo() {
+		while (!this.worker) await this.start();
+		return { ...this.build };
+	}
+
 	/** Calls the package's export `name` with `args` in the worker (see the class). */
 	async run(name, args, control) {
 		const c = control || {};
@@ -145,13 +172,26 @@ export class MeshboolWorker {
 		const id = this.nextId++;
 		return new Promise((resolve, reject) => {
 			const onAbort = () => this.cancel(abortError(c.signal));
+			// The threaded build's stages and pool panics come through a channel of this call's.
+			const channel = this.build && this.build.build === "threads" ? `${this.channelPrefix}-${id}` : null;
+			const listener = channel ? new BroadcastChannel(channel) : null;
 			const cleanup = () => {
 				if (c.signal) c.signal.removeEventListener("abort", onAbort);
+				if (listener) listener.close();
 			};
+			if (listener) {
+				listener.onmessage = ({ data }) => {
+					if (data.stage !== undefined) this.receive({ id, progress: data.stage });
+					else if (data.panic !== undefined) {
+						// The pool's thread has stopped and the call would wait for ever.
+						this.cancel(new Error(`meshbool: internal error in ${name} (please report it): ${data.panic}`));
+					}
+				};
+			}
 			this.pending.set(id, { resolve, reject, cleanup, onProgress: c.onProgress });
 			if (c.signal) c.signal.addEventListener("abort", onAbort, { once: true });
 			const transfer = c.transfer ? [...buffersOf(args)] : [];
-			this.worker.postMessage({ id, name, args }, transfer);
+			this.worker.postMessage({ id, name, args, channel }, transfer);
 		});
 	}
 

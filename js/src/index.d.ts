@@ -235,6 +235,13 @@ export function soupToTyped(soup: TriangleSoup): IndexedMesh;
 export function typedToSoup(mesh: IndexedMesh): TriangleSoup;
 export function isIndexed(value: unknown): value is IndexedMesh;
 export const version: string;
+/** Which WebAssembly build this thread runs (chosen as the package loads): the single-threaded one, or the threaded one (rayon's pool on Web Workers) in a worker of a cross-origin isolated page. `threads`: the pool's size (1 for the single-threaded build); `reason`: why this build. */
+export interface BuildInfo {
+	build: "single" | "threads";
+	threads: number;
+	reason: string;
+}
+export function buildInfo(): BuildInfo;
 
 // ── intersection ───────────────────────────────────────────────────────────────────────
 

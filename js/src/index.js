@@ -13,7 +13,7 @@
 // and nearest-segment fallbacks are not used to decide anything. Tolerance arguments that
 // only served those heuristics are accepted and ignored (documented per function);
 // tolerances a user chooses (weld distances, stitch gaps) keep their meaning.
-import { call, nativeVersion } from "./native.js";
+import { buildInfo, call, nativeVersion } from "./native.js";
 import {
 	arraysOf,
 	arraysToPoints,
@@ -73,6 +73,7 @@ import { classifyPieces, rememberSide, selfPieces } from "./stages.js";
 
 /** The version of meshbool inside this package. */
 export const version = nativeVersion;
+export { buildInfo };
 
 const EMPTY_F64 = new Float64Array(0);
 const EMPTY_U32 = new Uint32Array(0);

@@ -875,6 +875,16 @@ test("the reference's inner stages, computed by the library", () => {
 	assert.equal(mb.snapCoincidentSheets(a, 0.01).soup, a);
 });
 
+test("Node.js runs the single-threaded build, and setThreads takes a choice only before the package loads", async () => {
+	assert.deepEqual(mb.buildInfo(), { build: "single", threads: 1, reason: "Node.js" });
+	const { setThreads } = await import("../src/threads.js");
+	assert.throws(() => setThreads(0), /whole number from 1 to 1024 or null, got 0/);
+	assert.throws(() => setThreads(2.5), /got 2.5/);
+	// Loaded here with the default: another choice now would not be honoured.
+	assert.throws(() => setThreads(4), /already loaded on this thread: call setThreads before its first import/);
+	setThreads(null);
+});
+
 test("every export is exercised by this file", () => {
 	const src = readFileSync(new URL(import.meta.url), "utf8");
 	const missing = Object.keys(mb).filter((n) => !new RegExp(`mb\\.${n}\\b`).test(src));

@@ -75,3 +75,14 @@ test("a cancelled call rejects at once with an AbortError, and the worker serves
 		worker.terminate();
 	}
 });
+
+test("the worker says which build it runs (single-threaded in Node.js), and a bad number of threads is refused at once", async () => {
+	assert.throws(() => createWorker({ threads: 0 }), /threads must be a whole number from 1 to 1024 or null, got 0/);
+	assert.throws(() => createWorker({ threads: "4" }), /got 4/);
+	const worker = createWorker({ threads: 4 });
+	try {
+		assert.deepEqual(await worker.buildInfo(), { build: "single", threads: 1, reason: "Node.js" });
+	} finally {
+		worker.terminate();
+	}
+});

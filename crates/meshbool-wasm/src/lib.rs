@@ -12,6 +12,13 @@
 //! Errors are thrown as JavaScript `Error`s carrying the library's message. A panic (a bug)
 //! aborts the WebAssembly call; [`last_panic`] then gives its message so that the package
 //! can throw an `Error` that says what happened instead of "unreachable".
+//!
+//! With the feature `threads` (the second build, `npm run build:threads`: nightly,
+//! `+atomics`), rayon's global pool runs on Web Workers (`initThreadPool`, from
+//! wasm-bindgen-rayon). A long call then runs on the pool while the thread that made it
+//! waits, so its stages, and a panic on one of the pool's threads (which stops that thread
+//! and leaves the call waiting), are also posted to a BroadcastChannel
+//! ([`set_progress_channel`]) that a thread which is not waiting can listen to.
 #![forbid(unsafe_code)]
 
 use std::cell::RefCell;
@@ -25,6 +32,9 @@ use meshbool::repair::{CloseMode, CloseOptions, Facing, RepairConfig};
 use meshbool::{EdgeTopology, Error, FillRule, Format, Mesh, Op, Source};
 use serde_json::Value;
 use wasm_bindgen::prelude::*;
+
+#[cfg(feature = "threads")]
+pub use threads::{init_thread_pool, panic_in_pool_for_test, set_progress_channel};
 
 thread_local! {
     static PANIC: RefCell<Option<String>> = const { RefCell::new(None) };
@@ -40,7 +50,9 @@ pub fn set_progress(f: Option<js_sys::Function>) {
     PROGRESS.with(|p| *p.borrow_mut() = f);
 }
 
-/// The run options of a long call: progress reported to the function of [`set_progress`].
+/// The run options of a long call: progress reported to the function of [`set_progress`]
+/// (when the stage runs on the thread that set it) and, in the threaded build, to the
+/// channel of [`set_progress_channel`].
 fn run_options() -> ops::RunOptions {
     ops::RunOptions {
         progress: Some(ops::Progress::new(|stage| {
@@ -50,19 +62,80 @@ fn run_options() -> ops::RunOptions {
                     let _ = f.call1(&JsValue::NULL, &JsValue::from_str(stage.name()));
                 }
             });
+            #[cfg(feature = "threads")]
+            threads::broadcast("stage", stage.name());
         })),
         ..ops::RunOptions::default()
     }
 }
 
-/// Installs the panic hook that keeps a panic's message for [`last_panic`]. Runs when the
-/// module is instantiated.
+/// Installs the panic hook that keeps a panic's message for [`last_panic`] (and, in the
+/// threaded build, posts a panic on one of the pool's threads to the progress channel).
+/// Runs when the module is instantiated (the hook is the process's, for every thread).
 #[wasm_bindgen(start)]
 pub fn start() {
     std::panic::set_hook(Box::new(|info| {
         let text = info.to_string();
+        #[cfg(feature = "threads")]
+        if rayon::current_thread_index().is_some() {
+            threads::broadcast("panic", &text);
+        }
         PANIC.with(|p| *p.borrow_mut() = Some(text));
     }));
+}
+
+/// The threaded build's side: the pool, and the channel that reports what happens on it.
+#[cfg(feature = "threads")]
+mod threads {
+    use std::sync::Mutex;
+
+    use js_sys::{Array, Function, Object, Reflect};
+    use wasm_bindgen::prelude::*;
+    pub use wasm_bindgen_rayon::init_thread_pool;
+
+    /// The name of the BroadcastChannel of [`set_progress_channel`], shared by the threads.
+    static CHANNEL: Mutex<Option<String>> = Mutex::new(None);
+
+    /// Sets (or, with `null`, clears) the name of the BroadcastChannel to which the long
+    /// calls post `{stage}` as they begin each stage, and `{panic}` (the message) when one
+    /// of the pool's threads panics, from whichever thread that happens on.
+    #[wasm_bindgen(js_name = setProgressChannel)]
+    pub fn set_progress_channel(name: Option<String>) {
+        *CHANNEL.lock().unwrap_or_else(|e| e.into_inner()) = name;
+    }
+
+    /// Posts `{key: value}` to the channel, if one is set (quietly nothing where the
+    /// global has no BroadcastChannel).
+    pub(crate) fn broadcast(key: &str, value: &str) {
+        let Some(name) = CHANNEL.lock().unwrap_or_else(|e| e.into_inner()).clone() else {
+            return;
+        };
+        let _ = post(&name, key, value);
+    }
+
+    fn post(name: &str, key: &str, value: &str) -> Result<(), JsValue> {
+        let global = js_sys::global();
+        let class: Function = Reflect::get(&global, &"BroadcastChannel".into())?.dyn_into()?;
+        let channel = Reflect::construct(&class, &Array::of1(&name.into()))?;
+        let message = Object::new();
+        Reflect::set(&message, &key.into(), &value.into())?;
+        let method = |m: &str| -> Result<Function, JsValue> {
+            Reflect::get(&channel, &m.into())?.dyn_into()
+        };
+        method("postMessage")?.call1(&channel, &message)?;
+        // A message posted is on its way to the other channels of that name: closing
+        // this end loses nothing.
+        method("close")?.call0(&channel)?;
+        Ok(())
+    }
+
+    /// Panics on one of the pool's threads, to test that such a panic reaches the
+    /// listener of the progress channel.
+    #[doc(hidden)]
+    #[wasm_bindgen(js_name = __panicInPoolForTest)]
+    pub fn panic_in_pool_for_test() {
+        rayon::join(|| panic!("a test panic in the pool"), || ());
+    }
 }
 
 /// The message of the last panic, if any, cleared by reading it.

@@ -5,9 +5,16 @@
 // page's own examples, no data files), runs A − B, and checks the statistics shown
 // against booleanIndexed of the same examples computed here in Node; then the STL
 // download and the split-and-pick of the same result; then the union of two generated
-// spheres of 2,002,224 triangles each, during which the page must answer within 100 ms,
-// cancelled. Any page error, console error or failed request fails the test. Saves a
-// screenshot of the A − B view.
+// spheres of 179,400 triangles each; then the union of two spheres of 2,002,224 triangles
+// each, during which the page must answer within 100 ms, cancelled. Any page error,
+// console error or failed request fails the test. Saves a screenshot of the A − B view.
+//
+// All of it twice: served as it is (the page's worker runs the single-threaded build),
+// and served cross-origin isolated (serve.mjs --isolated: its worker runs the threaded
+// build with navigator.hardwareConcurrency threads, more than 1, where js/wasm-threads is
+// built; skipped with a note where it is not, or with MESHBOOL_THREADS=0). Both runs must
+// give exactly the same triangle counts, volumes and areas. Isolated, a panic on one of
+// the pool's threads must reject the call with its message, and the next call must work.
 //
 //   node test/browser/run.mjs            (npm run test:browser)
 //   CHROMIUM=/path/to/chrome SCREENSHOT=out.png node test/browser/run.mjs
@@ -61,8 +68,8 @@ async function main() {
 		fail("three is not installed: run npm install in js/");
 	}
 	const want = expected();
+	const threadsBuilt = fs.existsSync(path.join(packageRoot, "wasm-threads", "meshbool_wasm_bg.wasm")) && process.env.MESHBOOL_THREADS !== "0";
 
-	const server = await startServer({ port: 0 });
 	const browser = await chromium.launch({
 		executablePath,
 		headless: true,
@@ -80,7 +87,33 @@ async function main() {
 			"--enable-unsafe-swiftshader",
 		],
 	});
+	try {
+		const single = await checkPage(browser, want, false);
+		if (!threadsBuilt) {
+			console.log(`threaded build: ${process.env.MESHBOOL_THREADS === "0" ? "left out (MESHBOOL_THREADS=0)" : "not built (npm run build:threads)"}, the cross-origin isolated run skipped`);
+			return;
+		}
+		const threaded = await checkPage(browser, want, true);
+		for (const key of Object.keys(single.results)) {
+			const [a, b] = [single.results[key], threaded.results[key]];
+			if (JSON.stringify(a) !== JSON.stringify(b)) fail(`${key}: the single-threaded build gives ${JSON.stringify(a)}, the threaded one ${JSON.stringify(b)}`);
+		}
+		console.log(`ok: both builds give exactly the same ${Object.entries(single.results).map(([k, r]) => `${k} (${r.triangles} triangles, volume ${r.volume}, area ${r.area})`).join(" and ")}`);
+	} finally {
+		await browser.close();
+	}
+}
+
+/**
+ * The demo page served as it is or cross-origin isolated: every check above, in one
+ * page. Returns the exact figures `{results: {name: {triangles, volume, area}}}` of
+ * terrain − pit and of the spheres' union, for the comparison of the two builds.
+ */
+async function checkPage(browser, want, isolated) {
+	const mode = isolated ? "isolated" : "not isolated";
+	const server = await startServer({ port: 0, isolated });
 	const problems = [];
+	const results = {};
 	try {
 		const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
 		page.setDefaultTimeout(TIMEOUT);
@@ -93,12 +126,19 @@ async function main() {
 			if (r.status() >= 400) problems.push(`HTTP ${r.status()}: ${r.url()}`);
 		});
 		const check = (step) => {
-			if (problems.length > 0) fail(`${step}:\n  ${problems.join("\n  ")}`);
+			if (problems.length > 0) fail(`${mode}, ${step}:\n  ${problems.join("\n  ")}`);
 		};
 
 		await page.goto(server.url);
-		await page.waitForSelector("body[data-ready=true]").catch(() => check("the page did not start"));
+		await page.waitForSelector("body[data-ready=true][data-threads]").catch(() => check("the page did not start"));
 		check("opening the demo");
+		// The build: the threaded one with more than one thread exactly when isolated.
+		const build = await page.evaluate(() => ({ isolated: crossOriginIsolated, build: document.body.dataset.build, threads: Number(document.body.dataset.threads) }));
+		const cores = await page.evaluate(() => navigator.hardwareConcurrency);
+		if (build.isolated !== isolated) fail(`${mode}: crossOriginIsolated is ${build.isolated}`);
+		if (isolated ? build.build !== "threads" || build.threads !== cores || !(build.threads > 1) : build.build !== "single" || build.threads !== 1) {
+			fail(`${mode}: the page's worker runs ${JSON.stringify(build)} (navigator.hardwareConcurrency ${cores})`);
+		}
 		const webgl = await page.getAttribute("#viewport", "data-webgl");
 		if (webgl !== "ok") fail(`WebGL did not start in Chromium (viewport data-webgl=${webgl})`);
 
@@ -157,12 +197,16 @@ async function main() {
 		if (!(Math.abs(area - want.area) <= 0.0005 + 1e-9 * Math.abs(want.area))) fail(`area shown ${shown.area}, Node gives ${want.area}`);
 		if (shown.closed !== (want.closed ? "yes" : "no")) fail(`closed shown ${shown.closed}, Node gives ${want.closed}`);
 		if (!(shownNumber(shown.time) >= 0)) fail(`time shown: ${JSON.stringify(shown.time)}`);
+		results["terrain − pit"] = await exactStats(page);
+		if (results["terrain − pit"].triangles !== want.triangles || results["terrain − pit"].volume !== want.volume || results["terrain − pit"].area !== want.area) {
+			fail(`${mode}: terrain − pit gives ${JSON.stringify(results["terrain − pit"])}, booleanIndexed in Node ${JSON.stringify(want)}`);
+		}
 
 		const colours = await page.evaluate(() => window.meshboolDemo.colourCount());
 		if (colours < 8) fail(`the 3-D view looks blank (${colours} colours drawn)`);
 
 		fs.mkdirSync(path.dirname(screenshot), { recursive: true });
-		await page.screenshot({ path: screenshot });
+		await page.screenshot({ path: shotOf(isolated) });
 		check("after the run");
 
 		// Download: the result as binary STL (84 bytes of header and count, 50 per triangle).
@@ -184,6 +228,20 @@ async function main() {
 			fail(`split and pick of A outside B + flipped B inside A shows ${pickTriangles} triangles, volume ${pickVolume}; A − B has ${want.triangles}, ${want.volume}`);
 		}
 		check("after split and pick");
+
+		// A union of two spheres that runs to its end: its figures, for the comparison of
+		// the builds.
+		await page.evaluate(() => {
+			window.meshboolDemo.loadSphere("a", 300);
+			window.meshboolDemo.loadSphere("b", 300);
+		});
+		await page.waitForSelector("#slot-b[data-loaded='sphere-b']");
+		await page.selectOption("#op", "union");
+		await page.click("#run");
+		await page.waitForSelector("#stats[data-state=done], #stats[data-state=error]", { timeout: 120_000 });
+		check("the union of two spheres");
+		if ((await page.getAttribute("#stats", "data-state")) !== "done") fail(`${mode}: the spheres' union failed: ${await page.textContent("#message")}`);
+		results["sphere ∪ sphere"] = await exactStats(page);
 
 		// Responsive during a long boolean, and cancellable: two generated spheres of
 		// 2,002,224 triangles each (the page's sphere generator, 708 bands), their union
@@ -231,6 +289,38 @@ async function main() {
 		await page.waitForSelector("#stats[data-state=done], #stats[data-state=error]");
 		if (shownNumber(await page.textContent("#stat-triangles")) !== want.triangles) fail("the run after a cancel differs");
 		check("the run after the cancel");
+
+		let panic = "";
+		if (isolated) {
+			// A panic on one of the pool's threads: that thread stops (its error reaches
+			// the page as "unreachable", expected here), the call rejects with the
+			// panic's message, the worker is replaced.
+			const out = await page.evaluate(async () => {
+				const { createWorker } = await import("/src/async.js");
+				const { makeCube } = await import("/src/index.js");
+				const w = createWorker();
+				let message = "no error";
+				try {
+					await w.run("__panicInPoolForTest", []);
+				} catch (e) {
+					message = e.message;
+				}
+				const cube = makeCube();
+				const next = await w.booleanIndexed(cube, makeCube({ center: [0.5, 0.5, 0.5] }), "union");
+				w.terminate();
+				return { message, next: next.report.triangles };
+			});
+			if (!out.message.includes("internal error in __panicInPoolForTest (please report it): panicked at") || !out.message.endsWith("a test panic in the pool")) {
+				fail(`${mode}: a panic on the pool gives ${JSON.stringify(out.message)}`);
+			}
+			if (!(out.next > 0)) fail(`${mode}: the call after a panic on the pool gives ${out.next} triangles`);
+			const trap = problems.indexOf("page error: unreachable");
+			if (trap >= 0) problems.splice(trap, 1);
+			check("a panic on the pool");
+			panic = "; a panic on the pool rejects the call with its message and the next call works";
+		}
+		const shownBuild = build.build === "threads" ? `the threaded build, ${build.threads} threads` : "the single-threaded build";
+		console.log(`== ${mode}: the page's worker runs ${shownBuild}${panic}`);
 		console.log(
 			`ok: during the union of 4M triangles (stage ${stage}) timers answered in at most ${Math.max(...lags).toFixed(1)} ms and an input event in ${inputMs} ms; Cancel stopped it in ${cancelMs} ms; the next run matches`,
 		);
@@ -240,11 +330,25 @@ async function main() {
 		);
 		console.log(`ok: the STL download holds them; split and pick (A outside B + flipped B inside A) shows the same`);
 		console.log(`ok: the file pickers accept ${accept}; a broken STL and a GOCAD file leave their reasons in their slots`);
-		console.log(`screenshot: ${screenshot}`);
+		console.log(`screenshot: ${shotOf(isolated)}`);
+		await page.close();
+		return { results };
 	} finally {
-		await browser.close();
 		await server.close();
 	}
+}
+
+/** The last result's figures as the page computed them (unrounded). */
+async function exactStats(page) {
+	return page.evaluate(() => {
+		const s = window.meshboolDemo.stats;
+		return { triangles: s.triangles, volume: s.volume, area: s.area };
+	});
+}
+
+/** Where the screenshot of a mode goes (the isolated one beside the other, "-isolated" added). */
+function shotOf(isolated) {
+	return isolated ? screenshot.replace(/(\.png)?$/, "-isolated.png") : screenshot;
 }
 
 main().catch((e) => {
