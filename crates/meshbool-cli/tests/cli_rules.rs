@@ -654,14 +654,22 @@ fn help_of_every_output_states_the_rule() {
         &["cutfill"],
     ] {
         let r = meshbool(&[cmd, &["--help"]].concat());
-        let help = String::from_utf8_lossy(&r.stdout);
+        // Help is wrapped at the terminal's width: compare with the line breaks and their
+        // indentation made single spaces.
+        let help = String::from_utf8_lossy(&r.stdout)
+            .split_whitespace()
+            .collect::<Vec<_>>()
+            .join(" ");
         assert!(
             help.contains("Missing directories are created; an existing file is replaced whole"),
             "{cmd:?}: {help}"
         );
     }
     let r = meshbool(&["split", "--help"]);
-    let help = String::from_utf8_lossy(&r.stdout);
+    let help = String::from_utf8_lossy(&r.stdout)
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ");
     assert!(
         help.contains("made with its missing parents")
             && help.contains("refused unless --overwrite")
