@@ -1,7 +1,10 @@
 //! Edge adjacency: which triangles use each undirected edge, and in which direction.
 //! The basis of the edge statistics in [`crate::measure`], of edge-connected components,
-//! and of patch flood fills in the boolean pipeline.
+//! and of patch flood fills in the boolean pipeline; and the exact order of the
+//! triangles around an edge (`angular_order`), which pairs the sheets of a non-manifold
+//! edge in repair and the classification at one.
 
+use crate::kernel::{orient3d, Point, Sign};
 use crate::par::Grain;
 use crate::Mesh;
 
@@ -993,6 +996,92 @@ pub enum EdgeKind {
     Inconsistent,
     /// Used by more than two triangles.
     NonManifold,
+}
+
+/// The uses' indices ordered by the angle of their far vertices around the axis `p -> q`,
+/// counter-clockwise, starting at the first use's far vertex; at equal angles those
+/// running `p -> q` (whose inside is before them) first, by increasing triangle, then the
+/// others by decreasing triangle.
+/// Exact (`orient3d` on the points). Far vertices on the axis itself (zero-area
+/// triangles) come first. `near` is `p`'s position (its coordinates when explicit).
+pub(crate) fn angular_order(
+    p: &Point,
+    q: &Point,
+    near: [f64; 3],
+    items: &[(u32, bool, Point, u32)],
+) -> Vec<usize> {
+    // Four explicit points no plane holds all of: `near` and three moved along one axis
+    // each (to a different, finite value).
+    let probes: [Point; 4] = std::array::from_fn(|k| {
+        let mut x = near;
+        if k < 3 {
+            x[k] = if x[k] > 0.0 {
+                x[k] / 2.0 - 1.0
+            } else {
+                x[k] / 2.0 + 1.0
+            };
+        }
+        Point::Explicit(x)
+    });
+    // A reference direction: a far vertex off the axis, and a point off the plane through
+    // the axis and it (to tell its ray from the opposite one).
+    let off_axis = |w: &Point| {
+        probes
+            .iter()
+            .find(|aux| orient3d(p, q, w, aux) != Sign::Zero)
+    };
+    // Non-finite coordinates (a public caller's broken mesh) have no angles: the order by
+    // triangle, as for far vertices all on the axis.
+    let finite = |x: &Point| !matches!(x, Point::Explicit(c) if !c.iter().all(|v| v.is_finite()));
+    let all_finite = finite(p) && finite(q) && near.iter().all(|v| v.is_finite());
+    let reference = || items.iter().find_map(|it| Some((&it.2, off_axis(&it.2)?)));
+    let usable = all_finite && items.iter().all(|it| finite(&it.2));
+    let Some((w0, aux)) = usable.then(reference).flatten() else {
+        let mut all: Vec<usize> = (0..items.len()).collect();
+        all.sort_by_key(|&i| items[i].3);
+        return all;
+    };
+    let side0 = orient3d(p, q, aux, w0);
+    // Half-turn 0: angles in [0, π); 1: [π, 2π); rank 0 within a half for its first ray.
+    let key = |w: &Point| -> (u8, u8) {
+        match orient3d(p, q, w0, w) {
+            Sign::Positive => (0, 1),
+            Sign::Negative => (1, 1),
+            Sign::Zero => match orient3d(p, q, aux, w) {
+                s if s == side0 => (0, 0),
+                Sign::Zero => (0, 0),
+                _ => (1, 0),
+            },
+        }
+    };
+    let keys: Vec<(u8, u8)> = items.iter().map(|it| key(&it.2)).collect();
+    let mut order: Vec<usize> = (0..items.len()).collect();
+    order.sort_by(|&i, &j| {
+        keys[i].cmp(&keys[j]).then_with(|| {
+            let by_angle = if keys[i].1 == 1 {
+                // Same open half-turn: j comes later when it lies counter-clockwise of i.
+                match orient3d(p, q, &items[i].2, &items[j].2) {
+                    Sign::Positive => std::cmp::Ordering::Less,
+                    Sign::Negative => std::cmp::Ordering::Greater,
+                    Sign::Zero => std::cmp::Ordering::Equal,
+                }
+            } else {
+                std::cmp::Ordering::Equal
+            };
+            // At one angle (faces on faces), the one bounding the wedge before it first;
+            // coincident layers by triangle, closes up and opens down, so that the
+            // matching pairs the k-th lowest open with the k-th lowest close (a part given
+            // twice pairs each copy with itself at every edge).
+            by_angle.then(items[j].1.cmp(&items[i].1)).then_with(|| {
+                if items[i].1 {
+                    items[i].3.cmp(&items[j].3)
+                } else {
+                    items[j].3.cmp(&items[i].3)
+                }
+            })
+        })
+    });
+    order
 }
 
 #[cfg(test)]

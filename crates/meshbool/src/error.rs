@@ -157,3 +157,14 @@ pub(crate) fn parse_name<T: Copy>(
             ))
         })
 }
+
+impl std::str::FromStr for Format {
+    type Err = Error;
+
+    /// The format named `s` ([`Format::NAMES`], any ASCII case), with an error listing the
+    /// names.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let formats = Format::NAMES.map(|(_, f)| f);
+        parse_name(s, &formats, Format::name, "format")
+    }
+}

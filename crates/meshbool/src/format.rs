@@ -1,10 +1,11 @@
 //! File formats: the [`Format`] enum, its names and how a file name maps to one. Below
 //! both [`crate::io`] (which reads and writes them) and [`crate::Error`] (which names the
-//! format of malformed content), so that neither depends on the other.
+//! format of malformed content), so that neither depends on the other. It uses nothing
+//! of the library: its [`FromStr`](std::str::FromStr), whose error is the library's, is
+//! in `error.rs`.
 
 use std::fmt;
 use std::path::Path;
-use std::str::FromStr;
 
 /// A file format (with its encoding, where a format has several).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -72,7 +73,8 @@ impl fmt::Display for Format {
 }
 
 impl Format {
-    /// All formats, with the names they are read by ([`FromStr`]) and written as.
+    /// All formats, with the names they are read by ([`FromStr`](std::str::FromStr)) and
+    /// written as.
     pub const NAMES: [(&'static str, Format); 14] = [
         ("stl", Format::StlBinary),
         ("stl-ascii", Format::StlAscii),
@@ -148,16 +150,5 @@ impl Format {
             "off" => Format::Off,
             _ => return None,
         })
-    }
-}
-
-impl FromStr for Format {
-    type Err = crate::Error;
-
-    /// The format named `s` ([`Format::NAMES`], any ASCII case), with an error listing the
-    /// names.
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        let formats = Format::NAMES.map(|(_, f)| f);
-        crate::error::parse_name(s, &formats, Format::name, "format")
     }
 }

@@ -101,7 +101,9 @@ pub mod ops;
 mod par;
 pub mod query;
 pub mod repair;
+mod scale;
 pub mod shapes;
+mod stage;
 #[cfg(test)]
 mod test_util;
 pub mod transform;
@@ -118,11 +120,12 @@ struct LibraryGuideDoctests;
 mod vec3;
 mod welder;
 
-pub use boolean::{FillRule, Group, Keep, Op, Provenance, Rule, Selection, Source, Stage};
+pub use boolean::{FillRule, Group, Keep, Op, Provenance, Rule, Selection, Source};
 pub use classify::Class;
 pub use edges::EdgeTopology;
 pub use error::{Error, Location, Result};
 pub use format::Format;
 pub use mesh::{weld_exact, Aabb, Mesh, Welded};
+pub use stage::Stage;
 pub use transform::Transform;
 pub(crate) use welder::Welder;

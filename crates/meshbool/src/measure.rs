@@ -188,15 +188,15 @@ impl MeshStats {
     /// The measures of a mesh measured at unit size, for the mesh scaled by `2^e`:
     /// the box times `2^e`, areas `2^2e`, the volume `2^3e`.
     pub(crate) fn scale_back(&mut self, e: i32) {
-        use crate::ops::scaled_measure;
+        use crate::scale::scaled_measure;
         let area = |x: f64| scaled_measure(x, e, 2);
         self.volume = scaled_measure(self.volume, e, 3);
         self.area = area(self.area);
         let p = &mut self.projected_area;
         (p.xy, p.yz, p.xz) = (area(p.xy), area(p.yz), area(p.xz));
         if let Some(b) = &mut self.bbox {
-            crate::ops::scale_points(std::slice::from_mut(&mut b.min), e);
-            crate::ops::scale_points(std::slice::from_mut(&mut b.max), e);
+            crate::scale::scale_points(std::slice::from_mut(&mut b.min), e);
+            crate::scale::scale_points(std::slice::from_mut(&mut b.max), e);
         }
     }
 }

@@ -36,6 +36,7 @@ use crate::kept::Keeps;
 use crate::par::{exclusive_sums, filled, split_by};
 use crate::repair::nonmanifold::split_at;
 use crate::repair::NonManifoldReport;
+pub use crate::stage::Stage;
 use crate::Mesh;
 
 mod cleanup;
@@ -258,108 +259,6 @@ impl Split {
     }
 }
 
-/// The stages of a boolean or split, and the steps of a repair, as reported to a progress
-/// callback ([`crate::ops::RunOptions::progress`]) when each begins.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Stage {
-    /// Checking the inputs (validity, orientation, self-intersections).
-    Check,
-    /// Intersection curves (broad phase and exact triangle pairs).
-    Intersect,
-    /// Re-triangulating the cut triangles of both meshes.
-    Arrange,
-    /// Inside/outside classification.
-    Classify,
-    /// Selecting and merging the result.
-    Merge,
-    /// Repair: welding vertices within a distance.
-    Weld,
-    /// Repair: removing duplicate (or, with a tolerance, overlapping) triangles.
-    Duplicates,
-    /// Repair: welding boundary vertices within a distance.
-    WeldBoundary,
-    /// Repair: splitting boundary edges at T-junctions.
-    TJunctions,
-    /// Repair: removing degenerate and sliver triangles.
-    Degenerate,
-    /// Snapping at a tolerance: short edges and needles removed (a boolean's or resolve's
-    /// last step with a snap tolerance, and a repair step).
-    Snap,
-    /// Repair: making orientation consistent.
-    Orient,
-    /// Repair: removing the folds of a terrain.
-    Folds,
-    /// Repair: closing into a solid.
-    Close,
-    /// Repair: capping the small holes left.
-    CloseGaps,
-}
-
-impl Stage {
-    /// Every stage, in the order they run: a boolean's, then a repair's steps.
-    pub const ALL: [Stage; 15] = [
-        Stage::Check,
-        Stage::Intersect,
-        Stage::Arrange,
-        Stage::Classify,
-        Stage::Merge,
-        Stage::Weld,
-        Stage::Duplicates,
-        Stage::WeldBoundary,
-        Stage::TJunctions,
-        Stage::Degenerate,
-        Stage::Snap,
-        Stage::Orient,
-        Stage::Folds,
-        Stage::Close,
-        Stage::CloseGaps,
-    ];
-
-    /// The stage's name: `check`, `intersect`, `arrange`, `classify`, `merge`; a repair
-    /// step's is its key in the repair report: `weld`, `duplicates`, `weld_boundary`,
-    /// `tjunctions`, `degenerate`, `snap`, `orient`, `folds`, `close`, `close_gaps`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Stage::Check => "check",
-            Stage::Intersect => "intersect",
-            Stage::Arrange => "arrange",
-            Stage::Classify => "classify",
-            Stage::Merge => "merge",
-            Stage::Weld => "weld",
-            Stage::Duplicates => "duplicates",
-            Stage::WeldBoundary => "weld_boundary",
-            Stage::TJunctions => "tjunctions",
-            Stage::Degenerate => "degenerate",
-            Stage::Snap => "snap",
-            Stage::Orient => "orient",
-            Stage::Folds => "folds",
-            Stage::Close => "close",
-            Stage::CloseGaps => "close_gaps",
-        }
-    }
-
-    /// A short description for progress displays.
-    pub fn describe(self) -> &'static str {
-        match self {
-            Stage::Check => "checking the inputs",
-            Stage::Intersect => "intersecting",
-            Stage::Arrange => "cutting along the seam",
-            Stage::Classify => "classifying inside/outside",
-            Stage::Merge => "merging the result",
-            Stage::Weld => "welding vertices",
-            Stage::Duplicates => "removing duplicate triangles",
-            Stage::WeldBoundary => "welding boundary vertices",
-            Stage::TJunctions => "splitting T-junctions",
-            Stage::Degenerate => "removing degenerate triangles",
-            Stage::Snap => "snapping short edges and needles",
-            Stage::Orient => "orienting",
-            Stage::Folds => "removing folds",
-            Stage::Close => "closing",
-            Stage::CloseGaps => "capping small holes",
-        }
-    }
-}
-
 /// How the pipeline runs: progress reporting, and the two measured crossovers between
 /// algorithms (public so that tests can force either path on small inputs).
 #[derive(Clone, Copy)]
@@ -370,7 +269,7 @@ pub struct PipelineOptions<'p> {
     /// Set when the call is cancelled ([`crate::ops::Cancel`]): the pipeline stops at its
     /// next stage with nothing computed (an empty split, an empty result), which the
     /// caller discards.
-    pub cancel: Option<&'p crate::ops::Cancel>,
+    pub cancel: Option<&'p crate::stage::Cancel>,
     /// Candidate pairs from the grid from this many triangles in both meshes together
     /// ([`crate::intersect::GRID_FROM`]), below from two trees.
     pub grid_from: usize,
@@ -436,7 +335,7 @@ impl PipelineOptions<'_> {
 
     /// Whether the call was cancelled.
     fn cancelled(&self) -> bool {
-        self.cancel.is_some_and(crate::ops::Cancel::is_cancelled)
+        self.cancel.is_some_and(crate::stage::Cancel::is_cancelled)
     }
 }
 
@@ -444,7 +343,7 @@ impl PipelineOptions<'_> {
 /// exactly welded; see [`crate::weld_exact`]). Threads as [`boolean`]'s.
 pub fn split(a: &Mesh, b: &Mesh, opts: &PipelineOptions) -> Split {
     let triangles = a.triangles.len() + b.triangles.len();
-    crate::ops::run_for(triangles, || split_in_pool(a, b, opts))
+    crate::par::run_for(triangles, || split_in_pool(a, b, opts))
 }
 
 /// [`split`] on the thread it is called on.
@@ -694,7 +593,7 @@ fn added_points(s: &Split, seam_origin: &[u32], seam_vertices: &[u32]) -> Vec<u3
 /// runs serially on the calling thread instead: [`crate::ops::SERIAL_BELOW`]).
 pub fn boolean(a: &Mesh, b: &Mesh, op: Op, opts: &PipelineOptions) -> BooleanResult {
     let triangles = a.triangles.len() + b.triangles.len();
-    crate::ops::run_for(triangles, || boolean_in_pool(a, b, op, opts))
+    crate::par::run_for(triangles, || boolean_in_pool(a, b, op, opts))
 }
 
 /// [`boolean`] on the thread it is called on.
@@ -786,8 +685,6 @@ fn boolean_in_pool(a: &Mesh, b: &Mesh, op: Op, opts: &PipelineOptions) -> Boolea
         cleanup,
     }
 }
-
-by_name!(Stage, "stage");
 
 /// The groups of split-and-pick: each mesh's triangles by their class against the other.
 /// Written (and parsed, [`FromStr`]) by [`Group::name`].

@@ -24,7 +24,6 @@
 use crate::par::Grain;
 use rayon::prelude::*;
 
-use super::resolve::largest_pieces;
 use super::sides::{patch_sides, Inputs};
 use super::{
     boolean, cleanup, BooleanResult, CleanupReport, Op, PipelineOptions, Provenance, Source,
@@ -369,6 +368,19 @@ fn keep_in_one(
         nonmanifold,
         cleanup,
     })
+}
+
+/// Each of the `count` patches' largest piece (`patch`: each triangle's patch) as (twice
+/// its area, triangle); `(0, usize::MAX)` for a patch with no piece of positive area.
+pub(super) fn largest_pieces(m: &Mesh, patch: &[u32], count: usize) -> Vec<(f64, usize)> {
+    let mut best = vec![(0.0f64, usize::MAX); count];
+    for (t, &p) in patch.iter().enumerate() {
+        let a = m.twice_area(t);
+        if a > best[p as usize].0 {
+            best[p as usize] = (a, t);
+        }
+    }
+    best
 }
 
 /// `mesh` without the vertices no triangle uses ([`Mesh::without_unreferenced`]), and

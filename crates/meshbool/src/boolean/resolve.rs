@@ -15,7 +15,7 @@ use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 use serde::Serialize;
 
-use super::nary::{reduce, Part, Reduced};
+use super::nary::{largest_pieces, reduce, Part, Reduced};
 use super::{sides, Op, PipelineOptions};
 use crate::arrange::arrange_self;
 use crate::classify::{
@@ -595,19 +595,6 @@ fn resolve_self(
         parent,
         report,
     })
-}
-
-/// Each of the `count` patches' largest piece (`patch`: each triangle's patch) as (twice
-/// its area, triangle); `(0, usize::MAX)` for a patch with no piece of positive area.
-pub(super) fn largest_pieces(m: &Mesh, patch: &[u32], count: usize) -> Vec<(f64, usize)> {
-    let mut best = vec![(0.0f64, usize::MAX); count];
-    for (t, &p) in patch.iter().enumerate() {
-        let a = m.twice_area(t);
-        if a > best[p as usize].0 {
-            best[p as usize] = (a, t);
-        }
-    }
-    best
 }
 
 /// [`resolve_self`]'s keep-or-drop of each patch from its exact sides: kept where the

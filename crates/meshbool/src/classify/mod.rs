@@ -251,7 +251,7 @@ fn glued_class(
         .map(|(i, f)| (i as u32, f.forward, f.far.clone().into_owned(), i as u32))
         .collect();
     items.push((fan.len() as u32, true, w.clone(), fan.len() as u32));
-    let order = crate::repair::nonmanifold::angular_order(e[0], e[1], near, &items);
+    let order = crate::edges::angular_order(e[0], e[1], near, &items);
     // Counter-clockwise past a face running e1 -> e0 enters its inside, past one running
     // e0 -> e1 leaves it.
     let (mut count, mut lowest, mut at_w) = (0i64, 0i64, None);

@@ -163,7 +163,7 @@ fn tri(m: &Mesh, t: usize) -> Option<tritri::Tri> {
 /// [`crate::boolean::boolean`]'s.
 pub fn intersect(a: &Mesh, b: &Mesh) -> Seam {
     let triangles = a.triangles.len() + b.triangles.len();
-    crate::ops::run_for(triangles, || intersect_with(a, b, GRID_FROM, [None, None]))
+    crate::par::run_for(triangles, || intersect_with(a, b, GRID_FROM, [None, None]))
 }
 
 /// [`intersect`], with candidate pairs from the grid from `grid_from` triangles in both

@@ -5,12 +5,10 @@ use serde::Serialize;
 
 use web_time::Instant;
 
-use crate::par::Grain;
+use crate::par::{with_threads_for, Grain};
 use rayon::prelude::*;
 
-use super::{
-    with_threads_for, Checks, Input, Measures, Operand, OperandReport, RunOptions, SCHEMA,
-};
+use super::{Checks, Input, Measures, Operand, OperandReport, RunOptions, SCHEMA};
 use crate::arrange::FailReason;
 use crate::boolean::nary::{boolean_in_one, reduce, reduce_in_one, Part};
 use crate::boolean::{CleanupReport, FailedTriangle, Op, PipelineOptions, Provenance, Stage};
@@ -253,7 +251,7 @@ pub fn boolean<'a>(
                     }
                 }
                 let ((ma, pa), (mb, pb)) = (as_given(a), as_given(b));
-                crate::ops::run_for(ma.triangles.len() + mb.triangles.len(), || {
+                crate::par::run_for(ma.triangles.len() + mb.triangles.len(), || {
                     boolean_in_one(ma, mb, pa, pb, op, &pipeline)
                 })
             })

@@ -9,12 +9,13 @@ use web_time::Instant;
 
 use serde::{Deserialize, Serialize};
 
-use super::{with_threads_for, RunOptions};
+use super::RunOptions;
 use crate::boolean::{resolve, FillRule, PipelineOptions, ResolveReport, Stage};
 use crate::edges::{EdgeCounts, EdgeKind};
 use crate::intersect::self_intersections;
 use crate::kept::Keeps;
 use crate::par;
+use crate::par::with_threads_for;
 use crate::{weld_exact, Error, Mesh, Result};
 
 /// What to check of an operand, and what to do when a check finds a problem.

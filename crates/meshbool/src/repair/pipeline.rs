@@ -10,8 +10,8 @@ use super::{
     DuplicateReport, Facing, FoldReport, OrientReport, SnapReport, StitchReport, TJunctionReport,
     WeldReport,
 };
-use crate::boolean::Stage;
 use crate::measure::{mesh_stats, MeshStats};
+use crate::stage::Stage;
 use crate::{Error, Mesh};
 
 /// How [`close`] turns an open mesh into a solid.
@@ -81,7 +81,7 @@ impl CloseOptions {
     /// check to name it.
     pub(crate) fn scaled(&self, e: i32) -> CloseOptions {
         let length = |x: f64| match x.is_finite() {
-            true => crate::ops::scaled(x, e).min(f64::MAX),
+            true => crate::scale::scaled(x, e).min(f64::MAX),
             false => x,
         };
         CloseOptions {
@@ -96,10 +96,10 @@ impl CloseReport {
     /// stitch's largest gap and the curtain's floor times `2^e`.
     pub(crate) fn scale_back(&mut self, e: i32) {
         if let Some(s) = &mut self.stitch {
-            s.largest_gap = crate::ops::scaled(s.largest_gap, e);
+            s.largest_gap = crate::scale::scaled(s.largest_gap, e);
         }
         if let Some(c) = &mut self.curtain {
-            c.floor = crate::ops::scaled(c.floor, e);
+            c.floor = crate::scale::scaled(c.floor, e);
         }
     }
 }
@@ -280,7 +280,7 @@ impl RepairConfig {
     /// at unit size): distances times `2^e`, the area threshold `2^2e` (clamped to the
     /// largest `f64`), the aspect threshold as it is.
     pub(crate) fn scaled(&self, e: i32) -> RepairConfig {
-        let length = |x: f64| crate::ops::scaled(x, e).min(f64::MAX);
+        let length = |x: f64| crate::scale::scaled(x, e).min(f64::MAX);
         let area = |x: f64| length(length(x));
         RepairConfig {
             weld: self.weld.map(length),
@@ -303,8 +303,8 @@ impl RepairReport {
     /// The report of a repair done at unit size, for the mesh scaled by `2^e`: lengths
     /// times `2^e`, areas `2^2e`, volumes `2^3e`.
     pub(crate) fn scale_back(&mut self, e: i32) {
-        let length = |x: &mut f64| *x = crate::ops::scaled(*x, e);
-        let volume = |x: &mut f64| *x = crate::ops::scaled_measure(*x, e, 3);
+        let length = |x: &mut f64| *x = crate::scale::scaled(*x, e);
+        let volume = |x: &mut f64| *x = crate::scale::scaled_measure(*x, e, 3);
         self.before.scale_back(e);
         self.after.scale_back(e);
         if let Some(d) = &mut self.duplicates {

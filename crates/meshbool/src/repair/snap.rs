@@ -115,7 +115,7 @@ impl SnapReport {
     /// The report of a mesh snapped at unit size, for the mesh scaled by `2^e`: lengths
     /// times `2^e`, areas `2^2e`, volumes `2^3e`.
     pub(crate) fn scale_back(&mut self, e: i32) {
-        use crate::ops::{scaled, scaled_measure};
+        use crate::scale::{scaled, scaled_measure};
         self.tolerance = scaled(self.tolerance, e);
         self.max_move = scaled(self.max_move, e);
         self.area_change = scaled_measure(self.area_change, e, 2);
