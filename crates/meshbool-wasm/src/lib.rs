@@ -1014,21 +1014,46 @@ fn shape(name: &str, o: &Value) -> Result<ops::Shape, JsError> {
             nx: whole(o, "nx", 1)?,
             ny: whole(o, "ny", 1)?,
         },
-        "terrain" => Shape::Terrain {
-            center: numbers(o, "center", origin, false)?,
-            size: numbers(o, "size", [1000.0; 2], true)?,
-            cells: wholes(o, "cells", [100; 2])?,
-            relief: number_or(o, "relief", 40.0)?,
-            seed: whole(o, "seed", 1)?,
-        },
-        _ => Shape::Pit {
-            center: numbers(o, "center", [0.0, 0.0, 60.0], false)?,
-            radius: numbers(o, "radius", [220.0, 160.0], true)?,
-            depth: number_or(o, "depth", 140.0)?,
-            benches: whole(o, "benches", 5)?,
-            berm: number_or(o, "berm", 8.0)?,
-            segments: whole(o, "segments", 64)?,
-        },
+        "terrain" => {
+            let Shape::Terrain {
+                center,
+                size,
+                cells,
+                relief,
+                seed,
+            } = Shape::TERRAIN
+            else {
+                unreachable!("Shape::TERRAIN is a terrain")
+            };
+            Shape::Terrain {
+                center: numbers(o, "center", center, false)?,
+                size: numbers(o, "size", size, true)?,
+                cells: wholes(o, "cells", cells)?,
+                relief: number_or(o, "relief", relief)?,
+                seed: whole(o, "seed", seed)?,
+            }
+        }
+        _ => {
+            let Shape::Pit {
+                center,
+                radius,
+                depth,
+                benches,
+                berm,
+                segments,
+            } = Shape::PIT
+            else {
+                unreachable!("Shape::PIT is a pit")
+            };
+            Shape::Pit {
+                center: numbers(o, "center", center, false)?,
+                radius: numbers(o, "radius", radius, true)?,
+                depth: number_or(o, "depth", depth)?,
+                benches: whole(o, "benches", benches)?,
+                berm: number_or(o, "berm", berm)?,
+                segments: whole(o, "segments", segments)?,
+            }
+        }
     })
 }
 

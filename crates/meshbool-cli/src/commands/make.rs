@@ -379,3 +379,23 @@ pub fn run(args: &Args) -> Result<()> {
     );
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::Args;
+    use clap::FromArgMatches;
+    use meshbool::ops::Shape;
+
+    /// `make terrain` and `make pit` without options are the library's example shapes
+    /// (`Shape::TERRAIN`, `Shape::PIT`), which the Python and JavaScript packages share.
+    #[test]
+    fn defaults_are_the_library_examples() {
+        let cmd = clap::Command::new("make").no_binary_name(true);
+        let cmd = <Args as clap::Args>::augment_args(cmd);
+        for (name, expected) in [("terrain", Shape::TERRAIN), ("pit", Shape::PIT)] {
+            let matches = cmd.clone().get_matches_from([name, "-o", "x.ply"]);
+            let args = Args::from_arg_matches(&matches).unwrap();
+            assert_eq!(args.shape.shape().0, expected, "{name}");
+        }
+    }
+}

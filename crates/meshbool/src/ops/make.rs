@@ -97,6 +97,29 @@ pub enum Shape {
 }
 
 impl Shape {
+    /// The example terrain with the defaults of `meshbool make terrain` (and of the
+    /// Python and JavaScript packages): a 1 km square about the origin in 100 × 100 cells,
+    /// 40 of relief, seed 1.
+    pub const TERRAIN: Shape = Shape::Terrain {
+        center: [0.0; 3],
+        size: [1000.0; 2],
+        cells: [100; 2],
+        relief: 40.0,
+        seed: 1,
+    };
+
+    /// The example pit shell with the defaults of `meshbool make pit`: rim at height 60
+    /// with semi-axes 220 × 160, 140 deep, 5 benches with berms 8 wide, 64 segments. It
+    /// crosses [`Shape::TERRAIN`] along one closed curve.
+    pub const PIT: Shape = Shape::Pit {
+        center: [0.0, 0.0, 60.0],
+        radius: [220.0, 160.0],
+        depth: 140.0,
+        benches: 5,
+        berm: 8.0,
+        segments: 64,
+    };
+
     /// The shape's name: `cube`, `sphere`, `cylinder`, `cone`, `plane`, `terrain` or `pit`.
     pub fn name(&self) -> &'static str {
         match self {
