@@ -53,6 +53,17 @@ fn positive(what: &str, v: f64) -> Result<()> {
     }
 }
 
+/// An error unless `v` is 0 or positive and finite.
+fn non_negative(what: &str, v: f64) -> Result<()> {
+    if v.is_finite() && v >= 0.0 {
+        Ok(())
+    } else {
+        Err(Error::InvalidParameter(format!(
+            "{what} must be 0 or positive and finite, got {v}"
+        )))
+    }
+}
+
 /// An error unless every coordinate of `p` is finite.
 fn finite_point(what: &str, p: [f64; 3]) -> Result<()> {
     if p.iter().all(|v| v.is_finite()) {
@@ -186,11 +197,7 @@ pub fn cone(
 ) -> Result<Mesh> {
     finite_point("the cone's base", base)?;
     positive("the cone's radius", radius)?;
-    if !(top_radius.is_finite() && top_radius >= 0.0) {
-        return Err(Error::InvalidParameter(format!(
-            "the cone's top radius must be 0 or positive and finite, got {top_radius}"
-        )));
-    }
+    non_negative("the cone's top radius", top_radius)?;
     positive("the cone's height", height)?;
     at_least("the cone's segments", segments, 3)?;
     frustum("cone", base, radius, top_radius, height, segments)
@@ -426,11 +433,7 @@ pub fn terrain(
     positive("the terrain's depth", size[1])?;
     at_least("the terrain's cells along x", cells[0], 1)?;
     at_least("the terrain's cells along y", cells[1], 1)?;
-    if !(relief.is_finite() && relief >= 0.0) {
-        return Err(Error::InvalidParameter(format!(
-            "the terrain's relief must be 0 or positive and finite, got {relief}"
-        )));
-    }
+    non_negative("the terrain's relief", relief)?;
     not_too_many("terrain", 2 * u64::from(cells[0]) * u64::from(cells[1]))?;
     let (hw, hd) = (size[0] / 2.0, size[1] / 2.0);
     let scale = size[0].max(size[1]);
@@ -496,11 +499,7 @@ pub fn pit(
     positive("the pit's radius along y", radius[1])?;
     positive("the pit's depth", depth)?;
     at_least("the pit's benches", benches, 1)?;
-    if !(berm.is_finite() && berm >= 0.0) {
-        return Err(Error::InvalidParameter(format!(
-            "the pit's berm must be 0 or positive and finite, got {berm}"
-        )));
-    }
+    non_negative("the pit's berm", berm)?;
     at_least("the pit's segments", segments, 3)?;
     let inset = depth / 2.0 + f64::from(benches - 1) * berm;
     if inset >= radius[0].min(radius[1]) {
