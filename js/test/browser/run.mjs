@@ -231,13 +231,7 @@ async function checkPage(browser, want, isolated) {
 
 		// A union of two spheres that runs to its end: its figures, for the comparison of
 		// the builds.
-		await page.evaluate(() => {
-			window.meshboolDemo.loadSphere("a", 300);
-			window.meshboolDemo.loadSphere("b", 300);
-		});
-		await page.waitForSelector("#slot-b[data-loaded='sphere-b']");
-		await page.selectOption("#op", "union");
-		await page.click("#run");
+		await runSphereUnion(page, 300);
 		await page.waitForSelector("#stats[data-state=done], #stats[data-state=error]", { timeout: 120_000 });
 		check("the union of two spheres");
 		if ((await page.getAttribute("#stats", "data-state")) !== "done") fail(`${mode}: the spheres' union failed: ${await page.textContent("#message")}`);
@@ -249,13 +243,7 @@ async function checkPage(browser, want, isolated) {
 		// 100 ms; Cancel stops it. (The buttons load spheres of 998,000 triangles.)
 		await page.click("#load-a-sphere-1m");
 		await page.waitForSelector("#slot-a[data-loaded='sphere-a']");
-		await page.evaluate(() => {
-			window.meshboolDemo.loadSphere("a", 708);
-			window.meshboolDemo.loadSphere("b", 708);
-		});
-		await page.waitForSelector("#slot-b[data-loaded='sphere-b']");
-		await page.selectOption("#op", "union");
-		await page.click("#run");
+		await runSphereUnion(page, 708);
 		await page.waitForSelector("#stats[data-state=running][data-stage]", { timeout: 60_000 });
 		const lags = [];
 		for (let i = 0; i < 5; i++) {
@@ -339,6 +327,17 @@ async function checkPage(browser, want, isolated) {
 }
 
 /** The last result's figures as the page computed them (unrounded). */
+/** Loads the demo's spheres of `bands` bands into both slots and starts their union. */
+async function runSphereUnion(page, bands) {
+	await page.evaluate((n) => {
+		window.meshboolDemo.loadSphere("a", n);
+		window.meshboolDemo.loadSphere("b", n);
+	}, bands);
+	await page.waitForSelector("#slot-b[data-loaded='sphere-b']");
+	await page.selectOption("#op", "union");
+	await page.click("#run");
+}
+
 async function exactStats(page) {
 	return page.evaluate(() => {
 		const s = window.meshboolDemo.stats;
