@@ -28,6 +28,7 @@ Other blocks (```sh set-up commands, ```text, ```rust: doctests run by cargo) ar
 Exits 1 naming the file, line, command and the first expected line that was not printed.
 """
 import argparse
+import contextlib
 import os
 import re
 import subprocess
@@ -37,6 +38,7 @@ from pathlib import Path
 
 REPO = Path(__file__).resolve().parent.parent
 EXIT = re.compile(r"^\(exit (\d+)\)$")
+TIMEOUT = 600  # seconds a command or a file's Python examples may take
 
 
 def blocks(text):
@@ -96,29 +98,36 @@ def check_output(expected, printed):
     return None
 
 
+def run(argv, scratch, env):
+    """Runs `argv` in `scratch`: its exit status (None when it ran past TIMEOUT seconds)
+    and what it printed, standard output and error together."""
+    try:
+        done = subprocess.run(
+            argv,
+            cwd=scratch,
+            env=env,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
+            timeout=TIMEOUT,
+        )
+    except subprocess.TimeoutExpired as late:
+        # What it printed comes as bytes here, whatever `text` says.
+        return None, (late.output or b"").decode(errors="replace")
+    return done.returncode, done.stdout
+
+
 def run_console(path, start, lines, scratch, env, failures):
     for number, command, expected in commands(start, lines):
         status = 0
         if expected and EXIT.match(expected[-1]):
             status = int(EXIT.match(expected.pop()).group(1))
-        try:
-            done = subprocess.run(
-                ["bash", "-o", "pipefail", "-c", command],
-                cwd=scratch,
-                env=env,
-                stdout=subprocess.PIPE,
-                stderr=subprocess.STDOUT,
-                text=True,
-                timeout=600,
-            )
-        except subprocess.TimeoutExpired:
-            failures.append(f"{path}:{number}: `{command}` ran past 600 s")
+        code, printed = run(["bash", "-o", "pipefail", "-c", command], scratch, env)
+        if code is None:
+            failures.append(f"{path}:{number}: `{command}` ran past {TIMEOUT} s")
             return False
-        printed = done.stdout
-        if done.returncode != status:
-            failures.append(
-                f"{path}:{number}: `{command}` exited {done.returncode}, not {status}\n{printed}"
-            )
+        if code != status:
+            failures.append(f"{path}:{number}: `{command}` exited {code}, not {status}\n{printed}")
             return False
         missing = check_output(expected, printed)
         if missing is not None:
@@ -141,10 +150,12 @@ def run_file(path, args, failures):
     if not scripts and not consoles:
         return
     print(f"== {relative}")
-    with tempfile.TemporaryDirectory(prefix="meshbool-examples-") as temporary:
-        scratch = temporary
+    if args.keep:
+        place = contextlib.nullcontext(tempfile.mkdtemp(prefix="meshbool-examples-"))
+    else:
+        place = tempfile.TemporaryDirectory(prefix="meshbool-examples-")
+    with place as scratch:
         if args.keep:
-            scratch = tempfile.mkdtemp(prefix="meshbool-examples-")
             print(f"  (scratch directory kept: {scratch})")
         os.symlink(REPO / "docs", Path(scratch) / "docs")
         env = dict(os.environ)
@@ -163,17 +174,10 @@ def run_file(path, args, failures):
                 source += "\n" * (start - 1 - source.count("\n")) + "\n".join(body) + "\n"
             script = Path(scratch) / "examples.py"
             script.write_text(source, encoding="utf-8")
-            done = subprocess.run(
-                [args.python, str(script)],
-                cwd=scratch,
-                env=env,
-                stdout=subprocess.PIPE,
-                stderr=subprocess.STDOUT,
-                text=True,
-                timeout=600,
-            )
-            if done.returncode != 0:
-                failures.append(f"{relative}: its Python examples failed\n{done.stdout}")
+            code, printed = run([args.python, str(script)], scratch, env)
+            if code != 0:
+                why = f"ran past {TIMEOUT} s" if code is None else "failed"
+                failures.append(f"{relative}: its Python examples {why}\n{printed}")
                 return
             print(f"  ok  {relative}: {len(scripts)} Python blocks")
 
