@@ -191,6 +191,10 @@ def main():
     parser.add_argument("files", nargs="*", type=Path)
     args = parser.parse_args()
     args.bin = str(Path(args.bin).resolve())
+    if os.sep in args.python:
+        # Absolute, as the examples run elsewhere; not resolved, so a virtual environment's
+        # interpreter stays itself (its link leads to the base interpreter).
+        args.python = os.path.abspath(args.python)
     if not (Path(args.bin) / "meshbool").exists():
         sys.exit(f"error: no meshbool binary in {args.bin} (cargo build --release -p meshbool-cli)")
     files = args.files or [
