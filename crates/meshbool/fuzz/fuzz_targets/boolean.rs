@@ -263,20 +263,22 @@ fn times_pow2(x: f64, e: i32) -> f64 {
     x * 2f64.powi(e / 2) * 2f64.powi(e - e / 2)
 }
 
-/// The sum of the magnitudes of the terms of `m`'s signed volume (|p0 · (p1 × p2)| / 6 per
-/// triangle): what its rounding is relative to.
+/// The sum of the magnitudes of the terms of `m`'s signed volume: per triangle, the six
+/// products of the determinant p0 · (p1 × p2) taken apart, in absolute value, over 6. What
+/// the rounding of the volume's `f64` sum is relative to: a determinant computed in
+/// floating point errs by a few ulps of these products, not of its value (a zero-area
+/// triangle far from the origin has a determinant near 0 computed from products of its
+/// coordinates' size).
 fn volume_terms(m: &Mesh) -> f64 {
     let p = m.positions();
     m.triangles()
         .iter()
         .map(|t| {
             let [a, b, c] = t.map(|v| p[v as usize]);
-            let cross = [
-                b[1] * c[2] - b[2] * c[1],
-                b[2] * c[0] - b[0] * c[2],
-                b[0] * c[1] - b[1] * c[0],
-            ];
-            (a[0] * cross[0] + a[1] * cross[1] + a[2] * cross[2]).abs() / 6.0
+            let products = a[0].abs() * ((b[1] * c[2]).abs() + (b[2] * c[1]).abs())
+                + a[1].abs() * ((b[2] * c[0]).abs() + (b[0] * c[2]).abs())
+                + a[2].abs() * ((b[0] * c[1]).abs() + (b[1] * c[0]).abs());
+            products / 6.0
         })
         .sum()
 }
