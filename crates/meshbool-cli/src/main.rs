@@ -13,8 +13,8 @@ mod exit;
 mod output;
 
 use commands::{
-    boolean, classify, close, convert, curves, cutfill, info, make, orient, pick, repair, resolve,
-    split, transform,
+    boolean, classify, close, convert, csg, curves, cutfill, info, make, orient, pick, repair,
+    resolve, split, transform,
 };
 
 /// mimalloc keeps freed memory for reuse: a boolean's stages allocate and free large
@@ -100,6 +100,11 @@ enum Command {
     /// below it (fill) over the plan area both cover, exactly from the booleans of the
     /// solids under each; both are faced up first. `-o` writes the lines where they meet.
     Cutfill(cutfill::Args),
+    /// Evaluate a CSG document (JSON: a tree of unions, intersections and differences
+    /// over mesh files and primitives, each node with its transform; cutters subtracted
+    /// in differences) and write the root's result; `--cache DIR` keeps every node's
+    /// result so that a later run computes only what changed (docs/csg.md).
+    Csg(csg::Args),
 }
 
 fn main() -> ExitCode {
@@ -154,6 +159,7 @@ fn run(command: Command) -> anyhow::Result<()> {
         Command::Curves(args) => curves::run(&args),
         Command::Classify(args) => classify::run(&args),
         Command::Cutfill(args) => cutfill::run(&args),
+        Command::Csg(args) => csg::run(&args),
     }
 }
 

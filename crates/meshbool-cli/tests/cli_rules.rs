@@ -230,6 +230,17 @@ fn every_command_exits_by_one_rule() {
     );
     let bad_points = text(&dir, "points.txt", "0 0 0\n1 2\n");
     let bad_config = text(&dir, "repair.json", r#"{"weld": 0.1, "wled": 1}"#);
+    let scene = text(&dir, "scene.json", r#"{"root": {"primitive": "cube"}}"#);
+    let bad_scene = text(
+        &dir,
+        "bad_scene.json",
+        r#"{"root": {"op": "union", "children": [{"primitive": "sphere", "radus": 2}]}}"#,
+    );
+    let failing_scene = text(
+        &dir,
+        "failing_scene.json",
+        r#"{"root": {"op": "union", "children": [{"primitive": "cube"}, {"mesh": "nowhere.stl"}]}}"#,
+    );
     // A split to pick from.
     let split = dir.join("split");
     report(&["split", s(&cube), s(&small), "-o", s(&split), "--json"]);
@@ -399,6 +410,18 @@ fn every_command_exits_by_one_rule() {
             1,
             "points_only.obj: no triangles",
         ),
+        (vec!["csg", s(&scene), "-o", "out.xyz"], 2, "out.xyz"),
+        (vec!["csg", s(&missing), "-o", o], 1, "missing.ply"),
+        (
+            vec!["csg", s(&bad_scene), "-o", o],
+            1,
+            "root.children[0].radus: unknown key",
+        ),
+        (
+            vec!["csg", s(&failing_scene), "-o", o],
+            1,
+            "node root.children[1] failed",
+        ),
         (vec!["frobnicate"], 2, "frobnicate"),
     ];
     for (args, code, says) in cases {
@@ -453,6 +476,11 @@ fn file_outputs_make_missing_directories_and_replace_files() {
         .unwrap(),
     );
     let points = text(&dir, "points.txt", "0.5 0.5 0.5\n5 5 5\n");
+    let scene = text(
+        &dir,
+        "scene.json",
+        r#"{"root": {"op": "difference", "children": [{"primitive": "cube"}, {"primitive": "sphere", "radius": 0.6, "role": "cutter"}]}}"#,
+    );
     let split = dir.join("split");
     report(&["split", s(&cube), s(&other), "-o", s(&split), "--json"]);
     let (c, o, p) = (s(&cube), s(&other), s(&plane));
@@ -479,6 +507,7 @@ fn file_outputs_make_missing_directories_and_replace_files() {
         ("curves", vec!["curves", c, o, "-o"], "json"),
         ("classify", vec!["classify", c, s(&points), "-o"], "csv"),
         ("cutfill", vec!["cutfill", p, s(&tilted), "-o"], "obj"),
+        ("csg", vec!["csg", s(&scene), "-o"], "stl"),
     ];
     for (name, args, ext) in commands {
         let target = dir
@@ -652,6 +681,7 @@ fn help_of_every_output_states_the_rule() {
         &["curves"],
         &["classify"],
         &["cutfill"],
+        &["csg"],
     ] {
         let r = meshbool(&[cmd, &["--help"]].concat());
         // Help is wrapped at the terminal's width: compare with the line breaks and their

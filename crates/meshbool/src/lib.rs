@@ -87,6 +87,7 @@ pub mod broad;
 pub mod bvh;
 #[doc(hidden)]
 pub mod classify;
+pub mod csg;
 pub mod edges;
 mod error;
 mod format;
@@ -117,6 +118,11 @@ struct ReadmeDoctests;
 #[cfg(doctest)]
 #[doc = include_str!("../../../docs/library.md")]
 struct LibraryGuideDoctests;
+
+/// The CSG guide's examples (docs/csg.md), compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../docs/csg.md")]
+struct CsgGuideDoctests;
 mod vec3;
 mod welder;
 

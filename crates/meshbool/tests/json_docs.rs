@@ -252,6 +252,18 @@ fn samples() -> BTreeMap<&'static str, Vec<Value>> {
         .or_default()
         .push(json(&ops::make(&plane).unwrap().report()));
 
+    // A CSG scene with a name and a note (a cutter in a union), and one that fails.
+    for text in [
+        r#"{"root": {"op": "union", "name": "u", "children": [{"primitive": "cube"}, {"primitive": "sphere", "role": "cutter"}]}}"#,
+        r#"{"root": {"op": "union", "children": [{"primitive": "cube"}, {"mesh": "no such file.stl"}]}}"#,
+    ] {
+        let scene = meshbool::csg::Scene::from_json(text, std::path::Path::new(".")).unwrap();
+        let out =
+            meshbool::csg::evaluate(&scene, &meshbool::csg::Cache::new(), &Default::default())
+                .unwrap();
+        s.entry("csg").or_default().push(json(&out.report()));
+    }
+
     // A grid with one vertex pushed over its neighbours and raised: folded triangles.
     let (mut positions, triangles) =
         heightfield([0.0, 0.0], [4.0, 4.0], 4, 4, |x, y| 0.1 * x + 0.05 * y).into_parts();
@@ -301,7 +313,7 @@ fn samples() -> BTreeMap<&'static str, Vec<Value>> {
 fn docs_list_every_key_of_every_report_and_no_other() {
     let tables = doc_tables();
     let samples = samples();
-    assert_eq!(samples.len(), 14);
+    assert_eq!(samples.len(), 15);
     for (report, runs) in &samples {
         let mut doc = BTreeSet::new();
         documented(&tables, report, "", &mut doc);

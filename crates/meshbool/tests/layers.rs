@@ -43,6 +43,8 @@ const LAYERS: &[&str] = &[
     "query",
     // The front door, used by front ends only.
     "ops",
+    // CSG documents, on the front door's booleans.
+    "csg",
 ];
 
 /// One use of a module by another.

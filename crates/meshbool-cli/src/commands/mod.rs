@@ -20,6 +20,7 @@ pub mod boolean;
 pub mod classify;
 pub mod close;
 pub mod convert;
+pub mod csg;
 pub mod curves;
 pub mod cutfill;
 pub mod info;
@@ -183,6 +184,13 @@ impl Spinner {
     /// Shows `msg`.
     pub fn set_message(&self, msg: &'static str) {
         self.0.set_message(msg);
+    }
+
+    /// A handle that shows lines made as the work goes (not kept as stages for
+    /// `--timings`), from any thread.
+    pub fn texts(&self) -> impl Fn(String) + Send + Sync + 'static {
+        let bar = self.0.bar.clone();
+        move |text| bar.set_message(text)
     }
 }
 
