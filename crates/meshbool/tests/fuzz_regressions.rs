@@ -130,3 +130,28 @@ fn boolean_nested_coarse_tori_closed() {
         "{change} vs {report:?}"
     );
 }
+
+/// boolean crash-51a91991: a coarse sphere and a box scaled by 2^285. The result's area
+/// was NaN: the squares of its triangles' cross products overflow `f64` (lengths above
+/// 1e154), and the compensated sum of infinities is NaN. Lengths are now computed
+/// without overflow: the area is the unit-size area times 2^570.
+#[test]
+fn areas_at_huge_coordinates_are_finite() {
+    let a = shapes::sphere([-4.0, -4.0, -4.0], 2.0, 7, 5).unwrap();
+    let b = Mesh::cuboid([3.0, -4.0, -4.0], [5.0, -3.0, -3.0]);
+    let big = |m: &Mesh| {
+        let mut m = m.clone();
+        for p in m.positions_mut() {
+            for x in p.iter_mut() {
+                *x *= 2f64.powi(285);
+            }
+        }
+        m
+    };
+    let unit = boolean(&a, &b, Op::Union, &BooleanOptions::default()).unwrap();
+    let huge = boolean(&big(&a), &big(&b), Op::Union, &BooleanOptions::default()).unwrap();
+    let (u, h) = (mesh_stats(&unit.mesh), mesh_stats(&huge.mesh));
+    assert!(h.area.is_finite() && h.volume.is_finite(), "{h:?}");
+    let ratio = h.area / u.area / 2f64.powi(570);
+    assert!((ratio - 1.0).abs() < 1e-12, "{ratio}");
+}

@@ -342,7 +342,7 @@ fn snapped(a: &Mesh, b: &Mesh, op: Op, d: f64, e: i32, exact: &Measures, v: f64)
     let slack = 1e-9 * (v.abs() + d * area + 2.0 * volume_terms(&snapped));
     assert!(
         (change - reported).abs() <= slack,
-        "{op:?} snapped at {d}: volume changed by {change}, {reported} reported"
+        "{op:?} snapped at {d}: volume changed by {change}, {reported} reported (slack {slack}: v {v}, area {area}, terms {})", volume_terms(&snapped)
     );
     assert!(
         change.abs() <= d * area + slack,
