@@ -878,6 +878,120 @@ fn write(
         .map_err(py_err)
 }
 
+/// A CSG cache ([`meshbool::csg::Cache`]): node results by key, in memory and
+/// optionally in a folder, kept between calls of `csg`.
+#[pyclass(module = "meshbool._native", frozen)]
+struct CsgCache(meshbool::csg::Cache);
+
+#[pymethods]
+impl CsgCache {
+    /// A cache in memory, or also in the folder `dir` (created if missing).
+    #[new]
+    #[pyo3(signature = (dir=None))]
+    fn new(dir: Option<std::path::PathBuf>) -> PyResult<Self> {
+        Ok(CsgCache(match dir {
+            Some(d) => meshbool::csg::Cache::in_dir(d).map_err(py_err)?,
+            None => meshbool::csg::Cache::new(),
+        }))
+    }
+
+    /// Results held in memory.
+    fn __len__(&self) -> usize {
+        self.0.len()
+    }
+
+    /// Forgets the results held in memory.
+    fn clear(&self) {
+        self.0.clear();
+    }
+}
+
+/// The placeholder path the Python side puts where a scene's `mesh` is a mesh in memory:
+/// `\0inline-K` for the K-th of the meshes passed beside it (no file has a NUL in its
+/// name).
+fn inline_placeholder(k: usize) -> String {
+    format!("\u{0}inline-{k}")
+}
+
+/// Puts `meshes` where the scene's leaves hold their placeholders (joined to `base` by
+/// the parser).
+fn inline_meshes(
+    node: &mut meshbool::csg::Node,
+    base: &std::path::Path,
+    meshes: &[std::sync::Arc<Mesh>],
+) -> PyResult<()> {
+    use meshbool::csg::NodeKind;
+    match &mut node.kind {
+        NodeKind::Op { children, .. } => {
+            for c in children {
+                inline_meshes(c, base, meshes)?;
+            }
+        }
+        NodeKind::File(path) => {
+            if let Some(k) = (0..meshes.len()).find(|&k| *path == base.join(inline_placeholder(k)))
+            {
+                node.kind = NodeKind::Mesh(meshes[k].clone());
+            }
+        }
+        _ => {}
+    }
+    Ok(())
+}
+
+/// A CSG document evaluated (`meshbool::csg::evaluate`): `text` its JSON (mesh paths
+/// relative to `base`), `meshes` the meshes in memory its placeholders name. The root's
+/// arrays (`None` when a node failed) and the report.
+#[pyfunction]
+#[pyo3(signature = (text, base, meshes, cache, force, self_check, resolve, orient, threads, keep_nonmanifold, snap, keep_seam_points))]
+#[allow(clippy::type_complexity, clippy::too_many_arguments)]
+fn csg<'py>(
+    py: Python<'py>,
+    text: &str,
+    base: std::path::PathBuf,
+    meshes: Vec<(PyReadonlyArray2<'py, f64>, PyReadonlyArray2<'py, u32>)>,
+    cache: &CsgCache,
+    force: bool,
+    self_check: bool,
+    resolve: bool,
+    orient: bool,
+    threads: Option<usize>,
+    keep_nonmanifold: bool,
+    snap: f64,
+    keep_seam_points: bool,
+) -> PyResult<(Option<Arrays<'py>>, String)> {
+    let meshes = meshes
+        .iter()
+        .map(|(v, f)| mesh(v, f).map(std::sync::Arc::new))
+        .collect::<PyResult<Vec<_>>>()?;
+    let mut scene = meshbool::csg::Scene::from_json(text, &base).map_err(py_err)?;
+    inline_meshes(&mut scene.root, &base, &meshes)?;
+    let opts = meshbool::csg::CsgOptions {
+        boolean: BooleanOptions {
+            checks: checks(force, self_check, resolve, orient),
+            keep_nonmanifold,
+            keep_seam_points,
+            snap,
+            run: run(threads),
+            ..BooleanOptions::default()
+        },
+        progress: None,
+    };
+    let size = meshes
+        .iter()
+        .map(|m| m.triangles().len())
+        .sum::<usize>()
+        .max(INTERRUPTIBLE_FROM);
+    let run = opts.boolean.run.clone();
+    let cache = &cache.0;
+    let out = interruptible(py, &run, size, move || {
+        meshbool::csg::evaluate(&scene, cache, &opts)
+    })?
+    .map_err(py_err)?;
+    let report = json(&out.report())?;
+    let arrays = out.mesh.map(|m| arrays(py, m)).transpose()?;
+    Ok((arrays, report))
+}
+
 /// The extension module.
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -886,6 +1000,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Boolean>()?;
     m.add_class::<Operand>()?;
     m.add_class::<Split>()?;
+    m.add_class::<CsgCache>()?;
     for f in [
         wrap_pyfunction!(check, m)?,
         wrap_pyfunction!(measures, m)?,
@@ -906,6 +1021,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
         wrap_pyfunction!(repair, m)?,
         wrap_pyfunction!(terrain, m)?,
         wrap_pyfunction!(pit, m)?,
+        wrap_pyfunction!(csg, m)?,
         wrap_pyfunction!(read, m)?,
         wrap_pyfunction!(write, m)?,
     ] {

@@ -632,3 +632,59 @@ def test_ctrl_c_stops_a_long_boolean_with_keyboard_interrupt():
     assert stopped < 0.8 * full, (stopped, full)
     again = meshbool.boolean(grid_sphere([0, 0, 0], 12), grid_sphere([0.5, 0, 0], 12), "union")
     assert again.is_closed
+
+
+def test_csg_scene_with_meshes_in_memory_a_cache_and_failures(tmp_path):
+    """A CSG document as a dict (a mesh in memory beside primitives, a cutter), then from a
+    file: the volume of the booleans it names; with one cache, a second call computes
+    nothing and an edit only its path; a node that fails is named."""
+    block = meshbool.box([0, 0, 0], [4, 2, 2])
+
+    def scene(slot_width):
+        return {
+            "root": {
+                "op": "difference",
+                "name": "slotted",
+                "children": [
+                    {"op": "union", "children": [
+                        {"mesh": block},
+                        {"primitive": "cube", "min": [4, 0, 0], "max": [6, 2, 2]},
+                    ]},
+                    {"primitive": "cube", "min": [1, -1, -1], "max": [1 + slot_width, 3, 3],
+                     "role": "cutter"},
+                ],
+            }
+        }
+
+    cache = meshbool.CsgCache()
+    out = meshbool.csg(scene(1), cache=cache)
+    assert out.is_closed and out.volume == 24 - 4
+    report = out.report
+    assert report["computed"] == 5 and report["cached"] == 0
+    assert [n["path"] for n in report["nodes"]][-1] == "root"
+    assert report["nodes"][-1]["name"] == "slotted"
+    again = meshbool.csg(scene(1), cache=cache)
+    assert again.report["computed"] == 0 and len(again.report["nodes"]) == 1
+    assert np.array_equal(again.vertices, out.vertices)
+    edited = meshbool.csg(scene(2), cache=cache)
+    assert edited.volume == 24 - 8
+    assert [n["path"] for n in edited.report["nodes"] if n["source"] == "computed"] == [
+        "root.children[1]", "root"]
+
+    # From a file, paths relative to it, with a folder cache shared by two caches.
+    meshbool.write(str(tmp_path / "block.ply"), block)
+    doc = scene(1)
+    doc["root"]["children"][0]["children"][0] = {"mesh": "block.ply"}
+    (tmp_path / "scene.json").write_text(json.dumps(doc))
+    first = meshbool.csg(tmp_path / "scene.json", cache=meshbool.CsgCache(tmp_path / "cache"))
+    second = meshbool.csg(str(tmp_path / "scene.json"), cache=meshbool.CsgCache(tmp_path / "cache"))
+    assert first.volume == 20 and second.report["nodes"][0]["source"] == "disk"
+    assert np.array_equal(first.vertices, second.vertices)
+
+    # A node that fails, and a malformed document.
+    doc["root"]["children"][0]["children"][0] = {"mesh": "nowhere.stl"}
+    with pytest.raises(ValueError, match=r"node root\.children\[0\]\.children\[0\] failed") as e:
+        meshbool.csg(doc, base=tmp_path)
+    assert e.value.report["failed"]["path"] == "root.children[0].children[0]"
+    with pytest.raises(ValueError, match=r"root\.children\[0\]\.radus: unknown key"):
+        meshbool.csg({"root": {"op": "union", "children": [{"primitive": "sphere", "radus": 1}]}})

@@ -20,15 +20,20 @@ pub(crate) fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-/// `|a|`: finite for every finite `a`, also where the squares of its components overflow
-/// (lengths above about 1e154: areas of meshes at coordinates above 1e77).
+/// `|a|`, to the rounding of its components' squares also where those squares would
+/// overflow or underflow `f64` (lengths above 1e145 or below 1e-145: areas of meshes at
+/// coordinates beyond 1e72 or within 1e-72 of zero).
 pub(crate) fn norm(a: &[f64; 3]) -> f64 {
-    let n = dot(a, a).sqrt();
-    if n.is_finite() || !a.iter().all(|x| x.is_finite()) {
-        return n;
+    let d = dot(a, a);
+    if (1e-290..=1e290).contains(&d) || !a.iter().all(|x| x.is_finite()) {
+        return d.sqrt();
     }
-    // The squares overflowed: the length of `a` over its largest component, times it.
+    // The squares are out of range: the length of `a` over its largest component, times
+    // it.
     let m = a.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    if m == 0.0 {
+        return 0.0;
+    }
     let s = a.map(|x| x / m);
     m * dot(&s, &s).sqrt()
 }
@@ -38,12 +43,19 @@ mod tests {
     use super::*;
 
     #[test]
-    fn norm_is_finite_where_the_squares_overflow() {
+    fn norm_holds_where_the_squares_overflow_or_underflow() {
         assert_eq!(norm(&[3.0, 4.0, 0.0]), 5.0);
         let big = 2f64.powi(600);
         assert_eq!(norm(&[3.0 * big, 4.0 * big, 0.0]), 5.0 * big);
         assert_eq!(norm(&[f64::MAX, 0.0, 0.0]), f64::MAX);
         assert!(norm(&[f64::INFINITY, 0.0, 0.0]).is_infinite());
         assert!(norm(&[f64::NAN, 1.0, 0.0]).is_nan());
+        let tiny = 2f64.powi(-600);
+        assert_eq!(norm(&[3.0 * tiny, 0.0, 4.0 * tiny]), 5.0 * tiny);
+        assert_eq!(norm(&[0.0; 3]), 0.0);
+        assert_eq!(
+            norm(&[f64::MIN_POSITIVE / 8.0, 0.0, 0.0]),
+            f64::MIN_POSITIVE / 8.0
+        );
     }
 }

@@ -131,27 +131,37 @@ fn boolean_nested_coarse_tori_closed() {
     );
 }
 
-/// boolean crash-51a91991: a coarse sphere and a box scaled by 2^285. The result's area
-/// was NaN: the squares of its triangles' cross products overflow `f64` (lengths above
-/// 1e154), and the compensated sum of infinities is NaN. Lengths are now computed
-/// without overflow: the area is the unit-size area times 2^570.
+/// boolean crash-51a91991 and crash-0006a5c8: a coarse sphere and a box scaled by 2^285,
+/// and by 2^-285. The result's area was NaN at the first scale (the squares of its
+/// triangles' cross products overflow `f64`, and the compensated sum of infinities is
+/// NaN) and 0 at the second (they underflow). Lengths are now computed without either:
+/// the area is the unit-size area times 2^±570.
 #[test]
-fn areas_at_huge_coordinates_are_finite() {
+fn areas_at_huge_and_tiny_coordinates_hold() {
     let a = shapes::sphere([-4.0, -4.0, -4.0], 2.0, 7, 5).unwrap();
     let b = Mesh::cuboid([3.0, -4.0, -4.0], [5.0, -3.0, -3.0]);
-    let big = |m: &Mesh| {
+    let scaled = |m: &Mesh, e: i32| {
         let mut m = m.clone();
         for p in m.positions_mut() {
             for x in p.iter_mut() {
-                *x *= 2f64.powi(285);
+                *x *= 2f64.powi(e);
             }
         }
         m
     };
     let unit = boolean(&a, &b, Op::Union, &BooleanOptions::default()).unwrap();
-    let huge = boolean(&big(&a), &big(&b), Op::Union, &BooleanOptions::default()).unwrap();
-    let (u, h) = (mesh_stats(&unit.mesh), mesh_stats(&huge.mesh));
-    assert!(h.area.is_finite() && h.volume.is_finite(), "{h:?}");
-    let ratio = h.area / u.area / 2f64.powi(570);
-    assert!((ratio - 1.0).abs() < 1e-12, "{ratio}");
+    let u = mesh_stats(&unit.mesh);
+    for e in [285, -285] {
+        let out = boolean(
+            &scaled(&a, e),
+            &scaled(&b, e),
+            Op::Union,
+            &BooleanOptions::default(),
+        )
+        .unwrap();
+        let s = mesh_stats(&out.mesh);
+        assert!(s.area.is_finite() && s.area > 0.0, "{e}: {s:?}");
+        let ratio = s.area / u.area / 2f64.powi(2 * e);
+        assert!((ratio - 1.0).abs() < 1e-12, "{e}: {ratio}");
+    }
 }

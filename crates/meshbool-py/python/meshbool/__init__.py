@@ -22,6 +22,7 @@ library's message. The reports are the dicts the ``meshbool`` command line print
 from __future__ import annotations
 
 import json
+import os
 from typing import Any, Iterable, NamedTuple, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -48,6 +49,8 @@ __all__ = [
     "envelope",
     "orient",
     "close",
+    "csg",
+    "CsgCache",
     "read",
     "write",
     "box",
@@ -723,6 +726,99 @@ def repair(mesh: MeshLike, **config: Any) -> Mesh:
     keywords raise ``ValueError``. The report says what every step did."""
     v, f = _parts(mesh)
     return Mesh._from(*_native.repair(v, f, json.dumps(config)))
+
+
+class CsgCache:
+    """Results of CSG nodes by key (see :func:`csg`), kept between calls: in memory, and
+    with ``dir`` also as files in that folder (created if missing), so that they outlive
+    the process. After an edit, a call with the same cache computes only the edited node
+    and its ancestors."""
+
+    __slots__ = ("_native",)
+
+    def __init__(self, dir: Optional[Union[str, "os.PathLike[str]"]] = None) -> None:
+        self._native = _native.CsgCache(None if dir is None else str(dir))
+
+    def __len__(self) -> int:
+        return len(self._native)
+
+    def clear(self) -> None:
+        """Forgets the results held in memory (the folder's files stay)."""
+        self._native.clear()
+
+
+def _inline(node: Any, meshes: list, at: str) -> Any:
+    """A copy of a scene node whose in-memory meshes (``"mesh"`` given a mesh rather than
+    a path) are replaced by placeholders, the meshes' arrays appended to ``meshes``."""
+    if not isinstance(node, dict):
+        raise ValueError(f"malformed CSG scene: {at}: expected an object, got {type(node).__name__}")
+    out = dict(node)
+    mesh = node.get("mesh")
+    if mesh is not None and not isinstance(mesh, (str, os.PathLike)):
+        out["mesh"] = "\0inline-%d" % len(meshes)
+        meshes.append(_parts(mesh))
+    elif isinstance(mesh, os.PathLike):
+        out["mesh"] = os.fspath(mesh)
+    children = node.get("children")
+    if isinstance(children, list):
+        out["children"] = [_inline(c, meshes, f"{at}.children[{k}]") for k, c in enumerate(children)]
+    return out
+
+
+def csg(
+    scene: Union[dict, str, "os.PathLike[str]"],
+    *,
+    base: Optional[Union[str, "os.PathLike[str]"]] = None,
+    cache: Optional[CsgCache] = None,
+    force: bool = False,
+    self_check: bool = True,
+    resolve: bool = True,
+    orient: bool = True,
+    threads: Optional[int] = None,
+    keep_nonmanifold: bool = False,
+    snap: float = 0.0,
+    keep_seam_points: bool = False,
+) -> Mesh:
+    """Evaluates a CSG document: a tree of unions, intersections and differences over mesh
+    files, meshes and primitives, each node with its transform, cutters subtracted in
+    differences (the format: docs/csg.md in the repository).
+
+    ``scene``: the path of a JSON document (its mesh paths relative to its folder), or the
+    document as a dict, whose ``"mesh"`` leaves may also hold meshes (a :class:`Mesh`, a
+    ``trimesh.Trimesh``, a ``(vertices, faces)`` tuple) and whose paths are relative to
+    ``base`` (default: the current directory). ``cache``: a :class:`CsgCache` to reuse
+    results between calls (default: a fresh one). The other options are :func:`boolean`'s,
+    applied to every boolean of the tree.
+
+    Returns the root's result, with ``report``: the root's measures, ``computed`` and
+    ``cached`` counts and ``nodes``, one dict per node visited (``path``, ``name``, ``kind``,
+    ``source``: computed, memory or disk, measures, ``seconds``, ``notes``). Raises
+    ``ValueError`` naming the node when one fails (the report is the exception's
+    ``report``) and for a malformed document (saying where)."""
+    meshes: list = []
+    if isinstance(scene, dict):
+        doc = dict(scene)
+        if "root" in doc:
+            doc["root"] = _inline(doc["root"], meshes, "root")
+        text = json.dumps(doc)
+        folder = os.fspath(base) if base is not None else os.getcwd()
+    else:
+        path = os.fspath(scene)
+        with open(path, encoding="utf-8") as file:
+            text = file.read()
+        folder = os.fspath(base) if base is not None else (os.path.dirname(os.path.abspath(path)))
+    cache = cache if cache is not None else CsgCache()
+    arrays, report = _native.csg(
+        text, folder, meshes, cache._native, force, self_check, resolve, orient, threads,
+        keep_nonmanifold, float(snap), keep_seam_points,
+    )
+    if arrays is None:
+        parsed = json.loads(report)
+        failed = parsed["failed"]
+        err = ValueError(f"node {failed['path']} failed: {failed['error']}")
+        err.report = parsed  # type: ignore[attr-defined]
+        raise err
+    return Mesh._from(arrays[0], arrays[1], report)
 
 
 def read(path: str, format: Optional[str] = None) -> Mesh:

@@ -149,3 +149,23 @@ def pit(
 ) -> Tuple[F64, U32, str]: ...
 def read(path: str, format: Optional[str] = None) -> Tuple[F64, U32, str]: ...
 def write(path: str, v: F64, f: U32, format: Optional[str] = None) -> None: ...
+
+class CsgCache:
+    def __init__(self, dir: Optional[str] = None) -> None: ...
+    def __len__(self) -> int: ...
+    def clear(self) -> None: ...
+
+def csg(
+    text: str,
+    base: str,
+    meshes: List[Tuple[F64, U32]],
+    cache: CsgCache,
+    force: bool,
+    self_check: bool,
+    resolve: bool,
+    orient: bool,
+    threads: Optional[int],
+    keep_nonmanifold: bool,
+    snap: float,
+    keep_seam_points: bool,
+) -> Tuple[Optional[Tuple[F64, U32]], str]: ...
