@@ -231,6 +231,24 @@ export function makePlane(options?: { center?: Point3; width?: number; depth?: n
 export function makeTerrain(options?: { center?: Point3; size?: number | [number, number]; cells?: number | [number, number]; relief?: number; seed?: number }): MadeMesh;
 /** An open benched pit shell facing up, rim at `center.z`. Defaults: centre [0, 0, 60], radius 220 × 160, depth 140, 5 benches, berm 8, 64 segments. */
 export function makePit(options?: { center?: Point3; radius?: number | [number, number]; depth?: number; benches?: number; berm?: number; segments?: number }): MadeMesh;
+/** Results of CSG nodes by key, kept between calls of `evaluateCsg` (in memory). */
+export class CsgCache {
+	constructor();
+	/** Results held. */
+	readonly size: number;
+	/** Forgets every result. */
+	clear(): void;
+}
+/** A transform step of a CSG node: scale, then rotate, then translate; or a matrix (16 numbers, row-major). */
+export type CsgStep = { scale?: number | Point3; rotate?: [string, number] | [number, number, number, number]; translate?: Point3 } | { matrix: number[] };
+/** A node of a CSG document (docs/csg.md). */
+export type CsgNode = ({ op: "union" | "intersection" | "difference"; children: CsgNode[] } | { mesh: IndexedMesh | TriangleSoup } | { primitive: string; [parameter: string]: unknown }) & { name?: string; role?: "base" | "cutter"; transform?: CsgStep | CsgStep[] };
+/** One node of an evaluation's report. */
+export interface CsgNodeReport { path: string; name?: string; kind: string; role: "base" | "cutter"; key: string; source: "computed" | "memory" | "disk"; triangles?: number; volume?: number; closed?: boolean; seconds: number; notes: string[]; error?: string; [key: string]: unknown }
+/** The report of `evaluateCsg` (the JSON of `meshbool csg --json`). */
+export interface CsgReport { computed: number; cached: number; nodes: CsgNodeReport[]; failed: { path: string; error: string } | null; triangles?: number; volume?: number; closed?: boolean; seconds: number; [key: string]: unknown }
+/** Evaluates a CSG document: the root's result; throws naming the node that failed (`err.report`). */
+export function evaluateCsg(scene: { root: CsgNode }, options?: { cache?: CsgCache; force?: boolean; selfCheck?: boolean; resolve?: boolean; orient?: boolean; keepNonmanifold?: boolean; keepSeamPoints?: boolean; snap?: number }): IndexedMesh & { report: CsgReport };
 export function soupToTyped(soup: TriangleSoup): IndexedMesh;
 export function typedToSoup(mesh: IndexedMesh): TriangleSoup;
 export function isIndexed(value: unknown): value is IndexedMesh;

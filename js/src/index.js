@@ -13,7 +13,7 @@
 // and nearest-segment fallbacks are not used to decide anything. Tolerance arguments that
 // only served those heuristics are accepted and ignored (documented per function);
 // tolerances a user chooses (weld distances, stitch gaps) keep their meaning.
-import { buildInfo, call, nativeVersion } from "./native.js";
+import { buildInfo, call, construct, nativeVersion } from "./native.js";
 import {
 	arraysOf,
 	arraysToPoints,
@@ -392,6 +392,78 @@ export function makeTerrain(options) {
  */
 export function makePit(options) {
 	return make("pit", options);
+}
+
+/**
+ * Results of CSG nodes by key, kept between calls of `evaluateCsg` (in memory): with one
+ * cache, a call after an edit computes only the edited node and its ancestors.
+ */
+export class CsgCache {
+	constructor() {
+		this._native = construct("CsgCache");
+	}
+
+	/** Results held. */
+	get size() {
+		return this._native.size();
+	}
+
+	/** Forgets every result. */
+	clear() {
+		this._native.clear();
+	}
+}
+
+/**
+ * Evaluates a CSG document (docs/csg.md): `scene` is `{root: NODE}`, NODE an operation
+ * `{op: "union" | "intersection" | "difference", children: [NODE, ...]}`, a mesh
+ * `{mesh: M}` (M an indexed mesh `{positions, index}` or a soup), or a primitive
+ * `{primitive: "cube" | "sphere" | ..., ...parameters}` (as `meshbool make`: `size`,
+ * `center`, `radius`, `top_radius`, ...); any node may have `transform` (`{scale, rotate,
+ * translate}` or `{matrix}`, or a list of them), `role: "cutter"` (subtracted in a
+ * difference) and `name`. Options: `cache` (a `CsgCache`; default a fresh one), and the
+ * booleans' `force`, `selfCheck`, `resolve`, `orient`, `keepNonmanifold`,
+ * `keepSeamPoints`, `snap`. Returns `{positions, index, report}` (`report.nodes`: every
+ * node visited, with `source` "computed" or "memory"); throws an `Error` naming the node
+ * that failed (`err.report` holds the report) or saying where the document is malformed.
+ */
+export function evaluateCsg(scene, options = {}) {
+	const { cache, ...rest } = options;
+	const meshes = [];
+	const inline = (node, at) => {
+		if (node === null || typeof node !== "object" || Array.isArray(node)) {
+			throw new Error(`malformed CSG scene: ${at}: expected an object`);
+		}
+		const out = { ...node };
+		if (node.mesh !== undefined && typeof node.mesh !== "string" && typeof node.mesh !== "number") {
+			out.mesh = meshes.length;
+			meshes.push(arraysOf(node.mesh, `${at}.mesh`));
+		}
+		if (Array.isArray(node.children)) out.children = node.children.map((c, k) => inline(c, `${at}.children[${k}]`));
+		return out;
+	};
+	const doc = scene !== null && typeof scene === "object" && scene.root !== undefined ? { ...scene, root: inline(scene.root, "root") } : scene;
+	const vertices = Uint32Array.from(meshes, (m) => m.positions.length / 3);
+	const triangles = Uint32Array.from(meshes, (m) => m.index.length / 3);
+	const positions = new Float64Array(meshes.reduce((n, m) => n + m.positions.length, 0));
+	const index = new Uint32Array(meshes.reduce((n, m) => n + m.index.length, 0));
+	let p = 0, t = 0;
+	for (const m of meshes) {
+		positions.set(m.positions, p);
+		index.set(m.index, t);
+		p += m.positions.length;
+		t += m.index.length;
+	}
+	const store = cache ?? new CsgCache();
+	if (!(store instanceof CsgCache)) throw new Error("evaluateCsg: cache must be a CsgCache");
+	const out = call("csg", JSON.stringify(doc), positions, index, vertices, triangles, store._native, JSON.stringify(rest));
+	const report = parseReport(out.report);
+	if (out.positions === undefined) {
+		const err = new Error(`meshbool: CSG node ${report.failed.path} failed: ${report.failed.error}`);
+		err.report = report;
+		throw err;
+	}
+	return { positions: out.positions, index: out.index, report };
 }
 
 /** A soup as an indexed mesh `{positions, index}` welded exactly (equal coordinates only). */

@@ -119,6 +119,11 @@ export function call(name, ...args) {
 	}
 }
 
+/** A new instance of the WebAssembly build's class `name` (a CSG cache). */
+export function construct(name, ...args) {
+	return new wasm[name](...args);
+}
+
 /** The version of the Rust library inside. */
 export const nativeVersion = wasm.version();
 

@@ -122,3 +122,15 @@ export function booleanGeometry(
 	op: BooleanOperation,
 	options?: BooleanGeometryOptions,
 ): BooleanGeometry | null;
+
+/**
+ * Evaluates a THREE group as a CSG tree: `userData.csg = {op}` on the group and on nested
+ * groups, `userData.csg = {role: "cutter"}` on children subtracted in a difference, every
+ * object's local transform applied, the root's world transform placing the result. A new
+ * Mesh (recentred: the offset on its position), its geometry's `userData.report` the
+ * evaluation's report; null when the result is empty.
+ */
+export function csgGroup(
+	group: Object3D,
+	options?: { cache?: import("./index.js").CsgCache; recenter?: boolean; color?: number | string; doubleSide?: boolean; wireframe?: boolean; force?: boolean; selfCheck?: boolean; snap?: number },
+): Mesh | null;

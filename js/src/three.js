@@ -6,7 +6,7 @@
 // three is a peer dependency: this module imports "three" and leaves resolving it to the
 // application (node_modules, a bundler or an import map).
 import * as THREE from "three";
-import { boolean, booleanAuto, booleanIndexed, intersectMeshPairTagged, repairMesh, typedToSoup } from "./index.js";
+import { boolean, booleanAuto, booleanIndexed, evaluateCsg, intersectMeshPairTagged, repairMesh, typedToSoup } from "./index.js";
 
 export { boolean, repairMesh as repair, intersectMeshPairTagged as intersect };
 
@@ -307,4 +307,84 @@ export function booleanGeometry(a, b, op, options) {
 	const geometry = indexedToGeometry(out);
 	geometry.userData.report = out.report;
 	return geometry;
+}
+
+// ── CSG groups ───────────────────────────────────────────────────────────────────────────
+
+/** A three.js matrix (column-major elements) as a CSG transform step (row-major). */
+function matrixStep(m) {
+	const e = m.elements;
+	return { matrix: [e[0], e[4], e[8], e[12], e[1], e[5], e[9], e[13], e[2], e[6], e[10], e[14], e[3], e[7], e[11], e[15]] };
+}
+
+/**
+ * The CSG node of a THREE object: an Object3D whose `userData.csg.op` is "union",
+ * "intersection" or "difference" is an operation over its children; a Mesh is a leaf (its
+ * geometry in its own coordinates); any other Object3D unites its children. Each node
+ * carries its object's local matrix and `userData.csg.role` ("cutter": subtracted in a
+ * difference) and `name`.
+ */
+function csgNode(object) {
+	const csg = object.userData && object.userData.csg ? object.userData.csg : {};
+	let node;
+	if (csg.op) {
+		node = { op: csg.op, children: object.children.map(csgNode) };
+	} else if (object.isMesh && object.geometry && object.geometry.getAttribute("position")) {
+		node = { mesh: geometryToIndexed(object.geometry) };
+	} else {
+		node = { op: "union", children: object.children.map(csgNode) };
+	}
+	object.updateMatrix();
+	node.transform = matrixStep(object.matrix);
+	if (csg.role) node.role = csg.role;
+	if (object.name) node.name = object.name;
+	return node;
+}
+
+/**
+ * Evaluates a THREE group as a CSG tree (the library's `evaluateCsg`): the group's
+ * `userData.csg = {op}` says its operation, each child's `userData.csg = {op, role}` its
+ * own (nested groups are nested nodes), every object's local transform applies, and the
+ * root's world transform places the result. A new THREE.Mesh (recentred as soupToMesh
+ * does: the offset on its position, so that UTM-sized coordinates keep their precision),
+ * its geometry's `userData.report` the evaluation's report; null when the result is empty.
+ * Pass one `cache` (a CsgCache) between calls to compute only what changed. Options: the
+ * material's (`color`, `doubleSide`, `wireframe`), `recenter`, `cache` and the booleans'.
+ *
+ * @param {THREE.Object3D} group
+ * @param {{cache?: import("./index.js").CsgCache, recenter?: boolean, color?: number | string, doubleSide?: boolean, wireframe?: boolean, force?: boolean, selfCheck?: boolean, snap?: number}} [options]
+ * @returns {THREE.Mesh | null}
+ */
+export function csgGroup(group, options) {
+	const { recenter, color, doubleSide, wireframe, ...csgOptions } = options || {};
+	group.updateWorldMatrix(true, false);
+	const root = csgNode(group);
+	// The root's place in the world, not only in its parent.
+	root.transform = matrixStep(group.matrixWorld);
+	const out = evaluateCsg({ root }, csgOptions);
+	if (out.index.length === 0) return null;
+	const p = out.positions;
+	let center = [0, 0, 0];
+	if (recenter !== false) {
+		const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+		for (let i = 0; i < p.length; i += 3) {
+			for (let k = 0; k < 3; k++) {
+				lo[k] = Math.min(lo[k], p[i + k]);
+				hi[k] = Math.max(hi[k], p[i + k]);
+			}
+		}
+		// Rounded to a whole number, so that the subtraction below is exact.
+		center = lo.map((l, k) => Math.round((l + hi[k]) / 2));
+	}
+	const local = new Float64Array(p.length);
+	for (let i = 0; i < p.length; i += 3) {
+		local[i] = p[i] - center[0];
+		local[i + 1] = p[i + 1] - center[1];
+		local[i + 2] = p[i + 2] - center[2];
+	}
+	const geometry = indexedToGeometry({ positions: local, index: out.index });
+	geometry.userData.report = out.report;
+	const mesh = new THREE.Mesh(geometry, makeMaterial({ color, doubleSide, wireframe }));
+	mesh.position.set(center[0], center[1], center[2]);
+	return mesh;
 }

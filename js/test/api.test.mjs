@@ -885,6 +885,56 @@ test("Node.js runs the single-threaded build, and setThreads takes a choice only
 	setThreads(null);
 });
 
+// CSG documents: evaluateCsg on the library's csg.
+/** The signed volume of an indexed mesh. */
+function signedVolumeOf({ positions: p, index: t }) {
+	let v = 0;
+	for (let k = 0; k < t.length; k += 3) {
+		const [a, b, c] = [3 * t[k], 3 * t[k + 1], 3 * t[k + 2]];
+		v += p[a] * (p[b + 1] * p[c + 2] - p[b + 2] * p[c + 1])
+			- p[a + 1] * (p[b] * p[c + 2] - p[b + 2] * p[c])
+			+ p[a + 2] * (p[b] * p[c + 1] - p[b + 1] * p[c]);
+	}
+	return v / 6;
+}
+
+const slotted = (width) => ({
+	root: {
+		op: "difference",
+		name: "slotted",
+		children: [
+			{ op: "union", children: [{ mesh: mb.makeCube({ min: [0, 0, 0], max: [4, 2, 2] }) }, { primitive: "cube", min: [4, 0, 0], max: [6, 2, 2] }] },
+			{ primitive: "cube", min: [1, -1, -1], max: [1 + width, 3, 3], role: "cutter" },
+		],
+	},
+});
+
+test("evaluateCsg: the volume the booleans give; a cache computes only an edit's path", () => {
+	const cache = new mb.CsgCache();
+	const out = mb.evaluateCsg(slotted(1), { cache });
+	assert.equal(signedVolumeOf(out), 20);
+	assert.equal(out.report.closed, true);
+	assert.equal(out.report.computed, 5);
+	assert.equal(out.report.nodes.at(-1).name, "slotted");
+	const again = mb.evaluateCsg(slotted(1), { cache });
+	assert.equal(again.report.computed, 0);
+	assert.deepEqual(again.positions, out.positions);
+	const edited = mb.evaluateCsg(slotted(2), { cache });
+	assert.equal(signedVolumeOf(edited), 16);
+	assert.deepEqual(edited.report.nodes.filter((n) => n.source === "computed").map((n) => n.path), ["root.children[1]", "root"]);
+	assert.ok(cache.size >= 7);
+	cache.clear();
+	assert.equal(cache.size, 0);
+});
+
+test("evaluateCsg: a failing node is named, a malformed document says where", () => {
+	assert.throws(
+		() => mb.evaluateCsg({ root: { op: "union", children: [{ primitive: "cube" }, { mesh: "parts/a.stl" }] } }),
+		(e) => /CSG node root\.children\[1\] failed/.test(e.message) && e.report.failed.path === "root.children[1]",
+	);
+	assert.throws(() => mb.evaluateCsg({ root: { primitive: "sphere", radus: 2 } }), /root\.radus: unknown key/);
+});
+
 test("every export is exercised by this file", () => {
 	const src = readFileSync(new URL(import.meta.url), "utf8");
 	const missing = Object.keys(mb).filter((n) => !new RegExp(`mb\\.${n}\\b`).test(src));
@@ -893,7 +943,7 @@ test("every export is exercised by this file", () => {
 
 test("every export is declared in index.d.ts and every declaration is exported", () => {
 	const dts = readFileSync(new URL("../src/index.d.ts", import.meta.url), "utf8");
-	const declared = new Set([...dts.matchAll(/^export (?:function|const) (\w+)/gm)].map((m) => m[1]));
+	const declared = new Set([...dts.matchAll(/^export (?:function|const|class) (\w+)/gm)].map((m) => m[1]));
 	const exported = new Set(Object.keys(mb));
 	assert.deepEqual([...exported].filter((n) => !declared.has(n)), []);
 	assert.deepEqual([...declared].filter((n) => !exported.has(n)), []);

@@ -2,11 +2,12 @@
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import * as THREE from "three";
-import { computeSignedVolume, meshInfo, repairMesh, soupToTyped, boolean as coreBoolean, intersectMeshPairTagged } from "../src/index.js";
+import { CsgCache, computeSignedVolume, meshInfo, repairMesh, soupToTyped, boolean as coreBoolean, intersectMeshPairTagged } from "../src/index.js";
 import {
 	boolean,
 	booleanFromMeshes,
 	booleanGeometry,
+	csgGroup,
 	geometryToIndexed,
 	indexedToGeometry,
 	intersect,
@@ -208,4 +209,38 @@ test("repairFromMesh returns a THREE.Mesh", async () => {
 	assert.equal(mesh.material.color.getHex(), 0x00ff00);
 	assert.equal(volumeOf(mesh), 8);
 	assert.ok(progress.length > 0 && progress.at(-1) === 1, `progress ${progress}`);
+});
+
+test("csgGroup: a group as a CSG tree (nested groups, cutters, local transforms) at UTM coordinates", () => {
+	// A 2 × 2 × 2 box with a 1 × 1 × 4 bar through it, and a second box beside it, in a
+	// group placed at x ≈ 750,000; the union of the boxes less the bar.
+	const site = new THREE.Group();
+	site.position.set(750000.25, 6500000.5, 120);
+	site.userData.csg = { op: "difference" };
+	const body = new THREE.Group();
+	body.name = "body";
+	body.userData.csg = { op: "union" };
+	body.add(box(0, 0, 0), box(1.5, 0, 0));
+	const bar = new THREE.Mesh(new THREE.BoxGeometry(1, 1, 4), new THREE.MeshBasicMaterial());
+	bar.userData.csg = { role: "cutter" };
+	bar.rotation.x = Math.PI / 2; // along y
+	site.add(body, bar);
+	const cache = new CsgCache();
+	const out = csgGroup(site, { cache });
+	const report = out.geometry.userData.report;
+	assert.equal(report.closed, true);
+	// 2 · 8 − overlap (0.5 · 2 · 2 = 2) = 14, less the bar inside the union: 1 · 1 · 2 = 2.
+	assert.ok(Math.abs(report.volume - 12) < 1e-6, report.volume);
+	assert.ok(Math.abs(volumeOf(out) - 12) < 1e-3);
+	// Recentred: the offset on the position, the positions near the origin.
+	out.geometry.computeBoundingBox();
+	assert.ok(out.position.x > 749000 && Math.abs(out.geometry.boundingBox.max.x) < 10);
+	const world = geometryToIndexed(out);
+	const xs = Array.from({ length: world.positions.length / 3 }, (_, i) => world.positions[3 * i]);
+	assert.ok(Math.abs(Math.min(...xs) - (750000.25 - 1)) < 1e-3, Math.min(...xs));
+	// Moving the bar recomputes the root only (and the bar): the body from the cache.
+	bar.position.x = 0.25;
+	const moved = csgGroup(site, { cache });
+	const computed = moved.geometry.userData.report.nodes.filter((n) => n.source === "computed").map((n) => n.path);
+	assert.deepEqual(computed, ["root.children[1]", "root"]);
 });

@@ -906,40 +906,8 @@ impl CsgCache {
     }
 }
 
-/// The placeholder path the Python side puts where a scene's `mesh` is a mesh in memory:
-/// `\0inline-K` for the K-th of the meshes passed beside it (no file has a NUL in its
-/// name).
-fn inline_placeholder(k: usize) -> String {
-    format!("\u{0}inline-{k}")
-}
-
-/// Puts `meshes` where the scene's leaves hold their placeholders (joined to `base` by
-/// the parser).
-fn inline_meshes(
-    node: &mut meshbool::csg::Node,
-    base: &std::path::Path,
-    meshes: &[std::sync::Arc<Mesh>],
-) -> PyResult<()> {
-    use meshbool::csg::NodeKind;
-    match &mut node.kind {
-        NodeKind::Op { children, .. } => {
-            for c in children {
-                inline_meshes(c, base, meshes)?;
-            }
-        }
-        NodeKind::File(path) => {
-            if let Some(k) = (0..meshes.len()).find(|&k| *path == base.join(inline_placeholder(k)))
-            {
-                node.kind = NodeKind::Mesh(meshes[k].clone());
-            }
-        }
-        _ => {}
-    }
-    Ok(())
-}
-
 /// A CSG document evaluated (`meshbool::csg::evaluate`): `text` its JSON (mesh paths
-/// relative to `base`), `meshes` the meshes in memory its placeholders name. The root's
+/// relative to `base`), `meshes` the meshes in memory its leaves name by index. The root's
 /// arrays (`None` when a node failed) and the report.
 #[pyfunction]
 #[pyo3(signature = (text, base, meshes, cache, force, self_check, resolve, orient, threads, keep_nonmanifold, snap, keep_seam_points))]
@@ -963,8 +931,7 @@ fn csg<'py>(
         .iter()
         .map(|(v, f)| mesh(v, f).map(std::sync::Arc::new))
         .collect::<PyResult<Vec<_>>>()?;
-    let mut scene = meshbool::csg::Scene::from_json(text, &base).map_err(py_err)?;
-    inline_meshes(&mut scene.root, &base, &meshes)?;
+    let scene = meshbool::csg::Scene::from_json_with(text, &base, &meshes).map_err(py_err)?;
     let opts = meshbool::csg::CsgOptions {
         boolean: BooleanOptions {
             checks: checks(force, self_check, resolve, orient),

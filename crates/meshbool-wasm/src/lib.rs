@@ -1068,6 +1068,87 @@ pub fn make(name: &str, opts: &str) -> Result<JsValue, JsError> {
     Ok(Out::new().mesh(&out.mesh).report(&out.report())?.done())
 }
 
+/// Results of CSG nodes by key, kept between calls of [`csg`] (in memory).
+#[wasm_bindgen]
+pub struct CsgCache(meshbool::csg::Cache);
+
+#[wasm_bindgen]
+impl CsgCache {
+    /// An empty cache.
+    #[wasm_bindgen(constructor)]
+    #[allow(clippy::new_without_default)]
+    pub fn new() -> CsgCache {
+        CsgCache(meshbool::csg::Cache::new())
+    }
+
+    /// Results held.
+    pub fn size(&self) -> usize {
+        self.0.len()
+    }
+
+    /// Forgets every result.
+    pub fn clear(&self) {
+        self.0.clear();
+    }
+}
+
+/// A CSG document evaluated (`meshbool::csg::evaluate`): `text` its JSON, whose mesh
+/// leaves name by index (`{"mesh": K}`) the meshes in memory given as one array of
+/// positions and one of indices, `vertices[k]` and `triangles[k]` the counts of mesh `k`
+/// (its indices counted from its own first vertex); mesh files are not read here.
+/// `{positions, index, report}`, without `positions` and `index` when a node failed (the
+/// report's `failed` names it). Options (JSON): `force`, `selfCheck`, `resolve`,
+/// `orient`, `keepNonmanifold`, `keepSeamPoints` (false by default, as in the library),
+/// `snap`.
+#[wasm_bindgen]
+pub fn csg(
+    text: &str,
+    positions: &[f64],
+    index: &[u32],
+    vertices: &[u32],
+    triangles: &[u32],
+    cache: &CsgCache,
+    opts: &str,
+) -> Result<JsValue, JsError> {
+    if vertices.len() != triangles.len() {
+        return Err(bad("one vertex count and one triangle count per mesh"));
+    }
+    let (mut p, mut t) = (0usize, 0usize);
+    let mut meshes = Vec::with_capacity(vertices.len());
+    for (&nv, &nt) in vertices.iter().zip(triangles) {
+        let (nv, nt) = (3 * nv as usize, 3 * nt as usize);
+        if p + nv > positions.len() || t + nt > index.len() {
+            return Err(bad("the meshes' counts exceed the arrays given"));
+        }
+        meshes.push(std::sync::Arc::new(mesh(
+            &positions[p..p + nv],
+            &index[t..t + nt],
+        )?));
+        (p, t) = (p + nv, t + nt);
+    }
+    let scene = meshbool::csg::Scene::from_json_with(text, std::path::Path::new(""), &meshes)
+        .map_err(js_err)?;
+    let o = options(opts)?;
+    let opts = meshbool::csg::CsgOptions {
+        boolean: BooleanOptions {
+            checks: checks(&o)?,
+            keep_nonmanifold: flag(&o, "keepNonmanifold", false)?,
+            keep_seam_points: flag(&o, "keepSeamPoints", false)?,
+            snap: number(&o, "snap")?.unwrap_or(0.0),
+            run: run_options(),
+            ..BooleanOptions::default()
+        },
+        progress: None,
+    };
+    let out = meshbool::csg::evaluate(&scene, &cache.0, &opts).map_err(js_err)?;
+    let report = out.report();
+    let res = match &out.mesh {
+        Some(m) => Out::new().mesh(m),
+        None => Out::new(),
+    };
+    Ok(res.report(&report)?.done())
+}
+
 /// The library's version.
 #[wasm_bindgen]
 pub fn version() -> String {

@@ -328,6 +328,28 @@ fn failures_are_values_and_cutters_outside_a_difference_are_noted() {
 }
 
 #[test]
+fn mesh_leaves_may_name_meshes_given_beside_the_document() {
+    let meshes = [std::sync::Arc::new(Mesh::cuboid([0.0; 3], [2.0; 3]))];
+    let text = r#"{ "root": { "op": "difference", "children": [
+        { "mesh": 0 }, { "primitive": "cube", "min": [1, 1, 1], "max": [3, 3, 3] } ] } }"#;
+    let scene = Scene::from_json_with(text, std::path::Path::new("."), &meshes).unwrap();
+    let out = evaluate(&scene, &Cache::new(), &CsgOptions::default()).unwrap();
+    assert_eq!(signed_volume(out.mesh.as_ref().unwrap()), 7.0);
+    let e = Scene::from_json_with(
+        text.replace("0 }", "1 }").as_str(),
+        std::path::Path::new("."),
+        &meshes,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("root.children[0].mesh: mesh 1 is not one of the 1 meshes"),
+        "{e}"
+    );
+    assert!(Scene::from_json(text, std::path::Path::new(".")).is_err());
+}
+
+#[test]
 fn malformed_documents_say_where() {
     let dir = std::path::Path::new(".");
     let err = |text: &str| Scene::from_json(text, dir).unwrap_err().to_string();
@@ -477,6 +499,7 @@ fn the_schema_names_what_the_parser_reads() {
             let v = match (name, *r) {
                 ("op", "op") => serde_json::json!("union"),
                 ("op", "children") => serde_json::json!([{ "primitive": "cube" }]),
+                ("mesh", "mesh") => serde_json::json!("tower.ply"),
                 (_, "primitive") => props["primitive"]["const"].clone(),
                 _ => sample(&props[*r]),
             };

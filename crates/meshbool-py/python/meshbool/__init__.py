@@ -749,13 +749,13 @@ class CsgCache:
 
 def _inline(node: Any, meshes: list, at: str) -> Any:
     """A copy of a scene node whose in-memory meshes (``"mesh"`` given a mesh rather than
-    a path) are replaced by placeholders, the meshes' arrays appended to ``meshes``."""
+    a path) are replaced by their index in ``meshes``, to which their arrays are appended."""
     if not isinstance(node, dict):
         raise ValueError(f"malformed CSG scene: {at}: expected an object, got {type(node).__name__}")
     out = dict(node)
     mesh = node.get("mesh")
     if mesh is not None and not isinstance(mesh, (str, os.PathLike)):
-        out["mesh"] = "\0inline-%d" % len(meshes)
+        out["mesh"] = len(meshes)
         meshes.append(_parts(mesh))
     elif isinstance(mesh, os.PathLike):
         out["mesh"] = os.fspath(mesh)

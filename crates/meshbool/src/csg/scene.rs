@@ -191,17 +191,30 @@ impl Scene {
 
     /// A scene from its JSON text; relative mesh paths are taken from `base`.
     pub fn from_json(text: &str, base: &Path) -> Result<Scene> {
+        Scene::from_json_with(text, base, &[])
+    }
+
+    /// A scene from its JSON text whose mesh leaves may also name, by a whole number `k`
+    /// (`{"mesh": 0}`), the `k`-th of `meshes`: meshes in memory, as the Python and
+    /// JavaScript packages pass them.
+    pub fn from_json_with(text: &str, base: &Path, meshes: &[Arc<Mesh>]) -> Result<Scene> {
         let value: Value = serde_json::from_str(text).map_err(|e| {
             malformed(
                 &format!("line {} column {}", e.line(), e.column()),
                 format!("not JSON: {e}"),
             )
         })?;
-        Scene::from_value(&value, base)
+        Scene::from_value_with(&value, base, meshes)
     }
 
     /// A scene from a parsed JSON document ([`Scene::from_json`]).
     pub fn from_value(value: &Value, base: &Path) -> Result<Scene> {
+        Scene::from_value_with(value, base, &[])
+    }
+
+    /// A scene from a parsed JSON document with meshes in memory
+    /// ([`Scene::from_json_with`]).
+    pub fn from_value_with(value: &Value, base: &Path, meshes: &[Arc<Mesh>]) -> Result<Scene> {
         let doc = object(value, "the document")?;
         for key in doc.keys() {
             if !matches!(key.as_str(), "root" | "version" | "$schema" | "description") {
@@ -223,7 +236,7 @@ impl Scene {
             .get("root")
             .ok_or_else(|| malformed("the document", "no root node"))?;
         Ok(Scene {
-            root: node(root, "root", base)?,
+            root: node(root, "root", &Inputs { base, meshes })?,
         })
     }
 }
@@ -250,8 +263,15 @@ fn type_of(v: &Value) -> &'static str {
 /// The keys every node may have beside what makes it a node.
 const COMMON: [&str; 3] = ["name", "transform", "role"];
 
+/// Where a document's mesh leaves are found: files relative to `base`, meshes in memory
+/// by index.
+struct Inputs<'a> {
+    base: &'a Path,
+    meshes: &'a [Arc<Mesh>],
+}
+
 /// The node at `at`.
-fn node(value: &Value, at: &str, base: &Path) -> Result<Node> {
+fn node(value: &Value, at: &str, inputs: &Inputs<'_>) -> Result<Node> {
     let obj = object(value, at)?;
     let kinds: Vec<&str> = ["op", "mesh", "primitive"]
         .into_iter()
@@ -276,18 +296,38 @@ fn node(value: &Value, at: &str, base: &Path) -> Result<Node> {
             let children = list
                 .iter()
                 .enumerate()
-                .map(|(k, c)| node(c, &format!("{list_at}[{k}]"), base))
+                .map(|(k, c)| node(c, &format!("{list_at}[{k}]"), inputs))
                 .collect::<Result<_>>()?;
             NodeKind::Op { op, children }
         }
         ["mesh"] => {
             allow_keys(obj, at, &["mesh"])?;
-            let path = PathBuf::from(string(&obj["mesh"], &format!("{at}.mesh"))?);
-            NodeKind::File(if path.is_relative() {
-                base.join(path)
-            } else {
-                path
-            })
+            let mesh_at = format!("{at}.mesh");
+            match &obj["mesh"] {
+                Value::Number(n) => {
+                    let m = n
+                        .as_u64()
+                        .and_then(|k| inputs.meshes.get(usize::try_from(k).ok()?))
+                        .ok_or_else(|| {
+                            malformed(
+                                &mesh_at,
+                                format!(
+                                    "mesh {n} is not one of the {} meshes given beside the document",
+                                    inputs.meshes.len()
+                                ),
+                            )
+                        })?;
+                    NodeKind::Mesh(m.clone())
+                }
+                v => {
+                    let path = PathBuf::from(string(v, &mesh_at)?);
+                    NodeKind::File(if path.is_relative() {
+                        inputs.base.join(path)
+                    } else {
+                        path
+                    })
+                }
+            }
         }
         ["primitive"] => NodeKind::Primitive(primitive(obj, at)?),
         [] => {
