@@ -109,3 +109,52 @@ fn runs_share_a_cache_folder_and_compute_only_an_edits_path() {
         .collect();
     assert_eq!(names, ["body", "housing"]);
 }
+
+/// The JSON chunk of a GLB file.
+fn glb_json(bytes: &[u8]) -> serde_json::Value {
+    let len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    serde_json::from_slice(&bytes[20..20 + len]).unwrap()
+}
+
+#[test]
+fn each_writes_one_gltf_node_per_named_node() {
+    let dir = scratch("each");
+    std::fs::create_dir_all(dir.join("parts")).unwrap();
+    meshbool::ops::write(
+        dir.join("parts/tower.ply"),
+        &meshbool::shapes::cube([0.0; 3], 10.0).unwrap(),
+        None,
+    )
+    .unwrap();
+    std::fs::write(dir.join("housing.json"), SCENE).unwrap();
+    let report = csg(&dir, &["housing.json", "-o", "housing.glb", "--each"]);
+    let bytes = std::fs::read(dir.join("housing.glb")).unwrap();
+    let json = glb_json(&bytes);
+    let nodes = json["nodes"].as_array().unwrap();
+    let names: Vec<&str> = nodes.iter().map(|n| n["name"].as_str().unwrap()).collect();
+    assert_eq!(names, ["housing", "body"]);
+    assert_eq!(
+        nodes[1]["extensions"]["KHR_node_visibility"]["visible"],
+        false
+    );
+    assert!(nodes[0].get("extensions").is_none());
+    assert_eq!(nodes[1]["extras"]["csg"]["path"], "root.children[0]");
+    assert_eq!(nodes[1]["extras"]["csg"]["kind"], "union");
+    assert_eq!(json["extensionsUsed"][0], "KHR_node_visibility");
+    // Read back: the shown node only (the root), to glTF's f32 offsets.
+    let back = meshbool::ops::read(dir.join("housing.glb"), None)
+        .unwrap()
+        .0;
+    let v = meshbool::measure::signed_volume(&back);
+    let want = report["volume"].as_f64().unwrap();
+    assert!((v - want).abs() < 1e-4 * want, "{v} vs {want}");
+    assert_eq!(json["meshes"].as_array().unwrap().len(), 2);
+    // --each needs a .glb output: a usage error.
+    let out = Command::new(env!("CARGO_BIN_EXE_meshbool"))
+        .current_dir(&dir)
+        .args(["csg", "housing.json", "-o", "housing.stl", "--each"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("must be a .glb file"));
+}

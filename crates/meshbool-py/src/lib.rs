@@ -942,6 +942,7 @@ fn csg<'py>(
             ..BooleanOptions::default()
         },
         progress: None,
+        named: false,
     };
     let size = meshes
         .iter()

@@ -1139,6 +1139,7 @@ pub fn csg(
             ..BooleanOptions::default()
         },
         progress: None,
+        named: false,
     };
     let out = meshbool::csg::evaluate(&scene, &cache.0, &opts).map_err(js_err)?;
     let report = out.report();

@@ -350,6 +350,42 @@ fn mesh_leaves_may_name_meshes_given_beside_the_document() {
 }
 
 #[test]
+fn named_nodes_are_given_where_they_lie_in_the_root() {
+    let dir = scratch("named");
+    write_tower(&dir);
+    // The body moved up by 100 as a whole: its named result lies there too.
+    let text = housing([19.0, 11.0, 6.0]).replacen(
+        r#""name": "body","#,
+        r#""name": "body", "transform": { "translate": [0, 0, 100] },"#,
+        1,
+    );
+    let scene = Scene::from_json(&text, &dir).unwrap();
+    let opts = CsgOptions {
+        named: true,
+        ..CsgOptions::default()
+    };
+    let cache = Cache::new();
+    for round in 0..2 {
+        // The second time the root comes from the cache: the named results too.
+        let out = evaluate(&scene, &cache, &opts).unwrap();
+        let names: Vec<(&str, &str)> = out
+            .named
+            .iter()
+            .map(|n| (n.name.as_str(), n.path.as_str()))
+            .collect();
+        assert_eq!(
+            names,
+            [("housing", "root"), ("body", "root.children[0]")],
+            "round {round}"
+        );
+        assert_eq!(*out.named[0].mesh, out.mesh.clone().unwrap());
+        let body = &out.named[1].mesh;
+        assert_eq!(signed_volume(body), 8600.0);
+        assert_eq!(body.bounds().unwrap().min[2], 95.0);
+    }
+}
+
+#[test]
 fn malformed_documents_say_where() {
     let dir = std::path::Path::new(".");
     let err = |text: &str| Scene::from_json(text, dir).unwrap_err().to_string();

@@ -34,6 +34,12 @@ pub struct Args {
     /// named by its key: a later run takes unchanged nodes from there.
     #[arg(long, value_name = "DIR")]
     cache: Option<PathBuf>,
+    /// With a .glb output: also one glTF node per named node of the document (its
+    /// result where it lies in the root's, named as in the document, hidden with
+    /// KHR_node_visibility; `extras.csg` holds its path, kind and role), after the root's
+    /// node, so that a viewer or an exporter has every named part resolved.
+    #[arg(long)]
+    each: bool,
     /// Keep the results' non-manifold edges and vertices instead of splitting them.
     #[arg(long)]
     keep_nonmanifold: bool,
@@ -49,6 +55,13 @@ pub struct Args {
 /// Reads the document, evaluates it, writes the root's result and reports.
 pub fn run(args: &Args) -> Result<()> {
     let flags = &args.flags;
+    let glb = meshbool::Format::for_path(&args.output) == Some(meshbool::Format::Glb);
+    if args.each && !glb {
+        return Err(crate::exit::usage(format!(
+            "--each writes one glTF node per named node: the output must be a .glb file, not {}",
+            args.output.display()
+        )));
+    }
     let scene = Scene::read(&args.scene)?;
     let cache = match &args.cache {
         Some(dir) => Cache::in_dir(dir)?,
@@ -74,6 +87,7 @@ pub fn run(args: &Args) -> Result<()> {
             };
             show(format!("{done} nodes done; {} {how}", node.path));
         })),
+        named: args.each,
     };
     let out = evaluate(&scene, &cache, &opts)?;
     let report = out.report();
@@ -90,7 +104,11 @@ pub fn run(args: &Args) -> Result<()> {
         bail!("node {} failed: {}", f.path, f.error);
     };
     spinner.set_message("writing");
-    ops::write(&args.output, mesh, None)?;
+    if args.each {
+        write_each(&args.output, &out.named)?;
+    } else {
+        ops::write(&args.output, mesh, None)?;
+    }
     drop(spinner);
     if flags.json {
         print_json(&report)
@@ -108,4 +126,26 @@ pub fn run(args: &Args) -> Result<()> {
         );
         Ok(())
     }
+}
+
+/// Writes the root's result and every named node's as the nodes of one GLB (the root
+/// shown, the others hidden).
+fn write_each(path: &std::path::Path, named: &[meshbool::csg::NamedResult]) -> Result<()> {
+    use meshbool::io::GlbPart;
+    let parts: Vec<GlbPart> = named
+        .iter()
+        .enumerate()
+        .map(|(k, n)| GlbPart {
+            name: Some(n.name.clone()),
+            mesh: &n.mesh,
+            visible: k == 0,
+            extras: Some(
+                serde_json::json!({ "csg": { "path": n.path, "kind": n.kind, "role": n.role } }),
+            ),
+        })
+        .collect();
+    let mut bytes = Vec::new();
+    meshbool::io::write_glb(&mut bytes, &parts)?;
+    meshbool::io::write_bytes(path, &bytes)?;
+    Ok(())
 }

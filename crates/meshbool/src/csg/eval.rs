@@ -44,6 +44,25 @@ pub struct CsgOptions {
     pub boolean: BooleanOptions,
     /// Told of each node as it is done.
     pub progress: Option<NodeProgress>,
+    /// Also give the result of every named node ([`CsgOutput::named`]), in the root's
+    /// output coordinates (for one glTF node per named node: `meshbool csg --each`).
+    pub named: bool,
+}
+
+/// The result of a named node ([`CsgOptions::named`]).
+#[derive(Clone, Debug)]
+pub struct NamedResult {
+    /// Its path ([`NodeReport::path`]).
+    pub path: String,
+    /// Its name (the root's, or `root`, for the root).
+    pub name: String,
+    /// `union`, `intersection`, `difference`, `mesh` or the primitive's name.
+    pub kind: &'static str,
+    /// Its role in its parent.
+    pub role: Role,
+    /// Its result with its own transform and every ancestor's applied: where it lies in
+    /// the root's result.
+    pub mesh: Arc<Mesh>,
 }
 
 /// What [`evaluate`] found for one node it visited.
@@ -95,6 +114,9 @@ pub struct CsgOutput {
     pub failed: Option<NodeFailure>,
     /// Every node visited, children before their parents (in the document's order).
     pub nodes: Vec<NodeReport>,
+    /// With [`CsgOptions::named`] and no failure: the root, then every named node in the
+    /// document's order (a parent before its children).
+    pub named: Vec<NamedResult>,
     /// Time of the whole evaluation, in seconds.
     pub seconds: f64,
 }
@@ -201,11 +223,31 @@ pub fn evaluate(scene: &Scene, cache: &Cache, opts: &CsgOptions) -> Result<CsgOu
         reports: Mutex::new(vec![None; order]),
         done: AtomicUsize::new(0),
     };
-    let result = ops::with_threads(opts.boolean.run.threads, || run(&plan, &cx))?;
+    let result = ops::with_threads(opts.boolean.run.threads, || {
+        let root = run(&plan, &cx)?;
+        let mut named = Vec::new();
+        if opts.named {
+            named.push(NamedResult {
+                path: plan.path.clone(),
+                name: scene.root.name.clone().unwrap_or_else(|| "root".into()),
+                kind: scene.root.kind_name(),
+                role: scene.root.role,
+                mesh: root.clone(),
+            });
+            for c in &plan.children {
+                collect_named(c, &scene.root.transform, &cx, &mut named)?;
+            }
+        }
+        Ok((root, named))
+    })?;
     let mut reports = cx.reports.into_inner().unwrap_or_else(|e| e.into_inner());
     let nodes: Vec<NodeReport> = reports.iter_mut().filter_map(Option::take).collect();
+    let mut named = Vec::new();
     let (mesh, failed) = match result {
-        Ok(mesh) => (Some(Arc::unwrap_or_clone(mesh)), None),
+        Ok((mesh, n)) => {
+            named = n;
+            (Some(Arc::unwrap_or_clone(mesh)), None)
+        }
         Err(Failed::Cancelled) => return Err(Error::Cancelled),
         Err(Failed::At(path)) => {
             let error = nodes
@@ -220,8 +262,52 @@ pub fn evaluate(scene: &Scene, cache: &Cache, opts: &CsgOptions) -> Result<CsgOu
         mesh,
         failed,
         nodes,
+        named,
         seconds: start.elapsed().as_secs_f64(),
     })
+}
+
+/// Adds the named nodes of `plan`'s subtree to `out`, `above` the transform from `plan`'s
+/// parent's frame to the root's output (each node's result from the cache, where the
+/// evaluation put it, else computed).
+fn collect_named(
+    plan: &Plan<'_>,
+    above: &Transform,
+    cx: &Cx<'_>,
+    out: &mut Vec<NamedResult>,
+) -> std::result::Result<(), Failed> {
+    let node = plan.node;
+    if let Some(name) = &node.name {
+        let mesh = match plan
+            .key
+            .as_ref()
+            .ok()
+            .and_then(|k| cx.cached(k, &mut Vec::new()))
+        {
+            Some((m, _)) => m,
+            None => run(plan, cx)?,
+        };
+        let mesh = if *above == Transform::IDENTITY || mesh.is_empty() {
+            mesh
+        } else {
+            match ops::transform(&mesh, above) {
+                Ok(t) => Arc::new(t.mesh),
+                Err(_) => return Err(Failed::At(plan.path.clone())),
+            }
+        };
+        out.push(NamedResult {
+            path: plan.path.clone(),
+            name: name.clone(),
+            kind: node.kind_name(),
+            role: node.role,
+            mesh,
+        });
+    }
+    let below = node.transform.then(above);
+    for c in &plan.children {
+        collect_named(c, &below, cx, out)?;
+    }
+    Ok(())
 }
 
 /// A node with its path, keys and place among the reports.

@@ -22,5 +22,7 @@ mod eval;
 mod scene;
 
 pub use cache::{Cache, Key, Source};
-pub use eval::{evaluate, CsgOptions, CsgOutput, CsgReport, NodeFailure, NodeProgress, NodeReport};
+pub use eval::{
+    evaluate, CsgOptions, CsgOutput, CsgReport, NamedResult, NodeFailure, NodeProgress, NodeReport,
+};
 pub use scene::{CsgOp, Node, NodeKind, Role, Scene};

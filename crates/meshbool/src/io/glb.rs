@@ -1,7 +1,9 @@
 //! glTF 2.0 binary (GLB): a 12-byte header, a JSON chunk that describes the scene and a BIN
 //! chunk that holds the numbers.
 //!
-//! Written as one scene, one node and one mesh with one triangle primitive: `POSITION` as
+//! Written as one scene, one node and one mesh with one triangle primitive (or, by
+//! [`super::write_glb`], one such node per mesh, named, hidden or not with
+//! `KHR_node_visibility`, with `extras`): `POSITION` as
 //! `FLOAT` `VEC3` (with its `min`/`max`) and `UNSIGNED_INT` indices. glTF stores positions as
 //! `f32`, whose 24-bit significand would leave survey coordinates (UTM northings near
 //! 6.8 million) with steps of 0.5: positions are therefore written relative to a local
@@ -14,7 +16,8 @@
 //! a node of the scene references, its `POSITION` (`FLOAT` `VEC3`) and its indices
 //! (`UNSIGNED_BYTE`, `UNSIGNED_SHORT` or `UNSIGNED_INT`, or none: the positions in order),
 //! moved by the node's transform composed from the root down (translation, rotation, scale
-//! or a column-major matrix), in `f64`. A node whose transform mirrors has its triangles
+//! or a column-major matrix), in `f64`; a node hidden by `KHR_node_visibility` is left
+//! out with its subtree. A node whose transform mirrors has its triangles
 //! turned over, so that they keep facing the way glTF says they face. Points and lines are
 //! skipped. Only the file's own BIN chunk is read: buffers in external files or data URIs,
 //! sparse accessors and required extensions (Draco, meshopt) are errors.
@@ -68,9 +71,44 @@ pub(super) fn write(out: &mut impl Write, mesh: &Mesh) -> Result<()> {
             "a glTF mesh needs at least one triangle; this mesh has none",
         ));
     }
+    write_parts(
+        out,
+        &[GlbPart {
+            name: None,
+            mesh,
+            visible: true,
+            extras: None,
+        }],
+    )
+}
+
+/// One node of a GLB written by [`super::write_glb`]: a mesh, and what the node says of it.
+#[derive(Clone, Debug)]
+pub struct GlbPart<'a> {
+    /// The node's `name`.
+    pub name: Option<String>,
+    /// Its mesh (a node without a mesh where it has no triangles).
+    pub mesh: &'a Mesh,
+    /// False: the node is hidden (`KHR_node_visibility`, which viewers without the
+    /// extension ignore, and which this library's reader honours).
+    pub visible: bool,
+    /// The node's `extras` (any JSON).
+    pub extras: Option<serde_json::Value>,
+}
+
+/// A mesh's positions relative to the centre of its box, as `f32`, with that centre and
+/// the positions' bounds; an error naming a vertex too far from the centre for `f32`.
+struct Local {
+    origin: [f64; 3],
+    positions: Vec<[f32; 3]>,
+    min: [f32; 3],
+    max: [f32; 3],
+}
+
+fn local(mesh: &Mesh) -> Result<Local> {
     // The local origin: the centre of the box around every position (halves added, so
     // that the sum cannot overflow).
-    let mut lo = mesh.positions[0];
+    let mut lo = mesh.positions.first().copied().unwrap_or([0.0; 3]);
     let mut hi = lo;
     for p in &mesh.positions {
         for k in 0..3 {
@@ -79,11 +117,11 @@ pub(super) fn write(out: &mut impl Write, mesh: &Mesh) -> Result<()> {
         }
     }
     let origin: [f64; 3] = std::array::from_fn(|k| lo[k] / 2.0 + hi[k] / 2.0);
-    let local = |p: &[f64; 3]| -> [f32; 3] { std::array::from_fn(|k| (p[k] - origin[k]) as f32) };
     let mut min = [f32::INFINITY; 3];
     let mut max = [f32::NEG_INFINITY; 3];
+    let mut positions = Vec::with_capacity(mesh.positions.len());
     for (v, p) in mesh.positions.iter().enumerate() {
-        let q = local(p);
+        let q: [f32; 3] = std::array::from_fn(|k| (p[k] - origin[k]) as f32);
         if q.iter().any(|x| !x.is_finite()) {
             return Err(Error::invalid(
                 Location::Vertex(v),
@@ -96,44 +134,90 @@ pub(super) fn write(out: &mut impl Write, mesh: &Mesh) -> Result<()> {
             min[k] = min[k].min(q[k]);
             max[k] = max[k].max(q[k]);
         }
+        positions.push(q);
     }
+    Ok(Local {
+        origin,
+        positions,
+        min,
+        max,
+    })
+}
 
-    let n = mesh.positions.len() as u64;
-    let indices = 3 * mesh.triangles.len() as u64;
-    let positions_len = 12 * n;
-    let bin_len = positions_len + 4 * indices;
-    let json = serde_json::json!({
-        "asset": {"version": "2.0", "generator": "meshbool"},
-        "scene": 0,
-        "scenes": [{"nodes": [0]}],
-        "nodes": [{"mesh": 0, "translation": origin}],
-        "meshes": [{"primitives": [{
-            "attributes": {"POSITION": 0},
-            "indices": 1,
-            "mode": TRIANGLES,
-        }]}],
-        "accessors": [
-            {
-                "bufferView": 0,
+/// Writes one scene of `parts`, a root node each (in order), each mesh relative to its
+/// own local origin (the node's `translation`, in full `f64`).
+pub(super) fn write_parts(out: &mut impl Write, parts: &[GlbPart<'_>]) -> Result<()> {
+    let mut nodes = Vec::new();
+    let mut meshes = Vec::new();
+    let mut accessors = Vec::new();
+    let mut views = Vec::new();
+    let mut locals = Vec::new();
+    let mut offset = 0u64;
+    let mut hidden = false;
+    for part in parts {
+        let mut node = serde_json::Map::new();
+        if let Some(name) = &part.name {
+            node.insert("name".into(), name.clone().into());
+        }
+        if !part.mesh.triangles.is_empty() {
+            let l = local(part.mesh)?;
+            let (n, indices) = (
+                l.positions.len() as u64,
+                3 * part.mesh.triangles.len() as u64,
+            );
+            let a = accessors.len();
+            node.insert("mesh".into(), meshes.len().into());
+            node.insert("translation".into(), serde_json::json!(l.origin));
+            meshes.push(serde_json::json!({"primitives": [{
+                "attributes": {"POSITION": a},
+                "indices": a + 1,
+                "mode": TRIANGLES,
+            }]}));
+            accessors.push(serde_json::json!({
+                "bufferView": a,
                 "componentType": FLOAT,
                 "count": n,
                 "type": "VEC3",
-                "min": min.map(f64::from),
-                "max": max.map(f64::from),
-            },
-            {
-                "bufferView": 1,
+                "min": l.min.map(f64::from),
+                "max": l.max.map(f64::from),
+            }));
+            accessors.push(serde_json::json!({
+                "bufferView": a + 1,
                 "componentType": UNSIGNED_INT,
                 "count": indices,
                 "type": "SCALAR",
-            },
-        ],
-        "bufferViews": [
-            {"buffer": 0, "byteOffset": 0, "byteLength": positions_len, "target": 34962},
-            {"buffer": 0, "byteOffset": positions_len, "byteLength": 4 * indices, "target": 34963},
-        ],
+            }));
+            views.push(serde_json::json!({"buffer": 0, "byteOffset": offset, "byteLength": 12 * n, "target": 34962}));
+            views.push(serde_json::json!({"buffer": 0, "byteOffset": offset + 12 * n, "byteLength": 4 * indices, "target": 34963}));
+            offset += 12 * n + 4 * indices;
+            locals.push((l, part.mesh));
+        }
+        if !part.visible {
+            hidden = true;
+            node.insert(
+                "extensions".into(),
+                serde_json::json!({"KHR_node_visibility": {"visible": false}}),
+            );
+        }
+        if let Some(extras) = &part.extras {
+            node.insert("extras".into(), extras.clone());
+        }
+        nodes.push(serde_json::Value::Object(node));
+    }
+    let bin_len = offset;
+    let mut json = serde_json::json!({
+        "asset": {"version": "2.0", "generator": "meshbool"},
+        "scene": 0,
+        "scenes": [{"nodes": (0..nodes.len()).collect::<Vec<_>>()}],
+        "nodes": nodes,
+        "meshes": meshes,
+        "accessors": accessors,
+        "bufferViews": views,
         "buffers": [{"byteLength": bin_len}],
     });
+    if hidden {
+        json["extensionsUsed"] = serde_json::json!(["KHR_node_visibility"]);
+    }
     let mut json = serde_json::to_vec(&json)
         .map_err(|e| Error::invalid(Location::Whole, format!("glTF JSON: {e}")))?;
     // Chunks start and end on 4-byte boundaries: JSON padded with spaces, BIN with zeros.
@@ -158,17 +242,19 @@ pub(super) fn write(out: &mut impl Write, mesh: &Mesh) -> Result<()> {
         .bytes(&json);
     o.bytes(&bin32.to_le_bytes())
         .bytes(&CHUNK_BIN.to_le_bytes());
-    for p in &mesh.positions {
-        for x in local(p) {
-            o.bytes(&x.to_le_bytes());
+    for (l, mesh) in &locals {
+        for q in &l.positions {
+            for x in q {
+                o.bytes(&x.to_le_bytes());
+            }
+            o.record_done()?;
         }
-        o.record_done()?;
-    }
-    for t in &mesh.triangles {
-        for i in t {
-            o.bytes(&i.to_le_bytes());
+        for t in &mesh.triangles {
+            for i in t {
+                o.bytes(&i.to_le_bytes());
+            }
+            o.record_done()?;
         }
-        o.record_done()?;
     }
     for _ in bin_len..bin_padded {
         o.bytes(&[0]);
@@ -216,11 +302,31 @@ struct Scene {
 struct Node {
     #[serde(default)]
     children: Vec<usize>,
+    #[serde(default)]
+    extensions: NodeExtensions,
     mesh: Option<usize>,
     matrix: Option<[f64; 16]>,
     translation: Option<[f64; 3]>,
     rotation: Option<[f64; 4]>,
     scale: Option<[f64; 3]>,
+}
+
+/// The node extensions read: `KHR_node_visibility` (a hidden node and its subtree are
+/// not read).
+#[derive(Deserialize, Default)]
+struct NodeExtensions {
+    #[serde(rename = "KHR_node_visibility")]
+    visibility: Option<Visibility>,
+}
+
+#[derive(Deserialize)]
+struct Visibility {
+    #[serde(default = "visible")]
+    visible: bool,
+}
+
+fn visible() -> bool {
+    true
 }
 
 #[derive(Deserialize)]
@@ -545,6 +651,14 @@ impl Glb<'_> {
                 return Err(self.bad(format!(
                     "nodes[{n}] is reached twice: the node hierarchy is not a tree"
                 )));
+            }
+            if node
+                .extensions
+                .visibility
+                .as_ref()
+                .is_some_and(|v| !v.visible)
+            {
+                continue;
             }
             let world = parent.then_after(&self.local(n, node)?);
             if let Some(m) = node.mesh {

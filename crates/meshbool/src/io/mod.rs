@@ -242,6 +242,19 @@ pub fn write(out: &mut impl Write, mesh: &Mesh, format: Format) -> Result<()> {
     Ok(())
 }
 
+pub use glb::GlbPart;
+
+/// Writes a glTF binary of several meshes, one node each, in the order given (names,
+/// visibility, `extras`: [`GlbPart`]); as [`write`] writes one mesh in [`Format::Glb`].
+/// Errors for non-finite coordinates and coordinates too far from their mesh's centre
+/// for `f32` offsets.
+pub fn write_glb(out: &mut impl Write, parts: &[GlbPart<'_>]) -> Result<()> {
+    for p in parts {
+        p.mesh.validate()?;
+    }
+    glb::write_parts(out, parts)
+}
+
 /// Writes `mesh` to a file in the format its extension names ([`Format::for_path`]).
 pub fn write_path(path: impl AsRef<Path>, mesh: &Mesh) -> Result<()> {
     let path = path.as_ref();
