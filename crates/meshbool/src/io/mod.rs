@@ -245,7 +245,7 @@ pub fn write(out: &mut impl Write, mesh: &Mesh, format: Format) -> Result<()> {
 pub use glb::GlbPart;
 
 /// Writes a glTF binary of several meshes, one node each, in the order given (names,
-/// visibility, `extras`: [`GlbPart`]); as [`write`] writes one mesh in [`Format::Glb`].
+/// visibility, `extras`: [`GlbPart`]); as [`write()`] writes one mesh in [`Format::Glb`].
 /// Errors for non-finite coordinates and coordinates too far from their mesh's centre
 /// for `f32` offsets.
 pub fn write_glb(out: &mut impl Write, parts: &[GlbPart<'_>]) -> Result<()> {
