@@ -520,7 +520,11 @@ fn boolean_many<'py>(
     let run = opts.run.clone();
     let (out, report) = interruptible(py, &run, size, move || {
         let inputs: Vec<ops::Input> = meshes.iter().map(ops::Input::from).collect();
-        let out = ops::boolean_many(&inputs, op, &opts)?;
+        // A difference of many: the first less all the others, in one call.
+        let out = match op {
+            Op::Difference => ops::difference_many(&inputs, &opts)?,
+            op => ops::boolean_many(&inputs, op, &opts)?,
+        };
         let report = out.report();
         Ok::<_, Error>((out, report))
     })?

@@ -370,8 +370,10 @@ def test_union_of_many_in_one_call():
         one = meshbool.boolean_many(cubes, op, one_arrangement=True)
         assert one.is_closed and one.volume == volume
         assert one.report["combined"] == "one_arrangement"
+    # B − A of many has no meaning: refused (a difference of many is the first less the
+    # others, test_boolean_many_difference_is_the_first_less_the_others).
     with pytest.raises(ValueError, match="only union and intersection"):
-        meshbool.boolean_many(cubes, "difference")
+        meshbool.boolean_many(cubes, "reverse_difference")
 
 
 def test_files_round_trip_and_os_errors(tmp_path):
@@ -688,3 +690,16 @@ def test_csg_scene_with_meshes_in_memory_a_cache_and_failures(tmp_path):
     assert e.value.report["failed"]["path"] == "root.children[0].children[0]"
     with pytest.raises(ValueError, match=r"root\.children\[0\]\.radus: unknown key"):
         meshbool.csg({"root": {"op": "union", "children": [{"primitive": "sphere", "radus": 1}]}})
+
+
+def test_boolean_many_difference_is_the_first_less_the_others():
+    """``boolean_many(meshes, "difference")``: the first mesh less all the others (here
+    two slots through a bar, one of them overlapping a third cutter), exact volumes; the
+    provenance names inputs by position."""
+    bar = meshbool.box([0, 0, 0], [4, 1, 1])
+    slots = [meshbool.box([0.5, -1, -1], [1, 2, 2]), meshbool.box([2.5, -1, -1], [3, 2, 2]),
+             meshbool.box([2.75, -1, -1], [3.25, 2, 2])]
+    out = meshbool.boolean_many([bar, *slots], "difference")
+    assert out.is_closed and out.volume == 4 - 0.5 - 0.75
+    assert set(np.unique(out.provenance["input"])) == {0, 1, 2, 3}
+    assert len(out.report["operands"]) == 4

@@ -442,7 +442,8 @@ def boolean_many(
 ) -> Mesh:
     """The union (``op="union"``) or intersection (``"intersection"``) of any number of
     meshes in one call: pairwise booleans in a balanced tree, in parallel, rather than a
-    chain. Checks and options as for :func:`boolean`. The result's ``provenance`` has
+    chain; or the first mesh less all the others (``"difference"``: the others united,
+    then one difference, as ``meshbool difference A B C``). Checks and options as for :func:`boolean`. The result's ``provenance`` has
     ``input`` (position in ``meshes``) and ``triangle`` (in that input).
 
     ``one_arrangement=True``: more than two closed meshes are cut along one another all at
