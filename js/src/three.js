@@ -153,11 +153,18 @@ function makeMaterial(options) {
 }
 
 /**
- * The centroid of a soup's corners (in double precision), rounded to a multiple of the
- * power of two nearest below the soup's largest extent: the local positions stay within
- * about twice the extent (full single precision for them), and corners on a coarse grid
- * (small integers, say) stay exactly representable after the subtraction.
+ * `c` rounded to a multiple of the power of two nearest below the largest extent of the
+ * box `lo`..`hi`: positions less it stay within about twice the extent (full single
+ * precision for them), and corners on a coarse grid (small integers, say) stay exactly
+ * representable after the subtraction.
  */
+function roundedCentre(c, lo, hi) {
+	const extent = Math.max(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+	const step = extent > 0 && Number.isFinite(extent) ? 2 ** Math.floor(Math.log2(extent)) : 1;
+	return c.map((x) => Math.round(x / step) * step);
+}
+
+/** The centroid of a soup's corners (in double precision), rounded by `roundedCentre`. */
 function roundedCentroid(soup) {
 	const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity], sum = [0, 0, 0];
 	for (const t of soup) {
@@ -170,9 +177,20 @@ function roundedCentroid(soup) {
 			}
 		}
 	}
-	const extent = Math.max(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
-	const step = extent > 0 && Number.isFinite(extent) ? 2 ** Math.floor(Math.log2(extent)) : 1;
-	return sum.map((s) => Math.round(s / (3 * soup.length) / step) * step);
+	return roundedCentre(sum.map((x) => x / (3 * soup.length)), lo, hi);
+}
+
+/** The centroid of flat positions (three numbers per vertex), rounded by `roundedCentre`. */
+function roundedVertexCentroid(p) {
+	const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity], sum = [0, 0, 0];
+	for (let i = 0; i < p.length; i += 3) {
+		for (let k = 0; k < 3; k++) {
+			sum[k] += p[i + k];
+			if (p[i + k] < lo[k]) lo[k] = p[i + k];
+			if (p[i + k] > hi[k]) hi[k] = p[i + k];
+		}
+	}
+	return roundedCentre(sum.map((x) => x / (p.length / 3)), lo, hi);
 }
 
 /**
@@ -364,18 +382,7 @@ export function csgGroup(group, options) {
 	const out = evaluateCsg({ root }, csgOptions);
 	if (out.index.length === 0) return null;
 	const p = out.positions;
-	let center = [0, 0, 0];
-	if (recenter !== false) {
-		const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
-		for (let i = 0; i < p.length; i += 3) {
-			for (let k = 0; k < 3; k++) {
-				lo[k] = Math.min(lo[k], p[i + k]);
-				hi[k] = Math.max(hi[k], p[i + k]);
-			}
-		}
-		// Rounded to a whole number, so that the subtraction below is exact.
-		center = lo.map((l, k) => Math.round((l + hi[k]) / 2));
-	}
+	const center = recenter !== false ? roundedVertexCentroid(p) : [0, 0, 0];
 	const local = new Float64Array(p.length);
 	for (let i = 0; i < p.length; i += 3) {
 		local[i] = p[i] - center[0];
