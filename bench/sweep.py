@@ -56,6 +56,7 @@ QUICK = (
     "cad_featuretype.stl",
     "cad_gears.stl",
     "cad_plate_holes.stl",
+    "open_fault_santa_monica.obj",
     "open_terrain_grid.off",
     "print_far_out_ring.stl",
     "print_hourglass.stl",
@@ -219,19 +220,24 @@ def boolean(binary, op, a, b, work, timeout):
                 (o.get("rounding_noise") or {}).get("boundary_edges", [1, 1])[1] == 0
                 for o in r["operands"]
             ],
+            # Operands the door resolved: closed, or non-manifold with every edge used
+            # as often in each direction (the resolve takes nothing else).
+            closed_by_resolve=[o.get("resolved") is not None for o in r["operands"]],
             assumed=len(r.get("assumed", [])),
         )
     return rec
 
 
 def closed_operands(a_info, b_info, runs):
-    """Whether both operands are closed: as read (exactly welded), or once the door merged
-    positions that differ by rounding (the report's `rounding_noise`)."""
-    noise = next(
-        (r["closed_by_noise"] for r in runs.values() if r["status"] == "answered"), [False, False]
-    )
-    a = bool(a_info and a_info["closed"]) or noise[0]
-    b = bool(b_info and b_info["closed"]) or noise[1]
+    """Whether both operands are closed: as read (exactly welded), once the door merged
+    positions that differ by rounding (the report's `rounding_noise`), or as the door
+    resolved them (closed, or non-manifold with every edge used as often in each
+    direction: the report's `resolved`)."""
+    answered = [r for r in runs.values() if r["status"] == "answered"]
+    noise = next((r["closed_by_noise"] for r in answered), [False, False])
+    resolved = next((r["closed_by_resolve"] for r in answered), [False, False])
+    a = bool(a_info and a_info["closed"]) or noise[0] or resolved[0]
+    b = bool(b_info and b_info["closed"]) or noise[1] or resolved[1]
     return a and b
 
 

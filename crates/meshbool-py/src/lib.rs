@@ -177,7 +177,8 @@ fn measures(
 ) -> PyResult<(f64, f64, bool)> {
     let m = mesh(&v, &f)?;
     let r = py.detach(move || Measures::of(&m));
-    Ok((r.volume, r.area, r.closed))
+    // A mesh with no triangles is not a closed mesh (a result says `empty` beside).
+    Ok((r.volume, r.area, r.closed && !r.empty))
 }
 
 /// The `meshbool info --json` report of a mesh.

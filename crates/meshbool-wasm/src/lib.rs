@@ -684,7 +684,7 @@ pub fn measures(positions: &[f64], index: &[u32]) -> Result<Vec<f64>, JsError> {
     Ok(vec![
         r.volume,
         r.area,
-        f64::from(u8::from(r.closed)),
+        f64::from(u8::from(r.closed && !r.empty)),
         r.boundary_edges as f64,
         r.non_manifold_edges as f64,
     ])

@@ -141,6 +141,18 @@ impl EdgeTopology {
         !self.edges.is_empty() && self.offsets.windows(2).all(|w| w[1] - w[0] == 2)
     }
 
+    /// True when every edge is used as often in one direction as in the other (none on a
+    /// boundary, none inconsistent; edges of four, six, ... triangles allowed): the
+    /// surface is a cycle, and its winding number is an integer defined at every point
+    /// off it, even where it is not manifold (closed parts glued along an edge or face
+    /// to face, a face given twice in opposite directions).
+    pub fn is_balanced(&self) -> bool {
+        (0..self.edge_count()).all(|e| {
+            let uses = self.uses_of(e);
+            2 * uses.iter().filter(|u| u.forward).count() == uses.len()
+        })
+    }
+
     /// Edge-connected components: triangles sharing an edge (of any kind) are in the same
     /// component. Returns the number of components and each triangle's component id;
     /// ids are numbered in order of each component's first triangle.

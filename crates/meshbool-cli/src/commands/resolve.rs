@@ -94,7 +94,11 @@ pub fn run(args: &Args) -> Result<()> {
         args.output.display(),
         report.result.triangles,
         report.result.volume,
-        if report.result.closed { "closed" } else { "NOT closed" },
+        match (report.result.empty, report.result.closed) {
+            (true, _) => "empty",
+            (false, true) => "closed",
+            (false, false) => "NOT closed",
+        },
         report.self_intersections,
         r.components,
         r.united_components,

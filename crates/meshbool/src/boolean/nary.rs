@@ -132,9 +132,9 @@ pub fn reduce_in_one(parts: &[Part], op: Op, opts: &PipelineOptions) -> Option<R
     })
 }
 
-/// `op` of `a` and `b` (valid, exactly welded, each made of closed, consistently oriented
-/// sheets with no edge of more than two triangles) where either may cross or overlap
-/// itself: both cut along every crossing at once, their own included, in one arrangement
+/// `op` of `a` and `b` (valid, exactly welded, each a cycle: every edge used as often in
+/// one direction as in the other, closed sheets and parts glued along edges or face to
+/// face alike) where either may cross or overlap itself: both cut along every crossing at once, their own included, in one arrangement
 /// of the two, and each patch kept where the operation's inside differs on its two sides.
 /// Inside a mesh is where its exact winding number is at least 1 (the fill rule
 /// positive of [`super::resolve()`]), so the result is the boolean of the solids the two
@@ -145,7 +145,7 @@ pub fn reduce_in_one(parts: &[Part], op: Op, opts: &PipelineOptions) -> Option<R
 /// `pairs_a` and `pairs_b` are each mesh's own crossing pairs (as
 /// [`crate::intersect::self_intersections`] finds them).
 ///
-/// `None` where the exact route does not decide (a mesh that is not made of closed sheets,
+/// `None` where the exact route does not decide (a mesh that is not a cycle,
 /// a triangle the arrangement could not cut, winding numbers not decided exactly); the
 /// caller then resolves and combines in two steps.
 pub fn boolean_in_one(
@@ -156,7 +156,7 @@ pub fn boolean_in_one(
     op: Op,
     opts: &PipelineOptions,
 ) -> Option<BooleanResult> {
-    if !(closed_sheets(a) && closed_sheets(b)) {
+    if !(balanced(a) && balanced(b)) {
         return None;
     }
     let na = u32::try_from(a.triangles.len()).ok()?;
@@ -214,6 +214,15 @@ pub fn boolean_in_one(
 fn closed_sheets(m: &Mesh) -> bool {
     let c = EdgeCounts::of(m);
     c.boundary == 0 && c.inconsistent == 0 && c.non_manifold == 0
+}
+
+/// Whether every edge of `m` is used as often in each direction ([`EdgeTopology::is_balanced`]):
+/// its winding number is defined off the surface, what [`boolean_in_one`] needs.
+fn balanced(m: &Mesh) -> bool {
+    let c = EdgeCounts::of(m);
+    c.boundary == 0
+        && c.inconsistent == 0
+        && (c.non_manifold == 0 || crate::edges::EdgeTopology::new(m).is_balanced())
 }
 
 /// Which winding numbers [`keep_in_one`] takes: only 0 and 1 (meshes that do not cross
@@ -327,12 +336,30 @@ fn keep_in_one(
     seam_vertices.sort_unstable();
     seam_vertices.dedup();
     let before = mesh.positions.len() as u32;
-    let (mut mesh, nonmanifold, copied) = if opts.keep_nonmanifold {
+    let (mut mesh, mut nonmanifold, mut copied) = if opts.keep_nonmanifold {
         (mesh, NonManifoldReport::default(), Vec::new())
     } else {
         let exact = |i: usize| Some(arr.point(seam_vertices[i]));
         split_at(mesh, &seam_vertices, Some(&exact))
     };
+    if !opts.keep_nonmanifold {
+        // Edges of more than two triangles away from the seam's vertices, where an input
+        // was itself not manifold (parts glued face to face that no pairing into sheets
+        // separated) and its pieces meet again: split there too, at their exact points.
+        let left = nonmanifold_vertices(&mesh);
+        if !left.is_empty() {
+            let original = |v: u32| match (v as usize).checked_sub(before as usize) {
+                Some(k) => copied[k],
+                None => v,
+            };
+            let exact = |i: usize| Some(arr.point(original(left[i])));
+            let (split, more, copies) = split_at(mesh, &left, Some(&exact));
+            mesh = split;
+            nonmanifold.add(&more);
+            let copies: Vec<u32> = copies.into_iter().map(original).collect();
+            copied.extend(copies);
+        }
+    }
     let is_added = |v: u32| v as usize >= arr.input_vertices;
     let mut added: Vec<u32> = seam_vertices
         .iter()
@@ -368,6 +395,22 @@ fn keep_in_one(
         nonmanifold,
         cleanup,
     })
+}
+
+/// The vertices of the edges of `m` used by more than two triangles (sorted, distinct;
+/// empty for a manifold mesh, found without building the adjacency).
+fn nonmanifold_vertices(m: &Mesh) -> Vec<u32> {
+    if EdgeCounts::of(m).non_manifold == 0 {
+        return Vec::new();
+    }
+    let topo = EdgeTopology::new(m);
+    let mut v: Vec<u32> = (0..topo.edge_count())
+        .filter(|&e| topo.uses_of(e).len() > 2)
+        .flat_map(|e| topo.edges[e])
+        .collect();
+    v.sort_unstable();
+    v.dedup();
+    v
 }
 
 /// Each of the `count` patches' largest piece (`patch`: each triangle's patch) as (twice

@@ -10,6 +10,10 @@
 //! another, and crossing components under the even-odd rule go through the
 //! self-arrangement instead ([`crate::arrange::arrange_self`]): the mesh cut along its own
 //! seam, each piece kept, dropped or reversed by the winding number on its two sides.
+//! So does a mesh that is not manifold but whose every edge is used as often in each
+//! direction (parts glued face to face, touching along an edge where they cross, faces
+//! given in both directions), where no pairing into closed sheets separates it: its
+//! winding number is still an integer defined off the surface.
 
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
@@ -152,7 +156,8 @@ struct Piece {
 /// encloses under `rule`, as a closed mesh (manifold unless `opts.keep_nonmanifold`).
 ///
 /// Errors (the reason, one phrase): a component that is not closed and consistently
-/// oriented, a component of zero volume.
+/// oriented (unless every edge of the mesh is used as often in each direction: then the
+/// self-arrangement decides), a component of zero volume.
 ///
 /// An input with edges of more than two triangles is first separated into sheets
 /// ([`split_nonmanifold`]: triangle ids kept, vertices duplicated) and its crossing pairs
@@ -196,6 +201,12 @@ fn resolve_sheets(
         if topo.kind(e) != EdgeKind::Manifold {
             bad[component[topo.uses_of(e)[0].triangle as usize] as usize].get_or_insert(e);
         }
+    }
+    if bad.iter().any(Option::is_some) && topo.is_balanced() {
+        // Edges of more than two triangles that no pairing into sheets separated (parts
+        // glued face to face), every one used as often in each direction: the winding
+        // number is defined everywhere off the surface, and the self-arrangement decides.
+        return resolve_self(mesh, pairs, rule, opts, report);
     }
     if let Some((c, e)) = bad.iter().enumerate().find_map(|(c, e)| Some((c, (*e)?))) {
         let what = match topo.kind(e) {

@@ -211,8 +211,12 @@ pub struct Measures {
     pub boundary_edges: usize,
     /// Edges used by more than two triangles.
     pub non_manifold_edges: usize,
-    /// True when the mesh has triangles and neither boundary nor non-manifold edges.
+    /// True when the mesh has neither boundary nor non-manifold edges. An empty result
+    /// (the empty solid: closed operands that do not meet in an intersection, a
+    /// difference that removes everything) is closed too; [`Measures::empty`] says so.
     pub closed: bool,
+    /// True when the mesh has no triangles.
+    pub empty: bool,
     /// Signed volume (meaningful when closed).
     pub volume: f64,
     /// Surface area.
@@ -228,7 +232,8 @@ impl Measures {
             vertices: mesh.positions.len(),
             boundary_edges: counts.boundary,
             non_manifold_edges: counts.non_manifold,
-            closed: !mesh.is_empty() && counts.boundary == 0 && counts.non_manifold == 0,
+            closed: counts.boundary == 0 && counts.non_manifold == 0,
+            empty: mesh.is_empty(),
             volume: signed_volume(mesh),
             area: area(mesh),
         }

@@ -127,6 +127,11 @@ pub struct OperandReport {
     /// Triangles reversed at the door to make the orientation consistent (each component
     /// facing as most of its triangles did; [`Checks::orient`]); 0 when none.
     pub reoriented_triangles: usize,
+    /// Where orienting was tried and could not make every edge consistent: the edges
+    /// still inconsistent once each component faces as most of its triangles did (a
+    /// one-sided, non-orientable part, as a twisted strip of triangles makes: no
+    /// orientation has an inside there); 0 when none or not tried.
+    pub one_sided_edges: usize,
     /// Edges used by more than two triangles in the input; `None`: not checked. Not a
     /// problem when the operand was resolved ([`OperandReport::resolved`] says how).
     pub non_manifold_edges: Option<usize>,
@@ -170,6 +175,14 @@ pub struct SelfIntersections {
     pub near: Option<[f64; 3]>,
     /// Why they could not be resolved ([`Checks::resolve`]), if that was tried and failed.
     pub unresolved: Option<String>,
+    /// True when every pair is of triangles of open parts (components with boundary
+    /// edges), no small weld closes the boundary (then it is a cracked solid:
+    /// [`OperandReport::closes_at_weld`]), and they were taken as given rather than
+    /// refused: an open surface has no
+    /// inside of its own to resolve, its pieces are classified against the other operand
+    /// as usual, and the other operand's pieces against the sum of its sheets (the
+    /// winding number, defined wherever the surface crosses itself).
+    pub open_kept: bool,
 }
 
 impl OperandReport {
@@ -196,9 +209,15 @@ impl OperandReport {
     pub fn problems(&self) -> Vec<String> {
         let mut problems = Vec::new();
         if let (Some(n @ 1..), 0) = (self.inconsistent_edges, self.reoriented_triangles) {
-            problems.push(match self.inconsistent_near {
-                Some(p) => format!("{n} inconsistently oriented edges (the first near {p:?})"),
-                None => format!("{n} inconsistently oriented edges"),
+            let near = match self.inconsistent_near {
+                Some(p) => format!(" (the first near {p:?})"),
+                None => String::new(),
+            };
+            problems.push(match self.one_sided_edges {
+                0 => format!("{n} inconsistently oriented edges{near}"),
+                k => format!(
+                    "{n} inconsistently oriented edges, {k} of which no orientation makes consistent{near}: the surface is one-sided (non-orientable) there and has no inside"
+                ),
             });
         }
         if let (Some(n @ 1..), None) = (self.non_manifold_edges, &self.resolved) {
@@ -213,6 +232,7 @@ impl OperandReport {
                 first: Some([i, j]),
                 near: Some(near),
                 unresolved,
+                open_kept: false,
             }),
             None,
         ) = (&self.self_intersections, &self.resolved)
@@ -288,9 +308,27 @@ impl OperandReport {
                 0 => String::new(),
                 n => format!("{n} edges of more than two triangles separated into sheets, "),
             };
+            // Nothing left: every part cancelled by another facing the other way.
+            let empty = if self.triangles == 0 {
+                "; it encloses no volume (its winding number is 0 everywhere off the surface, as where every face is given in both directions: a double-sided surface), so it is empty"
+            } else {
+                ""
+            };
             lines.push(format!(
-                "{}: {glued}{} self-intersecting triangle pairs resolved: the operand is the solid it encloses (fill rule positive; {how})",
+                "{}: {glued}{} self-intersecting triangle pairs resolved: the operand is the solid it encloses (fill rule positive; {how}){empty}",
                 self.name, r.crossing_pairs
+            ));
+        }
+        if let Some(SelfIntersections {
+            pairs,
+            near: Some(near),
+            open_kept: true,
+            ..
+        }) = &self.self_intersections
+        {
+            lines.push(format!(
+                "{}: {pairs} self-intersecting triangle pairs of its open parts (the first near {near:?}) taken as given: an open surface is not cut along its own crossings; its pieces are classified against the other operand, and the other's pieces by the sum of its sheets there",
+                self.name
             ));
         }
         let problems = self.problems();
@@ -433,11 +471,19 @@ impl Operand {
         let mut flipped = vec![false; mesh.triangles.len()];
         let mut counts = found_counts;
         let mut reoriented_triangles = 0;
+        let mut one_sided = None;
         if checks.orient && found_counts.is_some_and(|c| c.inconsistent > 0) {
             let (oriented, r) = crate::repair::orient(&mesh, crate::repair::Facing::Majority);
             let after = EdgeCounts::of(&oriented);
             // Only where that makes every edge consistent; otherwise the input stays as
-            // it is and its inconsistent edges are a problem.
+            // it is and its inconsistent edges are a problem, located where they are
+            // left once oriented.
+            if after.inconsistent > 0 {
+                one_sided = Some((
+                    after.inconsistent,
+                    first_edge_near(&oriented, EdgeKind::Inconsistent),
+                ));
+            }
             if after.inconsistent == 0 {
                 for (t, f) in flipped.iter_mut().enumerate() {
                     *f = oriented.triangles[t] != mesh.triangles[t];
@@ -456,6 +502,7 @@ impl Operand {
                 first: first.map(|f| f.map(to_input)),
                 near: first.map(|[i, _]| mesh.centroid(i as usize)),
                 unresolved: None,
+                open_kept: false,
             }
         });
         let (mut resolved, mut parent, mut glued_result) = (None, None, false);
@@ -530,6 +577,16 @@ impl Operand {
                 }
             }
         }
+        // An open surface's own crossings leave no inside ambiguous: taken as given,
+        // unless its boundary closes at a small weld (a cracked solid, whose inside the
+        // crossings would make ambiguous: refused with the weld that closes it).
+        let mut closes = None;
+        if let (Some(found), Some(si), None) = (&found, &mut self_intersections, &resolved) {
+            if !found.is_empty() && crossings_of_open_parts(&mesh, found) {
+                closes = Some(closing_weld(&mesh));
+                si.open_kept = closes == Some(None);
+            }
+        }
         // Resolved triangles' parents named by input ids.
         let parent = match (parent, &kept) {
             (Some(p), Some(_)) => Some(p.into_iter().map(to_input).collect()),
@@ -542,13 +599,15 @@ impl Operand {
             triangles: mesh.triangles.len(),
             vertices: mesh.positions.len(),
             inconsistent_edges: found_counts.map(|c| c.inconsistent),
-            inconsistent_near: match found_counts {
-                Some(c) if c.inconsistent > 0 && reoriented_triangles == 0 => {
+            inconsistent_near: match (found_counts, one_sided) {
+                (_, Some((_, near))) => near,
+                (Some(c), None) if c.inconsistent > 0 && reoriented_triangles == 0 => {
                     first_edge_near(&mesh, EdgeKind::Inconsistent)
                 }
                 _ => None,
             },
             reoriented_triangles,
+            one_sided_edges: one_sided.map_or(0, |(n, _)| n),
             non_manifold_edges: counts.map(|c| c.non_manifold),
             non_manifold_near: match (counts, &resolved) {
                 (Some(c), None) if c.non_manifold > 0 => {
@@ -564,7 +623,9 @@ impl Operand {
             forced: false,
         };
         let closes_at_weld = match counts {
-            Some(c) if c.boundary > 0 && !report.problems().is_empty() => closing_weld(&mesh),
+            Some(c) if c.boundary > 0 && !report.problems().is_empty() => {
+                closes.unwrap_or_else(|| closing_weld(&mesh))
+            }
             _ => None,
         };
         let report = OperandReport {
@@ -706,6 +767,23 @@ impl Operand {
     pub fn into_mesh(self) -> Mesh {
         self.mesh
     }
+}
+
+/// Whether both triangles of every pair in `pairs` are in components of `mesh` with
+/// boundary edges (open parts): crossings that leave no inside of the mesh's own
+/// ambiguous.
+fn crossings_of_open_parts(mesh: &Mesh, pairs: &[(u32, u32)]) -> bool {
+    let topo = crate::EdgeTopology::new(mesh);
+    let (count, component) = topo.components();
+    let mut open = vec![false; count];
+    for e in 0..topo.edge_count() {
+        if topo.kind(e) == EdgeKind::Boundary {
+            open[component[topo.uses_of(e)[0].triangle as usize] as usize] = true;
+        }
+    }
+    pairs
+        .iter()
+        .all(|&(i, j)| open[component[i as usize] as usize] && open[component[j as usize] as usize])
 }
 
 /// The smallest of the weld distances 1e-9, 3e-9, 1e-8, ..., 1e-4 times the diagonal of

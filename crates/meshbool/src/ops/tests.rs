@@ -162,17 +162,36 @@ fn operands_with_problems_are_refused_unless_forced() {
     );
     assert_eq!(out.report().result.boundary_edges, 560);
 
-    // A self-intersecting operand names its first pair.
-    let m = self_intersecting();
-    let err = Operand::new("folded cube", &m, &Checks::default()).unwrap_err();
-    let pairs = crate::intersect::self_intersections(&crate::weld_exact(&m).mesh).len();
+    // A self-intersecting operand that is not resolved names its first pair: closed
+    // parts crossing each other, with the resolve turned off.
+    let (a, b) = cubes();
+    let mut two = a.clone();
+    two.append(&b).unwrap();
+    let no_resolve = Checks {
+        resolve: false,
+        ..Checks::default()
+    };
+    let err = Operand::new("two cubes", &two, &no_resolve).unwrap_err();
+    let pairs = crate::intersect::self_intersections(&two).len();
     assert!(pairs > 0);
     assert!(
         err.to_string().starts_with(&format!(
-            "folded cube: {pairs} self-intersecting triangle pairs (first: triangles"
+            "two cubes: {pairs} self-intersecting triangle pairs (first: triangles"
         )),
         "{err}"
     );
+    // An open surface crossing itself has no inside of its own to be ambiguous: taken
+    // as given, and said.
+    let m = self_intersecting();
+    let o = Operand::new("folded cube", &m, &Checks::default()).unwrap();
+    let pairs = crate::intersect::self_intersections(&crate::weld_exact(&m).mesh).len();
+    let si = o.report().self_intersections.clone().unwrap();
+    assert!(pairs > 0 && si.open_kept && si.pairs == pairs, "{si:?}");
+    assert!(!o.report().forced);
+    assert_eq!(o.report().assumed().len(), 1);
+    assert!(o.report().assumed()[0].starts_with(&format!(
+        "folded cube: {pairs} self-intersecting triangle pairs of its open parts (the first near ["
+    )));
     // Skipped checks are assumptions too.
     let unchecked = Checks {
         self_intersections: false,

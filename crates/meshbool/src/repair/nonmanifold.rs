@@ -31,6 +31,15 @@ pub struct NonManifoldReport {
     pub unpaired: usize,
 }
 
+impl NonManifoldReport {
+    /// Adds `other`'s counts to these (two splits of one mesh).
+    pub fn add(&mut self, other: &NonManifoldReport) {
+        self.edges_split += other.edges_split;
+        self.vertices_added += other.vertices_added;
+        self.unpaired += other.unpaired;
+    }
+}
+
 /// Makes `mesh` manifold by splitting its topology (see the module doc): afterwards every
 /// edge has at most two triangles and every vertex one fan. Positions are unchanged
 /// (copies are appended after the existing vertices); triangles keep their order and
