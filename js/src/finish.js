@@ -15,8 +15,10 @@ function welded(soup, tolerance) {
 	return tolerance > 0 ? call("weld", S.positions, S.index, tolerance) : conditioned(S, false);
 }
 
+// One repair step as the reference runs it, ungated: the finishing stages judge their
+// results themselves (assessRepair).
 function repaired(M, config) {
-	return call("repair", M.positions, M.index, JSON.stringify({ orient: null, ...config }));
+	return call("repair", M.positions, M.index, JSON.stringify({ orient: null, gate: false, ...config }));
 }
 
 /**

@@ -518,7 +518,7 @@ function operands(soupA, soupB, o) {
 }
 
 function preRepair(M, tolerance) {
-	const config = { tjunctions: true, orient: null };
+	const config = { tjunctions: true, orient: null, gate: false };
 	if (typeof tolerance === "number" && tolerance > 0) config.weld = tolerance;
 	const out = call("repair", M.positions, M.index, JSON.stringify(config));
 	return { positions: out.positions, index: out.index };
@@ -917,10 +917,12 @@ export function estimateAvgEdge(tris) {
 
 // ── Repair ──────────────────────────────────────────────────────────────────────────────
 
+// One of the reference's repair functions: the step it names, ungated (as the reference
+// runs it; finishMesh is the gated pipeline).
 function repairSoup(soup, config, what = "soup") {
 	const S = soupToArrays(soup, what);
 	if (S.index.length === 0) return { soup: [], report: null, positions: S.positions, index: S.index };
-	const out = call("repair", S.positions, S.index, JSON.stringify(config));
+	const out = call("repair", S.positions, S.index, JSON.stringify({ gate: false, ...config }));
 	return { soup: arraysToSoup(out.positions, out.index), report: parseReport(out.report), positions: out.positions, index: out.index };
 }
 

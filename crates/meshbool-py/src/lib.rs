@@ -823,6 +823,39 @@ fn terrain(
     made(py, shape)
 }
 
+/// The library's defaults of `terrain` and `pit` (`ops::Shape::TERRAIN`, `ops::Shape::PIT`)
+/// as JSON: `{"terrain": {...}, "pit": {...}}`, keyed by the Python parameters' names
+/// (which the package's signatures must show: a test compares them).
+#[pyfunction]
+fn shape_defaults() -> PyResult<String> {
+    let (
+        ops::Shape::Terrain {
+            center,
+            size,
+            cells,
+            relief,
+            seed,
+        },
+        ops::Shape::Pit {
+            center: pit_center,
+            radius,
+            depth,
+            benches,
+            berm,
+            segments,
+        },
+    ) = (ops::Shape::TERRAIN, ops::Shape::PIT)
+    else {
+        return Err(PyValueError::new_err("the library's example shapes changed kind"));
+    };
+    let defaults = serde_json::json!({
+        "terrain": {"center": center, "size": size, "cells": cells, "relief": relief, "seed": seed},
+        "pit": {"center": pit_center, "radius": radius, "depth": depth, "benches": benches,
+                "berm": berm, "segments": segments},
+    });
+    Ok(defaults.to_string())
+}
+
 /// An open-pit design shell (`meshbool::shapes::pit`).
 #[pyfunction]
 fn pit(
@@ -994,6 +1027,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
         wrap_pyfunction!(repair, m)?,
         wrap_pyfunction!(terrain, m)?,
         wrap_pyfunction!(pit, m)?,
+        wrap_pyfunction!(shape_defaults, m)?,
         wrap_pyfunction!(csg, m)?,
         wrap_pyfunction!(read, m)?,
         wrap_pyfunction!(write, m)?,

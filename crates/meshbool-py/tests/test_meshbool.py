@@ -1,6 +1,7 @@
 """The Python package end to end: every function, geometry asserted (volumes, identities,
 closedness, counts), and bad input raising the right exception."""
 
+import inspect
 import json
 import math
 import pathlib
@@ -703,3 +704,19 @@ def test_boolean_many_difference_is_the_first_less_the_others():
     assert out.is_closed and out.volume == 4 - 0.5 - 0.75
     assert set(np.unique(out.provenance["input"])) == {0, 1, 2, 3}
     assert len(out.report["operands"]) == 4
+
+
+def test_terrain_and_pit_show_the_librarys_defaults():
+    # The signatures' literals are the library's own defaults (Shape::TERRAIN, Shape::PIT),
+    # parameter for parameter, and the call without arguments makes the library's shape.
+    from meshbool import _native
+
+    defaults = json.loads(_native.shape_defaults())
+    for fn in (meshbool.terrain, meshbool.pit):
+        lib = defaults[fn.__name__]
+        params = inspect.signature(fn).parameters
+        assert set(params) == set(lib), fn.__name__
+        for name, value in lib.items():
+            shown = params[name].default
+            shown = list(shown) if isinstance(shown, tuple) else shown
+            assert shown == value, (fn.__name__, name, shown, value)

@@ -97,6 +97,15 @@ pub enum Error {
     /// result.
     #[error("cancelled")]
     Cancelled,
+    /// An operation that needs triangles got an input without any (cut and fill of an
+    /// empty surface).
+    #[error("{name}: no triangles; {needs}")]
+    Empty {
+        /// The input's name (its file, or `design` / `topography`).
+        name: String,
+        /// What the operation needs, one phrase ("cut and fill need two surfaces").
+        needs: &'static str,
+    },
     /// Reading or writing a file failed; the message names the file, then the cause.
     #[error("{action} {}: {error}", path.display())]
     File {

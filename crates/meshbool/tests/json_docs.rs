@@ -306,6 +306,18 @@ fn samples() -> BTreeMap<&'static str, Vec<Value>> {
         let out = ops::repair(&terrain, &config).unwrap();
         s.entry("repair").or_default().push(json(&out.report()));
     }
+    // Two cubes 1e-5 apart: a weld at 1e-4 would make their facing sides one, and is
+    // undone.
+    let mut pair = Mesh::unit_cube();
+    pair.append(&Mesh::cuboid([1.0 + 1e-5, 0.0, 0.0], [2.0, 1.0, 1.0]))
+        .unwrap();
+    let config = RepairConfig {
+        weld: Some(1e-4),
+        ..RepairConfig::default()
+    };
+    let out = ops::repair(&pair, &config).unwrap();
+    assert_eq!(out.repair.undone.len(), 1);
+    s.entry("repair").or_default().push(json(&out.report()));
     s
 }
 

@@ -32,16 +32,6 @@ pub struct Args {
 /// report.
 pub fn run(args: &Args) -> Result<()> {
     let (design, topo) = Operand::read_pair(&args.design, &args.topo, &Checks::NONE)?;
-    // The library's refusal names neither: an input's, not a parameter's.
-    if let Some(empty) = [&design, &topo]
-        .into_iter()
-        .find(|o| o.mesh().triangles().is_empty())
-    {
-        anyhow::bail!(
-            "{}: no triangles; cut and fill need two surfaces",
-            empty.name()
-        );
-    }
     let opts = CutFillOptions {
         run: ops::RunOptions {
             threads: args.threads,

@@ -76,6 +76,11 @@ pub struct Args {
     /// Finally cap every hole left whose bounding-box diagonal is at most this.
     #[arg(long)]
     close_gaps: Option<f64>,
+    /// Keep every step's result, even one that makes the mesh worse (by default a step
+    /// that adds boundary, non-manifold or inconsistent edges or self-intersections, or
+    /// changes a closed mesh's volume by more than 0.5 %, is undone and reported).
+    #[arg(long)]
+    no_gate: bool,
     /// Print a JSON report on stdout.
     #[arg(long)]
     json: bool,
@@ -155,6 +160,7 @@ impl Args {
         if self.close_gaps.is_some() {
             c.close_gaps = self.close_gaps;
         }
+        c.gate &= !self.no_gate;
         Ok(c)
     }
 }
@@ -178,6 +184,13 @@ pub fn run(args: &Args) -> Result<()> {
         return print_json(&out.report());
     }
     let (b, a) = (&out.repair.before, &out.repair.after);
+    for u in &out.repair.undone {
+        eprintln!(
+            "undone: {} (it would have made the mesh worse: {}; --no-gate keeps it)",
+            u.step,
+            u.damage.join(", ")
+        );
+    }
     eprintln!(
         "wrote {}: triangles {} -> {}, boundary edges {} -> {}, non-manifold edges {} -> {}, inconsistent edges {} -> {}, degenerate {} -> {}, closed: {}, volume {} (--json for every step)",
         args.output.display(),

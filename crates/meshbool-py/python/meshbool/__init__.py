@@ -723,8 +723,11 @@ def repair(mesh: MeshLike, **config: Any) -> Mesh:
     "max_aspect": ..}``), ``orient`` (``"majority"``, ``"z-up"``, ``"outward"`` or
     ``None``), ``remove_folds``, ``close`` (a :func:`close` mode), ``close_options``
     (``{"floor_offset": .., "stitch_max_gap": ..}``), ``close_gaps`` (a size), ``snap``
-    (a tolerance, as for :func:`boolean`, after degenerate removal). Unknown
-    keywords raise ``ValueError``. The report says what every step did."""
+    (a tolerance, as for :func:`boolean`, after degenerate removal), ``gate``
+    (default ``True``: a step that makes the mesh worse is undone and listed in the
+    report's ``undone``) and ``gate_volume`` (the largest relative volume change of a
+    closed mesh a step may make, default 0.005). Unknown keywords raise ``ValueError``.
+    The report says what every step did."""
     v, f = _parts(mesh)
     return Mesh._from(*_native.repair(v, f, json.dumps(config)))
 

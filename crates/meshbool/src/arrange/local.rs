@@ -4,11 +4,11 @@
 //! flipping the edges that cross them, as in Sloan's algorithm), then Delaunay-style flips
 //! of unconstrained edges for shape (an approximate in-circle test chooses a flip, the exact
 //! orientation test allows it). The in-circle choice is the same for every order of its
-//! four points ([`incircle_canonical`]), so the triangulation does not depend on the order
+//! four points ([`incircle_canonical`](crate::kernel::incircle_canonical)), so the triangulation does not depend on the order
 //! the points and constraints came in.
 
 use super::FailReason;
-use crate::kernel::{orient2d_prepared, Point, Prepared, Sign};
+use crate::kernel::{incircle_canonical, orient2d_prepared, Point, Prepared, Sign};
 
 const NONE: u32 = u32::MAX;
 
@@ -577,7 +577,7 @@ impl Local {
 
     /// Lawson flips towards a Delaunay triangulation of the unconstrained edges. The
     /// in-circle test is approximate and canonical (it only chooses:
-    /// [`incircle_canonical`]); validity is the exact convexity test. Each edge is tested
+    /// [`incircle_canonical`](crate::kernel::incircle_canonical)); validity is the exact convexity test. Each edge is tested
     /// once, then again only when a flip changed a triangle beside it (a stack of edges,
     /// not passes over all of them until none flips).
     pub(crate) fn improve(&mut self) {
@@ -617,10 +617,7 @@ impl Local {
             return false;
         }
         let (i, j) = ((self.axis + 1) % 3, (self.axis + 2) % 3);
-        let xy = |v: u32| robust::Coord {
-            x: self.approx[v as usize][i],
-            y: self.approx[v as usize][j],
-        };
+        let xy = |v: u32| [self.approx[v as usize][i], self.approx[v as usize][j]];
         let v = rot(self.tris[t as usize], k);
         let d = rot(self.tris[u as usize], self.slot_of(u, t))[2];
         let ic = incircle_canonical([xy(v[0]), xy(v[1]), xy(v[2]), xy(d)])
@@ -639,80 +636,5 @@ impl Local {
             .flat_map(|t| (0..3).map(move |k| (t, k)))
             .filter(|&(t, k)| self.wants_flip(t, k))
             .count()
-    }
-}
-
-/// The in-circle choice of `p[3]` against `p[0] p[1] p[2]` (positive inside for them
-/// counter-clockwise), the same for every order of the four points up to the order's
-/// sign, so that the flips of [`Local::improve`] end in the same triangulation whatever
-/// order the points and constraints came in (cocircular points, on grids and boxes, are
-/// the rule): [`incircle_clear`] of the points in lexicographic order, and where that is
-/// unsure, the sign of the in-circle determinant with each point's lift raised by `ε^r`
-/// (`r` its rank in that order, `ε` infinitesimal: the first point's raise dominates),
-/// from exact orientations of the others (`robust::orient2d` on the same coordinates).
-/// Zero only where all four are collinear (or two coincide).
-pub(super) fn incircle_canonical(p: [robust::Coord<f64>; 4]) -> f64 {
-    let mut q = p;
-    // Insertion sort by (x, y), counting swaps for the permutation's sign.
-    let mut odd = false;
-    for i in 1..4 {
-        let mut j = i;
-        while j > 0 && (q[j].x, q[j].y) < (q[j - 1].x, q[j - 1].y) {
-            q.swap(j, j - 1);
-            odd = !odd;
-            j -= 1;
-        }
-    }
-    let signed = |x: f64| if odd { -x } else { x };
-    let det = incircle_clear(q[0], q[1], q[2], q[3]);
-    if det != 0.0 {
-        return signed(det);
-    }
-    let [a, b, c, d] = q;
-    // d det / d lift of a, b, c, d in turn (the cofactors of the lifted column).
-    for o in [
-        robust::orient2d(b, c, d),
-        robust::orient2d(a, d, c),
-        robust::orient2d(a, b, d),
-        -robust::orient2d(a, b, c),
-    ] {
-        if o != 0.0 {
-            return signed(o);
-        }
-    }
-    0.0
-}
-
-/// The in-circle determinant of `d` against `a b c` (positive inside for `a b c`
-/// counter-clockwise) where its `f64` evaluation is sure of its sign, else zero: the
-/// first stage of Shewchuk's `incircle`, with his error bound, without the adaptive
-/// stages. For the Delaunay flips of [`Local::improve`], which only choose among valid
-/// triangulations: a flip is made where a point is clearly inside a circle, and none for
-/// points on one circle or too close to it to tell (the corners of squares, on grids and
-/// boxes, where the adaptive stages ran to their end only to find zero).
-pub(super) fn incircle_clear(
-    a: robust::Coord<f64>,
-    b: robust::Coord<f64>,
-    c: robust::Coord<f64>,
-    d: robust::Coord<f64>,
-) -> f64 {
-    const ERR: f64 = (10.0 + 96.0 * f64::EPSILON / 2.0) * f64::EPSILON / 2.0;
-    let (adx, ady) = (a.x - d.x, a.y - d.y);
-    let (bdx, bdy) = (b.x - d.x, b.y - d.y);
-    let (cdx, cdy) = (c.x - d.x, c.y - d.y);
-    let (bdxcdy, cdxbdy) = (bdx * cdy, cdx * bdy);
-    let (cdxady, adxcdy) = (cdx * ady, adx * cdy);
-    let (adxbdy, bdxady) = (adx * bdy, bdx * ady);
-    let alift = adx * adx + ady * ady;
-    let blift = bdx * bdx + bdy * bdy;
-    let clift = cdx * cdx + cdy * cdy;
-    let det = alift * (bdxcdy - cdxbdy) + blift * (cdxady - adxcdy) + clift * (adxbdy - bdxady);
-    let permanent = (bdxcdy.abs() + cdxbdy.abs()) * alift
-        + (cdxady.abs() + adxcdy.abs()) * blift
-        + (adxbdy.abs() + bdxady.abs()) * clift;
-    if det.abs() > ERR * permanent {
-        det
-    } else {
-        0.0
     }
 }

@@ -27,6 +27,7 @@ use crate::classify::{
 };
 use crate::edges::{EdgeKind, EdgeTopology};
 use crate::intersect::{self_intersections, self_seam};
+use crate::kernel::{normals_dot_sign, orient2d_inputs, Sign};
 use crate::measure::signed_volume;
 use crate::repair::{split_nonmanifold, NonManifoldReport};
 use crate::{Aabb, Mesh};
@@ -499,18 +500,16 @@ impl CoincidentPieces {
         let axis = (0..3)
             .max_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()))
             .unwrap_or(2);
-        let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
-        let c2 = |q: &[f64; 3]| robust::Coord { x: q[i], y: q[j] };
         let mut out = Vec::new();
         for q in partners {
             for &u in self.pieces.get(q).map(Vec::as_slice).unwrap_or(&[]) {
                 let [a, b, c] = m.corners(u as usize);
                 let s =
-                    [(a, b), (b, c), (c, a)].map(|(x, y)| robust::orient2d(c2(&x), c2(&y), c2(p)));
-                let inside = s.iter().all(|&v| v >= 0.0) || s.iter().all(|&v| v <= 0.0);
+                    [(a, b), (b, c), (c, a)].map(|(x, y)| orient2d_inputs(&x, &y, p, axis, false));
+                let inside = !s.contains(&Sign::Negative) || !s.contains(&Sign::Positive);
                 if inside {
-                    let nu = normal(u as usize);
-                    let same = n[0] * nu[0] + n[1] * nu[1] + n[2] * nu[2] > 0.0;
+                    let same =
+                        normals_dot_sign(&m.corners(t), &m.corners(u as usize)) == Sign::Positive;
                     out.push((u, if same { 1 } else { -1 }));
                 }
             }

@@ -26,8 +26,9 @@ use crate::Mesh;
 
 mod reach;
 mod winding;
-pub(crate) use winding::{side_margin, winding_number_of, winding_number_without, winding_term};
+pub(crate) use crate::kernel::side_margin;
 pub use winding::{winding_number, FastWinding};
+pub(crate) use winding::{winding_number_of, winding_number_without, winding_term};
 
 /// Where a triangle of one mesh lies relative to the other mesh.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -741,19 +741,6 @@ fn far_error(r: f64, a: f64, cube: f64, inv: f64) -> f64 {
     (cube * inv * (4.0 - 3.0 * u) / ((1.0 - u) * (1.0 - u)) * inv2 + F32_COEFFICIENTS * a) * inv2
 }
 
-/// What a winding number's distance to a threshold loses, beyond its error bound, to
-/// the rounding of the sums (a few units in the last place per term, over up to
-/// millions of terms): the side of a value `w` with bound `e` is certain where
-/// `|w − threshold| > e + SUM_ROUNDING`.
-pub(crate) const SUM_ROUNDING: f64 = 1e-9;
-
-/// How far a winding number `w` with error bound `e` clears `threshold` beyond that bound
-/// and [`SUM_ROUNDING`]: its side of the threshold is certain where this is positive (NaN
-/// where `w` or `e` is, which no comparison takes for certain).
-pub(crate) fn side_margin(w: f64, e: f64, threshold: f64) -> f64 {
-    (w - threshold).abs() - e - SUM_ROUNDING
-}
-
 /// How near the threshold a completed value may lie, its bound below this, and stand:
 /// the rounding of an exact sum over ten million terms.
 const TIE: f64 = 1e-9;

@@ -19,6 +19,10 @@ use std::cmp::Ordering;
 mod bounded;
 mod exact;
 mod filter;
+mod incircle;
+pub(crate) use incircle::incircle_canonical;
+#[cfg(test)]
+use incircle::incircle_clear;
 mod interval;
 #[cfg(test)]
 mod tests;
@@ -1056,4 +1060,17 @@ pub fn normals_dot_sign(t: &[[f64; 3]; 3], u: &[[f64; 3]; 3]) -> Sign {
         return Sign::of_f64(d);
     }
     decide!(normals_dot_value(t, u))
+}
+
+/// What a (generalized, fast-summed) winding number's distance to a threshold loses, beyond its error bound, to
+/// the rounding of the sums (a few units in the last place per term, over up to
+/// millions of terms): the side of a value `w` with bound `e` is certain where
+/// `|w − threshold| > e + SUM_ROUNDING`.
+pub(crate) const SUM_ROUNDING: f64 = 1e-9;
+
+/// How far a winding number `w` with error bound `e` clears `threshold` beyond that bound
+/// and [`SUM_ROUNDING`]: its side of the threshold is certain where this is positive (NaN
+/// where `w` or `e` is, which no comparison takes for certain).
+pub(crate) fn side_margin(w: f64, e: f64, threshold: f64) -> f64 {
+    (w - threshold).abs() - e - SUM_ROUNDING
 }

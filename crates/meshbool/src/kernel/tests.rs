@@ -1098,3 +1098,133 @@ fn the_safe_range_is_zero_and_two_to_the_minus_200_to_200() {
         assert_eq!(in_safe_range(x), want, "{x:e}");
     }
 }
+
+/// The Delaunay flips' in-circle test: the sign of the exact test wherever it answers,
+/// zero for four points on one circle (the corners of squares and rectangles, at any
+/// offset), and zero only within the error bound of `f64` (points near a circle).
+#[test]
+fn the_flips_in_circle_test_has_the_exact_sign_or_none() {
+    let c = |x: f64, y: f64| [x, y];
+    let r = |p: [f64; 2]| robust::Coord { x: p[0], y: p[1] };
+    let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+    let mut next = || rng.unit();
+    let (mut signed, mut zero) = (0, 0);
+    for k in 0..20_000 {
+        // Random points, points on a lattice (many on one circle), near-cocircular.
+        let p: [[f64; 2]; 4] = match k % 3 {
+            0 => std::array::from_fn(|_| c(next() * 10.0 - 5.0, next() * 10.0 - 5.0)),
+            1 => std::array::from_fn(|_| c((next() * 4.0).floor(), (next() * 4.0).floor())),
+            _ => {
+                let scale = if k % 2 == 0 { 0.0 } else { 1e6 };
+                let (r, off) = (1.0 + next(), [scale * next(), scale * next()]);
+                std::array::from_fn(|_| {
+                    let t = next() * std::f64::consts::TAU;
+                    c(off[0] + r * t.cos(), off[1] + r * t.sin())
+                })
+            }
+        };
+        let exact = robust::incircle(r(p[0]), r(p[1]), r(p[2]), r(p[3]));
+        let got = incircle_clear(p[0], p[1], p[2], p[3]);
+        if got == 0.0 {
+            zero += 1;
+        } else {
+            signed += 1;
+            assert_eq!(got > 0.0, exact > 0.0, "{p:?}");
+            assert!(exact != 0.0, "{p:?}");
+        }
+    }
+    assert!(signed > 10_000 && zero > 1_000, "{signed} {zero}");
+    // Squares' and rectangles' corners, anywhere: on one circle.
+    for off in [[0.0, 0.0], [0.5, -3.25], [512_345.5, 7_001_234.25]] {
+        let q = |x: f64, y: f64| c(off[0] + x, off[1] + y);
+        for (w, h) in [(1.0, 1.0), (2.0, 0.5), (0.125, 3.0)] {
+            let r = incircle_clear(q(0.0, 0.0), q(w, 0.0), q(w, h), q(0.0, h));
+            assert_eq!(r, 0.0);
+            assert!(incircle_clear(q(0.0, 0.0), q(w, 0.0), q(w, h), q(w / 2.0, h / 2.0)) > 0.0);
+        }
+    }
+}
+
+/// The flips' canonical in-circle choice: for every order of four points, the same
+/// answer up to the order's sign (so the two diagonals of a quad never both ask for a
+/// flip, and the flips end where they would for any insertion order); the clear test's
+/// sign where it has one; on one circle, the sign of the determinant with the lexicographically
+/// first point's lift raised a little (a lifting, so the triangulation is a regular one).
+#[test]
+fn the_flips_canonical_choice_is_one_for_every_order() {
+    let c = |x: f64, y: f64| [x, y];
+    let r = |p: [f64; 2]| robust::Coord { x: p[0], y: p[1] };
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let mut next = || rng.unit();
+    let perms: Vec<([usize; 4], bool)> = (0..24)
+        .map(|mut n| {
+            let mut rest = vec![0, 1, 2, 3];
+            let mut p = [0; 4];
+            for (i, slot) in p.iter_mut().enumerate() {
+                *slot = rest.remove(n % (4 - i));
+                n /= 4 - i;
+            }
+            let odd = (0..4)
+                .flat_map(|i| (i + 1..4).map(move |j| (i, j)))
+                .filter(|&(i, j)| p[i] > p[j])
+                .count()
+                % 2
+                == 1;
+            (p, odd)
+        })
+        .collect();
+    let (mut tied, mut clear) = (0, 0);
+    for k in 0..6_000 {
+        let p: [[f64; 2]; 4] = match k % 2 {
+            0 => std::array::from_fn(|_| c(next() * 10.0 - 5.0, next() * 10.0 - 5.0)),
+            _ => std::array::from_fn(|_| c((next() * 4.0).floor(), (next() * 4.0).floor())),
+        };
+        let distinct = (0..4).all(|i| (i + 1..4).all(|j| (p[i][0], p[i][1]) != (p[j][0], p[j][1])));
+        if !distinct {
+            continue;
+        }
+        let base = incircle_canonical(p);
+        for (perm, odd) in &perms {
+            let got = incircle_canonical(perm.map(|i| p[i]));
+            let want = if *odd { -base } else { base };
+            assert_eq!(
+                got.partial_cmp(&0.0),
+                want.partial_cmp(&0.0),
+                "{p:?} {perm:?}"
+            );
+        }
+        let collinear = robust::orient2d(r(p[0]), r(p[1]), r(p[2])) == 0.0
+            && robust::orient2d(r(p[0]), r(p[1]), r(p[3])) == 0.0;
+        assert_eq!(base == 0.0, collinear, "{p:?}");
+        if incircle_clear(p[0], p[1], p[2], p[3]) != 0.0 {
+            clear += 1;
+            assert_eq!(
+                base > 0.0,
+                robust::incircle(r(p[0]), r(p[1]), r(p[2]), r(p[3])) > 0.0
+            );
+        } else if robust::incircle(r(p[0]), r(p[1]), r(p[2]), r(p[3])) == 0.0 && !collinear {
+            tied += 1;
+            // The lexicographically first point's lift raised by a small step (exact
+            // here: small integers), the others' by far less.
+            let mut order = [0usize, 1, 2, 3];
+            order.sort_by(|&i, &j| (p[i][0], p[i][1]).partial_cmp(&(p[j][0], p[j][1])).unwrap());
+            let mut lift = [0.0f64; 4];
+            for (r, &i) in order.iter().enumerate() {
+                lift[i] = p[i][0] * p[i][0]
+                    + p[i][1] * p[i][1]
+                    + [1.0 / 64.0, 1.0 / 4096.0, 1.0 / 262_144.0, 0.0][r];
+            }
+            let d = 3;
+            let row = |i: usize| [p[i][0] - p[d][0], p[i][1] - p[d][1], lift[i] - lift[d]];
+            let (r0, r1, r2) = (row(0), row(1), row(2));
+            let det = r0[0] * (r1[1] * r2[2] - r1[2] * r2[1])
+                - r0[1] * (r1[0] * r2[2] - r1[2] * r2[0])
+                + r0[2] * (r1[0] * r2[1] - r1[1] * r2[0]);
+            assert!(
+                det != 0.0 && (det > 0.0) == (base > 0.0),
+                "{p:?}: {det} {base}"
+            );
+        }
+    }
+    assert!(tied > 100 && clear > 2_000, "{tied} {clear}");
+}

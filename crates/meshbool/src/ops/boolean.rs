@@ -444,8 +444,9 @@ fn many<'a>(inputs: &[Input<'a>], op: Op, opts: &BooleanOptions) -> Result<Boole
         offsets.push(0u32);
         for o in &operands {
             let next = offsets[offsets.len() - 1] as usize + o.mesh().triangles().len();
-            offsets.push(u32::try_from(next).map_err(|_| {
-                Error::InvalidParameter("more than 2^32 triangles in all".to_string())
+            offsets.push(u32::try_from(next).map_err(|_| Error::InvalidMesh {
+                location: crate::error::Location::Whole,
+                message: "more than 2^32 triangles in all the operands".to_string(),
             })?);
         }
         let parts: Vec<Part> = operands

@@ -140,9 +140,11 @@ pub fn cutfill<'a>(
         let (d_up, rd) = orient(d.mesh(), Facing::ZUp);
         let (t_up, rt) = orient(t.mesh(), Facing::ZUp);
         let (Some(bd), Some(bt)) = (d_up.bounds(), t_up.bounds()) else {
-            return Err(Error::InvalidParameter(
-                "cut and fill need two surfaces with triangles".into(),
-            ));
+            let empty = if d_up.is_empty() { &d } else { &t };
+            return Err(Error::Empty {
+                name: empty.name().to_string(),
+                needs: "cut and fill need two surfaces",
+            });
         };
         // A floor below both, and a raise that lifts either surface above the other, by a
         // margin of the surfaces' own size (any fixed length would make the curtains'

@@ -181,8 +181,7 @@ pub fn envelope<'a>(mesh: impl Into<Input<'a>>, opts: &EnvelopeOptions) -> Resul
     let folded: Vec<u32> = (0..n as u32)
         .filter(|&t| {
             let [p, q, r] = surface.corners(t as usize);
-            let c = |x: [f64; 3]| robust::Coord { x: x[0], y: x[1] };
-            robust::orient2d(c(p), c(q), c(r)) < 0.0
+            crate::kernel::orient2d_inputs(&p, &q, &r, 2, false) == crate::kernel::Sign::Negative
         })
         .collect();
     // The folds' prisms, one solid per edge-connected patch of folded triangles (the patch

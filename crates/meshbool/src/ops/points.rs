@@ -138,10 +138,11 @@ pub fn classify_points<'a>(
     opts: &ClassifyOptions,
 ) -> Result<ClassifyOutput> {
     if let Some(i) = points.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
-        return Err(Error::InvalidParameter(format!(
-            "point {i} has a non-finite coordinate: {:?}",
-            points[i]
-        )));
+        // An input's fault, not a parameter's: the points are data.
+        return Err(Error::Malformed {
+            what: "points",
+            message: format!("point {i} has a non-finite coordinate: {:?}", points[i]),
+        });
     }
     let input: Input<'a> = mesh.into();
     // The classes and winding numbers do not change with a power-of-two scale.
@@ -247,7 +248,7 @@ mod tests {
         assert_eq!(out.classes, [Inside, Outside, On]);
         // Bad points are an error; no points is nothing to do.
         let nan = classify_points(&cube, &[[f64::NAN, 0.0, 0.0]], &ClassifyOptions::default());
-        assert!(matches!(nan, Err(Error::InvalidParameter(_))));
+        assert!(matches!(nan, Err(Error::Malformed { what: "points", .. })));
         let none = classify_points(&cube, &[], &ClassifyOptions::default()).unwrap();
         assert_eq!(none.report(false).points, 0);
     }

@@ -34,7 +34,7 @@ pub use nonmanifold::{split_nonmanifold, NonManifoldReport};
 pub use orient::{orient, Facing, OrientReport};
 pub use pipeline::{
     close, repair, repair_with_progress, CloseMode, CloseOptions, CloseReport, RepairConfig,
-    RepairReport,
+    RepairReport, UndoneStep,
 };
 pub(crate) use snap::{
     check_tolerance, common, compact_from_end, neighbours, remove_sorted, snap_carrying,

@@ -223,6 +223,16 @@ pub struct RepairConfig {
     /// Finally cap every hole left whose bounding-box diagonal is at most this
     /// ([`cap_small_holes`]).
     pub close_gaps: Option<f64>,
+    /// Undo every step that makes the mesh worse (on by default): more boundary edges,
+    /// non-manifold edges, orientation conflicts or self-intersecting pairs than its input
+    /// had, no triangles left, or a closed mesh's volume changed by more than
+    /// `gate_volume`. An undone step is listed in [`RepairReport::undone`] with what it
+    /// would have made worse; `false` keeps every step's result as it is.
+    pub gate: bool,
+    /// The largest relative change of a closed, consistently oriented mesh's volume a
+    /// step may make under the gate (default 0.005: half a percent); the volume of a mesh
+    /// that is not closed is not judged.
+    pub gate_volume: f64,
 }
 
 impl Default for RepairConfig {
@@ -241,6 +251,8 @@ impl Default for RepairConfig {
             close: CloseMode::None,
             close_options: CloseOptions::default(),
             close_gaps: None,
+            gate: true,
+            gate_volume: 0.005,
         }
     }
 }
@@ -262,6 +274,12 @@ impl RepairConfig {
         distance("tjunction_tolerance", self.tjunction_tolerance)?;
         distance("close_gaps", self.close_gaps)?;
         distance("snap", self.snap)?;
+        if !(self.gate_volume.is_finite() && self.gate_volume >= 0.0) {
+            return Err(Error::InvalidParameter(format!(
+                "gate_volume must be a finite fraction >= 0, got {}",
+                self.gate_volume
+            )));
+        }
         if self.snap.is_some() {
             mesh.validate()?; // the snap's exact tests need finite coordinates
         }
@@ -326,7 +344,8 @@ impl RepairReport {
 }
 
 /// What [`repair`] did: the measures before and after and the report of every step that
-/// ran (`None`: not asked for). Every triangle removed is counted in some step's report.
+/// ran (`None`: not asked for). Every triangle removed is counted in some step's report;
+/// a step in [`undone`](Self::undone) removed nothing from the result.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct RepairReport {
     /// The input's measures.
@@ -361,6 +380,9 @@ pub struct RepairReport {
     /// Capping the small holes left.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub close_gaps: Option<CapReport>,
+    /// The steps undone because they made the mesh worse ([`RepairConfig::gate`]), in
+    /// the order they ran. Their reports above say what they did before being undone.
+    pub undone: Vec<UndoneStep>,
     /// Vertices no triangle uses any more (left by welding, collapses, fold removal or
     /// in the input), dropped at the end.
     pub unreferenced_removed: usize,
@@ -395,74 +417,337 @@ pub fn repair_with_progress(
         folds: None,
         close: None,
         close_gaps: None,
+        undone: Vec::new(),
         unreferenced_removed: 0,
         after: mesh_stats(&Mesh::default()),
     };
-    let mut m = mesh.clone();
+    // The steps asked for, in their order: each runs on the mesh as it stands and says
+    // what it did in its field of the report. `moves`: it moves vertices or adds
+    // triangles, so it may make self-intersections.
+    let mut steps: Vec<Step> = Vec::new();
+    let RepairReport {
+        weld,
+        duplicates,
+        weld_boundary: boundary_weld,
+        tjunctions,
+        degenerate,
+        snap,
+        orient: oriented,
+        folds,
+        close: closed,
+        close_gaps,
+        ..
+    } = &mut report;
     if let Some(tol) = config.weld {
-        progress(Stage::Weld);
-        let (x, r) = weld_within(&m, tol);
-        (m, report.weld) = (x, Some(r));
+        steps.push(Step::new(Stage::Weld, true, move |m| {
+            let (x, w) = weld_within(m, tol);
+            *weld = Some(w);
+            Ok(x)
+        }));
     }
     if let Some(tol) = config.remove_overlapping {
-        progress(Stage::Duplicates);
-        let (x, r) = remove_overlapping(&m, tol);
-        (m, report.duplicates) = (x, Some(r));
+        steps.push(Step::new(Stage::Duplicates, false, move |m| {
+            let (x, d) = remove_overlapping(m, tol);
+            *duplicates = Some(d);
+            Ok(x)
+        }));
     } else if config.remove_duplicates {
-        progress(Stage::Duplicates);
-        let (x, r) = remove_duplicates(&m);
-        (m, report.duplicates) = (x, Some(r));
+        steps.push(Step::new(Stage::Duplicates, false, move |m| {
+            let (x, d) = remove_duplicates(m);
+            *duplicates = Some(d);
+            Ok(x)
+        }));
     }
     if let Some(tol) = config.weld_boundary {
-        progress(Stage::WeldBoundary);
-        let (x, r) = weld_boundary(&m, tol);
-        (m, report.weld_boundary) = (x, Some(r));
+        steps.push(Step::new(Stage::WeldBoundary, true, move |m| {
+            let (x, w) = weld_boundary(m, tol);
+            *boundary_weld = Some(w);
+            Ok(x)
+        }));
     }
     if let Some(tol) = config.tjunction_tolerance {
-        progress(Stage::TJunctions);
-        let (x, r) = resolve_t_junctions_within(&m, tol);
-        (m, report.tjunctions) = (x, Some(r));
+        // Within a distance the edge bends through the vertex: geometry moves.
+        steps.push(Step::new(Stage::TJunctions, tol > 0.0, move |m| {
+            let (x, t) = resolve_t_junctions_within(m, tol);
+            *tjunctions = Some(t);
+            Ok(x)
+        }));
     } else if config.tjunctions {
-        progress(Stage::TJunctions);
-        let (x, r) = resolve_t_junctions(&m);
-        (m, report.tjunctions) = (x, Some(r));
+        steps.push(Step::new(Stage::TJunctions, false, move |m| {
+            let (x, t) = resolve_t_junctions(m);
+            *tjunctions = Some(t);
+            Ok(x)
+        }));
     }
     if let Some(opts) = &config.degenerate {
-        progress(Stage::Degenerate);
-        let (x, r) = remove_degenerates(&m, opts);
-        (m, report.degenerate) = (x, Some(r));
+        steps.push(Step::new(Stage::Degenerate, true, move |m| {
+            let (x, d) = remove_degenerates(m, opts);
+            *degenerate = Some(d);
+            Ok(x)
+        }));
     }
     if let Some(tol) = config.snap {
-        progress(Stage::Snap);
         let opts = super::SnapOptions {
             tolerance: tol,
             ..Default::default()
         };
-        report.snap = Some(super::snap_unchecked(&mut m, &opts).0);
+        // The snap makes no self-intersection, by its own exact test.
+        steps.push(Step::new(Stage::Snap, false, move |m| {
+            let mut x = m.clone();
+            *snap = Some(super::snap_unchecked(&mut x, &opts).0);
+            Ok(x)
+        }));
     }
     if let Some(facing) = config.orient {
-        progress(Stage::Orient);
-        let (x, r) = orient(&m, facing);
-        (m, report.orient) = (x, Some(r));
+        steps.push(Step::new(Stage::Orient, false, move |m| {
+            let (x, o) = orient(m, facing);
+            *oriented = Some(o);
+            Ok(x)
+        }));
     }
     if config.remove_folds {
-        progress(Stage::Folds);
-        let (x, r) = remove_folds(&m);
-        (m, report.folds) = (x, Some(r));
+        steps.push(Step::new(Stage::Folds, true, move |m| {
+            let (x, f) = remove_folds(m);
+            *folds = Some(f);
+            Ok(x)
+        }));
     }
     if config.close != CloseMode::None {
-        progress(Stage::Close);
-        let (x, r) = close(&m, config.close, &config.close_options)?;
-        (m, report.close) = (x, Some(r));
+        steps.push(Step::new(Stage::Close, true, move |m| {
+            let (x, c) = close(m, config.close, &config.close_options)?;
+            *closed = Some(c);
+            Ok(x)
+        }));
     }
     if let Some(size) = config.close_gaps {
-        progress(Stage::CloseGaps);
-        let (x, r) = cap_small_holes(&m, size);
-        (m, report.close_gaps) = (x, Some(r));
+        steps.push(Step::new(Stage::CloseGaps, true, move |m| {
+            let (x, c) = cap_small_holes(m, size);
+            *close_gaps = Some(c);
+            Ok(x)
+        }));
     }
-    (m, report.unreferenced_removed) = m.without_unreferenced();
+    let gate = Gate {
+        on: config.gate,
+        volume: config.gate_volume,
+        orient_at: steps.iter().position(|s| s.stage == Stage::Orient),
+    };
+    let (m, undone) = gate.run(mesh, &mut steps, progress)?;
+    drop(steps);
+    report.undone = undone;
+    let (m, unreferenced) = m.without_unreferenced();
+    report.unreferenced_removed = unreferenced;
     report.after = mesh_stats(&m);
     Ok((m, report))
+}
+
+/// A repair step undone because it made the mesh worse ([`RepairConfig::gate`]).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct UndoneStep {
+    /// The step, by its key in the report (`weld`, `duplicates`, …: [`Stage::name`]).
+    pub step: &'static str,
+    /// What it would have made worse, a line each (`non-manifold edges 0 -> 2`).
+    pub damage: Vec<String>,
+}
+
+/// How a step runs: the mesh in, its result out (its report written aside).
+type RunStep<'a> = Box<dyn FnMut(&Mesh) -> Result<Mesh, Error> + 'a>;
+
+/// A step of the pipeline: its stage, whether it moves vertices or adds triangles, and
+/// how it runs.
+struct Step<'a> {
+    stage: Stage,
+    moves: bool,
+    run: RunStep<'a>,
+}
+
+impl<'a> Step<'a> {
+    fn new(stage: Stage, moves: bool, run: impl FnMut(&Mesh) -> Result<Mesh, Error> + 'a) -> Self {
+        Step {
+            stage,
+            moves,
+            run: Box::new(run),
+        }
+    }
+}
+
+/// What the gate compares between a mesh before some steps and after them.
+#[derive(Clone, Copy, Debug)]
+struct Quality {
+    empty: bool,
+    boundary: usize,
+    non_manifold: usize,
+    /// Edges two triangles use the same way.
+    inconsistent: usize,
+    /// Manifold edges that stay inconsistent once oriented (measured when needed).
+    conflicting: Option<usize>,
+    /// Pairs of triangles crossing (measured when needed).
+    crossings: Option<usize>,
+    volume: f64,
+}
+
+impl Quality {
+    fn of(m: &Mesh) -> Quality {
+        let counts = crate::edges::EdgeTopology::new(m).kind_counts();
+        Quality {
+            empty: m.is_empty(),
+            boundary: counts.boundary,
+            non_manifold: counts.non_manifold,
+            inconsistent: counts.inconsistent,
+            conflicting: None,
+            crossings: None,
+            volume: crate::measure::signed_volume(m),
+        }
+    }
+
+    /// Closed, manifold and consistently oriented: its volume means something.
+    fn sound(&self) -> bool {
+        !self.empty && self.boundary == 0 && self.non_manifold == 0 && self.inconsistent == 0
+    }
+
+    fn conflicting(&mut self, m: &Mesh) -> usize {
+        *self
+            .conflicting
+            .get_or_insert_with(|| orient(m, Facing::Majority).1.conflicting_edges)
+    }
+
+    fn crossings(&mut self, m: &Mesh) -> usize {
+        *self
+            .crossings
+            .get_or_insert_with(|| crate::intersect::self_intersections(m).len())
+    }
+}
+
+/// The repair pipeline's gate ([`RepairConfig::gate`]).
+///
+/// The mesh is kept as it stood before the first step that made it worse (the *kept*
+/// mesh); the steps after that one run on its result, and as soon as the mesh is no worse
+/// than the kept one again, every step since is kept (a double wall cancelled opens a
+/// closed mesh that the boundary weld after it closes). When the pipeline ends worse
+/// than the kept mesh, the first of those steps is undone and the ones after it run
+/// again on the kept mesh, judged the same way.
+struct Gate {
+    on: bool,
+    volume: f64,
+    /// The orientation step's place among the steps: before it, orientation is judged by
+    /// the conflicts orienting would leave (a weld of a mixed-up soup makes edges
+    /// inconsistent that orientation then mends); from it on (or with no orientation
+    /// step), by the inconsistent edges themselves.
+    orient_at: Option<usize>,
+}
+
+impl Gate {
+    /// Runs `steps` on `mesh` under the gate, announcing each to `progress`: the result
+    /// and the steps undone.
+    fn run(
+        &self,
+        mesh: &Mesh,
+        steps: &mut [Step],
+        progress: &dyn Fn(Stage),
+    ) -> Result<(Mesh, Vec<UndoneStep>), Error> {
+        let mut kept = mesh.clone();
+        let mut kept_quality = None;
+        let mut undone = Vec::new();
+        let mut from = 0;
+        loop {
+            // Steps run since the kept mesh (with the first one's damage) and their result.
+            let mut held: Option<(usize, Vec<String>, Mesh, Quality)> = None;
+            let mut moved = false;
+            for (i, step) in steps.iter_mut().enumerate().skip(from) {
+                progress(step.stage);
+                let input = held.as_ref().map_or(&kept, |h| &h.2);
+                let next = (step.run)(input)?;
+                if !self.on {
+                    kept = next;
+                    continue;
+                }
+                if next == *input {
+                    continue;
+                }
+                moved |= step.moves;
+                let base = kept_quality.get_or_insert_with(|| Quality::of(&kept));
+                let mut after = Quality::of(&next);
+                let oriented = self.orient_at.is_none_or(|o| o <= i);
+                let damage = self.damage(base, &kept, &mut after, &next, oriented, moved);
+                if damage.is_empty() {
+                    (kept, kept_quality, held, moved) = (next, Some(after), None, false);
+                } else {
+                    held = Some(match held {
+                        Some((first, d, _, _)) => (first, d, next, after),
+                        None => (i, damage, next, after),
+                    });
+                }
+            }
+            match held {
+                None => return Ok((kept, undone)),
+                Some((first, damage, _, _)) => {
+                    undone.push(UndoneStep {
+                        step: steps[first].stage.name(),
+                        damage,
+                    });
+                    from = first + 1;
+                }
+            }
+        }
+    }
+
+    /// What `after` (of `next`) has worse than `before` (of `kept`), a line each.
+    /// `oriented`: judge orientation by inconsistent edges, not by what orienting leaves;
+    /// `moved`: compare self-intersections.
+    fn damage(
+        &self,
+        before: &mut Quality,
+        kept: &Mesh,
+        after: &mut Quality,
+        next: &Mesh,
+        oriented: bool,
+        moved: bool,
+    ) -> Vec<String> {
+        let mut damage = Vec::new();
+        let mut worse = |what: &str, a: usize, b: usize| {
+            if b > a {
+                damage.push(format!("{what} {a} -> {b}"));
+            }
+        };
+        if before.boundary == 0 && after.boundary > 0 && !before.empty {
+            worse("opens the mesh: boundary edges", 0, after.boundary);
+        } else {
+            worse("boundary edges", before.boundary, after.boundary);
+        }
+        worse(
+            "non-manifold edges",
+            before.non_manifold,
+            after.non_manifold,
+        );
+        if oriented {
+            worse(
+                "inconsistent edges",
+                before.inconsistent,
+                after.inconsistent,
+            );
+        } else {
+            let (a, b) = (before.conflicting(kept), after.conflicting(next));
+            worse("edges no orientation makes consistent", a, b);
+        }
+        if moved {
+            let (a, b) = (before.crossings(kept), after.crossings(next));
+            worse("self-intersecting pairs", a, b);
+        }
+        if after.empty && !before.empty {
+            damage.push("removes every triangle".to_string());
+        }
+        if before.sound() && after.sound() && before.volume != 0.0 {
+            let change = (after.volume.abs() - before.volume.abs()) / before.volume.abs();
+            if change.abs() > self.volume {
+                damage.push(format!(
+                    "volume {} -> {} ({:+.3} %)",
+                    before.volume.abs(),
+                    after.volume.abs(),
+                    100.0 * change
+                ));
+            }
+        }
+        damage
+    }
 }
 
 #[cfg(test)]
@@ -756,5 +1041,182 @@ mod tests {
         assert_eq!((d.anti_parallel_removed, d.largest_distance), (0, 0.0));
         assert_eq!(rep.weld_boundary.map(|w| w.merged_vertices), Some(0));
         assert_eq!((r.triangles.len(), rep.after.closed), (24, true));
+    }
+
+    /// `repair` with only a weld at `d` (orientation as by default), gated or not.
+    fn weld_only(m: &Mesh, d: f64, gate: bool) -> (Mesh, RepairReport) {
+        let config = RepairConfig {
+            weld: Some(d),
+            gate,
+            ..RepairConfig::default()
+        };
+        repair(m, &config).expect("valid config")
+    }
+
+    #[test]
+    fn a_weld_that_would_join_two_solids_is_undone() {
+        // Two unit cubes 1e-5 apart: welding at 1e-4 makes their facing sides one
+        // (edges of four triangles, a double wall).
+        let mut m = Mesh::unit_cube();
+        m.append(&Mesh::cuboid([1.0 + 1e-5, 0.0, 0.0], [2.0, 1.0, 1.0]))
+            .unwrap();
+        let (r, rep) = weld_only(&m, 1e-4, true);
+        eprintln!("DEBUG {:?} {:?}", rep.undone, rep.weld);
+        assert_eq!(rep.undone.len(), 1);
+        let u = &rep.undone[0];
+        assert_eq!(u.step, "weld");
+        // The four edges of the facing squares and their common diagonal; the two
+        // triangles of each square lie on each other.
+        assert_eq!(
+            u.damage,
+            [
+                "non-manifold edges 0 -> 5",
+                "self-intersecting pairs 0 -> 2"
+            ]
+        );
+        assert_eq!(r, m.clone().without_unreferenced().0); // as it was, vertices in order of use
+        assert!(rep.after.closed);
+        assert_eq!(rep.after.volume, rep.before.volume);
+        // Ungated, the weld is kept, and the mesh is no longer manifold.
+        let (_, rep) = weld_only(&m, 1e-4, false);
+        assert!(rep.undone.is_empty());
+        assert_eq!(rep.after.non_manifold_edges, 5);
+        assert!(!rep.after.closed);
+    }
+
+    /// A unit cube with a hip roof of height 0.3 whose ridge, along y, is `2 * half`
+    /// long, oriented outward.
+    fn hip_roofed_cube(half: f64) -> Mesh {
+        let (mut positions, mut triangles) = Mesh::unit_cube().into_parts();
+        triangles.retain(|t| t.iter().any(|&v| positions[v as usize][2] < 1.0));
+        let corner = |p: [f64; 3]| positions.iter().position(|q| *q == p).unwrap() as u32;
+        let [t0, t1, t2, t3] = [[0., 0., 1.], [1., 0., 1.], [1., 1., 1.], [0., 1., 1.]].map(corner);
+        let (c, r) = (positions.len() as u32, positions.len() as u32 + 1);
+        positions.push([0.5, 0.5 - half, 1.3]);
+        positions.push([0.5, 0.5 + half, 1.3]);
+        triangles.extend([
+            [t0, t1, c],
+            [t1, t2, r],
+            [t1, r, c],
+            [t2, t3, r],
+            [t3, t0, c],
+            [t3, c, r],
+        ]);
+        orient(&Mesh::new(positions, triangles).unwrap(), Facing::Outward).0
+    }
+
+    #[test]
+    fn a_step_that_changes_a_solids_volume_beyond_the_gate_is_undone() {
+        // Welding the hip roof's ridge (1e-4 long) into a point: still closed and
+        // manifold, the volume 0.3 * 1e-4 / 6 = 5e-6 less (0.0004 %).
+        let m = hip_roofed_cube(5e-5);
+        let before = mesh_stats(&m);
+        assert!(before.closed && before.inconsistent_edges == 0);
+        let (r, rep) = weld_only(&m, 1e-3, true);
+        assert!(rep.undone.is_empty(), "{:?}", rep.undone);
+        assert_eq!(
+            rep.weld.map(|w| (w.merged_vertices, w.collapsed_triangles)),
+            Some((1, 2))
+        );
+        assert!(rep.after.closed);
+        let change = (rep.after.volume - before.volume) / before.volume;
+        assert!((change + 5e-6 / before.volume).abs() < 1e-12, "{change}");
+        assert_eq!(r.triangles.len(), m.triangles.len() - 2);
+        // Under a gate of 1e-6 (0.0001 %) the same weld is undone.
+        let strict = RepairConfig {
+            weld: Some(1e-3),
+            gate_volume: 1e-6,
+            ..RepairConfig::default()
+        };
+        let (r, rep) = repair(&m, &strict).expect("valid");
+        assert_eq!(rep.undone.len(), 1);
+        let damage = &rep.undone[0].damage;
+        assert!(
+            damage.len() == 1 && damage[0].starts_with("volume "),
+            "{damage:?}"
+        );
+        assert_eq!(r, m.clone().without_unreferenced().0); // as it was, vertices in order of use
+        let bad = RepairConfig {
+            gate_volume: -1.0,
+            ..RepairConfig::default()
+        };
+        assert!(matches!(repair(&m, &bad), Err(Error::InvalidParameter(_))));
+    }
+
+    #[test]
+    fn a_weld_that_would_make_a_crossing_is_undone() {
+        // A floor fanned around its centre c; a sheet 5e-4 above it; a wall standing on
+        // the sheet from 1e-3 above c. Welding at 2e-3 brings the wall's foot down to c,
+        // through the sheet: one crossing that was not there, and nothing else worse.
+        let e = 1e-3;
+        let positions = vec![
+            [0.5, 0.5, 0.0],
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.5, 0.5, e],
+            [0.5, 0.5, 1.0],
+            [0.6, 0.5, 1.0],
+            [0.3, 0.3, e / 2.0],
+            [0.7, 0.3, e / 2.0],
+            [0.5, 0.8, e / 2.0],
+        ];
+        let triangles = vec![
+            [0, 1, 2],
+            [0, 2, 3],
+            [0, 3, 4],
+            [0, 4, 1],
+            [5, 6, 7],
+            [8, 9, 10],
+        ];
+        let m = Mesh::new(positions, triangles).unwrap();
+        assert!(crate::intersect::self_intersections(&m).is_empty());
+        let (r, rep) = weld_only(&m, 2.0 * e, true);
+        assert_eq!(rep.weld.as_ref().map(|w| w.merged_vertices), Some(1));
+        assert_eq!(
+            rep.undone,
+            vec![UndoneStep {
+                step: "weld",
+                damage: vec!["self-intersecting pairs 0 -> 1".to_string()],
+            }]
+        );
+        assert_eq!(r, m.clone().without_unreferenced().0); // as it was, vertices in order of use
+        let (r, _) = weld_only(&m, 2.0 * e, false);
+        assert_eq!(crate::intersect::self_intersections(&r).len(), 1);
+    }
+
+    #[test]
+    fn a_weld_of_a_mixed_up_soup_is_kept_for_the_orientation_step_to_mend() {
+        // A cube as a soup, each triangle's corners moved apart by up to 3e-7 and one
+        // triangle turned over: welded, its edges are inconsistent, which orienting
+        // mends; judged by what orienting leaves, the weld makes nothing worse.
+        let cube = Mesh::unit_cube();
+        let mut positions = Vec::new();
+        let mut triangles = Vec::new();
+        for (i, t) in cube.triangles.iter().enumerate() {
+            let base = positions.len() as u32;
+            for (k, &v) in t.iter().enumerate() {
+                let p = cube.positions[v as usize];
+                let jitter = 1e-7 * ((i * 3 + k) % 4) as f64;
+                positions.push([p[0] + jitter, p[1] - jitter, p[2]]);
+            }
+            triangles.push(if i == 5 {
+                [base, base + 2, base + 1]
+            } else {
+                [base, base + 1, base + 2]
+            });
+        }
+        let m = Mesh::new(positions, triangles).unwrap();
+        let (r, rep) = weld_only(&m, 1e-5, true);
+        assert!(rep.undone.is_empty(), "{:?}", rep.undone);
+        assert_eq!(rep.orient.as_ref().map(|o| o.flipped), Some(1));
+        let a = &rep.after;
+        assert_eq!(
+            (a.boundary_edges, a.non_manifold_edges, a.inconsistent_edges),
+            (0, 0, 0)
+        );
+        assert_eq!(r.triangles.len(), 12);
+        assert!(a.closed && (a.volume - 1.0).abs() < 1e-6, "{}", a.volume);
     }
 }
