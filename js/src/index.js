@@ -351,8 +351,9 @@ export function makeCylinder(options) {
 }
 
 /**
- * A cone standing on `base` along +z up to an apex, or a frustum with `topRadius` > 0;
- * `radius`, `height`, `segments` as for `makeCylinder`. Closed, outward-facing.
+ * A cone standing on `base` along +z up to an apex, or a frustum with `topRadius` > 0
+ * (also spelled `top_radius`, as in `evaluateCsg` scenes); `radius`, `height`,
+ * `segments` as for `makeCylinder`. Closed, outward-facing.
  * `{positions, index, report}`.
  */
 export function makeCone(options) {

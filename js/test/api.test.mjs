@@ -246,6 +246,9 @@ test("generated primitives: the library's counts, exact volumes and meshbool mak
 	assert.equal(mb.makeCylinder().index.length / 3, 128);
 	assert.equal(mb.makeCone({ height: 3, segments: 4 }).report.volume, 2);
 	assert.equal(mb.makeCone({ topRadius: 0.5, segments: 8 }).index.length / 3, 32);
+	// The CSG documents' spelling too, the same cone; null is left out.
+	assert.deepEqual(mb.makeCone({ top_radius: 0.5, segments: 8 }).positions, mb.makeCone({ topRadius: 0.5, segments: 8 }).positions);
+	assert.equal(mb.makeCone({ radius: null, height: 3, segments: 4 }).report.volume, 2);
 	const sheet = mb.makePlane({ center: [1, 1, 2], width: 4, depth: 2, nx: 4, ny: 2 });
 	assert.deepEqual([sheet.index.length / 3, sheet.positions.length / 3, sheet.report.boundary_edges, sheet.report.closed], [16, 15, 12, false]);
 	for (let t = 0; t < 16; t++) assert.ok(normalZ(sheet, t) > 0, `triangle ${t} faces down`);

@@ -855,205 +855,32 @@ pub fn write(positions: &[f64], index: &[u32], format: &str) -> Result<Vec<u8>, 
     Ok(bytes)
 }
 
-/// An error unless every key of the options object `o` is one of `keys` (a misspelt
-/// option would otherwise be ignored and its default used without a word).
-fn known_keys(o: &Value, what: &str, keys: &[&str]) -> Result<(), JsError> {
-    if let Some(map) = o.as_object() {
-        if let Some(k) = map.keys().find(|k| !keys.contains(&k.as_str())) {
-            return Err(bad(format!(
-                "{what} takes no option {k:?} (its options: {})",
-                keys.join(", ")
-            )));
-        }
-    }
-    Ok(())
-}
-
-/// Option `key` as `N` numbers (an array of them, or one number for all `N` where `one`
-/// allows it), `default` when absent.
-fn numbers<const N: usize>(
-    o: &Value,
-    key: &str,
-    default: [f64; N],
-    one: bool,
-) -> Result<[f64; N], JsError> {
-    let shape = if one {
-        format!("a number or an array of {N} numbers")
-    } else {
-        format!("an array of {N} numbers")
-    };
-    match o.get(key) {
-        None | Some(Value::Null) => Ok(default),
-        Some(Value::Number(n)) if one => Ok([n.as_f64().unwrap_or(f64::NAN); N]),
-        Some(Value::Array(a)) if a.len() == N && a.iter().all(Value::is_number) => {
-            Ok(std::array::from_fn(|k| a[k].as_f64().unwrap_or(f64::NAN)))
-        }
-        Some(v) => Err(bad(format!("option {key} must be {shape}, got {v}"))),
-    }
-}
-
-/// Option `key` as a whole number ≥ 0 that fits `T` (`u32` counts, the `u64` seed),
-/// `default` when absent.
-fn whole<T: TryFrom<u64>>(o: &Value, key: &str, default: T) -> Result<T, JsError> {
-    match o.get(key) {
-        None | Some(Value::Null) => Ok(default),
-        Some(v) => v.as_u64().and_then(|n| T::try_from(n).ok()).ok_or_else(|| {
-            let kind = std::any::type_name::<T>();
-            bad(format!(
-                "option {key} must be a whole number ≥ 0 (a {kind}), got {v}"
-            ))
-        }),
-    }
-}
-
-/// Option `key` as `N` whole numbers (an array of them, or one for all `N`), `default`
-/// when absent.
-fn wholes<const N: usize>(o: &Value, key: &str, default: [u32; N]) -> Result<[u32; N], JsError> {
-    let one = |v: &Value| v.as_u64().and_then(|n| u32::try_from(n).ok());
-    let err = |v: &Value| {
-        bad(format!(
-            "option {key} must be a whole number ≥ 0 or an array of {N} of them, got {v}"
-        ))
-    };
-    match o.get(key) {
-        None | Some(Value::Null) => Ok(default),
-        Some(Value::Array(a)) if a.len() == N => {
-            let mut out = [0; N];
-            for (k, v) in a.iter().enumerate() {
-                out[k] = one(v).ok_or_else(|| err(&o[key]))?;
-            }
-            Ok(out)
-        }
-        Some(v) => Ok([one(v).ok_or_else(|| err(v))?; N]),
-    }
-}
-
-/// Option `key` as a number, `default` when absent.
-fn number_or(o: &Value, key: &str, default: f64) -> Result<f64, JsError> {
-    Ok(number(o, key)?.unwrap_or(default))
-}
-
 /// The shape `name` with its options (JSON; every option has a default, those of
 /// `meshbool make`): `cube` (`center` [0,0,0] and `size` 1 — a number or three — or
 /// `min` and `max`), `sphere` (`center` [0,0,0], `radius` 1, `segments` 32, `rings` 16),
 /// `cylinder` (`base` [0,0,0], `radius` 1, `height` 1, `segments` 32), `cone` (as the
-/// cylinder, with `topRadius` 0), `plane` (`center` [0,0,0], `width` 1, `depth` 1, `nx` 1,
+/// cylinder, with `topRadius` 0, also spelled `top_radius` as CSG documents do), `plane` (`center` [0,0,0], `width` 1, `depth` 1, `nx` 1,
 /// `ny` 1), `terrain` (`center` [0,0,0], `size` [1000,1000], `cells` [100,100], `relief`
 /// 40, `seed` 1) and `pit` (`center` [0,0,60], `radius` [220,160], `depth` 140, `benches`
 /// 5, `berm` 8, `segments` 64): the pit crosses the terrain, its rim above the ground all
 /// round. `size`, `cells` and the pit's `radius` take one number for both axes.
 fn shape(name: &str, o: &Value) -> Result<ops::Shape, JsError> {
-    use ops::Shape;
-    let keys: &[&str] = match name {
-        "cube" => &["center", "size", "min", "max"],
-        "sphere" => &["center", "radius", "segments", "rings"],
-        "cylinder" => &["base", "radius", "height", "segments"],
-        "cone" => &["base", "radius", "topRadius", "height", "segments"],
-        "plane" => &["center", "width", "depth", "nx", "ny"],
-        "terrain" => &["center", "size", "cells", "relief", "seed"],
-        "pit" => &["center", "radius", "depth", "benches", "berm", "segments"],
-        _ => {
-            return Err(bad(format!(
-                "unknown shape {name:?}: cube, sphere, cylinder, cone, plane, terrain or pit"
-            )))
-        }
+    use ops::{Shape, ShapeJsonError, ShapeKeys};
+    let none = serde_json::Map::new();
+    let obj = match o {
+        Value::Object(m) => m,
+        _ => &none,
     };
-    known_keys(o, name, keys)?;
-    let origin = [0.0; 3];
-    Ok(match name {
-        "cube" => {
-            let corners = (o.get("min"), o.get("max"));
-            if corners.0.is_some() || corners.1.is_some() {
-                if o.get("center").is_some() || o.get("size").is_some() {
-                    return Err(bad(
-                        "a cube takes center and size, or min and max, not both",
-                    ));
-                }
-                if corners.0.is_none() || corners.1.is_none() {
-                    return Err(bad("a cube's min and max go together"));
-                }
-            }
-            let (min, max) = if corners.0.is_some() {
-                (
-                    numbers(o, "min", origin, false)?,
-                    numbers(o, "max", origin, false)?,
-                )
-            } else {
-                let c = numbers(o, "center", origin, false)?;
-                let s = numbers(o, "size", [1.0; 3], true)?;
-                (
-                    std::array::from_fn(|k| c[k] - s[k] / 2.0),
-                    std::array::from_fn(|k| c[k] + s[k] / 2.0),
-                )
-            };
-            Shape::Cube { min, max }
-        }
-        "sphere" => Shape::Sphere {
-            center: numbers(o, "center", origin, false)?,
-            radius: number_or(o, "radius", 1.0)?,
-            segments: whole(o, "segments", 32)?,
-            rings: whole(o, "rings", 16)?,
-        },
-        "cylinder" => Shape::Cylinder {
-            base: numbers(o, "base", origin, false)?,
-            radius: number_or(o, "radius", 1.0)?,
-            height: number_or(o, "height", 1.0)?,
-            segments: whole(o, "segments", 32)?,
-        },
-        "cone" => Shape::Cone {
-            base: numbers(o, "base", origin, false)?,
-            radius: number_or(o, "radius", 1.0)?,
-            top_radius: number_or(o, "topRadius", 0.0)?,
-            height: number_or(o, "height", 1.0)?,
-            segments: whole(o, "segments", 32)?,
-        },
-        "plane" => Shape::Plane {
-            center: numbers(o, "center", origin, false)?,
-            width: number_or(o, "width", 1.0)?,
-            depth: number_or(o, "depth", 1.0)?,
-            nx: whole(o, "nx", 1)?,
-            ny: whole(o, "ny", 1)?,
-        },
-        "terrain" => {
-            let Shape::Terrain {
-                center,
-                size,
-                cells,
-                relief,
-                seed,
-            } = Shape::TERRAIN
-            else {
-                unreachable!("Shape::TERRAIN is a terrain")
-            };
-            Shape::Terrain {
-                center: numbers(o, "center", center, false)?,
-                size: numbers(o, "size", size, true)?,
-                cells: wholes(o, "cells", cells)?,
-                relief: number_or(o, "relief", relief)?,
-                seed: whole(o, "seed", seed)?,
-            }
-        }
-        _ => {
-            let Shape::Pit {
-                center,
-                radius,
-                depth,
-                benches,
-                berm,
-                segments,
-            } = Shape::PIT
-            else {
-                unreachable!("Shape::PIT is a pit")
-            };
-            Shape::Pit {
-                center: numbers(o, "center", center, false)?,
-                radius: numbers(o, "radius", radius, true)?,
-                depth: number_or(o, "depth", depth)?,
-                benches: whole(o, "benches", benches)?,
-                berm: number_or(o, "berm", berm)?,
-                segments: whole(o, "segments", segments)?,
-            }
-        }
+    Shape::from_json(name, obj, ShapeKeys::Js, &[]).map_err(|e| match e {
+        ShapeJsonError::UnknownShape(name) => bad(format!(
+            "unknown shape {name:?}: cube, sphere, cylinder, cone, plane, terrain or pit"
+        )),
+        ShapeJsonError::UnknownKey { key, known } => bad(format!(
+            "{name} takes no option {key:?} (its options: {})",
+            known.join(", ")
+        )),
+        ShapeJsonError::Value { key, message } => bad(format!("option {key} {message}")),
+        ShapeJsonError::Keys(message) => bad(message),
     })
 }
 

@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use serde_json::{Map, Value};
 
-use crate::ops::Shape;
+use crate::ops::{Shape, ShapeJsonError, ShapeKeys};
 use crate::{Error, Mesh, Result, Transform};
 
 /// A CSG document: a tree of booleans over meshes and primitives.
@@ -435,12 +435,6 @@ fn one_or<const N: usize>(v: &Value, at: &str) -> Result<[f64; N]> {
     Ok(std::array::from_fn(|k| p[k]))
 }
 
-fn count(v: &Value, at: &str) -> Result<u32> {
-    v.as_u64()
-        .and_then(|n| u32::try_from(n).ok())
-        .ok_or_else(|| malformed(at, format!("expected a whole number, got {v}")))
-}
-
 /// A node's `transform`: one step object or a list of them, applied in order.
 fn transform(v: &Value, at: &str) -> Result<Transform> {
     match v {
@@ -547,144 +541,19 @@ fn rotation(v: &Value, at: &str) -> Result<Transform> {
 /// A primitive leaf's shape: the parameters of `meshbool make`, with its defaults.
 fn primitive(obj: &Map<String, Value>, at: &str) -> Result<Shape> {
     let name = string(&obj["primitive"], &format!("{at}.primitive"))?;
-    let keys: &[&str] = match name {
-        "cube" => &["size", "center", "min", "max"],
-        "sphere" => &["center", "radius", "segments", "rings"],
-        "cylinder" => &["base", "radius", "height", "segments"],
-        "cone" => &["base", "radius", "top_radius", "height", "segments"],
-        "plane" => &["center", "width", "depth", "nx", "ny"],
-        "terrain" => &["center", "size", "cells", "relief", "seed"],
-        "pit" => &["center", "radius", "depth", "benches", "berm", "segments"],
-        _ => {
-            return Err(malformed(
-                &format!("{at}.primitive"),
-                format!(
-                "unknown primitive `{name}` (cube, sphere, cylinder, cone, plane, terrain, pit)"
+    let others = [&["primitive"][..], &COMMON[..]].concat();
+    let shape = Shape::from_json(name, obj, ShapeKeys::Document, &others).map_err(|e| match e {
+        ShapeJsonError::UnknownShape(_) => malformed(&format!("{at}.primitive"), e),
+        ShapeJsonError::UnknownKey { key, known } => malformed(
+            &format!("{at}.{key}"),
+            format!(
+                "unknown key (this node takes {})",
+                [&others[..1], &known, &others[1..]].concat().join(", ")
             ),
-            ))
-        }
-    };
-    allow_keys(obj, at, &[&["primitive"], keys].concat())?;
-    let key_at = |k: &str| format!("{at}.{k}");
-    let f = |k: &str, default: f64| obj.get(k).map_or(Ok(default), |v| number(v, &key_at(k)));
-    let n = |k: &str, default: u32| obj.get(k).map_or(Ok(default), |v| count(v, &key_at(k)));
-    let p = |k: &str, default: [f64; 3]| obj.get(k).map_or(Ok(default), |v| point(v, &key_at(k)));
-    let shape = match name {
-        "cube" => {
-            let (min, max) = match (obj.get("min"), obj.get("max")) {
-                (Some(lo), Some(hi)) => {
-                    if obj.contains_key("size") || obj.contains_key("center") {
-                        return Err(malformed(
-                            at,
-                            "a cube takes min and max, or size and center, not both",
-                        ));
-                    }
-                    (point(lo, &key_at("min"))?, point(hi, &key_at("max"))?)
-                }
-                (None, None) => {
-                    let s = obj
-                        .get("size")
-                        .map_or(Ok([1.0; 3]), |v| one_or::<3>(v, &key_at("size")))?;
-                    let c = p("center", [0.0; 3])?;
-                    (
-                        std::array::from_fn(|k| c[k] - s[k] / 2.0),
-                        std::array::from_fn(|k| c[k] + s[k] / 2.0),
-                    )
-                }
-                _ => return Err(malformed(at, "a cube's min and max come together")),
-            };
-            Shape::Cube { min, max }
-        }
-        "sphere" => Shape::Sphere {
-            center: p("center", [0.0; 3])?,
-            radius: f("radius", 1.0)?,
-            segments: n("segments", 32)?,
-            rings: n("rings", 16)?,
-        },
-        "cylinder" => Shape::Cylinder {
-            base: p("base", [0.0; 3])?,
-            radius: f("radius", 1.0)?,
-            height: f("height", 1.0)?,
-            segments: n("segments", 32)?,
-        },
-        "cone" => Shape::Cone {
-            base: p("base", [0.0; 3])?,
-            radius: f("radius", 1.0)?,
-            top_radius: f("top_radius", 0.0)?,
-            height: f("height", 1.0)?,
-            segments: n("segments", 32)?,
-        },
-        "plane" => Shape::Plane {
-            center: p("center", [0.0; 3])?,
-            width: f("width", 1.0)?,
-            depth: f("depth", 1.0)?,
-            nx: n("nx", 1)?,
-            ny: n("ny", 1)?,
-        },
-        "terrain" => {
-            let Shape::Terrain {
-                center,
-                size,
-                cells,
-                relief,
-                seed,
-            } = Shape::TERRAIN
-            else {
-                unreachable!("Shape::TERRAIN is a terrain")
-            };
-            Shape::Terrain {
-                center: p("center", center)?,
-                size: obj
-                    .get("size")
-                    .map_or(Ok(size), |v| one_or::<2>(v, &key_at("size")))?,
-                cells: match obj.get("cells") {
-                    None => cells,
-                    Some(v) if v.is_array() => {
-                        let l = v.as_array().filter(|l| l.len() == 2).ok_or_else(|| {
-                            malformed(
-                                &key_at("cells"),
-                                format!("expected a count or a list of 2, got {v}"),
-                            )
-                        })?;
-                        [
-                            count(&l[0], &key_at("cells[0]"))?,
-                            count(&l[1], &key_at("cells[1]"))?,
-                        ]
-                    }
-                    Some(v) => [count(v, &key_at("cells"))?; 2],
-                },
-                relief: f("relief", relief)?,
-                seed: obj.get("seed").map_or(Ok(seed), |v| {
-                    v.as_u64().ok_or_else(|| {
-                        malformed(&key_at("seed"), format!("expected a whole number, got {v}"))
-                    })
-                })?,
-            }
-        }
-        _ => {
-            let Shape::Pit {
-                center,
-                radius,
-                depth,
-                benches,
-                berm,
-                segments,
-            } = Shape::PIT
-            else {
-                unreachable!("Shape::PIT is a pit")
-            };
-            Shape::Pit {
-                center: p("center", center)?,
-                radius: obj
-                    .get("radius")
-                    .map_or(Ok(radius), |v| one_or::<2>(v, &key_at("radius")))?,
-                depth: f("depth", depth)?,
-                benches: n("benches", benches)?,
-                berm: f("berm", berm)?,
-                segments: n("segments", segments)?,
-            }
-        }
-    };
+        ),
+        ShapeJsonError::Value { key, message } => malformed(&format!("{at}.{key}"), message),
+        ShapeJsonError::Keys(message) => malformed(at, message),
+    })?;
     // The parameters' ranges, checked here so that the error says where.
     shape.mesh().map_err(|e| match e {
         Error::InvalidParameter(m) => malformed(at, m),

@@ -64,6 +64,7 @@ mod envelope;
 mod make;
 mod operand;
 mod points;
+mod shape_json;
 mod single;
 mod split;
 mod transform;
@@ -89,6 +90,7 @@ pub use operand::{
 pub use points::{
     classify_points, ClassifyOptions, ClassifyOutput, ClassifyReport, PointClass, PointResult,
 };
+pub use shape_json::{ShapeJsonError, ShapeKeys};
 pub use single::{
     close, info, orient, repair, repair_with, resolve, CloseCommandReport, CloseOutput, InfoReport,
     OrientCommandReport, OrientOutput, RepairCommandReport, RepairOutput, ResolveCommandReport,
