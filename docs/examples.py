@@ -17,7 +17,8 @@ linked into it, so `python3 docs/render.py` works as it does from a clone):
   of the example are allowed), where `…` stands for any text and trailing spaces do not
   count. A line `(exit N)` says the command ends with status N; any other command must
   succeed.
-- ```python blocks (in files whose name contains "python" or that are the Python README):
+- ```python blocks (in files whose name contains "python", in docs/cluster.md, and in the
+  Python README):
   joined into one script and run by `--python` (default: .venv/bin/python when it exists,
   else python3) in the scratch directory; they check themselves with `assert`.
 
@@ -144,7 +145,11 @@ def run_file(path, args, failures):
     text = path.read_text(encoding="utf-8")
     relative = path.resolve().relative_to(REPO)
     found = list(blocks(text))
-    python = "python" in path.name or path.parent.name == "meshbool-py"
+    python = (
+        "python" in path.name
+        or path.name == "cluster.md"
+        or path.parent.name == "meshbool-py"
+    )
     scripts = [(start, body) for info, start, body in found if python and info == "python"]
     consoles = [(start, body) for info, start, body in found if info == "console"]
     if not scripts and not consoles:

@@ -57,9 +57,11 @@ fn rows<T: numpy::Element + Copy>(
             a.shape()
         )));
     }
-    let flat = a
-        .as_slice()
-        .map_err(|_| PyValueError::new_err(format!("{what} must be C-contiguous")))?;
+    let flat = a.as_slice().map_err(|_| {
+        PyValueError::new_err(format!(
+            "{what} must be C-contiguous and aligned (numpy.require(a, requirements=\"CA\"))"
+        ))
+    })?;
     Ok(flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect())
 }
 
@@ -846,7 +848,9 @@ fn shape_defaults() -> PyResult<String> {
         },
     ) = (ops::Shape::TERRAIN, ops::Shape::PIT)
     else {
-        return Err(PyValueError::new_err("the library's example shapes changed kind"));
+        return Err(PyValueError::new_err(
+            "the library's example shapes changed kind",
+        ));
     };
     let defaults = serde_json::json!({
         "terrain": {"center": center, "size": size, "cells": cells, "relief": relief, "seed": seed},

@@ -100,16 +100,23 @@ def _arrays(vertices: Any, faces: Any) -> Tuple[np.ndarray, np.ndarray]:
         raise ValueError(
             f"face indices must be in 0..{np.iinfo(np.uint32).max}, got {f.min()}..{f.max()}"
         )
+    return _native_layout(v, f)
+
+
+def _native_layout(v: np.ndarray, f: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
+    """The arrays as the library reads them: C-contiguous and aligned (arrays rebuilt from
+    a transport's buffers, as Dask's, may not be), float64 and uint32; copied only where
+    they are not."""
     return (
-        np.ascontiguousarray(v, dtype=np.float64),
-        np.ascontiguousarray(f, dtype=np.uint32),
+        np.require(v, dtype=np.float64, requirements=["C", "A"]),
+        np.require(f, dtype=np.uint32, requirements=["C", "A"]),
     )
 
 
 def _parts(mesh: Any) -> Tuple[np.ndarray, np.ndarray]:
     """The arrays of anything that is a mesh."""
     if isinstance(mesh, Mesh):
-        return mesh.vertices, mesh.faces
+        return _native_layout(mesh.vertices, mesh.faces)
     if hasattr(mesh, "vertices") and hasattr(mesh, "faces"):
         return _arrays(mesh.vertices, mesh.faces)
     if isinstance(mesh, (tuple, list)) and len(mesh) == 2:
@@ -219,6 +226,20 @@ class Mesh:
 
     def __repr__(self) -> str:
         return f"meshbool.Mesh({len(self.vertices)} vertices, {len(self.faces)} faces)"
+
+    def __reduce__(self) -> Tuple[Any, Tuple[Any, ...]]:
+        # Pickled as its arrays, report and provenance (made now where they are pending),
+        # so that a result crosses process boundaries (multiprocessing, Dask workers).
+        return (_rebuilt, (self.vertices, self.faces, self.report, self.provenance))
+
+
+def _rebuilt(
+    vertices: np.ndarray, faces: np.ndarray, report: Optional[dict], provenance: Optional[dict]
+) -> Mesh:
+    """A pickled :class:`Mesh` again."""
+    m = Mesh._from(*_native_layout(vertices, faces))
+    m._report, m._provenance = report, provenance
+    return m
 
 
 def box(lo: Sequence[float], hi: Sequence[float]) -> Mesh:

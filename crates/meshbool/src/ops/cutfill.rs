@@ -170,7 +170,6 @@ pub fn cutfill<'a>(
         let bopts = BooleanOptions {
             checks: Checks {
                 self_intersections: false,
-                resolve: false,
                 orient: false,
                 ..Checks::default()
             },
@@ -310,5 +309,32 @@ mod tests {
             assert_eq!(out.faced_up[1], 22);
             assert!(folds > 2.0, "{folds}");
         }
+    }
+
+    /// A topography whose boundary passes twice through one vertex (two squares touching
+    /// at a corner, as a tile of a terrain or a survey with a gap can be): its curtain
+    /// solid has a wall edge of four triangles, used as often each way, and cut and fill
+    /// are answered, not refused.
+    #[test]
+    fn a_surface_pinched_at_a_vertex() {
+        let p = |x: f64, y: f64| [x, y, 0.0];
+        let topo = Mesh::new(
+            vec![
+                p(0.0, 0.0),
+                p(1.0, 0.0),
+                p(1.0, 1.0),
+                p(0.0, 1.0),
+                p(2.0, 1.0),
+                p(2.0, 2.0),
+                p(1.0, 2.0),
+            ],
+            vec![[0, 1, 2], [0, 2, 3], [2, 4, 5], [2, 5, 6]],
+        )
+        .unwrap();
+        let design = heightfield([-1.0, -1.0], [3.0, 3.0], 4, 4, |_, _| 2.0);
+        let out = cutfill(&design, &topo, &CutFillOptions::default()).unwrap();
+        assert!(rel(out.fill, 4.0) < 1e-12, "{}", out.fill);
+        assert!(out.cut.abs() < 1e-12, "{}", out.cut);
+        assert!(rel(out.common_area, 2.0) < 1e-12, "{}", out.common_area);
     }
 }

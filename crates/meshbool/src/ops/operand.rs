@@ -536,12 +536,14 @@ impl Operand {
         // Edges of more than two triangles (closed parts glued along edges, a part given
         // twice) are separated into sheets by the resolve.
         let glued_input = counts.is_some_and(|c| c.inconsistent == 0 && c.non_manifold > 0);
-        if let (Some(found), Some(si), true, true) = (
-            &found,
-            &mut self_intersections,
-            checks.resolve,
-            clean_edges || glued_input,
-        ) {
+        // Without the self-intersection check (the caller vouches that nothing crosses:
+        // cut and fill's curtain solids), glued parts are still separated: resolved with
+        // no crossings.
+        let vouched = Vec::new();
+        let pairs = found
+            .as_ref()
+            .or((glued_input && checks.resolve).then_some(&vouched));
+        if let (Some(found), true, true) = (pairs, checks.resolve, clean_edges || glued_input) {
             if !found.is_empty() || glued_input {
                 // Welded where parts touch: a later boolean takes edges of four triangles
                 // (it pairs them into sheets on its result), not distinct vertices at
@@ -573,7 +575,11 @@ impl Operand {
                         parent = Some(r.parent);
                         resolved = Some(r.report);
                     }
-                    Err(why) => si.unresolved = Some(why),
+                    Err(why) => {
+                        if let Some(si) = &mut self_intersections {
+                            si.unresolved = Some(why);
+                        }
+                    }
                 }
             }
         }
