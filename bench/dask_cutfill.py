@@ -5,7 +5,7 @@ LocalCluster of 1 and of 2 worker processes, one library thread per task).
 
 Per run: wall time, the tiles, the largest relative difference of cut, fill and common
 plan area from the whole's, and the peak resident memory of each worker process (its
-ru_maxrss, read on the worker after the run; the cluster is new for each worker count).
+VmHWM, read on the worker after the run; the cluster is new for each worker count).
 The terrain is `meshbool.terrain` with --cells cells a side (2·cells² triangles), the pit
 shells `meshbool.pit` spread over it.
 
@@ -24,7 +24,16 @@ import meshbool.dask
 
 
 def peak_rss_mb() -> float:
-    """This process's peak resident memory (MB; ru_maxrss is in KiB on Linux)."""
+    """This process's peak resident memory (MB): VmHWM of /proc/self/status, the high-water
+    mark of its own address space (ru_maxrss would count the parent's from before the
+    worker's exec); ru_maxrss where /proc is absent."""
+    try:
+        with open("/proc/self/status") as f:
+            for line in f:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1]) / 1024.0
+    except OSError:
+        pass
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
 
 

@@ -152,6 +152,13 @@ def _submesh(v: np.ndarray, f: np.ndarray, rows: np.ndarray) -> Tuple[np.ndarray
     return v[used], inverse.reshape(faces.shape).astype(np.uint32)
 
 
+def _plan_area(corners: np.ndarray) -> float:
+    """The triangles' areas in plan, each taken positive (as the library measures a
+    surface's plan area)."""
+    e1, e2 = corners[:, 1, :2] - corners[:, 0, :2], corners[:, 2, :2] - corners[:, 0, :2]
+    return float(0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]).sum())
+
+
 def _tile_cutfill(
     dv: np.ndarray, df: np.ndarray, tv: np.ndarray, tf: np.ndarray, threads: Optional[int]
 ) -> Tuple[dict, List[Tuple[np.ndarray, bool]]]:
@@ -237,41 +244,37 @@ def tiled_cutfill(
     corners = dv[df]  # (m, 3, 3)
     origin = dv[:, :2].min(axis=0)
     cell = np.floor((corners[:, :, :2].mean(axis=1) - origin) / tile).astype(np.int64)
-    keys, tile_of = np.unique(cell, axis=0, return_inverse=True)
-    tile_of = tile_of.reshape(-1)
-    order = np.argsort(tile_of, kind="stable")
-    bounds = np.searchsorted(tile_of[order], np.arange(len(keys) + 1))
-    # The topography's triangles by the cells their boxes meet (a triangle larger than a
-    # tile is in several).
+    d_lo, d_hi = corners[:, :, :2].min(axis=1), corners[:, :, :2].max(axis=1)
+    # The topography's triangles that can meet a design triangle (their boxes meet the
+    # design's), by every tile their boxes meet (a triangle larger than a tile is in
+    # several); a tile's design triangles may reach out of it, so a task looks in every
+    # tile its triangles' box meets.
     t_corners = tv[tf]
     t_lo, t_hi = t_corners[:, :, :2].min(axis=1), t_corners[:, :, :2].max(axis=1)
-    c_lo = np.floor((t_lo - origin) / tile).astype(np.int64)
-    c_hi = np.floor((t_hi - origin) / tile).astype(np.int64)
-    by_cell: Dict[Tuple[int, int], List[np.ndarray]] = {}
-    span = c_hi - c_lo
-    for dx in range(int(span[:, 0].max()) + 1):
-        for dy in range(int(span[:, 1].max()) + 1):
-            rows = np.nonzero((span[:, 0] >= dx) & (span[:, 1] >= dy))[0]
-            cx, cy = c_lo[rows, 0] + dx, c_lo[rows, 1] + dy
-            for key, group in _groups(np.stack([cx, cy], axis=1), rows):
-                by_cell.setdefault(key, []).append(group)
+    near_design = np.all(t_lo <= d_hi.max(axis=0), axis=1) & np.all(t_hi >= d_lo.min(axis=0), axis=1)
+    cand = np.nonzero(near_design)[0]
+    c_lo = np.floor((t_lo[cand] - origin) / tile).astype(np.int64)
+    c_hi = np.floor((t_hi[cand] - origin) / tile).astype(np.int64)
+    sx, sy = c_hi[:, 0] - c_lo[:, 0] + 1, c_hi[:, 1] - c_lo[:, 1] + 1
+    counts = sx * sy
+    rep = np.repeat(np.arange(len(cand)), counts)
+    k = np.arange(int(counts.sum())) - np.repeat(np.cumsum(counts) - counts, counts)
+    t_cells = np.stack([c_lo[rep, 0] + k // sy[rep], c_lo[rep, 1] + k % sy[rep]], axis=1)
+    topo_in = dict(_groups(t_cells, cand[rep]))
     calls = []
-    for k in range(len(keys)):
-        rows = order[bounds[k] : bounds[k + 1]]
-        lo = corners[rows][:, :, :2].reshape(-1, 2).min(axis=0)
-        hi = corners[rows][:, :, :2].reshape(-1, 2).max(axis=0)
+    for key, rows in _groups(cell, np.arange(len(df))):
+        lo, hi = d_lo[rows].min(axis=0), d_hi[rows].max(axis=0)
         a, b = np.floor((lo - origin) / tile).astype(np.int64), np.floor((hi - origin) / tile).astype(np.int64)
         found = [
-            g
+            topo_in[(x, y)]
             for x in range(a[0], b[0] + 1)
             for y in range(a[1], b[1] + 1)
-            for g in by_cell.get((x, y), [])
+            if (x, y) in topo_in
         ]
         if not found:
             continue
         near = np.unique(np.concatenate(found))
-        meets = np.all(t_lo[near] <= hi, axis=1) & np.all(t_hi[near] >= lo, axis=1)
-        near = near[meets]
+        near = near[np.all(t_lo[near] <= hi, axis=1) & np.all(t_hi[near] >= lo, axis=1)]
         if len(near) == 0:
             continue
         calls.append((*_submesh(dv, df, rows), *_submesh(tv, tf, near), threads))
@@ -281,8 +284,8 @@ def tiled_cutfill(
         "cut": 0.0,
         "fill": 0.0,
         "net": 0.0,
-        "design_plan_area": d_up.stats()["projected_area"]["xy"],
-        "topo_plan_area": t_up.stats()["projected_area"]["xy"],
+        "design_plan_area": _plan_area(corners),
+        "topo_plan_area": _plan_area(t_corners),
         "common_plan_area": 0.0,
         "zero_lines": 0,
         "zero_line_length": 0.0,
@@ -302,12 +305,17 @@ def tiled_cutfill(
 
 
 def _groups(keys: np.ndarray, rows: np.ndarray) -> Iterable[Tuple[Tuple[int, int], np.ndarray]]:
-    """``rows`` grouped by their ``keys`` (pairs of cell indices)."""
+    """``rows`` grouped by their ``keys`` (pairs of cell indices, one row each), in the
+    order of the keys."""
     if len(rows) == 0:
         return
-    uniq, inverse = np.unique(keys, axis=0, return_inverse=True)
-    inverse = inverse.reshape(-1)
-    order = np.argsort(inverse, kind="stable")
-    bounds = np.searchsorted(inverse[order], np.arange(len(uniq) + 1))
-    for k, key in enumerate(uniq):
-        yield (int(key[0]), int(key[1])), rows[order[bounds[k] : bounds[k + 1]]]
+    lo = keys.min(axis=0)
+    width = int(keys[:, 1].max() - lo[1]) + 1
+    flat = (keys[:, 0] - lo[0]) * width + (keys[:, 1] - lo[1])
+    order = np.argsort(flat, kind="stable")
+    flat = flat[order]
+    starts = np.flatnonzero(np.r_[True, flat[1:] != flat[:-1]])
+    ends = np.r_[starts[1:], len(flat)]
+    for a, b in zip(starts, ends):
+        x, y = divmod(int(flat[a]), width)
+        yield (x + int(lo[0]), y + int(lo[1])), rows[order[a:b]]

@@ -155,8 +155,13 @@ pub fn cutfill<'a>(
             .fold(0.0f64, f64::max);
         let margin = (hi - lo).max(size).max(f64::MIN_POSITIVE);
         let (floor, raise) = (lo - margin, (hi - lo) + margin);
-        let solid = |m: &Mesh| curtain_to(m, floor).0;
-        let raised = |m: &Mesh| {
+        // The design's solids stand on a floor below the topography's: every intersection
+        // below is bounded beneath by the topography's floor alone, so its volume is the
+        // same as on one floor, and the two floors never lie on each other (coplanar caps
+        // of long thin triangles, each against each, cost as much as all the rest).
+        let design_floor = floor - margin;
+        let solid = |m: &Mesh, floor: f64| curtain_to(m, floor).0;
+        let raised = |m: &Mesh, floor: f64| {
             let mut up = m.clone();
             for p in &mut up.positions {
                 p[2] += raise;
@@ -164,8 +169,8 @@ pub fn cutfill<'a>(
             curtain_to(&up, floor).0
         };
         let ((ts, ds), (tr, dr)) = crate::par::join(
-            || (solid(&t_up), solid(&d_up)),
-            || (raised(&t_up), raised(&d_up)),
+            || (solid(&t_up, floor), solid(&d_up, design_floor)),
+            || (raised(&t_up, floor), raised(&d_up, design_floor)),
         );
         let bopts = BooleanOptions {
             checks: Checks {
