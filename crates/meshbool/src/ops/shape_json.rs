@@ -195,11 +195,11 @@ impl Shape {
     }
 
     /// Shape `name` from the JSON object of its parameters, every one optional with the
-    /// default of `meshbool make`: `cube` (`center` [0,0,0] and `size` 1, one number or
-    /// three; or `min` and `max` together), `sphere` (`center` [0,0,0], `radius` 1,
-    /// `segments` 32, `rings` 16), `cylinder` (`base` [0,0,0], `radius` 1, `height` 1,
+    /// default of `meshbool make`: `cube` (`center` `[0, 0, 0]` and `size` 1, one number or
+    /// three; or `min` and `max` together), `sphere` (`center` `[0, 0, 0]`, `radius` 1,
+    /// `segments` 32, `rings` 16), `cylinder` (`base` `[0, 0, 0]`, `radius` 1, `height` 1,
     /// `segments` 32), `cone` (as the cylinder, with `top_radius` 0), `plane` (`center`
-    /// [0,0,0], `width` 1, `depth` 1, `nx` 1, `ny` 1), `terrain` and `pit` (the defaults
+    /// `[0, 0, 0]`, `width` 1, `depth` 1, `nx` 1, `ny` 1), `terrain` and `pit` (the defaults
     /// of [`Shape::TERRAIN`] and [`Shape::PIT`]; `size`, `cells` and the pit's `radius`
     /// one number for both axes or two). Keys in `others` belong to the caller and are
     /// left alone (a CSG node's `name`, `role`, `transform`); any other key is refused.
