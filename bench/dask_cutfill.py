@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """meshbool.dask against one machine: cut and fill of a generated terrain against pit shells,
-whole (meshbool.cutfill in this process) and tiled (meshbool.dask.tiled_cutfill on a
-LocalCluster of 1 and of 2 worker processes, one library thread per task).
+whole (meshbool.cutfill in this process, one pit after the other) and tiled
+(meshbool.dask.tiled_cutfill_many: every pit's tiles in one batch, on a LocalCluster of 1
+and of 2 worker processes, one library thread per task).
 
 Per run: wall time, the tiles, the largest relative difference of cut, fill and common
 plan area from the whole's, and the peak resident memory of each worker process (its
@@ -67,8 +68,7 @@ def main() -> None:
         client = distributed.Client(cluster)
         start = time.perf_counter()
         worst, tiles = 0.0, 0
-        for p, w in zip(pits, whole):
-            r, _ = meshbool.dask.tiled_cutfill(p, terrain, args.tile, client)
+        for (r, _), w in zip(meshbool.dask.tiled_cutfill_many(pits, terrain, args.tile, client), whole):
             tiles += r["tiles"]
             for key in ("cut", "fill", "common_plan_area"):
                 worst = max(worst, abs(r[key] - w[key]) / max(abs(w[key]), 1e-300))

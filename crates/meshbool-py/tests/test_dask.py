@@ -111,6 +111,39 @@ def test_tiled_cutfill_of_the_kirra_pit_and_terrain(client):
         pass
 
 
+def pad(x0, y0, side, n, z):
+    """A flat square design pad at height z: (n+1)² vertices, 2n² triangles facing up."""
+    xs = np.linspace(x0, x0 + side, n + 1)
+    gx, gy = np.meshgrid(xs, np.linspace(y0, y0 + side, n + 1), indexing="ij")
+    v = np.stack([gx.ravel(), gy.ravel(), np.full(gx.size, z)], axis=1)
+    i = np.arange(n)[:, None] * (n + 1) + np.arange(n)[None, :]
+    a, b, c, d = i.ravel(), (i + n + 1).ravel(), (i + n + 2).ravel(), (i + 1).ravel()
+    f = np.concatenate([np.stack([a, b, c], 1), np.stack([a, c, d], 1)]).astype(np.uint32)
+    return v, f
+
+
+def test_many_designs_against_one_terrain_in_one_batch(client):
+    terrain = meshbool.terrain()
+    pits = [
+        meshbool.pit(),
+        meshbool.pit(center=(150.0, -100.0, 50.0), radius=(120.0, 90.0), depth=60.0),
+        pad(-300.0, 200.0, 200.0, 8, 15.0),
+    ]
+    got = mbd.tiled_cutfill_many(pits, terrain, 75.0, client)
+    assert len(got) == 3
+    for pit, (report, lines) in zip(pits, got):
+        whole, whole_lines = meshbool.cutfill(pit, terrain)
+        # Volumes to 1e-9 of the volumes moved (the pad's cut is 0: its tiles' rounding
+        # noise adds up to ~1e-10), areas and lengths to 1e-9 of themselves.
+        moved = whole["cut"] + whole["fill"]
+        for key in ("cut", "fill", "net"):
+            assert abs(report[key] - whole[key]) <= 1e-9 * moved, (key, report[key], whole[key])
+        for key in ("common_plan_area", "design_plan_area", "topo_plan_area", "zero_line_length"):
+            assert close(report[key], whole[key]), (key, report[key], whole[key])
+        assert report["zero_lines"] == whole["zero_lines"] == len(lines)
+        assert report["faced_up"] == whole["faced_up"] and report["tiles"] >= 1
+
+
 def test_tiled_cutfill_refuses_what_the_whole_refuses():
     with pytest.raises(ValueError, match="tile must be"):
         mbd.tiled_cutfill(meshbool.pit(), meshbool.terrain(), 0.0)

@@ -43,7 +43,7 @@ except ImportError as e:  # pragma: no cover - the extra is not installed
         "meshbool.dask needs Dask: pip install 'meshbool[dask]' (dask[distributed])"
     ) from e
 
-__all__ = ["Failure", "map_boolean", "tiled_cutfill"]
+__all__ = ["Failure", "map_boolean", "tiled_cutfill", "tiled_cutfill_many"]
 
 #: A mesh as the functions here take it: a path read where the work runs, or a mesh.
 MeshOrPath = Union[str, "os.PathLike[str]", Mesh, Any]
@@ -231,16 +231,75 @@ def tiled_cutfill(
     run). ``threads``: the library's threads per task (1 by default). A design or
     topography without triangles raises ``ValueError``, as the whole's call does.
     """
+    return tiled_cutfill_many([design], topo, tile, client, threads=threads, progress=progress)[0]
+
+
+def tiled_cutfill_many(
+    designs: Iterable[MeshOrPath],
+    topo: MeshOrPath,
+    tile: float,
+    client: Optional[Any] = None,
+    *,
+    threads: Optional[int] = 1,
+    progress: bool = False,
+) -> List[Tuple[dict, Curves]]:
+    """:func:`tiled_cutfill` of each of ``designs`` against one ``topo`` (hundreds of pit
+    designs against a survey): the topography is faced up and indexed once, and every
+    design's tiles go to the cluster as one batch. A list of ``(report, lines)`` in the
+    designs' order; each report's ``seconds`` is the whole call's."""
     if not (isinstance(tile, (int, float)) and math.isfinite(tile) and tile > 0):
         raise ValueError(f"tile must be a finite size > 0, got {tile!r}")
     start = time.perf_counter()
-    d_up, t_up = orient(_mesh(design), "z-up"), orient(_mesh(topo), "z-up")
+    ground = _Ground(orient(_mesh(topo), "z-up"))
+    plans = [_plan(orient(_mesh(d), "z-up"), ground, tile, threads) for d in designs]
+    calls = [c for p in plans for c in p.calls]
+    results = iter(_run(_current_client(client), _tile_cutfill, calls, progress))
+    out = []
+    for p in plans:
+        report = p.report
+        lines: List[Tuple[np.ndarray, bool]] = []
+        for _ in p.calls:
+            r, tile_lines = next(results)
+            for key in ("cut", "fill", "common_plan_area", "zero_line_length"):
+                report[key] += r[key]
+            lines.extend(tile_lines)
+        report["net"] = report["cut"] - report["fill"]
+        joined = _chained(lines)
+        report["zero_lines"] = len(joined)
+        report["tiles"] = len(p.calls)
+        out.append((report, Curves(joined)))
+    for report, _ in out:
+        report["seconds"] = time.perf_counter() - start
+    return out
+
+
+class _Ground:
+    """The topography faced up, with its triangles' corners and boxes in plan."""
+
+    def __init__(self, up: Mesh) -> None:
+        self.flipped = up.report["flipped"]
+        self.v, self.f = _arrays(up)
+        if len(self.f) == 0:
+            raise ValueError("topography: no triangles; cut and fill need two surfaces")
+        self.corners = self.v[self.f]
+        self.lo = self.corners[:, :, :2].min(axis=1)
+        self.hi = self.corners[:, :, :2].max(axis=1)
+
+
+class _Plan(NamedTuple):
+    """One design's tasks and its report before the tiles' sums."""
+
+    calls: List[tuple]
+    report: Dict[str, Any]
+
+
+def _plan(d_up: Mesh, ground: _Ground, tile: float, threads: Optional[int]) -> _Plan:
+    """The tasks of design ``d_up`` (faced up) against ``ground``: the design's triangles by
+    the tile of their centroid, each tile with the topography's triangles whose boxes meet
+    its triangles'."""
     dv, df = _arrays(d_up)
-    tv, tf = _arrays(t_up)
-    for name, f in (("design", df), ("topography", tf)):
-        if len(f) == 0:
-            raise ValueError(f"{name}: no triangles; cut and fill need two surfaces")
-    # The design's triangles by the tile of their centroid.
+    if len(df) == 0:
+        raise ValueError("design: no triangles; cut and fill need two surfaces")
     corners = dv[df]  # (m, 3, 3)
     origin = dv[:, :2].min(axis=0)
     cell = np.floor((corners[:, :, :2].mean(axis=1) - origin) / tile).astype(np.int64)
@@ -249,8 +308,7 @@ def tiled_cutfill(
     # design's), by every tile their boxes meet (a triangle larger than a tile is in
     # several); a tile's design triangles may reach out of it, so a task looks in every
     # tile its triangles' box meets.
-    t_corners = tv[tf]
-    t_lo, t_hi = t_corners[:, :, :2].min(axis=1), t_corners[:, :, :2].max(axis=1)
+    t_lo, t_hi = ground.lo, ground.hi
     near_design = np.all(t_lo <= d_hi.max(axis=0), axis=1) & np.all(t_hi >= d_lo.min(axis=0), axis=1)
     cand = np.nonzero(near_design)[0]
     c_lo = np.floor((t_lo[cand] - origin) / tile).astype(np.int64)
@@ -262,7 +320,7 @@ def tiled_cutfill(
     t_cells = np.stack([c_lo[rep, 0] + k // sy[rep], c_lo[rep, 1] + k % sy[rep]], axis=1)
     topo_in = dict(_groups(t_cells, cand[rep]))
     calls = []
-    for key, rows in _groups(cell, np.arange(len(df))):
+    for _, rows in _groups(cell, np.arange(len(df))):
         lo, hi = d_lo[rows].min(axis=0), d_hi[rows].max(axis=0)
         a, b = np.floor((lo - origin) / tile).astype(np.int64), np.floor((hi - origin) / tile).astype(np.int64)
         found = [
@@ -277,31 +335,20 @@ def tiled_cutfill(
         near = near[np.all(t_lo[near] <= hi, axis=1) & np.all(t_hi[near] >= lo, axis=1)]
         if len(near) == 0:
             continue
-        calls.append((*_submesh(dv, df, rows), *_submesh(tv, tf, near), threads))
-    results = _run(_current_client(client), _tile_cutfill, calls, progress)
+        calls.append((*_submesh(dv, df, rows), *_submesh(ground.v, ground.f, near), threads))
     report: Dict[str, Any] = {
         "schema": SCHEMA,
         "cut": 0.0,
         "fill": 0.0,
         "net": 0.0,
         "design_plan_area": _plan_area(corners),
-        "topo_plan_area": _plan_area(t_corners),
+        "topo_plan_area": _plan_area(ground.corners),
         "common_plan_area": 0.0,
         "zero_lines": 0,
         "zero_line_length": 0.0,
-        "faced_up": [d_up.report["flipped"], t_up.report["flipped"]],
+        "faced_up": [d_up.report["flipped"], ground.flipped],
     }
-    lines: List[Tuple[np.ndarray, bool]] = []
-    for r, tile_lines in results:
-        for key in ("cut", "fill", "common_plan_area", "zero_line_length"):
-            report[key] += r[key]
-        lines.extend(tile_lines)
-    report["net"] = report["cut"] - report["fill"]
-    joined = _chained(lines)
-    report["zero_lines"] = len(joined)
-    report["tiles"] = len(calls)
-    report["seconds"] = time.perf_counter() - start
-    return report, Curves(joined)
+    return _Plan(calls, report)
 
 
 def _groups(keys: np.ndarray, rows: np.ndarray) -> Iterable[Tuple[Tuple[int, int], np.ndarray]]:
