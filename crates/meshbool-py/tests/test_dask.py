@@ -1,7 +1,6 @@
 """meshbool.dask on a local cluster of two worker processes: the results equal the one-machine
 calls, in input order, failures in their place."""
 
-import os
 import pathlib
 import pickle
 

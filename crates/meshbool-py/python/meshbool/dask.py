@@ -33,7 +33,7 @@ from typing import Any, Dict, Iterable, List, NamedTuple, Optional, Sequence, Tu
 
 import numpy as np
 
-from . import SCHEMA, Curves, Mesh, Polyline, boolean, cutfill, orient, read, write
+from . import SCHEMA, Curves, Mesh, Polyline, _parts, boolean, cutfill, orient, read, write
 
 try:
     import dask
@@ -137,12 +137,6 @@ def map_boolean(
         target = None if out is None else out.format(i=i, a=_stem(a, "a"), b=_stem(b, "b"))
         calls.append((i, a, b, op, target, options))
     return _run(_current_client(client), _one_boolean, calls, progress)
-
-
-def _arrays(mesh: Any) -> Tuple[np.ndarray, np.ndarray]:
-    v = np.ascontiguousarray(np.asarray(mesh.vertices, dtype=np.float64))
-    f = np.ascontiguousarray(np.asarray(mesh.faces, dtype=np.uint32))
-    return v, f
 
 
 def _submesh(v: np.ndarray, f: np.ndarray, rows: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
@@ -278,7 +272,7 @@ class _Ground:
 
     def __init__(self, up: Mesh) -> None:
         self.flipped = up.report["flipped"]
-        self.v, self.f = _arrays(up)
+        self.v, self.f = _parts(up)
         if len(self.f) == 0:
             raise ValueError("topography: no triangles; cut and fill need two surfaces")
         self.corners = self.v[self.f]
@@ -297,7 +291,7 @@ def _plan(d_up: Mesh, ground: _Ground, tile: float, threads: Optional[int]) -> _
     """The tasks of design ``d_up`` (faced up) against ``ground``: the design's triangles by
     the tile of their centroid, each tile with the topography's triangles whose boxes meet
     its triangles'."""
-    dv, df = _arrays(d_up)
+    dv, df = _parts(d_up)
     if len(df) == 0:
         raise ValueError("design: no triangles; cut and fill need two surfaces")
     corners = dv[df]  # (m, 3, 3)

@@ -30,6 +30,7 @@ use crate::intersect::{self_intersections, self_seam};
 use crate::kernel::{normals_dot_sign, orient2d_inputs, Sign};
 use crate::measure::signed_volume;
 use crate::repair::{split_nonmanifold, NonManifoldReport};
+use crate::vec3::{cross, sub};
 use crate::{Aabb, Mesh};
 
 /// Which points a self-overlapping mesh encloses, by their winding number `w` (how many
@@ -481,22 +482,14 @@ impl CoincidentPieces {
 
     /// The pieces of other sheets that piece `t` of `m` (the arrangement) lies on at `p`
     /// (a point inside `t`), each with +1 when it faces as `t` does, −1 when opposite.
-    /// Located in floating point in the plane's dominant projection: a probe, like the
-    /// winding number it corrects.
+    /// Located by exact orientations in the plane's dominant projection (the projection
+    /// chosen in floating point), facing by the exact sign of the normals' dot product.
     fn at(&self, m: &Mesh, t: usize, p: &[f64; 3]) -> Vec<(u32, i64)> {
         let Some(partners) = self.partners.get(&self.parent[t]) else {
             return Vec::new();
         };
-        let normal = |u: usize| {
-            let [a, b, c] = m.corners(u);
-            let (e, f) = (sub(&b, &a), sub(&c, &a));
-            [
-                e[1] * f[2] - e[2] * f[1],
-                e[2] * f[0] - e[0] * f[2],
-                e[0] * f[1] - e[1] * f[0],
-            ]
-        };
-        let n = normal(t);
+        let [a, b, c] = m.corners(t);
+        let n = cross(&sub(&b, &a), &sub(&c, &a));
         let axis = (0..3)
             .max_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()))
             .unwrap_or(2);
@@ -516,10 +509,6 @@ impl CoincidentPieces {
         }
         out
     }
-}
-
-fn sub(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
 /// A point of `mesh` away from its vertices (the centroid of its largest triangle), where

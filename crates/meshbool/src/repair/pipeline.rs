@@ -587,7 +587,7 @@ struct Quality {
 
 impl Quality {
     fn of(m: &Mesh) -> Quality {
-        let counts = crate::edges::EdgeTopology::new(m).kind_counts();
+        let counts = crate::edges::EdgeCounts::of(m);
         Quality {
             empty: m.is_empty(),
             boundary: counts.boundary,
