@@ -98,6 +98,7 @@ pub mod kept;
 pub mod kernel;
 pub mod measure;
 mod mesh;
+mod mesh_edit;
 pub mod ops;
 mod par;
 pub mod query;

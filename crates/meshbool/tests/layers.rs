@@ -21,6 +21,7 @@ const LAYERS: &[&str] = &[
     "kernel",
     "welder",
     "mesh",
+    "mesh_edit",
     // What every stage may need: extreme scales, stages and cancellation, edges.
     "scale",
     "stage",
@@ -259,17 +260,22 @@ fn sibling_uses(src: &Path) -> Vec<Use> {
     let sources = sources(src);
     let none = BTreeMap::new();
     let mut out = Vec::new();
-    for parent in sources.iter().filter(|s| s.module.len() == 1) {
+    for parent in sources.iter().filter(|s| !s.module.is_empty()) {
+        let depth = parent.module.len();
         let children: Vec<&Source> = sources
             .iter()
-            .filter(|s| s.module.len() == 2 && s.module[0] == parent.module[0])
+            .filter(|s| s.module.len() == depth + 1 && s.module.starts_with(&parent.module))
             .collect();
-        let is_child = |m: &str| children.iter().any(|c| c.module[1] == m);
+        if children.is_empty() {
+            continue;
+        }
+        let is_child = |m: &str| children.iter().any(|c| c.module[depth] == m);
+        let name = parent.module.join("::");
         // The items `mod.rs` brings in from its files, by the file.
         let mut from_child = BTreeMap::new();
         for (path, _) in use_trees(&parent.code) {
             let path: Vec<&String> = match path.first().map(String::as_str) {
-                Some("crate") if path.get(1) == Some(&parent.module[0]) => path[2..].iter(),
+                Some("crate") if path[1..].starts_with(&parent.module) => path[1 + depth..].iter(),
                 _ => path.iter(),
             }
             .collect();
@@ -279,20 +285,20 @@ fn sibling_uses(src: &Path) -> Vec<Use> {
         }
         for child in &children {
             for (path, line) in paths_in(&child.code, &child.module, &none) {
-                if path.len() < 2 || path[0] != parent.module[0] {
+                if path.len() < depth + 1 || !path.starts_with(&parent.module) {
                     continue;
                 }
-                let to = match is_child(&path[1]) {
-                    true => &path[1],
-                    false => match from_child.get(&path[1]) {
+                let to = match is_child(&path[depth]) {
+                    true => &path[depth],
+                    false => match from_child.get(&path[depth]) {
                         Some(c) => c,
                         None => continue,
                     },
                 };
-                if *to != child.module[1] {
+                if *to != child.module[depth] {
                     out.push(Use {
-                        from: format!("{}::{}", parent.module[0], child.module[1]),
-                        to: format!("{}::{}", parent.module[0], to),
+                        from: format!("{name}::{}", child.module[depth]),
+                        to: format!("{name}::{to}"),
                         file: child.file.clone(),
                         line,
                     });

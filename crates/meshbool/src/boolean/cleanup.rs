@@ -29,7 +29,7 @@ use smallvec::SmallVec;
 use super::{Provenance, Source};
 use crate::kernel::{normals_dot_sign, orient3d_explicit, planes_line_axis, Sign};
 use crate::measure::is_degenerate;
-use crate::repair::{common, compact_from_end, neighbours, Ids};
+use crate::mesh_edit::{common, compact_from_end, neighbours, Ids};
 use crate::Mesh;
 
 /// What the exact clean-up of a boolean's result did ([`super::PipelineOptions::cleanup`]).
@@ -63,7 +63,7 @@ impl CleanupReport {
 
 /// The mesh under clean-up: its triangles (dead ones kept in place until the end), the
 /// stars of the vertices at and next to seam points, and where each triangle came from.
-struct Work<'a> {
+struct Cleanup<'a> {
     positions: &'a [[f64; 3]],
     triangles: Vec<[u32; 3]>,
     alive: Vec<bool>,
@@ -89,17 +89,17 @@ struct Work<'a> {
     labels: Option<Vec<u32>>,
 }
 
-/// What [`Work::plan`] finds: a vertex's neighbours, and those to try moving it onto.
+/// What [`Cleanup::plan`] finds: a vertex's neighbours, and those to try moving it onto.
 type Plan = (Ids, Option<Ids>);
 
-/// What a seam point's first star says ([`Work::first`]).
+/// What a seam point's first star says ([`Cleanup::first`]).
 enum First {
     /// Not looked at (a split's groups, a star not known whole), or looked at already.
     Unknown,
-    /// [`Work::remove`] fails whatever its neighbours' stars are: the star rules it out
+    /// [`Cleanup::remove`] fails whatever its neighbours' stars are: the star rules it out
     /// and no neighbour lies at its position.
     RuledOut,
-    /// [`Work::plan`]'s answer, for [`Work::remove`] to start from.
+    /// [`Cleanup::plan`]'s answer, for [`Cleanup::remove`] to start from.
     Plan(Plan),
 }
 
@@ -111,7 +111,7 @@ struct ClosedFan {
     into: Ids,
 }
 
-impl Work<'_> {
+impl Cleanup<'_> {
     /// The live triangles at `v` (empty for a vertex without a slot).
     fn star(&self, v: u32) -> Ids {
         let s = self.slot[v as usize];
@@ -185,7 +185,7 @@ impl Work<'_> {
         self.complete(q) && self.link_ok_with(p, q, star_p, np, &self.star(q))
     }
 
-    /// [`Work::link_ok`] with `q`'s star given (`q`'s star known).
+    /// [`Cleanup::link_ok`] with `q`'s star given (`q`'s star known).
     fn link_ok_with(&self, p: u32, q: u32, star_p: &[u32], np: &[u32], star_q: &[u32]) -> bool {
         if !self.complete(q) {
             return false;
@@ -289,7 +289,7 @@ impl Work<'_> {
         (0..3).any(|k| (q[k] < x[k] && x[k] < r[k]) || (q[k] > x[k] && x[k] > r[k]))
     }
 
-    /// [`Work::remove`] in a split's groups: `p` goes only where each sheet is a closed
+    /// [`Cleanup::remove`] in a split's groups: `p` goes only where each sheet is a closed
     /// fan in one plane around it, the two planes cross, and `p` lies between its two
     /// seam neighbours (on the line where the planes meet), by one collapse onto one of
     /// them in both sheets: the seam stays a straight line through where `p` was, so no
@@ -346,7 +346,7 @@ impl Work<'_> {
     }
 
     /// Tries to remove seam vertex `p`; returns the vertex it went onto and `p`'s
-    /// neighbours before. `first`: what [`Work::plan`] said of `p`'s star, where that star
+    /// neighbours before. `first`: what [`Cleanup::plan`] said of `p`'s star, where that star
     /// has not changed since.
     fn remove(&mut self, p: u32, first: Option<Plan>) -> Option<(u32, Ids)> {
         if self.dead_vertex[p as usize] || !self.complete(p) {
@@ -511,7 +511,7 @@ pub(crate) fn clean_up(
 /// [`clean_up`] of a split's groups merged into one mesh (A's pieces and B's: two sheets
 /// glued along the seam, whose edges have four triangles), `labels` naming each
 /// triangle's group (and following it): a seam point goes only where the seam runs
-/// straight through it and each sheet is flat around it ([`Work::remove_across_sheets`]),
+/// straight through it and each sheet is flat around it ([`Cleanup::remove_across_sheets`]),
 /// caps flip only within their group, so that no group changes shape and the groups
 /// stay conforming.
 pub(crate) fn clean_up_sheets(
@@ -583,7 +583,7 @@ fn clean_up_labelled(
         }
     }
     let complete_slots = stars.len();
-    let mut w = Work {
+    let mut w = Cleanup {
         positions: &mesh.positions,
         triangles: std::mem::take(&mut mesh.triangles),
         alive: vec![true; provenance.len()],
@@ -619,7 +619,7 @@ fn clean_up_labelled(
     // Checked in debug builds and the library's tests: a point is skipped only with the
     // star it was ruled out with.
     let check = cfg!(any(test, debug_assertions));
-    let star_of = |w: &Work, p: u32| -> Vec<[u32; 3]> {
+    let star_of = |w: &Cleanup, p: u32| -> Vec<[u32; 3]> {
         w.star(p).iter().map(|&t| w.triangles[t as usize]).collect()
     };
     let first_stars: FxHashMap<u32, Vec<[u32; 3]>> = added
@@ -673,7 +673,7 @@ fn clean_up_labelled(
             w.report.zero_area_left += 1;
         }
     }
-    let Work {
+    let Cleanup {
         triangles,
         provenance: mut provenance_in,
         mut dead_triangles,

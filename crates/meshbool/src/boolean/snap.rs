@@ -6,9 +6,8 @@ use crate::par::Grain;
 use rayon::prelude::*;
 
 use super::{merge, BooleanResult, Group, Keep, Provenance, Source, Split};
-use crate::repair::{
-    check_tolerance, remove_sorted, snap_filling, snap_unchecked, SnapOptions, SnapReport,
-};
+use crate::mesh_edit::remove_sorted;
+use crate::repair::{check_tolerance, snap_filling, snap_unchecked, SnapOptions, SnapReport};
 use crate::{Mesh, Result};
 
 /// Snaps `r` at `tolerance` in place where the boolean cut (the bad triangles with a

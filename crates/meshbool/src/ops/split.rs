@@ -557,8 +557,8 @@ pub fn pick(pieces: &[(&Mesh, bool)], opts: &PickOptions) -> Result<PickOutput> 
         })
         .collect();
     if !pinched.is_empty() {
-        crate::repair::remove_sorted(&mut mesh.triangles, &pinched);
-        crate::repair::remove_sorted(&mut labels, &pinched);
+        crate::mesh_edit::remove_sorted(&mut mesh.triangles, &pinched);
+        crate::mesh_edit::remove_sorted(&mut labels, &pinched);
         mesh = mesh.without_unreferenced().0;
     }
     let (mut mesh, nonmanifold) = if opts.keep_nonmanifold {
@@ -604,7 +604,7 @@ fn snap_pieces(mesh: &mut Mesh, labels: &[u32], tolerance: f64) -> SnapReport {
     let tolerance = super::scaled(tolerance, e).min(f64::MAX);
     let (mut report, removed) =
         crate::repair::snap_unchecked(mesh, &snap_options(&seam, labels, tolerance));
-    crate::repair::remove_sorted(&mut positions, &removed.vertices);
+    crate::mesh_edit::remove_sorted(&mut positions, &removed.vertices);
     mesh.positions = positions;
     report.scale_back(-e);
     report

@@ -101,7 +101,9 @@ fn normal(p: &[[f64; 3]; 3]) -> [f64; 3] {
     cross(&sub(&p[1], &p[0]), &sub(&p[2], &p[0]))
 }
 
-struct Work<'a> {
+/// The mesh whose degenerate triangles are collapsed: its triangles (dead ones kept in
+/// place until the end) and the triangles around each vertex.
+struct Collapser<'a> {
     positions: &'a [[f64; 3]],
     tris: Vec<[u32; 3]>,
     alive: Vec<bool>,
@@ -110,7 +112,7 @@ struct Work<'a> {
     touched: Vec<bool>,
 }
 
-impl Work<'_> {
+impl Collapser<'_> {
     fn corners(&self, t: &[u32; 3]) -> [[f64; 3]; 3] {
         t.map(|v| self.positions[v as usize])
     }
@@ -322,7 +324,7 @@ pub fn remove_degenerates(mesh: &Mesh, opts: &DegenerateOptions) -> (Mesh, Degen
                 around[v as usize].push(i as u32);
             }
         }
-        let mut w = Work {
+        let mut w = Collapser {
             positions,
             alive: vec![true; tris.len()],
             tris,
@@ -344,7 +346,7 @@ pub fn remove_degenerates(mesh: &Mesh, opts: &DegenerateOptions) -> (Mesh, Degen
             );
             let exact_zero = is_degenerate(p[0], p[1], p[2]);
             let needle = len[short] == 0.0 || (!exact_zero && len[short] < len[long] / 3.0);
-            let mut collapse = |w: &mut Work| {
+            let mut collapse = |w: &mut Collapser| {
                 let (u, v) = (tri[short], tri[(short + 1) % 3]);
                 let moves = w.positions[u as usize] != w.positions[v as usize];
                 if moves && !may_move {
@@ -358,7 +360,7 @@ pub fn remove_degenerates(mesh: &Mesh, opts: &DegenerateOptions) -> (Mesh, Degen
                     report.vertices_moved += moved;
                 })
             };
-            let mut flip = |w: &mut Work| {
+            let mut flip = |w: &mut Collapser| {
                 w.flip(t, long, exact_zero).map(|flipped| {
                     if flipped {
                         report.flipped_edges += 1;

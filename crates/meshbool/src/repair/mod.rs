@@ -36,10 +36,7 @@ pub use pipeline::{
     close, repair, repair_with_progress, CloseMode, CloseOptions, CloseReport, RepairConfig,
     RepairReport, UndoneStep,
 };
-pub(crate) use snap::{
-    check_tolerance, common, compact_from_end, neighbours, remove_sorted, snap_carrying,
-    snap_filling, snap_unchecked, Ids,
-};
+pub(crate) use snap::{check_tolerance, snap_carrying, snap_filling, snap_unchecked};
 pub use snap::{snap, snap_in_place, snap_with, SnapOptions, SnapReport, Snapped};
 pub use stitch::{stitch, zipper, StitchReport};
 pub use tjunction::{resolve_t_junctions, resolve_t_junctions_within, TJunctionReport};

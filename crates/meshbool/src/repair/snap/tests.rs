@@ -1,4 +1,7 @@
+use super::engine::Editor;
+use super::shape::tri_box;
 use super::*;
+use crate::bvh::overlaps as overlap;
 
 /// A unit square (z = 0) of four triangles around vertex 4 at `p`.
 fn square_around(p: [f64; 3]) -> Mesh {
@@ -403,43 +406,10 @@ fn the_least_coordinate_of_a_cell_splits_exactly() {
     }
 }
 
-/// Compaction from the end: the dead go, the last live ones fill the holes below the new
-/// count, and every survivor is accounted for exactly once.
-#[test]
-fn filling_from_the_end_moves_only_the_last_ones() {
-    assert_eq!(filled_from_end(&[], 5), (5, vec![]));
-    // Dead at the end: nothing moves.
-    assert_eq!(filled_from_end(&[3, 4], 5), (3, vec![]));
-    // Holes 0 and 2 take 5 and 6 (4 is dead too).
-    assert_eq!(filled_from_end(&[0, 2, 4], 7), (4, vec![(5, 0), (6, 2)]));
-    assert_eq!(filled_from_end(&[0, 1, 2], 3), (0, vec![]));
-    let mut rng = crate::test_util::Rng(7);
-    for _ in 0..200 {
-        let len = 1 + (rng.next() % 40) as usize;
-        let dead: Vec<u32> = (0..len as u32).filter(|_| rng.next() % 3 == 0).collect();
-        let (n, moves) = filled_from_end(&dead, len);
-        assert_eq!(n, len - dead.len());
-        let mut slot: Vec<Option<u32>> = (0..len as u32).map(Some).collect();
-        for &d in &dead {
-            slot[d as usize] = None;
-        }
-        for &(from, to) in &moves {
-            assert!(from as usize >= n && (to as usize) < n && slot[to as usize].is_none());
-            slot[to as usize] = slot[from as usize].take();
-        }
-        assert!(slot[n..].iter().all(Option::is_none));
-        let mut kept: Vec<u32> = slot[..n].iter().map(|s| s.expect("filled")).collect();
-        kept.sort_unstable();
-        let live: Vec<u32> = (0..len as u32).filter(|v| !dead.contains(v)).collect();
-        assert_eq!(kept, live);
-        assert!(moves.windows(2).all(|w| w[0].0 < w[1].0));
-    }
-}
-
-/// A gathering that adds to an index built before ([`Work::extend`]) leaves it answering
+/// A gathering that adds to an index built before ([`Editor::extend`]) leaves it answering
 /// as a brute-force search does: the live triangles around every vertex in a marked cell
-/// ([`Work::star`]) and those whose boxes meet a box the marked cells cover
-/// ([`Work::near_triangles`]), before and after changes made between the gatherings and
+/// ([`Editor::star`]) and those whose boxes meet a box the marked cells cover
+/// ([`Editor::near_triangles`]), before and after changes made between the gatherings and
 /// after them, each triangle once. The union of two spheres at a tolerance that makes
 /// many seam triangles bad: three seeds gathered and fixed first, then one half of the
 /// seam, then the other.
@@ -468,9 +438,9 @@ fn an_extended_index_answers_as_a_search_of_every_triangle() {
         halo_box,
     );
     let bad: Vec<u32> = scan.bad.iter().map(|&(_, t)| t).collect();
-    let mut w = Work::new(m, &opts, Labels::Given(opts.labels), scan, grid, halo);
+    let mut w = Editor::new(m, &opts, Labels::Given(opts.labels), scan, grid, halo);
     // By the side of the seam's plane (x = 0.25): two gatherings far apart.
-    let side = |w: &Work, t: u32| w.corners(&w.tri(t))[0][1] < 0.0;
+    let side = |w: &Editor, t: u32| w.corners(&w.tri(t))[0][1] < 0.0;
     let (first, second): (Vec<u32>, Vec<u32>) = bad.iter().partition(|&&t| side(&w, t));
     assert!(
         first.len() > 20 && second.len() > 20,
@@ -478,7 +448,7 @@ fn an_extended_index_answers_as_a_search_of_every_triangle() {
         first.len(),
         second.len()
     );
-    let check = |w: &Work, what: &str| {
+    let check = |w: &Editor, what: &str| {
         let count = w.base + w.made.len() as u32;
         let live: Vec<u32> = (0..count).filter(|&t| w.alive(t)).collect();
         let mut checked = 0;
@@ -520,7 +490,7 @@ fn an_extended_index_answers_as_a_search_of_every_triangle() {
             "{what}: {checked} {searched}"
         );
     };
-    let fix_all = |w: &mut Work, ts: &[u32]| {
+    let fix_all = |w: &mut Editor, ts: &[u32]| {
         let mut fixed = 0;
         for &t in ts {
             if w.alive(t) && w.bad_key(t).is_some() && w.fix(t).is_ok() {
@@ -536,7 +506,7 @@ fn an_extended_index_answers_as_a_search_of_every_triangle() {
     check(&w, "first gathering");
     assert!(fix_all(&mut w, &first) > 0);
     check(&w, "first changes");
-    let extended = |w: &Work| w.near.later.iter().any(|&t| t < w.base);
+    let extended = |w: &Editor| w.near.later.iter().any(|&t| t < w.base);
     for (round, seeds) in [&first, &second].into_iter().enumerate() {
         assert!(w.gather(seeds));
         assert!(extended(&w), "round {round}: extended, not built anew");
