@@ -578,7 +578,7 @@ fn pick<'py>(
 /// Polylines as `(points (k, 3), closed)`, the points handed to numpy without a copy.
 fn polylines(
     py: Python<'_>,
-    lines: Vec<meshbool::intersect::PolylineXyz>,
+    lines: Vec<meshbool::ops::PolylineXyz>,
 ) -> PyResult<Vec<(Bound<'_, PyArray2<f64>>, bool)>> {
     lines
         .into_iter()

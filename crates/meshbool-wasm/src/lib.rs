@@ -203,7 +203,7 @@ impl Out {
 
     /// Polylines under `key` (a `Float64Array` each, three numbers per point) and their
     /// `closed` flags (1 for loops).
-    fn polylines(self, key: &str, lines: &[meshbool::intersect::PolylineXyz]) -> Self {
+    fn polylines(self, key: &str, lines: &[meshbool::ops::PolylineXyz]) -> Self {
         let arr = Array::new();
         for l in lines {
             arr.push(&Float64Array::from(l.points.as_flattened()));

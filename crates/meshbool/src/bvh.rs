@@ -749,12 +749,14 @@ impl Bvh {
     /// Every pair `(i, j)`, `i < j`, of triangles of `mesh` (the mesh this tree was built
     /// from) whose exact boxes overlap, in no particular order. Each node pair is visited
     /// once (a self-traversal), not twice as `overlapping_pairs(mesh, self, mesh)` would.
+    #[cfg(test)]
     pub fn self_pairs(&self, mesh: &Mesh) -> Vec<(u32, u32)> {
         self.self_pairs_where(mesh, &|_, _| true)
     }
 
     /// The pairs of [`Bvh::self_pairs`] for which `keep(i, j)` (with `i < j`) holds,
     /// tested in parallel as the traversal finds them: the candidates are never stored.
+    #[cfg(test)]
     pub fn self_pairs_where(
         &self,
         mesh: &Mesh,

@@ -41,6 +41,7 @@ impl<T> Kept<T> {
     }
 
     /// Whether the structure has been built.
+    #[cfg(test)]
     pub fn is_built(&self) -> bool {
         self.value.get().is_some()
     }

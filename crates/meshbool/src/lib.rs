@@ -34,8 +34,8 @@
 //! - [`measure`]: volume, areas, edge statistics ([`measure::mesh_stats`]).
 //! - [`repair`]: each repair step on its own (weld, T-junctions, degenerates, capping,
 //!   stitching, curtains, orientation, folds) and the [`repair::repair`] pipeline.
-//! - [`edges`]: edge adjacency and components; [`intersect`]: the exact intersection of
-//!   two meshes and its curves.
+//! - [`edges`]: edge adjacency and components; [`ops::curves`] and [`ops::self_curves`]:
+//!   the exact intersection of two meshes, or of one with itself, chained into curves.
 //! - [`shapes`]: primitives (cube, sphere, cylinder, cone, plane), mining examples (a
 //!   seeded terrain, an open-pit shell) and generators for tests; [`Transform`]
 //!   ([`transform`]): affine transforms by degrees, composed in the order applied, and
@@ -51,11 +51,26 @@
 //! # Ok::<(), meshbool::Error>(())
 //! ```
 //!
-//! The pipeline's stages (`arrange`, `broad`, `bvh`, `classify`, `kernel`, and the
-//! pipeline itself in `boolean`) are public for the benchmarks and tests only and hidden
-//! from these docs; their interfaces may change.
+//! The pipeline's stages (`kernel`, `bvh`, `broad`, `kept`, `intersect`, `arrange`,
+//! `classify`, and the pipeline itself in `boolean`) are private; the cargo feature
+//! `internals` makes them public for the benchmarks and the tests that drive one stage on
+//! its own. Their interfaces may change.
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
+// A public type that cannot be named (public, in a private module, and not re-exported)
+// is a hole in the curated surface.
+#![warn(unnameable_types)]
+
+/// A pipeline stage's module: public with the cargo feature `internals` (for the
+/// benchmarks and tests that drive a stage on its own), private otherwise.
+macro_rules! internal {
+    ($m:ident) => {
+        #[cfg(feature = "internals")]
+        pub mod $m;
+        #[cfg(not(feature = "internals"))]
+        mod $m;
+    };
+}
 
 /// `Display` and `FromStr` for an enum with `ALL` and `name()`: written and read by its
 /// names (reading ignores ASCII case and lists the names when it fails).
@@ -77,25 +92,19 @@ macro_rules! by_name {
     };
 }
 
-#[doc(hidden)]
-pub mod arrange;
-#[doc(hidden)]
-pub mod boolean;
-#[doc(hidden)]
-pub mod broad;
-#[doc(hidden)]
-pub mod bvh;
-#[doc(hidden)]
-pub mod classify;
+internal!(arrange);
+internal!(boolean);
+internal!(broad);
+internal!(bvh);
+internal!(classify);
 pub mod csg;
 pub mod edges;
 mod error;
 mod format;
-pub mod intersect;
+internal!(intersect);
 pub mod io;
-pub mod kept;
-#[doc(hidden)]
-pub mod kernel;
+internal!(kept);
+internal!(kernel);
 pub mod measure;
 mod mesh;
 mod mesh_edit;

@@ -128,6 +128,7 @@ impl Arranged {
 
 /// Cuts `mesh` (side `side` of `seam`) along the seam. `mesh` must be the mesh the seam was
 /// computed from on that side.
+#[cfg(test)]
 pub fn arrange(mesh: &Mesh, seam: &Seam, side: Source) -> Arranged {
     arrange_with(mesh, seam, side, false)
 }

@@ -32,7 +32,8 @@ use crate::measure::is_degenerate;
 use crate::mesh_edit::{common, compact_from_end, neighbours, Ids};
 use crate::Mesh;
 
-/// What the exact clean-up of a boolean's result did ([`super::PipelineOptions::cleanup`]).
+/// What the exact clean-up of a boolean's result did (`BooleanOptions::keep_seam_points`
+/// turns it off).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct CleanupReport {
     /// Seam points removed where the result is flat or straight through them: each a

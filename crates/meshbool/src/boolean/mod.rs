@@ -45,7 +45,7 @@ pub mod resolve;
 mod sides;
 mod snap;
 pub use cleanup::CleanupReport;
-pub use resolve::{resolve, FillRule, ResolveReport, Resolved};
+pub use resolve::{resolve, FillRule, ResolveReport};
 pub use snap::{snap_result, snap_split, GroupMesh};
 
 /// A boolean operation. Written (and parsed, [`FromStr`]) as `union`, `intersection`,
@@ -234,29 +234,6 @@ pub struct Split {
     pub(crate) class_a: Classified,
     /// Classes of B's triangles relative to A.
     pub(crate) class_b: Classified,
-}
-
-impl Split {
-    /// The intersection of the inputs.
-    pub fn seam(&self) -> &Seam {
-        &self.seam
-    }
-
-    /// One input cut along the seam.
-    pub fn arranged(&self, side: Source) -> &Arranged {
-        match side {
-            Source::A => &self.a,
-            Source::B => &self.b,
-        }
-    }
-
-    /// The classes of one input's arranged triangles against the other input.
-    pub fn classified(&self, side: Source) -> &Classified {
-        match side {
-            Source::A => &self.class_a,
-            Source::B => &self.class_b,
-        }
-    }
 }
 
 /// How the pipeline runs: progress reporting, and the two measured crossovers between
@@ -803,6 +780,7 @@ impl Split {
     }
 
     /// The triangles of one group as a mesh (vertices compacted), with their provenance.
+    #[cfg(test)]
     pub fn group(&self, g: Group) -> (Mesh, Vec<Provenance>) {
         let (side, class) = g.side_and_class();
         let pick = |cls: &Classified, t: usize| {

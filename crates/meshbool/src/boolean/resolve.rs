@@ -80,7 +80,8 @@ impl FillRule {
 
 by_name!(FillRule, "fill rule");
 
-/// What [`resolve`] found and did.
+/// What resolving an operand's own crossings found and did (`meshbool resolve`, and the
+/// door's resolve of a self-crossing operand).
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct ResolveReport {
     /// Edge-connected components of the input.

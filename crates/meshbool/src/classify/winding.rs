@@ -478,6 +478,7 @@ impl<'a> FastWinding<'a> {
 
     /// The winding number at `p`, approximated far from the surface (relative error of
     /// the far field about (1/β)³ per cluster), exact per triangle near it.
+    #[cfg(test)]
     pub fn at(&self, p: [f64; 3]) -> f64 {
         if self.nodes.is_empty() {
             return 0.0;

@@ -21,7 +21,9 @@ mod fans;
 #[doc(hidden)]
 pub mod tritri;
 
-pub use curves::{chain, Polyline, PolylineXyz};
+#[cfg(feature = "internals")]
+pub use curves::Polyline;
+pub use curves::{chain, PolylineXyz};
 use tritri::Piece;
 pub use tritri::{Feature, Label, TriTri};
 

@@ -11,10 +11,12 @@ use std::cell::OnceCell;
 use std::cmp::Ordering;
 
 #[cfg(test)]
-use crate::kernel::{cmp_coord_prepared, same_point_prepared};
 use crate::kernel::{
-    longest_axis, orient2d_inputs, orient2d_prepared, orient3d_inputs, orient3d_sides,
-    planes_line_axis, robust_safe, Point, Prepared, Sign, Triangle,
+    cmp_coord_prepared, orient2d_prepared, robust_safe, same_point_prepared, Point, Prepared,
+};
+use crate::kernel::{
+    longest_axis, orient2d_inputs, orient3d_inputs, orient3d_sides, planes_line_axis, Sign,
+    Triangle,
 };
 
 /// A vertex, edge or face of one mesh, by its vertex / triangle ids (edges sorted).
@@ -127,12 +129,14 @@ impl Tri {
 
     /// The smallest feature of this (closed) triangle containing `x`, which must lie in
     /// the triangle's plane; `None` when `x` is outside.
+    #[cfg(test)]
     pub fn locate(&self, x: &Point) -> Option<Feature> {
         self.locate_prepared(&Prepared::new(x.clone()))
     }
 
     /// [`Tri::locate`] of a prepared point (its interval enclosure computed once for
     /// the three orientations).
+    #[cfg(test)]
     fn locate_prepared(&self, x: &Prepared) -> Option<Feature> {
         if let Some(p) = x.explicit() {
             return self.locate_corner(&p, robust_safe(&[&p]));

@@ -226,6 +226,7 @@ impl Point {
     /// arithmetic shows that close (to 2^-40 of the point's size); otherwise — a segment
     /// almost parallel to the plane it crosses, where `f64` can lose every digit and even
     /// divide zero by zero — from the exact homogeneous coordinates.
+    #[cfg(any(test, feature = "internals"))]
     pub fn approx(&self) -> [f64; 3] {
         match self {
             Point::Explicit(p) => *p,
@@ -816,6 +817,7 @@ impl Prepared {
     }
 
     /// The input coordinates if the point is explicit.
+    #[cfg(test)]
     pub(crate) fn explicit(&self) -> Option<[f64; 3]> {
         self.point.explicit()
     }

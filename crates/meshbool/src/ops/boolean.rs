@@ -48,7 +48,7 @@ pub struct BooleanOptions {
     pub one_arrangement: bool,
     /// Interior points for large triangles cut by a dense seam (a floor crossed by a
     /// fine fence), so that their pieces are not needles from their corners: flat faces
-    /// then hold extra vertices. Off by default ([`crate::arrange::arrange_with`]).
+    /// then hold extra vertices. Off by default.
     pub sliver_guard: bool,
     /// Threads and progress.
     pub run: RunOptions,

@@ -95,7 +95,7 @@ pub struct CurvesOutput {
     /// The curves with the seam points' coordinates (rounded to `f64`).
     pub polylines: Vec<PolylineXyz>,
     /// The exact intersection the curves are chained from.
-    pub seam: Seam,
+    pub(crate) seam: Seam,
     /// The names of A and B.
     pub names: [String; 2],
     /// Points left out by [`CurvesOptions::simplify`] (`None`: not simplified).
@@ -248,7 +248,7 @@ pub fn curves<'a>(
 }
 
 /// Where one input crosses itself, exactly, chained into polylines: the seam of the mesh
-/// with itself ([`crate::intersect::self_seam`]), without what neighbouring triangles
+/// with itself, without what neighbouring triangles
 /// share. The input is validated and welded (`opts.checks` are not used: a self-crossing
 /// mesh is what this looks at). The report's `candidate_pairs` counts the
 /// self-intersecting triangle pairs.

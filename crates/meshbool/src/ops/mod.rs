@@ -69,7 +69,10 @@ mod single;
 mod split;
 mod transform;
 
-pub use crate::boolean::FailedTriangle;
+// The parts of the reports that the stages below make.
+pub use crate::arrange::FailReason;
+pub use crate::boolean::{CleanupReport, FailedTriangle, ResolveReport};
+pub use crate::intersect::PolylineXyz;
 pub use boolean::{
     boolean, boolean_many, difference_many, BooleanManyOutput, BooleanOptions, BooleanOutput,
     BooleanReport, Combined,

@@ -36,7 +36,7 @@ pub struct StitchReport {
 /// ways), each step advancing along the loop whose next connecting edge is shorter.
 /// Greedy and linear; loops that are far from facing each other (strongly twisted or of
 /// very different shapes) can give a band that crosses itself: check with
-/// [`crate::intersect::self_intersections`] where that matters.
+/// [`crate::ops::self_curves`] (no curves: no crossing) where that matters.
 pub fn zipper(positions: &[[f64; 3]], a: &[u32], b: &[u32]) -> Vec<[u32; 3]> {
     let (n, m) = (a.len(), b.len());
     if n == 0 || m == 0 {
