@@ -1,4 +1,4 @@
-//! The rules every command follows (issue 68): a difference of many inputs, one exit-code
+//! The rules every command follows: a difference of many inputs, one exit-code
 //! rule (0 done, 1 an input or the work failed, 2 usage, 130 Ctrl-C), one rule for where
 //! outputs go, and refusals that say where the problem is. Inputs are made here (the
 //! library's meshes, or text written out), never read from `data/`.
