@@ -100,6 +100,15 @@ export interface CheckOptions {
 	 * says what was done.
 	 */
 	keepSeamPoints?: boolean;
+	/**
+	 * Cut coplanar overlaps (shared faces) along every edge of either mesh that crosses
+	 * them (booleans, splits and raw segments; default true: the common refinement of
+	 * both triangulations, as in the reference library). `false`: coplanar regions meet
+	 * along their boundaries only, the same surface with fewer triangles (two fanned CAD
+	 * caps in one plane otherwise cross in a number of points that grows as the product
+	 * of their triangle counts).
+	 */
+	coplanarRefinement?: boolean;
 }
 
 export interface BooleanOptions extends CheckOptions {

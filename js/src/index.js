@@ -102,7 +102,7 @@ function opName(op) {
 function checkOptions(opts) {
 	const o = opts || {};
 	const out = {};
-	for (const key of ["force", "selfCheck", "resolve", "orient", "keepNonmanifold", "keepSeamPoints", "withCoplanar", "sliverGuard"]) {
+	for (const key of ["force", "selfCheck", "resolve", "orient", "keepNonmanifold", "keepSeamPoints", "coplanarRefinement", "withCoplanar", "sliverGuard"]) {
 		if (o[key] !== undefined) {
 			if (typeof o[key] !== "boolean") throw new Error(`meshbool: option ${key} must be true or false`);
 			out[key] = o[key];
@@ -135,7 +135,10 @@ function emptyCheck(arrays, what) {
  * report's `snap` says what was done), `keepSeamPoints` (default true, as the reference
  * library's booleans equal their merged split groups; `false` runs the exact clean-up:
  * seam points where the result is flat or straight removed and zero-area triangles made
- * by rounding gone, no surface moving; the report's `cleanup` says what was done).
+ * by rounding gone, no surface moving; the report's `cleanup` says what was done),
+ * `coplanarRefinement` (default true, as the reference's shared faces hold the common
+ * refinement of both triangulations; `false`: coplanar overlaps meet along their
+ * boundaries only, fewer triangles and much faster on fanned CAD caps).
  */
 export function booleanIndexed(a, b, op, options) {
 	const A = indexedArrays(a, "a"), B = indexedArrays(b, "b");

@@ -472,6 +472,7 @@ fn split(
         snap,
         keep_seam_points,
         sliver_guard: false,
+        coplanar_refinement: false,
         run: run(threads),
     };
     let size = a.triangles().len() + b.triangles().len();
@@ -517,6 +518,7 @@ fn boolean_many<'py>(
         snap,
         one_arrangement,
         sliver_guard: false,
+        coplanar_refinement: false,
         run: run(threads),
     };
     let size = meshes.iter().map(|m| m.triangles().len()).sum();

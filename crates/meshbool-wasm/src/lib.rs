@@ -284,7 +284,10 @@ fn provenance_arrays(out: Out, prov: &[meshbool::Provenance]) -> Out {
 /// ([`BooleanOptions::sliver_guard`]), `keepSeamPoints`
 /// ([`BooleanOptions::keep_seam_points`]; **true** by default here, unlike the library:
 /// the reference library's contract is that a boolean equals its merged split groups,
-/// which keep every seam point; `false` turns the exact clean-up on).
+/// which keep every seam point; `false` turns the exact clean-up on), `coplanarRefinement`
+/// ([`BooleanOptions::coplanar_refinement`]; **true** by default here, for the same
+/// contract: the reference's shared faces hold the common refinement of both
+/// triangulations; `false` for their boundaries only, fewer triangles).
 #[wasm_bindgen]
 pub fn boolean(
     a_positions: &[f64],
@@ -303,6 +306,7 @@ pub fn boolean(
         keep_seam_points: flag(&o, "keepSeamPoints", true)?,
         snap: number(&o, "snap")?.unwrap_or(0.0),
         sliver_guard: flag(&o, "sliverGuard", false)?,
+        coplanar_refinement: flag(&o, "coplanarRefinement", true)?,
         run: run_options(),
         ..BooleanOptions::default()
     };
@@ -330,6 +334,7 @@ pub fn split(
         snap: number(&o, "snap")?.unwrap_or(0.0),
         keep_seam_points: flag(&o, "keepSeamPoints", true)?,
         sliver_guard: flag(&o, "sliverGuard", false)?,
+        coplanar_refinement: flag(&o, "coplanarRefinement", true)?,
         run: run_options(),
         ..SplitOptions::default()
     };
@@ -367,7 +372,9 @@ pub fn groups_for_op(op: &str) -> Result<Vec<String>, JsError> {
 /// `{segments, triA, triB, coplanar}`: `segments` six numbers per segment (its two ends),
 /// `triA`/`triB` the triangle of each input it lies in (a segment along an edge is listed
 /// once per pair of triangles it lies in), `coplanar[s]` 1 for segments of coplanar
-/// overlaps. Options (JSON): `withCoplanar` (default true). With `b_positions` and
+/// overlaps. Options (JSON): `withCoplanar` (default true), `coplanarRefinement` (as for
+/// [`boolean`]: default true, every edge of either mesh that crosses a coplanar overlap
+/// gives its segments, as the reference's tagged segments do). With `b_positions` and
 /// `b_index` empty, the self-intersections of A (`triA`, `triB` both triangles of A).
 #[wasm_bindgen]
 pub fn intersect(
@@ -387,7 +394,11 @@ pub fn intersect(
         };
         ops::self_curves(&a, &copts)
     } else {
-        ops::curves(&a, &mesh(b_positions, b_index)?, &CurvesOptions::default())
+        let copts = CurvesOptions {
+            coplanar_refinement: flag(&o, "coplanarRefinement", true)?,
+            ..CurvesOptions::default()
+        };
+        ops::curves(&a, &mesh(b_positions, b_index)?, &copts)
     }
     .map_err(js_err)?;
     let (mut segments, mut tri_a, mut tri_b, mut coplanar) =

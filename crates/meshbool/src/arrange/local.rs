@@ -47,6 +47,57 @@ pub(crate) struct Local {
 #[derive(Debug)]
 pub(crate) struct Failed(pub FailReason);
 
+/// The triangles around a vertex with the vertex's slot in each ([`Local::ring`]):
+/// clockwise from the vertex's triangle across the edge leaving it, then, where that met
+/// the outer boundary, counter-clockwise from the start across the edge entering it.
+struct Ring<'a> {
+    local: &'a Local,
+    v: u32,
+    t0: u32,
+    /// The next triangle, or NONE.
+    t: u32,
+    /// Walking counter-clockwise (the second part).
+    back: bool,
+}
+
+impl Iterator for Ring<'_> {
+    type Item = (u32, usize);
+
+    fn next(&mut self) -> Option<(u32, usize)> {
+        let l = self.local;
+        let slot = |t: u32| {
+            (0..3)
+                .find(|&k| l.tris[t as usize][k] == self.v)
+                .expect("a vertex's triangle holds it")
+        };
+        if self.t == NONE {
+            if self.back {
+                return None;
+            }
+            // Clockwise ended at the boundary: counter-clockwise from the start.
+            self.back = true;
+            self.t = l.nbr[self.t0 as usize][(slot(self.t0) + 2) % 3];
+            if self.t == NONE {
+                return None;
+            }
+        }
+        let (t, k) = (self.t, slot(self.t));
+        self.t = if self.back {
+            l.nbr[t as usize][(k + 2) % 3]
+        } else {
+            match l.nbr[t as usize][k] {
+                // Around once: done.
+                n if n == self.t0 => {
+                    self.back = true;
+                    NONE
+                }
+                n => n,
+            }
+        };
+        Some((t, k))
+    }
+}
+
 fn rot<T: Copy>(a: [T; 3], k: usize) -> [T; 3] {
     [a[k % 3], a[(k + 1) % 3], a[(k + 2) % 3]]
 }
@@ -354,47 +405,53 @@ impl Local {
 
     /// The triangles around vertex `v`, in turn; stops early when `f` returns `Some`.
     fn around<R>(&self, v: u32, mut f: impl FnMut(u32, usize) -> Option<R>) -> Option<R> {
+        self.ring(v).find_map(|(t, k)| f(t, k))
+    }
+
+    /// The triangles around vertex `v` with `v`'s slot in each, in turn.
+    fn ring(&self, v: u32) -> Ring<'_> {
         let t0 = self.vt[v as usize];
-        let slot = |t: u32| (0..3).find(|&k| self.tris[t as usize][k] == v);
-        let mut t = t0;
-        // Clockwise: across the edge leaving `v`.
-        loop {
-            let k = slot(t).expect("a vertex's triangle holds it");
-            if let Some(r) = f(t, k) {
-                return Some(r);
-            }
-            t = self.nbr[t as usize][k];
-            if t == t0 {
-                return None;
-            }
-            if t == NONE {
-                break;
-            }
+        Ring {
+            local: self,
+            v,
+            t0,
+            t: t0,
+            back: false,
         }
-        // Then counter-clockwise from the start, across the edge entering `v`.
-        let mut t = self.nbr[t0 as usize][(slot(t0).expect("held") + 2) % 3];
-        while t != NONE {
-            let k = slot(t).expect("a vertex's triangle holds it");
-            if let Some(r) = f(t, k) {
-                return Some(r);
-            }
-            t = self.nbr[t as usize][(k + 2) % 3];
-        }
-        None
     }
 
     /// The triangle and slot of the edge between `a` and `b` (either direction), if any.
+    /// The fans of both ends are walked in turn, so the cost is that of the smaller one:
+    /// a corner of the outer triangle joins most of the points on the edge across from it
+    /// (a sliver crossed by many segments), and a walk around it alone would visit them
+    /// all for each of the edges it holds.
     fn find_edge(&self, a: u32, b: u32) -> Option<(u32, usize)> {
-        self.around(a, |t, k| {
+        // In a triangle holding `x` at slot `k`: the slot of its edge to `y`, if it has one.
+        let edge_to = |t: u32, k: usize, y: u32| {
             let v = self.tris[t as usize];
-            if v[(k + 1) % 3] == b {
+            if v[(k + 1) % 3] == y {
                 Some((t, k))
-            } else if v[(k + 2) % 3] == b {
+            } else if v[(k + 2) % 3] == y {
                 Some((t, (k + 2) % 3))
             } else {
                 None
             }
-        })
+        };
+        // Each end's fan, the other end, and whether the fan has triangles left.
+        let mut rings = [(self.ring(a), b, true), (self.ring(b), a, true)];
+        while rings.iter().any(|r| r.2) {
+            for (ring, other, left) in rings.iter_mut().filter(|r| r.2) {
+                match ring.next() {
+                    Some((t, k)) => {
+                        if let Some(e) = edge_to(t, k, *other) {
+                            return Some(e);
+                        }
+                    }
+                    None => *left = false,
+                }
+            }
+        }
+        None
     }
 
     fn mark_fixed(&mut self, a: u32, b: u32) -> bool {

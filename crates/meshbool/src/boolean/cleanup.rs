@@ -27,7 +27,7 @@ use serde::{Deserialize, Serialize};
 use smallvec::SmallVec;
 
 use super::{Provenance, Source};
-use crate::kernel::{normals_dot_sign, orient3d_explicit, planes_line_axis, Sign};
+use crate::kernel::{normals_dot_sign, planes_line_axis, Sign};
 use crate::measure::is_degenerate;
 use crate::mesh_edit::{common, compact_from_end, neighbours, Ids};
 use crate::Mesh;
@@ -165,13 +165,7 @@ impl Cleanup<'_> {
         if p.source == q.source && p.triangle == q.triangle {
             return p.flipped == q.flipped;
         }
-        // A corner of `u`'s parent at a corner of `t`'s is in its plane: parents that
-        // share an edge (a face split in two) need one `orient3d` of three, and not the
-        // two whose exact zero takes its slowest path.
-        let (pt, pu) = (self.parent(t), self.parent(u));
-        pu.iter()
-            .all(|x| pt.contains(x) || orient3d_explicit(&pt[0], &pt[1], &pt[2], x) == Sign::Zero)
-            && normals_dot_sign(&pt, &pu) == Sign::Positive
+        crate::kernel::same_plane_same_facing(&self.parent(t), &self.parent(u))
     }
 
     /// The neighbours of `v` in the triangles `star` (sorted).

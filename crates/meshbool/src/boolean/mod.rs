@@ -282,6 +282,11 @@ pub struct PipelineOptions<'p> {
     /// patch's votes agree. Off (the default) for meshes that may not be (an operand
     /// with problems taken as given, the parts of an operand being resolved).
     pub first_votes: bool,
+    /// Cut coplanar overlaps along every edge of either mesh that crosses them, as
+    /// [`crate::intersect::intersect_coplanar`] does with `refinement`: the groups of a
+    /// split then hold the common refinement of both triangulations there. Off (the
+    /// default), coplanar regions meet along their boundaries only.
+    pub coplanar_refinement: bool,
 }
 
 impl Default for PipelineOptions<'_> {
@@ -297,6 +302,7 @@ impl Default for PipelineOptions<'_> {
             kept: [None, None],
             first_votes: false,
             sliver_guard: false,
+            coplanar_refinement: false,
         }
     }
 }
@@ -338,7 +344,7 @@ fn split_in_pool(a: &Mesh, b: &Mesh, opts: &PipelineOptions) -> Split {
     if opts.cancelled() {
         return nothing();
     }
-    let seam = intersect_with(a, b, opts.grid_from, opts.kept);
+    let seam = intersect_with(a, b, opts.grid_from, opts.kept, opts.coplanar_refinement);
     opts.stage(Stage::Arrange);
     if opts.cancelled() {
         return nothing();

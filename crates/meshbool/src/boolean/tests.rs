@@ -97,6 +97,100 @@ fn cubes_with_coplanar_faces_exact_volumes() {
     assert_eq!((u, i, d, rd), (1.0, 0.125, 0.875, 0.0));
 }
 
+/// A prism of height `h` over the convex polygon `ring` (counter-clockwise in xy) with
+/// both caps fanned from the ring's first vertex: long thin triangles that span the cap,
+/// as CAD exports triangulate extruded profiles.
+fn fanned_prism(ring: &[[f64; 2]], h: f64) -> Mesh {
+    let n = ring.len() as u32;
+    let positions = [0.0, h]
+        .iter()
+        .flat_map(|&z| ring.iter().map(move |p| [p[0], p[1], z]))
+        .collect();
+    let mut triangles = Vec::new();
+    for i in 0..n {
+        let j = (i + 1) % n;
+        triangles.extend([[i, j, n + j], [i, n + j, n + i]]);
+    }
+    for i in 1..n - 1 {
+        triangles.extend([[0, i + 1, i], [n, n + i, n + i + 1]]);
+    }
+    Mesh::new(positions, triangles).unwrap()
+}
+
+/// The area of the intersection of two convex polygons (counter-clockwise), by clipping
+/// one to each edge of the other: an independent reference for the prisms' volumes.
+fn convex_overlap_area(p: &[[f64; 2]], q: &[[f64; 2]]) -> f64 {
+    let cross = |o: [f64; 2], a: [f64; 2], b: [f64; 2]| {
+        (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+    };
+    let mut poly = p.to_vec();
+    for k in 0..q.len() {
+        let (e0, e1) = (q[k], q[(k + 1) % q.len()]);
+        let mut out = Vec::new();
+        for i in 0..poly.len() {
+            let (s, t) = (poly[i], poly[(i + 1) % poly.len()]);
+            let (ds, dt) = (cross(e0, e1, s), cross(e0, e1, t));
+            if ds >= 0.0 {
+                out.push(s);
+            }
+            if (ds >= 0.0) != (dt >= 0.0) {
+                let u = ds / (ds - dt);
+                out.push([s[0] + u * (t[0] - s[0]), s[1] + u * (t[1] - s[1])]);
+            }
+        }
+        poly = out;
+    }
+    (0..poly.len())
+        .map(|i| cross([0.0, 0.0], poly[i], poly[(i + 1) % poly.len()]))
+        .sum::<f64>()
+        / 2.0
+}
+
+#[test]
+fn fanned_caps_in_one_plane_cut_each_other_only_along_their_boundaries() {
+    // Two ellipses of 96 sides, one turned by 0.3 radians, extruded between the same two
+    // planes: each cap's fan crosses the other's in thousands of points, but inside the
+    // overlap both caps are flat, so the seam is the caps' outlines and the walls.
+    let ellipse = |n: usize, turn: f64| -> Vec<[f64; 2]> {
+        (0..n)
+            .map(|i| {
+                let t = std::f64::consts::TAU * i as f64 / n as f64;
+                let (x, y) = (2.0 * t.cos(), t.sin());
+                [x * turn.cos() - y * turn.sin(), x * turn.sin() + y * turn.cos()]
+            })
+            .collect()
+    };
+    let (p, q) = (ellipse(96, 0.0), ellipse(96, 0.3));
+    let (a, b) = (fanned_prism(&p, 1.0), fanned_prism(&q, 1.0));
+    let seam = crate::intersect::intersect(&a, &b);
+    // The outlines cross the other cap's fan edges: a few points per fan triangle.
+    assert!(seam.points.len() <= 8 * 96, "{} seam points", seam.points.len());
+    let [_, i, _, _] = check(&a, &b, 1e-12);
+    let area = convex_overlap_area(&p, &q);
+    assert!((i - area).abs() <= 1e-12 * area, "{i} vs {area}");
+    let r = boolean(&a, &b, Op::Union);
+    assert_closed(&r.mesh, "union");
+    // Asked for, the common refinement: every fan edge of one cap cuts the other's fan
+    // triangles.
+    let refined = crate::intersect::intersect_coplanar(&a, &b, true);
+    assert!(refined.points.len() > 4 * seam.points.len(), "{} refined seam points", refined.points.len());
+    // Every seam point kept (no clean-up) to see them: the same solid, held by many
+    // more triangles.
+    let kept = |coplanar_refinement| PipelineOptions {
+        coplanar_refinement,
+        cleanup: false,
+        ..Default::default()
+    };
+    let fine = super::boolean(&a, &b, Op::Intersection, &kept(true));
+    let lean = super::boolean(&a, &b, Op::Intersection, &kept(false));
+    for r in [&fine, &lean] {
+        assert_closed(&r.mesh, "intersection, seam points kept");
+        assert!((vol(&r.mesh) - area).abs() <= 1e-12 * area);
+    }
+    let (n, m) = (fine.mesh.triangles.len(), lean.mesh.triangles.len());
+    assert!(n > 4 * m, "{n} vs {m} triangles");
+}
+
 #[test]
 fn identical_meshes() {
     for m in [Mesh::unit_cube(), uv_sphere([0.0; 3], 1.0, 24, 12)] {

@@ -13,7 +13,7 @@ use rustc_hash::{FxHashMap, FxHashSet};
 use crate::broad::Slivers;
 use crate::bvh::Bvh;
 use crate::kept::Keeps;
-use crate::kernel::{cross_sign, Enclosure, Point, Sign};
+use crate::kernel::{cross_sign, same_plane_same_facing, Enclosure, Point, Sign};
 use crate::Mesh;
 
 mod curves;
@@ -162,21 +162,34 @@ fn tri(m: &Mesh, t: usize) -> Option<tritri::Tri> {
 /// should be welded ([`crate::weld_exact`]): points are named by vertex ids, so two vertices
 /// at the same position would name one point twice and break the curves there.
 /// Degenerate triangles are left out and counted in [`Seam::degenerate`]. Threads as
-/// [`crate::boolean::boolean`]'s.
+/// [`crate::boolean::boolean`]'s. Coplanar overlaps meet along their boundaries, not along
+/// the edges of either triangulation inside them ([`intersect_coplanar`] for those too).
+// The library itself asks through `intersect_coplanar`; this is for tests and benches.
+#[cfg_attr(not(any(test, feature = "internals")), allow(dead_code))]
 pub fn intersect(a: &Mesh, b: &Mesh) -> Seam {
-    let triangles = a.triangles.len() + b.triangles.len();
-    crate::par::run_for(triangles, || intersect_with(a, b, GRID_FROM, [None, None]))
+    intersect_coplanar(a, b, false)
 }
 
-/// [`intersect`], with candidate pairs from the grid from `grid_from` triangles in both
-/// meshes together ([`GRID_FROM`] by default; tests set it to force either path), and
-/// below from the whole trees `kept` keeps of `a` and `b` where they have them (and with
-/// their slivers, [`crate::broad::Slivers`], where they keep those).
+/// [`intersect`], and with `refinement` coplanar overlaps cut along every edge of either
+/// mesh that crosses them (the common refinement of both triangulations there) instead of
+/// along the overlaps' boundaries only ([`Needed`]).
+pub fn intersect_coplanar(a: &Mesh, b: &Mesh, refinement: bool) -> Seam {
+    let triangles = a.triangles.len() + b.triangles.len();
+    crate::par::run_for(triangles, || {
+        intersect_with(a, b, GRID_FROM, [None, None], refinement)
+    })
+}
+
+/// [`intersect_coplanar`], with candidate pairs from the grid from `grid_from` triangles
+/// in both meshes together ([`GRID_FROM`] by default; tests set it to force either path),
+/// and below from the whole trees `kept` keeps of `a` and `b` where they have them (and
+/// with their slivers, [`crate::broad::Slivers`], where they keep those).
 pub(crate) fn intersect_with(
     a: &Mesh,
     b: &Mesh,
     grid_from: usize,
     kept: [Option<&Keeps>; 2],
+    refinement: bool,
 ) -> Seam {
     let from_grid = a.triangles.len() + b.triangles.len() >= grid_from;
     let pairs = candidate_pairs(a, b, from_grid, kept);
@@ -219,24 +232,67 @@ pub(crate) fn intersect_with(
     );
     // The pieces each pair shares, a block of pairs at a time (in pair order: the seam's
     // points are numbered in the order they are first met). Coplanar pairs' pieces are
-    // made in place, with no allocation per pair.
-    let results: Vec<Vec<(u32, u32, Piece)>> = pairs
-        .par_chunks(1 << 10)
-        .grained()
-        .map(|block| {
-            let mut out = Vec::with_capacity(2 * block.len());
-            for &(i, j) in block {
-                let (Some(x), Some(y)) = (
-                    &tris_a[slot_a[i as usize] as usize],
-                    &tris_b[slot_b[j as usize] as usize],
-                ) else {
-                    continue;
-                };
-                tritri::meet(x, y, |p| out.push((i, j, p)));
-            }
-            out
-        })
-        .collect();
+    // made in place, with no allocation per pair. In rounds: once a round has met a
+    // coplanar pair's segment, the flat edges are found ([`Needed`]), that round's
+    // pieces sifted, and the later rounds' sifted as they are made (two fanned caps in
+    // one plane: millions of segments, almost all along flat edges). Not with
+    // `refinement`, which keeps them all.
+    let mut needed: Option<Needed> = None;
+    let mut results: Vec<Block> = Vec::new();
+    for round in pairs.chunks(1 << 20) {
+        let found: Vec<(Block, bool)> = round
+            .par_chunks(1 << 10)
+            .grained()
+            .map(|block| {
+                let mut out = Vec::with_capacity(2 * block.len());
+                let mut coplanar = false;
+                for &(i, j) in block {
+                    let (si, sj) = (slot_a[i as usize], slot_b[j as usize]);
+                    let (Some(x), Some(y)) = (&tris_a[si as usize], &tris_b[sj as usize]) else {
+                        continue;
+                    };
+                    let (sx, sy) = ((x, si), (y, sj));
+                    let flat = needed.as_ref().map_or([0, 0], |n| n.flat(sx, sy));
+                    tritri::meet_beyond_flat(x, y, flat, |p| {
+                        coplanar |= matches!(p, Piece::Segment(_, true));
+                        if needed.as_ref().is_none_or(|n| n.keeps(&p, sx, sy)) {
+                            out.push((i, j, p));
+                        }
+                    });
+                }
+                // Room for what the pairs gave, not for what they might have.
+                if out.len() < out.capacity() / 2 {
+                    out.shrink_to_fit();
+                }
+                (out, coplanar)
+            })
+            .collect();
+        let coplanar = found.iter().any(|b| b.1);
+        let mut found: Vec<Block> = found.into_iter().map(|b| b.0).collect();
+        if coplanar && needed.is_none() && !refinement {
+            let n = Needed(crate::par::join(
+                || FlatEdges::of(a, &near_a),
+                || FlatEdges::of(b, &near_b),
+            ).into());
+            let set_up = |i: u32, j: u32| {
+                let (si, sj) = (slot_a[i as usize], slot_b[j as usize]);
+                let x = tris_a[si as usize].as_ref().expect("a pair with pieces is set up");
+                let y = tris_b[sj as usize].as_ref().expect("a pair with pieces is set up");
+                ((x, si), (y, sj))
+            };
+            results
+                .par_iter_mut()
+                .chain(found.par_iter_mut())
+                .for_each(|block| {
+                    block.retain(|&(i, j, p)| {
+                        let (x, y) = set_up(i, j);
+                        n.keeps(&p, x, y)
+                    })
+                });
+            needed = Some(n);
+        }
+        results.append(&mut found);
+    }
     let (da, db) = (
         tris_a.iter().filter(|t| t.is_none()).count(),
         tris_b.iter().filter(|t| t.is_none()).count(),
@@ -256,6 +312,162 @@ pub(crate) fn intersect_with(
         .collect();
     seam.locate();
     seam
+}
+
+/// The pieces of a block of candidate pairs, with the pair each is of.
+type Block = Vec<(u32, u32, Piece)>;
+
+/// The edge of one mesh on which two points of a triangle lie, given by their features
+/// there (the segment between them then runs along it), if they lie on one.
+fn common_edge(x: Feature, y: Feature) -> Option<(u32, u32)> {
+    match (x, y) {
+        (Feature::Edge(u, v), Feature::Edge(p, q)) if (u, v) == (p, q) => Some((u, v)),
+        (Feature::Edge(u, v), Feature::Vertex(w)) | (Feature::Vertex(w), Feature::Edge(u, v))
+            if w == u || w == v =>
+        {
+            Some((u, v))
+        }
+        // Two corners of one triangle: its edge between them.
+        (Feature::Vertex(u), Feature::Vertex(v)) if u != v => Some((u.min(v), u.max(v))),
+        _ => None,
+    }
+}
+
+/// Which edges of one mesh are flat: held by exactly two triangles that use it once each
+/// way, lie in one plane and face the same way (exact), so that the surface on both sides
+/// of it is one planar region. Built over some of the mesh's triangles (`near`, each with
+/// its place there); an edge is judged only where every triangle holding it is among
+/// them. Each triangle's edges are decided when first asked.
+struct FlatEdges<'m> {
+    mesh: &'m Mesh,
+    /// The edges of the triangles, `lo << 32 | hi`, sorted, each once.
+    keys: Vec<u64>,
+    /// Per edge, its two triangles where exactly two hold it, once each way; else none.
+    held: Vec<Option<[u32; 2]>>,
+    /// Per triangle of `near` (by its place there): bit `k` set when its edge from corner
+    /// `k` to `k + 1` is flat, bit 3 once that is known.
+    masks: Vec<std::sync::atomic::AtomicU8>,
+}
+
+/// Bit 3 of a [`FlatEdges`] mask: the triangle's edges are decided.
+const DECIDED: u8 = 8;
+
+impl<'m> FlatEdges<'m> {
+    fn of(mesh: &'m Mesh, near: &[u32]) -> FlatEdges<'m> {
+        // (edge, triangle, whether the triangle runs along it from lo to hi)
+        let mut uses: Vec<(u64, u32, bool)> = near
+            .par_iter()
+            .grained()
+            .flat_map_iter(|&t| {
+                let v = mesh.triangles[t as usize];
+                (0..3).map(move |k| {
+                    let (p, q) = (v[k], v[(k + 1) % 3]);
+                    (edge_key(p, q), t, p < q)
+                })
+            })
+            .collect();
+        uses.par_sort_unstable();
+        let (mut keys, mut held) = (Vec::new(), Vec::new());
+        for run in uses.chunk_by(|x, y| x.0 == y.0) {
+            keys.push(run[0].0);
+            held.push(match run {
+                [(_, t, f), (_, o, g)] if f != g => Some([*t, *o]),
+                _ => None,
+            });
+        }
+        let masks = (0..near.len())
+            .map(|_| std::sync::atomic::AtomicU8::new(0))
+            .collect();
+        FlatEdges {
+            mesh,
+            keys,
+            held,
+            masks,
+        }
+    }
+
+    /// Whether the edge from `u` to `v` is flat.
+    fn is_flat(&self, u: u32, v: u32) -> bool {
+        let Ok(i) = self.keys.binary_search(&edge_key(u, v)) else {
+            return false;
+        };
+        let Some([t, o]) = self.held[i] else {
+            return false;
+        };
+        same_plane_same_facing(&self.mesh.corners(t as usize), &self.mesh.corners(o as usize))
+    }
+
+    /// The flat edges of triangle `t` (place `slot` in `near`), as bits by corner.
+    fn mask(&self, slot: u32, t: u32) -> u8 {
+        use std::sync::atomic::Ordering::Relaxed;
+        let m = &self.masks[slot as usize];
+        let known = m.load(Relaxed);
+        if known & DECIDED != 0 {
+            return known & !DECIDED;
+        }
+        let v = self.mesh.triangles[t as usize];
+        let bits = (0..3).fold(0, |bits, k| {
+            bits | (self.is_flat(v[k], v[(k + 1) % 3]) as u8) << k
+        });
+        m.store(bits | DECIDED, Relaxed);
+        bits
+    }
+}
+
+/// An edge's key in [`FlatEdges`]: `lo << 32 | hi`.
+fn edge_key(u: u32, v: u32) -> u64 {
+    (u.min(v) as u64) << 32 | u.max(v) as u64
+}
+
+/// The flat edges of both meshes ([`FlatEdges`]), and which pieces of coplanar pairs the
+/// seam needs: not the segments that run along flat edges only. Where the edge of one
+/// mesh lies inside a planar region of that mesh which the other mesh's triangle lies in,
+/// the other triangle's points on both sides of it are in the same class (on that region,
+/// facing as it does), so the edge need not cut it. The seam of two coplanar regions is
+/// then their boundaries, not every edge of each mesh's triangulation inside the other's
+/// region: two fanned caps in one plane cross in a number of points that grows as the
+/// product of their triangle counts, and each such point would be a vertex of both
+/// arrangements. A segment along an edge of each mesh goes where both edges are flat;
+/// a coplanar pair of triangles whose six edges are flat gives nothing. Seam points that
+/// only such segments reached go with them; no triangle that is not coplanar with the
+/// region holds one (its edges there would not be flat).
+///
+/// Built over every triangle of each mesh in a candidate pair: each triangle holding an
+/// edge along which a coplanar pair's segment runs is a candidate of the other triangle
+/// of that pair.
+struct Needed<'m>([FlatEdges<'m>; 2]);
+
+impl Needed<'_> {
+    /// The flat edges of triangles `x` and `y` (of A and B, with their places among the
+    /// candidates), as [`tritri::meet_beyond_flat`] takes them.
+    fn flat(&self, x: (&tritri::Tri, u32), y: (&tritri::Tri, u32)) -> [u8; 2] {
+        [self.0[0].mask(x.1, x.0.id), self.0[1].mask(y.1, y.0.id)]
+    }
+
+    /// Whether the seam needs `piece` of triangles `x` and `y`, with their places among
+    /// the candidates.
+    fn keeps(&self, piece: &Piece, x: (&tritri::Tri, u32), y: (&tritri::Tri, u32)) -> bool {
+        let Piece::Segment([p, q], true) = piece else {
+            return true;
+        };
+        // Along an edge of the triangle of mesh `k` (an edge it lies on): whether flat.
+        let flat = |k: usize, (t, slot): (&tritri::Tri, u32), e: Option<(u32, u32)>| {
+            e.map(|e| {
+                let v = t.v;
+                (0..3).any(|c| {
+                    edge_key(v[c], v[(c + 1) % 3]) == edge_key(e.0, e.1)
+                        && self.0[k].mask(slot, t.id) & 1 << c != 0
+                })
+            })
+        };
+        match (
+            flat(0, x, common_edge(p.a, q.a)),
+            flat(1, y, common_edge(p.b, q.b)),
+        ) {
+            (None, None) => true,
+            (a, b) => !(a.unwrap_or(true) && b.unwrap_or(true)),
+        }
+    }
 }
 
 /// The triangle pairs of `a` and `b` whose boxes overlap, sorted; large triangles are

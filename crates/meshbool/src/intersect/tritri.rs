@@ -370,7 +370,18 @@ fn coplanar_to(segments: &[[Label; 2]], points: &[Label], mut f: impl FnMut(Piec
 
 /// The pieces of [`intersect`]`(a, b)`, in the same order ([`pieces_of`]), given to `f`
 /// one by one: a coplanar pair's are made in place, with no allocation.
-pub(super) fn meet(a: &Tri, b: &Tri, mut f: impl FnMut(Piece)) {
+pub(super) fn meet(a: &Tri, b: &Tri, f: impl FnMut(Piece)) {
+    meet_beyond_flat(a, b, [0, 0], f)
+}
+
+/// [`meet`], where a coplanar pair's segments along the edges that `flat` marks (per
+/// triangle, bit `k` for its edge from corner `k` to `k + 1`) are not needed: those
+/// edges are not clipped to the other triangle, and a pair whose six edges are marked
+/// gives nothing (edges inside a planar region of their mesh: see the seam's sifting).
+/// Segments along a marked edge may still come, from the shortcut of triangles side by
+/// side or along an unmarked edge of the other triangle.
+pub(super) fn meet_beyond_flat(a: &Tri, b: &Tri, flat: [u8; 2], mut f: impl FnMut(Piece)) {
+    let skip_coplanar = flat == [0b111, 0b111];
     if let Some(touch) = touching(a, b) {
         if let Some(l) = touch {
             f(Piece::Point(l));
@@ -378,13 +389,17 @@ pub(super) fn meet(a: &Tri, b: &Tri, mut f: impl FnMut(Piece)) {
         return;
     }
     if let Some(edges) = twins(a, b) {
-        edges.into_iter().for_each(|s| f(Piece::Segment(s, true)));
+        if !skip_coplanar {
+            edges.into_iter().for_each(|s| f(Piece::Segment(s, true)));
+        }
         return;
     }
     match against(a, b) {
         Against::Apart => {}
         Against::Coplanar => {
-            coplanar_pieces(a, b, true, &mut f);
+            if !skip_coplanar {
+                coplanar_pieces(a, b, true, flat, &mut f);
+            }
         }
         Against::Sides(sa) => pieces_of(&crossing(a, b, sa), f),
     }
@@ -778,7 +793,7 @@ fn crossing_by_points(a: &Tri, b: &Tri, sa: [Sign; 3]) -> TriTri {
 /// the answer.
 pub(super) fn coplanar_filtered(a: &Tri, b: &Tri, shortcut: bool) -> (TriTri, bool) {
     let (mut segments, mut points) = (Vec::new(), Vec::new());
-    let short = coplanar_pieces(a, b, shortcut, &mut |p| match p {
+    let short = coplanar_pieces(a, b, shortcut, [0, 0], &mut |p| match p {
         Piece::Segment(s, _) => segments.push(s),
         Piece::Point(l) => points.push(l),
     });
@@ -791,7 +806,13 @@ pub(super) fn coplanar_filtered(a: &Tri, b: &Tri, shortcut: bool) -> (TriTri, bo
 }
 
 /// [`coplanar_filtered`]'s pieces given to `f` (segments, then points), made in place.
-fn coplanar_pieces(a: &Tri, b: &Tri, shortcut: bool, f: &mut impl FnMut(Piece)) -> bool {
+fn coplanar_pieces(
+    a: &Tri,
+    b: &Tri,
+    shortcut: bool,
+    flat: [u8; 2],
+    f: &mut impl FnMut(Piece),
+) -> bool {
     // Every orientation the clipping needs, once: `a`'s edges against `b`'s corners and
     // `b`'s edges against `a`'s corners, in the projection along `b`'s axis (for clipping
     // `a`'s edges) and along `a`'s (for `b`'s). When both triangles project along the
@@ -840,8 +861,11 @@ fn coplanar_pieces(a: &Tri, b: &Tri, shortcut: bool, f: &mut impl FnMut(Piece)) 
     // At most one clip per edge: six segments and six points at most.
     let mut segments = Six::new([FILLER; 2]);
     let mut points = Six::new(FILLER);
-    for (own, other, own_is_a, o) in [(a, b, true, &for_a), (b, a, false, &for_b)] {
-        for i in 0..3 {
+    for (own, other, own_is_a, o, flat) in [
+        (a, b, true, &for_a, flat[0]),
+        (b, a, false, &for_b, flat[1]),
+    ] {
+        for i in (0..3).filter(|i| flat & 1 << i == 0) {
             match clip_edge(own, i, other, own_is_a, o) {
                 Clip::None => {}
                 Clip::Point(l) => points.push(l),

@@ -1044,6 +1044,15 @@ fn normals_dot_value<T: Num>(t: &[[f64; 3]; 3], u: &[[f64; 3]; 3]) -> T {
     dot(&normal(t), &normal(u))
 }
 
+/// Whether triangles `t` and `u` lie in one plane and face the same way (exact). A corner
+/// of `u` at a corner of `t` is in its plane without a predicate: triangles that share an
+/// edge need one `orient3d`, not the exact zeros that take its slowest path.
+pub(crate) fn same_plane_same_facing(t: &[[f64; 3]; 3], u: &[[f64; 3]; 3]) -> bool {
+    u.iter()
+        .all(|x| t.contains(x) || orient3d_explicit(&t[0], &t[1], &t[2], x) == Sign::Zero)
+        && normals_dot_sign(t, u) == Sign::Positive
+}
+
 /// Exact sign of `n_t · n_u`, the dot product of the normals `(b − a) × (c − a)` of
 /// triangles `t` and `u`: positive when they face the same side (less than a right angle
 /// apart), zero when either is degenerate or they are perpendicular. Decides whether

@@ -50,6 +50,13 @@ pub struct BooleanOptions {
     /// fine fence), so that their pieces are not needles from their corners: flat faces
     /// then hold extra vertices. Off by default.
     pub sliver_guard: bool,
+    /// Cut coplanar overlaps (shared faces) along every edge of either input that
+    /// crosses them: the result's faces there hold the common refinement of both
+    /// triangulations, as the reference JS library's do. Off (the default), coplanar
+    /// regions meet along their boundaries only: the same surface with fewer seam points
+    /// (two fanned caps in one plane would otherwise cross in a number of points that
+    /// grows as the product of their triangle counts).
+    pub coplanar_refinement: bool,
     /// Threads and progress.
     pub run: RunOptions,
 }
@@ -237,6 +244,7 @@ pub fn boolean<'a>(
             kept: [Some(a.keeps()), Some(b.keeps())],
             first_votes: a.clean() && b.clean(),
             sliver_guard: opts.sliver_guard,
+            coplanar_refinement: opts.coplanar_refinement,
             ..opts.run.pipeline()
         };
         // An operand resolved at the door is resolved again together with the boolean,
@@ -463,6 +471,7 @@ fn many<'a>(inputs: &[Input<'a>], op: Op, opts: &BooleanOptions) -> Result<Boole
             keep_nonmanifold: opts.keep_nonmanifold,
             cleanup: !opts.keep_seam_points,
             first_votes: operands.iter().all(|o| o.clean()),
+            coplanar_refinement: opts.coplanar_refinement,
             ..opts.run.pipeline()
         };
         let in_one = if opts.one_arrangement {

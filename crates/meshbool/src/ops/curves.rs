@@ -9,7 +9,9 @@ use web_time::Instant;
 
 use super::{with_threads, Checks, Input, Operand, RunOptions, SCHEMA};
 use crate::boolean::Stage;
-use crate::intersect::{chain, intersect, self_intersections, self_seam, PolylineXyz, Seam};
+use crate::intersect::{
+    chain, intersect_coplanar, self_intersections, self_seam, PolylineXyz, Seam,
+};
 use crate::io::write_polylines;
 use crate::{Error, Format, Mesh, Result};
 
@@ -28,6 +30,11 @@ pub struct CurvesOptions {
     /// Put every raw seam segment, with the triangle of each input it lies in, in the
     /// report (`tagged_segments`; the reference's `intersectMeshPairTagged`).
     pub tagged: bool,
+    /// Also the segments where an edge of either input crosses a coplanar overlap (the
+    /// common refinement of both triangulations there, as the reference JS library's
+    /// tagged segments list them). Off (the default), coplanar overlaps give their
+    /// boundaries only.
+    pub coplanar_refinement: bool,
     /// Threads and progress.
     pub run: RunOptions,
 }
@@ -39,6 +46,7 @@ impl Default for CurvesOptions {
             checks: Checks::NONE,
             simplify: None,
             tagged: false,
+            coplanar_refinement: false,
             run: RunOptions::default(),
         }
     }
@@ -231,7 +239,7 @@ pub fn curves<'a>(
     }
     let run = |a: &Operand, b: &Operand| {
         opts.run.report(Stage::Intersect);
-        let seam = intersect(a.mesh(), b.mesh());
+        let seam = intersect_coplanar(a.mesh(), b.mesh(), opts.coplanar_refinement);
         let lines = opts.polylines(&seam);
         (seam, lines, [a.name().to_string(), b.name().to_string()])
     };

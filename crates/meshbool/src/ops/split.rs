@@ -39,6 +39,9 @@ pub struct SplitOptions {
     /// Interior points for large triangles cut by a dense seam, as a boolean's
     /// [`super::BooleanOptions::sliver_guard`].
     pub sliver_guard: bool,
+    /// Cut coplanar overlaps along every edge of either input that crosses them, as a
+    /// boolean's [`super::BooleanOptions::coplanar_refinement`].
+    pub coplanar_refinement: bool,
     /// Threads and progress.
     pub run: RunOptions,
 }
@@ -158,6 +161,7 @@ pub fn split<'a>(
             kept: [Some(a.keeps()), Some(b.keeps())],
             first_votes: a.clean() && b.clean(),
             sliver_guard: opts.sliver_guard,
+            coplanar_refinement: opts.coplanar_refinement,
             ..opts.run.pipeline()
         };
         let s = crate::boolean::split(a.mesh(), b.mesh(), &pipeline);
