@@ -740,6 +740,7 @@ impl Bvh {
             mb: other_mesh,
             keep: &|_, _| true,
             exact: true,
+            settled: None,
         };
         sort_pairs(q.run(Task::Below(0, 0)), mesh.triangles.len(), false)
     }
@@ -762,20 +763,56 @@ impl Bvh {
         mesh: &Mesh,
         keep: &(dyn Fn(u32, u32) -> bool + Sync),
     ) -> Vec<(u32, u32)> {
-        self.self_query(mesh, keep, true)
+        self.self_query(mesh, keep, true, None)
     }
 
     /// Like [`Bvh::self_pairs_where`], but the candidates are the pairs whose boxes overlap
     /// once rounded outward to `f32`: every pair of [`Bvh::self_pairs`] and possibly a few
     /// whose boxes only come within `f32` rounding of each other. For a `keep` that is an
     /// exact test of its own (such as a triangle–triangle intersection test), which then
-    /// spares the exact box comparison of every candidate.
+    /// spares the exact box comparison of every candidate. With `settled` (per node, from
+    /// [`Bvh::common_labels`]), two nodes that share a label, or one node with one, are
+    /// not looked into: every pair of triangles below them shares that label, and `keep`
+    /// must turn down every pair that shares a label.
     pub fn self_candidates_where(
         &self,
         mesh: &Mesh,
         keep: &(dyn Fn(u32, u32) -> bool + Sync),
+        settled: Option<&[[u32; 3]]>,
     ) -> Vec<(u32, u32)> {
-        self.self_query(mesh, keep, false)
+        self.self_query(mesh, keep, false, settled)
+    }
+
+    /// Per node, the labels (up to three; the other places [`NO_LABEL`]) that every
+    /// triangle below it has among its own three (`labels(t)`, [`NO_LABEL`] where it has
+    /// fewer): the `settled` of [`Bvh::self_candidates_where`]. Labels are such that two
+    /// triangles sharing one need no test (the self-intersection check's certified fan
+    /// runs). A pass over the leaves' triangles and the nodes.
+    pub fn common_labels(&self, labels: impl Fn(u32) -> [u32; 3] + Sync) -> Vec<[u32; 3]> {
+        // The leaves' in parallel (the reads of the labels), then the inner nodes': their
+        // children come after them (pre-order), so from the last node back each node's
+        // children are done before it.
+        let mut common: Vec<[u32; 3]> = self
+            .nodes
+            .par_iter()
+            .grained()
+            .map(|n| {
+                if n.count == 0 {
+                    return [NO_LABEL; 3];
+                }
+                let ts = &self.order[n.start as usize..(n.start + n.count) as usize];
+                ts[1..]
+                    .iter()
+                    .fold(labels(ts[0]), |c, &t| shared_labels(c, labels(t)))
+            })
+            .collect();
+        for x in (0..self.nodes.len()).rev() {
+            let n = &self.nodes[x];
+            if n.count == 0 {
+                common[x] = shared_labels(common[x + 1], common[n.start as usize]);
+            }
+        }
+        common
     }
 
     /// The self-traversal, confirming rounded-box overlaps on the exact boxes or not.
@@ -784,6 +821,7 @@ impl Bvh {
         mesh: &Mesh,
         keep: &(dyn Fn(u32, u32) -> bool + Sync),
         exact: bool,
+        settled: Option<&[[u32; 3]]>,
     ) -> Vec<(u32, u32)> {
         if self.is_empty() {
             return Vec::new();
@@ -795,9 +833,26 @@ impl Bvh {
             mb: mesh,
             keep,
             exact,
+            settled,
         };
         q.run(Task::Within(0))
     }
+}
+
+/// No label: an empty place of a [`Bvh::common_labels`] entry.
+pub const NO_LABEL: u32 = u32::MAX;
+
+/// The labels of `a` that are also in `b` (first, the rest [`NO_LABEL`]).
+fn shared_labels(a: [u32; 3], b: [u32; 3]) -> [u32; 3] {
+    let mut out = [NO_LABEL; 3];
+    let mut k = 0;
+    for l in a {
+        if l != NO_LABEL && b.contains(&l) {
+            out[k] = l;
+            k += 1;
+        }
+    }
+    out
 }
 
 /// A unit of traversal work: the pairs inside one subtree (a self-query), or the pairs
@@ -822,9 +877,20 @@ struct Query<'a> {
     keep: &'a (dyn Fn(u32, u32) -> bool + Sync),
     /// Confirm each overlap of rounded boxes on the exact boxes.
     exact: bool,
+    /// A self-query's labels per node ([`Bvh::common_labels`]): nodes that share one are
+    /// not looked into.
+    settled: Option<&'a [[u32; 3]]>,
 }
 
 impl Query<'_> {
+    /// Whether every pair of triangles below nodes `x` and `y` (of a self-query) shares
+    /// a label: nothing there to report.
+    #[inline]
+    fn settled(&self, x: u32, y: u32) -> bool {
+        self.settled
+            .is_some_and(|c| shared_labels(c[x as usize], c[y as usize])[0] != NO_LABEL)
+    }
+
     /// Every reported pair under `root`: the task is expanded breadth-first into a
     /// frontier of up to [`TASKS`] independent tasks, each then traversed depth-first on
     /// its own (parallel) with an explicit stack into one vector; the vectors are joined
@@ -884,13 +950,18 @@ impl Query<'_> {
         match task {
             Task::Within(x) => {
                 let n = &self.a.nodes[x as usize];
+                if self.settled(x, x) {
+                    return;
+                }
                 if n.count > 0 {
                     self.leaf_within(n, out);
                 } else {
                     let (l, r) = (x + 1, n.start);
                     next.extend([Task::Within(l), Task::Within(r)]);
                     let nodes = &self.a.nodes;
-                    if overlaps_f(&nodes[l as usize].bbox, &nodes[r as usize].bbox) {
+                    if overlaps_f(&nodes[l as usize].bbox, &nodes[r as usize].bbox)
+                        && !self.settled(l, r)
+                    {
                         next.push(Task::Below(l, r));
                     }
                 }
@@ -913,13 +984,17 @@ impl Query<'_> {
                 };
                 if split_a {
                     for c in [x + 1, na.start] {
-                        if overlaps_f(&self.a.nodes[c as usize].bbox, &nb.bbox) {
+                        if overlaps_f(&self.a.nodes[c as usize].bbox, &nb.bbox)
+                            && !self.settled(c, y)
+                        {
                             next.push(Task::Below(c, y));
                         }
                     }
                 } else {
                     for c in [y + 1, nb.start] {
-                        if overlaps_f(&na.bbox, &self.b.nodes[c as usize].bbox) {
+                        if overlaps_f(&na.bbox, &self.b.nodes[c as usize].bbox)
+                            && !self.settled(x, c)
+                        {
                             next.push(Task::Below(x, c));
                         }
                     }
@@ -1492,7 +1567,7 @@ mod tests {
         assert!(got == want);
         // The rounded-box candidates hold every exact pair, and the others have boxes
         // that come within f32 rounding (here |x| ≤ 1: 2⁻²³) of each other.
-        let cand = Bvh::new(&m).self_candidates_where(&m, &|_, _| true);
+        let cand = Bvh::new(&m).self_candidates_where(&m, &|_, _| true, None);
         assert!(want.iter().all(|p| cand.contains(p)));
         for &(i, j) in &cand {
             let (a, b) = (tri_box(&m, i), tri_box(&m, j));
@@ -1507,7 +1582,7 @@ mod tests {
         let pair = Mesh::from_soup(&soup);
         let bvh = Bvh::new(&pair);
         let exact = bvh.self_pairs(&pair);
-        let cands = bvh.self_candidates_where(&pair, &|_, _| true);
+        let cands = bvh.self_candidates_where(&pair, &|_, _| true, None);
         assert!(exact.iter().all(|p| cands.contains(p)));
         assert!(cands.iter().any(|&(i, j)| (i < 12) != (j < 12)));
         assert!(exact.iter().all(|&(i, j)| (i < 12) == (j < 12)));

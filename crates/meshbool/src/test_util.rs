@@ -70,3 +70,23 @@ pub(crate) fn on_threads<R: Send>(threads: usize, f: impl FnOnce() -> R + Send) 
         .expect("a thread pool")
         .install(f)
 }
+
+/// A prism of height `h` over the polygon `ring` (counter-clockwise in xy) with
+/// both caps fanned from the ring's first vertex: long thin triangles that span the cap,
+/// as CAD exports triangulate extruded profiles.
+pub(crate) fn fanned_prism(ring: &[[f64; 2]], h: f64) -> crate::Mesh {
+    let n = ring.len() as u32;
+    let positions = [0.0, h]
+        .iter()
+        .flat_map(|&z| ring.iter().map(move |p| [p[0], p[1], z]))
+        .collect();
+    let mut triangles = Vec::new();
+    for i in 0..n {
+        let j = (i + 1) % n;
+        triangles.extend([[i, j, n + j], [i, n + j, n + i]]);
+    }
+    for i in 1..n - 1 {
+        triangles.extend([[0, i + 1, i], [n, n + i, n + i + 1]]);
+    }
+    crate::Mesh::new(positions, triangles).unwrap()
+}

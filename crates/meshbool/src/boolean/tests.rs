@@ -2,7 +2,7 @@ use super::*;
 use crate::measure::{mesh_stats, signed_volume};
 use crate::shapes::rigid_motion;
 use crate::shapes::{torus, uv_sphere};
-use crate::test_util::Rng;
+use crate::test_util::{fanned_prism, Rng};
 
 fn vol(m: &Mesh) -> f64 {
     signed_volume(m)
@@ -95,26 +95,6 @@ fn cubes_with_coplanar_faces_exact_volumes() {
     let c = Mesh::cuboid([0.5, 0.5, 0.5], [1.0, 1.0, 1.0]);
     let [u, i, d, rd] = check(&a, &c, 0.0);
     assert_eq!((u, i, d, rd), (1.0, 0.125, 0.875, 0.0));
-}
-
-/// A prism of height `h` over the convex polygon `ring` (counter-clockwise in xy) with
-/// both caps fanned from the ring's first vertex: long thin triangles that span the cap,
-/// as CAD exports triangulate extruded profiles.
-fn fanned_prism(ring: &[[f64; 2]], h: f64) -> Mesh {
-    let n = ring.len() as u32;
-    let positions = [0.0, h]
-        .iter()
-        .flat_map(|&z| ring.iter().map(move |p| [p[0], p[1], z]))
-        .collect();
-    let mut triangles = Vec::new();
-    for i in 0..n {
-        let j = (i + 1) % n;
-        triangles.extend([[i, j, n + j], [i, n + j, n + i]]);
-    }
-    for i in 1..n - 1 {
-        triangles.extend([[0, i + 1, i], [n, n + i, n + i + 1]]);
-    }
-    Mesh::new(positions, triangles).unwrap()
 }
 
 /// The area of the intersection of two convex polygons (counter-clockwise), by clipping

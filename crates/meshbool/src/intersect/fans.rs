@@ -15,6 +15,19 @@
 //! exact fallback), so the certificate is exact: a fan it cannot vouch for (a sharp
 //! corner whose triangles face more than 90 degrees apart, a fold, a non-manifold vertex)
 //! is simply not certified, and the pairs around it go to the exact tests.
+//!
+//! A fan that is not certified whole may still have certified *runs*: stretches of
+//! consecutive triangles in one plane (exact `orient3d`; the plane's faces of a CAD
+//! part meeting at a sharp corner) whose wedges, seen along the plane's nearest axis,
+//! each turn counter-clockwise and together less than once. The same argument holds
+//! within a run: two of its triangles meet only in `v` or their shared edge. A fanned
+//! cap (an extruded profile's, every triangle from one corner of the outline) is one such
+//! run around its corner, whose other triangles are the walls at right angles to it.
+//!
+//! The certificate is given per corner (3 × triangle + corner): the run the corner's
+//! triangle is in around the corner's vertex, named by the run's least corner (unique
+//! over the mesh), or [`NO_RUN`]. Two triangles sharing a vertex are settled where their
+//! corners there name the same run.
 
 use std::sync::atomic::AtomicU32;
 use std::sync::atomic::Ordering::Relaxed;
@@ -22,17 +35,34 @@ use std::sync::atomic::Ordering::Relaxed;
 use crate::par::Grain;
 use rayon::prelude::*;
 
-use crate::kernel::{orient2d_inputs, robust_safe, Sign};
+use crate::kernel::{orient2d_inputs, orient3d_explicit, robust_safe, Sign};
 use crate::vec3::{cross, sub};
 use crate::Mesh;
 
-/// For every vertex of `m`, whether its fan is certified (see the module text). Vertices
-/// on no triangle are certified trivially (nothing to skip).
+/// A corner in no certified run.
+pub(crate) const NO_RUN: u32 = u32::MAX;
+
+/// For every vertex of `m`, whether its fan is certified whole (see the module text).
+/// Vertices on no triangle are certified trivially (nothing to skip).
+#[cfg(test)]
 pub(crate) fn certified(m: &Mesh) -> Vec<bool> {
+    let run = runs(m);
+    let mut first = vec![None; m.positions.len()];
+    let mut whole = vec![true; m.positions.len()];
+    for (c, &r) in run.iter().enumerate() {
+        let v = m.triangles[c / 3][c % 3] as usize;
+        whole[v] &= r != NO_RUN && *first[v].get_or_insert(r) == r;
+    }
+    whole
+}
+
+/// For every corner of `m` (3 × triangle + corner), the certified run it is in around its
+/// vertex, or [`NO_RUN`] (see the module text). A fan certified whole is one run.
+pub(crate) fn runs(m: &Mesh) -> Vec<u32> {
     let nv = m.positions.len();
-    if m.triangles.len() > (u32::MAX / 3) as usize {
+    if m.triangles.len() >= (u32::MAX / 3) as usize {
         // Corner numbers would not fit in 32 bits: certify nothing (all pairs exact).
-        return vec![false; nv];
+        return vec![NO_RUN; 3 * m.triangles.len()];
     }
     // The corners at each vertex, gathered in parallel: counts, offsets, then each corner
     // claims a slot. The order within a vertex's slots varies from run to run; the fan is
@@ -63,21 +93,27 @@ pub(crate) fn certified(m: &Mesh) -> Vec<bool> {
                 slots[at as usize].store(3 * i as u32 + k as u32, Relaxed);
             }
         });
+    // Each corner is at one vertex: its run is written once, by that vertex's fan.
+    let run: Vec<AtomicU32> = (0..sum).map(|_| AtomicU32::new(NO_RUN)).collect();
     (0..nv)
         .into_par_iter()
         .grained()
-        .map_init(Scratch::default, |s, v| {
+        .for_each_init(Scratch::default, |s, v| {
             let fan = &slots[start[v] as usize..start[v + 1] as usize];
-            s.certify(m, v as u32, fan)
-        })
-        .collect()
+            s.certify(m, v as u32, fan, &run);
+        });
+    run.into_iter().map(AtomicU32::into_inner).collect()
 }
 
 /// Per-thread buffers for one fan.
 #[derive(Default)]
 struct Scratch {
-    /// The fan's (from, to) corner pairs sorted by `from`.
-    sorted: Vec<[u32; 2]>,
+    /// The fan's triangles as (from, to, corner) sorted by `from`: the corner's triangle
+    /// leads from rim vertex `from` to `to` around the fan's vertex.
+    sorted: Vec<[u32; 3]>,
+    /// The fan's corners in rim order (`corners[i]`: the wedge from `rim[i]` to
+    /// `rim[i + 1]`).
+    corners: Vec<u32>,
     /// The fan's `to` corners, sorted.
     ends: Vec<u32>,
     /// The fan's rim vertices in order.
@@ -87,51 +123,80 @@ struct Scratch {
 }
 
 impl Scratch {
-    /// Whether the fan of `v` is certified; `fan` holds its corners (3 × triangle +
-    /// corner) in any order.
-    fn certify(&mut self, m: &Mesh, v: u32, fan: &[AtomicU32]) -> bool {
+    /// Certifies the fan of `v` and writes its corners' runs into `run`; `fan` holds its
+    /// corners (3 × triangle + corner) in any order.
+    fn certify(&mut self, m: &Mesh, v: u32, fan: &[AtomicU32], run: &[AtomicU32]) {
         self.sorted.clear();
         self.sorted.extend(fan.iter().map(|s| {
-            let c = s.load(Relaxed) as usize;
-            let (t, k) = (m.triangles[c / 3], c % 3);
-            [t[(k + 1) % 3], t[(k + 2) % 3]]
+            let c = s.load(Relaxed);
+            let (t, k) = (m.triangles[c as usize / 3], c as usize % 3);
+            [t[(k + 1) % 3], t[(k + 2) % 3], c]
         }));
-        if fan.len() <= 1 {
-            return self.sorted.iter().all(|&[a, b]| a != v && b != v && a != b);
+        // A run is named by its least corner.
+        let name = |corners: &[u32]| {
+            let least = corners.iter().copied().min().unwrap_or(NO_RUN);
+            for &c in corners {
+                run[c as usize].store(least, Relaxed);
+            }
+        };
+        if let [[a, b, c]] = self.sorted[..] {
+            if a != v && b != v && a != b {
+                name(&[c]);
+            }
+            return;
         }
-        if !self.chain(v) {
-            return false;
+        if fan.is_empty() || !self.chain(v) {
+            return;
         }
         let p = m.positions[v as usize];
-        // The fan's mean normal (area-weighted): the axis it is closest to, and which way.
         self.pts.clear();
         self.pts
             .extend(self.rim.iter().map(|&w| m.positions[w as usize]));
-        let mut n = [0.0; 3];
-        // One wedge per triangle; only a closed fan's last one wraps to the first rim
-        // vertex (an open fan's rim has a vertex more).
-        for i in 0..self.sorted.len() {
-            let (a, b) = (self.pts[i], self.pts[(i + 1) % self.pts.len()]);
-            let c = cross(&sub(&a, &p), &sub(&b, &p));
-            n = [n[0] + c[0], n[1] + c[1], n[2] + c[2]];
+        let (pts, corners) = (&self.pts, &self.corners);
+        let w = corners.len();
+        if wedges_certified(p, pts, w) {
+            name(corners);
+            return;
         }
-        let Some(axis) = (0..3)
-            .filter(|&k| n[k].is_finite() && n[k] != 0.0)
-            .max_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()))
-        else {
-            return false;
-        };
-        let flip = if n[axis] > 0.0 {
-            Sign::Positive
+        // Runs in one plane: wedges `k` and `k + 1` are in one plane where the rim's
+        // points `k..k + 3` are coplanar with `p`. A closed fan's runs are counted from a
+        // wedge where the plane changes, so that none wraps past the start.
+        let n = pts.len();
+        let at = |k: usize| &pts[k % n];
+        let joined = |k: usize| orient3d_explicit(&p, at(k), at(k + 1), at(k + 2)) == Sign::Zero;
+        let closed = n == w;
+        let start = if closed {
+            match (0..w).find(|&k| !joined(k)) {
+                Some(k) => k + 1,
+                None => return, // one plane all round, and not certified whole
+            }
         } else {
-            Sign::Negative
+            0
         };
-        self.turns_once(p, axis, flip)
+        let (mut group, mut members): (Vec<[f64; 3]>, Vec<u32>) = (Vec::new(), Vec::new());
+        let mut t = 0;
+        while t < w {
+            let mut end = t + 1;
+            while end < w && joined(start + end - 1) {
+                end += 1;
+            }
+            if end - t >= 2 {
+                group.clear();
+                group.extend((t..=end).map(|k| *at(start + k)));
+                if wedges_certified(p, &group, end - t) {
+                    members.clear();
+                    members.extend((t..end).map(|k| corners[(start + k) % w]));
+                    name(&members);
+                }
+            }
+            t = end;
+        }
     }
 
-    /// Orders the fan into `rim`: each triangle (v, a, b) leads from `a` to `b`, and the
-    /// next one starts at `b`. False unless the fan is one chain (open: from the one `a`
-    /// no triangle ends at, rim has a vertex more than the fan has triangles) or one cycle
+    /// Orders the fan into `rim` and `corners`: each triangle (v, a, b) leads from `a` to
+    /// `b`, and the next one starts at `b`; `corners[i]` is the corner of the triangle
+    /// from `rim[i]`. False unless the fan is one chain (open: from the one `a` no
+    /// triangle ends at, rim has a vertex more than the fan has triangles) or one cycle
     /// through all of it, with no edge at `v` used twice in the same direction.
     fn chain(&mut self, v: u32) -> bool {
         self.sorted.sort_unstable();
@@ -140,7 +205,7 @@ impl Scratch {
         self.ends.extend(self.sorted.iter().map(|e| e[1]));
         self.ends.sort_unstable();
         let repeated = |xs: &[u32]| xs.windows(2).any(|w| w[0] == w[1]);
-        if self.sorted.iter().any(|&[a, b]| a == v || b == v || a == b)
+        if self.sorted.iter().any(|&[a, b, _]| a == v || b == v || a == b)
             || self.sorted.windows(2).any(|w| w[0][0] == w[1][0])
             || repeated(&self.ends)
         {
@@ -164,9 +229,10 @@ impl Scratch {
             sorted
                 .binary_search_by_key(&a, |e| e[0])
                 .ok()
-                .map(|i| sorted[i][1])
+                .map(|i| sorted[i])
         };
         self.rim.clear();
+        self.corners.clear();
         let mut at = first;
         self.rim.push(at);
         for _ in 0..fan_len {
@@ -174,9 +240,10 @@ impl Scratch {
                 // A closed walk back at its start before using every triangle: more
                 // than one cycle.
                 Some(_) if opens == 0 && self.rim.len() > 1 && at == first => return false,
-                Some(b) => {
+                Some([_, b, c]) => {
                     at = b;
                     self.rim.push(b);
+                    self.corners.push(c);
                 }
                 None => return false,
             }
@@ -191,52 +258,75 @@ impl Scratch {
             true
         }
     }
+}
 
-    /// Whether, seen along `axis` (from its `flip` side), the wedges at `p` between
-    /// consecutive rim vertices each turn counter-clockwise and together turn around `p`
-    /// exactly once (closed) or less than once (open). With `s_i` the orientation of
-    /// (p, E_i, E_0) for rim vertex E_i: a wedge passes over E_0's direction exactly
-    /// where `s` goes from + to −, which must happen nowhere before the (closed) fan's
-    /// last wedge returns to E_0; a rim vertex in E_0's own direction is a full turn.
-    /// (`s` = 0 opposite E_0 is a half turn: a wedge, under 180 degrees, cannot reach
-    /// E_0's direction from there, nor arrive there from beyond it.)
-    fn turns_once(&self, p: [f64; 3], axis: usize, flip: Sign) -> bool {
-        let pts = &self.pts;
-        // Shewchuk's predicate directly where its range holds for the whole fan (almost
-        // always), the kernel's general one otherwise.
-        let safe = robust_safe(&[&p]) && pts.iter().all(|q| robust_safe(&[q]));
-        let orient =
-            |i: usize, j: usize| orient2d_inputs(&p, &pts[i], &pts[j], axis, safe).times(flip);
-        let n = self.rim.len();
-        // One wedge per fan triangle (see `certify`).
-        if (0..self.sorted.len()).any(|i| orient(i, (i + 1) % n) != Sign::Positive) {
-            return false;
-        }
-        // A coordinate of the projection plane along which E_0 leaves `p` (it does: the
-        // first wedge is not degenerate).
-        let e0 = pts[0];
-        let Some(c) = [(axis + 1) % 3, (axis + 2) % 3]
-            .into_iter()
-            .find(|&c| e0[c] != p[c])
-        else {
-            return false;
-        };
-        let mut prev = Sign::Negative; // s_1, by the first wedge
-        for (i, e) in pts.iter().enumerate().skip(2) {
-            let s = orient(i, 0);
-            if s == Sign::Zero {
-                // On E_0's line: in its direction when on the same side along `c`.
-                if (e[c] > p[c]) == (e0[c] > p[c]) {
-                    return false;
-                }
-            }
-            if prev == Sign::Positive && s == Sign::Negative {
+/// Whether the `wedges` wedges at `p` between consecutive points of `pts` (closed when
+/// there are as many as points: the last one back to the first) are certified: seen
+/// along the coordinate axis nearest their mean normal, they turn around `p` exactly once
+/// (closed) or less than once (open), each counter-clockwise ([`turns_once`]).
+fn wedges_certified(p: [f64; 3], pts: &[[f64; 3]], wedges: usize) -> bool {
+    // The mean normal (area-weighted): the axis it is closest to, and which way.
+    let mut n = [0.0; 3];
+    for i in 0..wedges {
+        let (a, b) = (pts[i], pts[(i + 1) % pts.len()]);
+        let c = cross(&sub(&a, &p), &sub(&b, &p));
+        n = [n[0] + c[0], n[1] + c[1], n[2] + c[2]];
+    }
+    let Some(axis) = (0..3)
+        .filter(|&k| n[k].is_finite() && n[k] != 0.0)
+        .max_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()))
+    else {
+        return false;
+    };
+    let flip = if n[axis] > 0.0 {
+        Sign::Positive
+    } else {
+        Sign::Negative
+    };
+    turns_once(p, pts, wedges, axis, flip)
+}
+
+/// Whether, seen along `axis` (from its `flip` side), the `wedges` wedges at `p` between
+/// consecutive points of `pts` each turn counter-clockwise and together turn around `p`
+/// exactly once (closed: as many wedges as points) or less than once (open: a point
+/// more). With `s_i` the orientation of (p, E_i, E_0) for rim point E_i: a wedge passes
+/// over E_0's direction exactly where `s` goes from + to −, which must happen nowhere
+/// before the (closed) fan's last wedge returns to E_0; a rim point in E_0's own
+/// direction is a full turn. (`s` = 0 opposite E_0 is a half turn: a wedge, under 180
+/// degrees, cannot reach E_0's direction from there, nor arrive there from beyond it.)
+fn turns_once(p: [f64; 3], pts: &[[f64; 3]], wedges: usize, axis: usize, flip: Sign) -> bool {
+    // Shewchuk's predicate directly where its range holds for the whole fan (almost
+    // always), the kernel's general one otherwise.
+    let safe = robust_safe(&[&p]) && pts.iter().all(|q| robust_safe(&[q]));
+    let orient = |i: usize, j: usize| orient2d_inputs(&p, &pts[i], &pts[j], axis, safe).times(flip);
+    let n = pts.len();
+    if (0..wedges).any(|i| orient(i, (i + 1) % n) != Sign::Positive) {
+        return false;
+    }
+    // A coordinate of the projection plane along which E_0 leaves `p` (it does: the
+    // first wedge is not degenerate).
+    let e0 = pts[0];
+    let Some(c) = [(axis + 1) % 3, (axis + 2) % 3]
+        .into_iter()
+        .find(|&c| e0[c] != p[c])
+    else {
+        return false;
+    };
+    let mut prev = Sign::Negative; // s_1, by the first wedge
+    for (i, e) in pts.iter().enumerate().skip(2) {
+        let s = orient(i, 0);
+        if s == Sign::Zero {
+            // On E_0's line: in its direction when on the same side along `c`.
+            if (e[c] > p[c]) == (e0[c] > p[c]) {
                 return false;
             }
-            prev = s;
         }
-        true
+        if prev == Sign::Positive && s == Sign::Negative {
+            return false;
+        }
+        prev = s;
     }
+    true
 }
 
 #[cfg(test)]

@@ -857,37 +857,45 @@ fn vertices_on_features(results: impl Iterator<Item = (u32, u32, Piece)>) -> Vec
 
 /// Pairs of triangles of one mesh that meet anywhere other than in the vertices and edges
 /// they share: self-intersections (or coplanar overlaps). Exact. Degenerate triangles are
-/// left out. Sorted `(i, j)` with `i < j`. Pairs around a vertex whose fan is certified
-/// free of overlaps (`fans`, almost every vertex of a smooth mesh) are settled by their
-/// vertex ids; the rest by the exact pair test.
+/// left out. Sorted `(i, j)` with `i < j`. Pairs in one certified run around a vertex
+/// they share (`fans`: almost every vertex's whole fan on a smooth mesh, a fanned cap's
+/// triangles around its corner) are settled by their corners' runs, and tree nodes whose
+/// triangles all share a run are not looked into; the rest by the exact pair test.
 pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
     // Large triangles are looked at through their pieces ([`crate::broad::cover_large`]).
     let cover = crate::broad::cover_large(m, crate::broad::typical_size(m, m), None);
-    let (fan_ok, bvh) = crate::par::join(
-        || fans::certified(m),
+    let (runs, bvh) = crate::par::join(
+        || fans::runs(m),
         || Bvh::new(cover.as_ref().map_or(m, |c| &c.0)),
     );
+    let corner_runs = |t: u32| std::array::from_fn(|k| runs[3 * t as usize + k]);
     let meets = |i: u32, j: u32| -> bool {
         let (vi, vj) = (m.triangles[i as usize], m.triangles[j as usize]);
         let shared = (0..3).filter(|&k| vj.contains(&vi[k])).count();
         if shared == 3 {
             return true; // the same triangle twice
         }
-        if shared > 0 && vi.iter().any(|v| vj.contains(v) && fan_ok[*v as usize]) {
-            return false; // both around a vertex whose fan is certified
+        if shared > 0 {
+            let (ri, rj): ([u32; 3], [u32; 3]) = (corner_runs(i), corner_runs(j));
+            if ri.iter().any(|&r| r != fans::NO_RUN && rj.contains(&r)) {
+                return false; // both in one certified run around a vertex they share
+            }
         }
         meets_beyond_shared(m, i, j, shared)
     };
     let mut found: Vec<(u32, u32)> = match &cover {
-        None => bvh
-            .self_candidates_where(m, &meets)
-            .into_iter()
-            .map(|(i, j)| (i.min(j), i.max(j)))
-            .collect(),
+        None => {
+            let settled = bvh.common_labels(corner_runs);
+            bvh.self_candidates_where(m, &meets, Some(&settled))
+                .into_iter()
+                .map(|(i, j)| (i.min(j), i.max(j)))
+                .collect()
+        }
         // Large triangles through their pieces: the candidates (pieces of one triangle
         // aside) named by the triangles they stand for, each pair tested once.
         Some((stand_in, parent)) => {
-            let pairs = piece_pairs(&bvh, stand_in, parent, true);
+            let settled = bvh.common_labels(|p| corner_runs(parent[p as usize]));
+            let pairs = piece_pairs(&bvh, stand_in, parent, true, Some(&settled));
             crate::bvh::sort_pairs(pairs, m.triangles.len(), true)
                 .into_par_iter()
                 .grained()
@@ -914,7 +922,13 @@ pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
 /// them. The first candidate pair of pieces of two triangles has none before it and
 /// always stays; those of pieces side by side along two slivers, running either way,
 /// are left out but for a few.
-fn piece_pairs(bvh: &Bvh, stand_in: &Mesh, parent: &[u32], first_only: bool) -> Vec<(u32, u32)> {
+fn piece_pairs(
+    bvh: &Bvh,
+    stand_in: &Mesh,
+    parent: &[u32],
+    first_only: bool,
+    settled: Option<&[[u32; 3]]>,
+) -> Vec<(u32, u32)> {
     let n = stand_in.triangles.len() as u32;
     // The pieces' boxes as the tree rounds them: two meet here exactly when the tree
     // finds the pair.
@@ -948,7 +962,7 @@ fn piece_pairs(bvh: &Bvh, stand_in: &Mesh, parent: &[u32], first_only: bool) -> 
             matches!((sibling(p, dp), sibling(q, dq)), (Some(a), Some(b)) if boxes_meet(a, b))
         })
     };
-    bvh.self_candidates_where(stand_in, &keep)
+    bvh.self_candidates_where(stand_in, &keep, settled)
         .into_par_iter()
         .grained()
         .map(|(i, j)| {
