@@ -921,7 +921,9 @@ pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
 /// or one of its neighbours along its triangle, found by the boxes as the tree rounds
 /// them. The first candidate pair of pieces of two triangles has none before it and
 /// always stays; those of pieces side by side along two slivers, running either way,
-/// are left out but for a few.
+/// are left out but for a few. With `settled` (the tree's nodes labelled by the runs of
+/// their pieces' triangles, [`crate::bvh::Bvh::common_labels`]), nodes whose triangles
+/// all share a certified run are not looked into: every pair they stand for is settled.
 fn piece_pairs(
     bvh: &Bvh,
     stand_in: &Mesh,
