@@ -894,13 +894,15 @@ pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
         // Large triangles through their pieces: the candidates (pieces of one triangle
         // aside) named by the triangles they stand for, each pair tested once.
         Some((stand_in, parent)) => {
+            // Tested as the traversal finds them: a pair of triangles that more than one
+            // pair of their pieces stands for is tested more than once, which costs less
+            // than storing and sorting every candidate (1.5M pairs of pieces for 15k
+            // slivers side by side) and keeps the memory to the pairs found.
             let settled = bvh.common_labels(|p| corner_runs(parent[p as usize]));
-            let pairs = piece_pairs(&bvh, stand_in, parent, true, Some(&settled));
-            crate::bvh::sort_pairs(pairs, m.triangles.len(), true)
-                .into_par_iter()
-                .grained()
-                .filter(|&(i, j)| meets(i, j))
-                .collect()
+            let mut found = piece_pairs(&bvh, stand_in, parent, true, Some(&settled), &meets);
+            found.par_sort_unstable();
+            found.dedup();
+            found
         }
     };
     found.par_sort_unstable();
@@ -924,12 +926,15 @@ pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
 /// are left out but for a few. With `settled` (the tree's nodes labelled by the runs of
 /// their pieces' triangles, [`crate::bvh::Bvh::common_labels`]), nodes whose triangles
 /// all share a certified run are not looked into: every pair they stand for is settled.
+/// Only pairs of triangles for which `test(lo, hi)` holds are kept, tested as the
+/// traversal finds them (so perhaps more than once for a pair).
 fn piece_pairs(
     bvh: &Bvh,
     stand_in: &Mesh,
     parent: &[u32],
     first_only: bool,
     settled: Option<&[[u32; 3]]>,
+    test: &(dyn Fn(u32, u32) -> bool + Sync),
 ) -> Vec<(u32, u32)> {
     let n = stand_in.triangles.len() as u32;
     // The pieces' boxes as the tree rounds them: two meet here exactly when the tree
@@ -955,14 +960,16 @@ fn piece_pairs(
         if pi == pj {
             return false;
         }
-        if !first_only {
-            return true;
+        if first_only {
+            let (p, q) = if pi < pj { (i, j) } else { (j, i) };
+            let before = [(-1, 0), (0, -1), (-1, -1), (-1, 1)];
+            if before.iter().any(|&(dp, dq)| {
+                matches!((sibling(p, dp), sibling(q, dq)), (Some(a), Some(b)) if boxes_meet(a, b))
+            }) {
+                return false;
+            }
         }
-        let (p, q) = if pi < pj { (i, j) } else { (j, i) };
-        let before = [(-1, 0), (0, -1), (-1, -1), (-1, 1)];
-        !before.iter().any(|&(dp, dq)| {
-            matches!((sibling(p, dp), sibling(q, dq)), (Some(a), Some(b)) if boxes_meet(a, b))
-        })
+        test(pi.min(pj), pi.max(pj))
     };
     bvh.self_candidates_where(stand_in, &keep, settled)
         .into_par_iter()

@@ -1155,8 +1155,8 @@ fn first_pairs_of_pieces_stand_for_every_pair_of_triangles() {
         p.dedup();
         p
     };
-    let every = piece_pairs(&bvh, &stand_in, &parent, false, None);
-    let first = piece_pairs(&bvh, &stand_in, &parent, true, None);
+    let every = piece_pairs(&bvh, &stand_in, &parent, false, None, &|_, _| true);
+    let first = piece_pairs(&bvh, &stand_in, &parent, true, None, &|_, _| true);
     let want = unique(every.clone());
     assert_eq!(unique(first.clone()), want);
     // Of the slivers' pairs with each other, about one pair of pieces each.
