@@ -353,13 +353,23 @@ fn split_in_pool(a: &Mesh, b: &Mesh, opts: &PipelineOptions) -> Split {
         || arrange_with(a, &seam, Source::A, opts.sliver_guard),
         || arrange_with(b, &seam, Source::B, opts.sliver_guard),
     );
-    // Closedness picks the winding-number threshold; the arranged mesh is closed exactly
-    // when its input is (cutting keeps every edge's use count).
+    // Closedness picks the winding-number threshold (of the input's winding number); the
+    // arranged mesh is closed exactly when its input is (cutting keeps every edge's use
+    // count) where the input does not cross itself. An input taken as given whose parts
+    // cross may be cut into an arrangement with a few open edges: its own edges say
+    // whether it is closed then (with threshold 0 the winding numbers of a closed input,
+    // 0 outside it, all stood on the threshold: slow, and the side their rounding's).
     let (topo_a, topo_b) = crate::par::join(
         || SeamTopology::new(&arr_a.mesh, &arr_a.seam_edges),
         || SeamTopology::new(&arr_b.mesh, &arr_b.seam_edges),
     );
-    let (closed_a, closed_b) = (topo_a.is_closed(), topo_b.is_closed());
+    let closed = |topo: &SeamTopology, input: &Mesh| {
+        topo.is_closed() || {
+            let c = crate::edges::EdgeCounts::of(input);
+            c.manifold > 0 && c.boundary == 0 && c.inconsistent == 0 && c.non_manifold == 0
+        }
+    };
+    let (closed_a, closed_b) = crate::par::join(|| closed(&topo_a, a), || closed(&topo_b, b));
     let oa = CutMesh {
         input: a,
         arranged: &arr_a,
