@@ -245,7 +245,7 @@ impl Boolean {
 /// A boolean: the result's arrays and what else it found, provenance included
 /// ([`Boolean`]).
 #[pyfunction]
-#[pyo3(signature = (av, af, bv, bf, op, force, self_check, resolve, orient, threads, keep_nonmanifold, snap=0.0, keep_seam_points=false))]
+#[pyo3(signature = (av, af, bv, bf, op, force, self_check, resolve, orient, threads, keep_nonmanifold, snap=0.0, keep_seam_points=false, coplanar_refinement=false))]
 #[allow(clippy::too_many_arguments, clippy::type_complexity)]
 fn boolean<'py>(
     py: Python<'py>,
@@ -262,12 +262,14 @@ fn boolean<'py>(
     keep_nonmanifold: bool,
     snap: f64,
     keep_seam_points: bool,
+    coplanar_refinement: bool,
 ) -> PyResult<BooleanResult<'py>> {
     let (a, b, op) = (mesh(&av, &af)?, mesh(&bv, &bf)?, parse::<Op>(op)?);
     let opts = BooleanOptions {
         checks: checks(force, self_check, resolve, orient),
         keep_nonmanifold,
         keep_seam_points,
+        coplanar_refinement,
         snap,
         run: run(threads),
         ..BooleanOptions::default()
@@ -341,7 +343,7 @@ impl Operand {
 
 /// [`boolean`] of two operands checked before ([`Operand`]).
 #[pyfunction]
-#[pyo3(signature = (a, b, op, threads, keep_nonmanifold, snap=0.0, keep_seam_points=false))]
+#[pyo3(signature = (a, b, op, threads, keep_nonmanifold, snap=0.0, keep_seam_points=false, coplanar_refinement=false))]
 #[allow(clippy::too_many_arguments)]
 fn boolean_operands<'py>(
     py: Python<'py>,
@@ -352,11 +354,13 @@ fn boolean_operands<'py>(
     keep_nonmanifold: bool,
     snap: f64,
     keep_seam_points: bool,
+    coplanar_refinement: bool,
 ) -> PyResult<BooleanResult<'py>> {
     let op = parse::<Op>(op)?;
     let opts = BooleanOptions {
         keep_nonmanifold,
         keep_seam_points,
+        coplanar_refinement,
         snap,
         run: run(threads),
         ..BooleanOptions::default()
@@ -448,7 +452,7 @@ impl Split {
 
 /// Splits two meshes along their intersection.
 #[pyfunction]
-#[pyo3(signature = (av, af, bv, bf, force, self_check, resolve, orient, threads, merge_small, snap=0.0, keep_seam_points=false))]
+#[pyo3(signature = (av, af, bv, bf, force, self_check, resolve, orient, threads, merge_small, snap=0.0, keep_seam_points=false, coplanar_refinement=false))]
 #[allow(clippy::too_many_arguments)]
 fn split(
     py: Python<'_>,
@@ -464,6 +468,7 @@ fn split(
     merge_small: usize,
     snap: f64,
     keep_seam_points: bool,
+    coplanar_refinement: bool,
 ) -> PyResult<Split> {
     let (a, b) = (mesh(&av, &af)?, mesh(&bv, &bf)?);
     let opts = SplitOptions {
@@ -472,7 +477,7 @@ fn split(
         snap,
         keep_seam_points,
         sliver_guard: false,
-        coplanar_refinement: false,
+        coplanar_refinement,
         run: run(threads),
     };
     let size = a.triangles().len() + b.triangles().len();
@@ -594,8 +599,8 @@ fn polylines(
 
 /// The intersection curves: `(points (k, 3), closed)` per polyline, and the report.
 #[pyfunction]
-#[pyo3(signature = (av, af, b, with_coplanar, simplify=None, tagged=false))]
-#[allow(clippy::type_complexity)]
+#[pyo3(signature = (av, af, b, with_coplanar, simplify=None, tagged=false, coplanar_refinement=false))]
+#[allow(clippy::type_complexity, clippy::too_many_arguments)]
 fn curves<'py>(
     py: Python<'py>,
     av: PyReadonlyArray2<'py, f64>,
@@ -604,6 +609,7 @@ fn curves<'py>(
     with_coplanar: bool,
     simplify: Option<f64>,
     tagged: bool,
+    coplanar_refinement: bool,
 ) -> PyResult<(Vec<(Bound<'py, PyArray2<f64>>, bool)>, String)> {
     let a = mesh(&av, &af)?;
     let b = b.map(|(bv, bf)| mesh(&bv, &bf)).transpose()?;
@@ -611,6 +617,7 @@ fn curves<'py>(
         with_coplanar,
         simplify,
         tagged,
+        coplanar_refinement,
         ..CurvesOptions::default()
     };
     let out = py

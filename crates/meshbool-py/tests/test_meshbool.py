@@ -341,6 +341,51 @@ def test_self_curves():
     assert meshbool.curves(a).report["points"] == 0
 
 
+def fanned_prism(n, turn):
+    """A prism of height 1 on a regular ``n``-gon of circumradius 1 turned by ``turn``
+    radians, both caps fanned from its first vertex (a CAD exporter's caps)."""
+    ring = [[math.cos(turn + 2 * math.pi * i / n), math.sin(turn + 2 * math.pi * i / n)]
+            for i in range(n)]
+    v = [[x, y, 0.0] for x, y in ring] + [[x, y, 1.0] for x, y in ring]
+    f = [[0, i + 1, i] for i in range(1, n - 1)] + [[n, n + i, n + i + 1] for i in range(1, n - 1)]
+    for i in range(n):
+        j = (i + 1) % n
+        f += [[i, j, n + j], [i, n + j, n + i]]
+    return np.array(v), np.array(f, dtype=np.uint32)
+
+
+def test_coplanar_refinement_cuts_shared_faces_along_both_triangulations():
+    # Two fanned 24-sided prisms on one base, the second turned by half a side: their
+    # caps overlap in a regular 48-gon of inradius cos(pi / 24) where every fan triangle
+    # of one crosses many of the other's.
+    n = 24
+    a, b = fanned_prism(n, 0.0), fanned_prism(n, math.pi / n)
+    r = math.cos(math.pi / n)
+    want = 2 * n * r * r * math.tan(math.pi / (2 * n))
+    lean = meshbool.boolean(a, b, "intersection", keep_seam_points=True)
+    refined = meshbool.boolean(a, b, "intersection", keep_seam_points=True,
+                               coplanar_refinement=True)
+    for m in (lean, refined):
+        assert m.is_closed and m.report["non_manifold_edges"] == 0
+        assert abs(m.volume - want) < 1e-12
+    assert len(refined) > 2 * len(lean), (len(refined), len(lean))
+    # The default clean-up takes the cut points back out of the flat caps.
+    assert len(meshbool.boolean(a, b, "intersection", coplanar_refinement=True)) < len(refined)
+    # Splits: the shared caps' groups hold the refinement too, and picking the same pieces
+    # from either split gives the same solid.
+    s_lean = meshbool.split(a, b, keep_seam_points=True)
+    s_refined = meshbool.split(a, b, keep_seam_points=True, coplanar_refinement=True)
+    assert len(s_refined.a_on_b_same) > 2 * len(s_lean.a_on_b_same) > 0
+    for s in (s_lean, s_refined):
+        got = s.pick(op="intersection")
+        assert got.is_closed and abs(got.volume - want) < 1e-12
+    # Curves: the refinement adds the segments where either fan's edges cross the other's
+    # cap.
+    c_lean = meshbool.curves(a, b, tagged=True).report
+    c_refined = meshbool.curves(a, b, tagged=True, coplanar_refinement=True).report
+    assert len(c_refined["tagged_segments"]) > 2 * len(c_lean["tagged_segments"])
+
+
 def test_split_pick_by_op_is_the_boolean():
     a = meshbool.box([0, 0, 0], [1, 1, 1])
     b = meshbool.box([0.5, 0.5, 0.5], [1.5, 1.5, 1.5])

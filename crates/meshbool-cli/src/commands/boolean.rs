@@ -28,6 +28,12 @@ pub struct Args {
     /// collapsed or flipped away (no surface moves).
     #[arg(long)]
     keep_seam_points: bool,
+    /// Cut coplanar overlaps (shared faces) along every edge of either input that crosses
+    /// them, so that the result's faces there hold the common refinement of both
+    /// triangulations (as the reference JS library's do). By default coplanar regions meet
+    /// along their boundaries only: the same surface with fewer seam points.
+    #[arg(long)]
+    coplanar_refinement: bool,
     #[command(flatten)]
     snap: super::Snap,
     #[command(flatten)]
@@ -57,6 +63,12 @@ pub struct ManyArgs {
     /// collapsed or flipped away (no surface moves).
     #[arg(long)]
     keep_seam_points: bool,
+    /// Cut coplanar overlaps (shared faces) along every edge of either input that crosses
+    /// them, so that the result's faces there hold the common refinement of both
+    /// triangulations (as the reference JS library's do). By default coplanar regions meet
+    /// along their boundaries only: the same surface with fewer seam points.
+    #[arg(long)]
+    coplanar_refinement: bool,
     #[command(flatten)]
     snap: super::Snap,
     #[command(flatten)]
@@ -74,6 +86,7 @@ impl ManyArgs {
                 output: self.output.clone(),
                 keep_nonmanifold: self.keep_nonmanifold,
                 keep_seam_points: self.keep_seam_points,
+                coplanar_refinement: self.coplanar_refinement,
                 snap: self.snap,
                 flags: self.flags.clone(),
             };
@@ -91,6 +104,7 @@ impl ManyArgs {
             let opts = BooleanOptions {
                 keep_nonmanifold: self.keep_nonmanifold,
                 keep_seam_points: self.keep_seam_points,
+                coplanar_refinement: self.coplanar_refinement,
                 snap: self.snap.tolerance,
                 one_arrangement: self.one_arrangement,
                 run: flags.run(&spinner),
@@ -148,6 +162,7 @@ pub fn run(args: &Args, op: Op) -> Result<()> {
         let opts = BooleanOptions {
             keep_nonmanifold: args.keep_nonmanifold,
             keep_seam_points: args.keep_seam_points,
+            coplanar_refinement: args.coplanar_refinement,
             snap: args.snap.tolerance,
             run: flags.run(&spinner),
             ..BooleanOptions::default()

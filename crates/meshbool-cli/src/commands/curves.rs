@@ -21,6 +21,11 @@ pub struct Args {
     /// Leave out segments that only bound coplanar overlaps (shared faces).
     #[arg(long)]
     no_coplanar: bool,
+    /// Also the segments where an edge of either mesh crosses a coplanar overlap (the
+    /// common refinement of both triangulations there, as the reference JS library lists
+    /// them). By default coplanar overlaps give their boundaries only.
+    #[arg(long, conflicts_with = "no_coplanar")]
+    coplanar_refinement: bool,
     /// Thin the written polylines: leave out points closer than D to the last kept point
     /// along a line (first and last points kept; the curves' topology does not change).
     #[arg(long, value_name = "D")]
@@ -40,6 +45,7 @@ pub fn run(args: &Args) -> Result<()> {
         with_coplanar: !args.no_coplanar,
         simplify: args.simplify,
         tagged: args.tagged,
+        coplanar_refinement: args.coplanar_refinement,
         ..CurvesOptions::default()
     };
     let out = match &args.b {

@@ -39,6 +39,12 @@ pub struct Args {
     /// stay conforming).
     #[arg(long)]
     keep_seam_points: bool,
+    /// Cut coplanar overlaps (shared faces) along every edge of either input that crosses
+    /// them, so that the coplanar groups hold the common refinement of both triangulations
+    /// (as the reference JS library's do). By default coplanar regions meet along their
+    /// boundaries only.
+    #[arg(long)]
+    coplanar_refinement: bool,
     #[command(flatten)]
     snap: super::Snap,
     #[command(flatten)]
@@ -59,6 +65,7 @@ pub fn run(args: &Args) -> Result<()> {
             merge_small: args.merge_small,
             snap: args.snap.tolerance,
             keep_seam_points: args.keep_seam_points,
+            coplanar_refinement: args.coplanar_refinement,
             run: flags.run(&spinner),
             ..SplitOptions::default()
         };

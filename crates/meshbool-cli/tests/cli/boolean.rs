@@ -42,6 +42,102 @@ fn boolean_commands_give_exact_cube_volumes() {
     }
 }
 
+/// An OBJ file of a prism of height 1 on a regular `n`-gon of circumradius 1 turned by
+/// `turn` radians, both caps fanned from its first vertex (as CAD exporters fan caps).
+fn fanned_prism(name: &str, n: usize, turn: f64) -> std::path::PathBuf {
+    let mut obj = String::new();
+    for z in [0.0, 1.0] {
+        for i in 0..n {
+            let a = turn + std::f64::consts::TAU * i as f64 / n as f64;
+            obj += &format!("v {} {} {z}\n", a.cos(), a.sin());
+        }
+    }
+    for i in 1..n - 1 {
+        obj += &format!("f 1 {} {}\n", i + 2, i + 1);
+        obj += &format!("f {} {} {}\n", n + 1, n + i + 1, n + i + 2);
+    }
+    for i in 0..n {
+        let j = (i + 1) % n;
+        obj += &format!("f {} {} {}\n", i + 1, j + 1, n + j + 1);
+        obj += &format!("f {} {} {}\n", i + 1, n + j + 1, n + i + 1);
+    }
+    let path = tmp(name);
+    std::fs::write(&path, obj).unwrap();
+    path
+}
+
+/// Two 24-sided prisms on one base, the second turned by half a side, caps fanned from a
+/// corner: the caps overlap in a regular 48-gon of inradius cos(π/24) where every fan
+/// triangle of one crosses many of the other's. With `--coplanar-refinement` the shared
+/// caps are cut along both fans (more triangles), the same closed solid either way;
+/// `split` and `curves` take the flag too.
+#[test]
+fn coplanar_refinement_cuts_shared_caps_along_both_fans() {
+    let n = 24;
+    let a = fanned_prism("fanned_a.obj", n, 0.0);
+    let b = fanned_prism("fanned_b.obj", n, std::f64::consts::PI / n as f64);
+    let (a, b) = (a.to_str().unwrap(), b.to_str().unwrap());
+    let out = tmp("refined.ply");
+    let out = out.to_str().unwrap();
+    let r_in = (std::f64::consts::PI / n as f64).cos();
+    let want = 2.0 * n as f64 * r_in * r_in * (std::f64::consts::PI / (2 * n) as f64).tan();
+    let boolean = |extra: &[&str]| {
+        let r = report(&[&["intersection", a, b, "-o", out, "--json"], extra].concat());
+        assert_eq!(
+            (r["closed"].clone(), r["boundary_edges"].clone()),
+            (true.into(), 0.into())
+        );
+        assert_eq!(r["non_manifold_edges"], 0);
+        let v = r["volume"].as_f64().unwrap();
+        assert!((v - want).abs() < 1e-12, "{v} {want}");
+        r["triangles"].as_u64().unwrap()
+    };
+    let lean = boolean(&["--keep-seam-points"]);
+    let refined = boolean(&["--keep-seam-points", "--coplanar-refinement"]);
+    assert!(refined > 2 * lean, "{refined} {lean}");
+    assert!(boolean(&["--coplanar-refinement"]) < refined);
+    let same = |dir: &str, extra: &[&str]| {
+        let d = tmp(dir);
+        let m = report(
+            &[
+                &[
+                    "split",
+                    a,
+                    b,
+                    "-o",
+                    d.to_str().unwrap(),
+                    "--overwrite",
+                    "--json",
+                ],
+                extra,
+            ]
+            .concat(),
+        );
+        let group = m["groups"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|g| g["name"] == "a_on_b_same")
+            .cloned()
+            .unwrap();
+        group["triangles"].as_u64().unwrap()
+    };
+    let split_lean = same("split_lean", &["--keep-seam-points"]);
+    let split_refined = same(
+        "split_refined",
+        &["--keep-seam-points", "--coplanar-refinement"],
+    );
+    assert!(
+        split_refined > 2 * split_lean && split_lean > 0,
+        "{split_refined} {split_lean}"
+    );
+    let segments = |extra: &[&str]| {
+        let r = report(&[&["curves", a, b, "--json", "--tagged"], extra].concat());
+        r["tagged_segments"].as_array().unwrap().len()
+    };
+    assert!(segments(&["--coplanar-refinement"]) > 2 * segments(&[]));
+}
+
 /// Three boxes (two sharing a face, a third crossing both), united and intersected by
 /// the pairwise tree and with `--one-arrangement`: the same exact volumes, closed, and the
 /// report's `combined` naming the route; two inputs have no `combined`.

@@ -391,6 +391,7 @@ def boolean(
     keep_nonmanifold: bool = False,
     snap: float = 0.0,
     keep_seam_points: bool = False,
+    coplanar_refinement: bool = False,
 ) -> Mesh:
     """The boolean ``op`` of ``a`` and ``b``.
 
@@ -415,7 +416,10 @@ def boolean(
     exact result). ``keep_seam_points``: keep every seam point of the exact arrangement;
     by default seam points where the result is flat or straight are removed and zero-area
     triangles made by rounding collapsed or flipped away, no surface moving
-    (``report["cleanup"]``).
+    (``report["cleanup"]``). ``coplanar_refinement``: cut coplanar overlaps (shared
+    faces) along every edge of either input that crosses them, so that the result's faces
+    there hold the common refinement of both triangulations (as the reference JS
+    library's do); by default coplanar regions meet along their boundaries only.
 
     ``a`` and ``b`` may be :class:`Operand` s, welded and checked before (the flags
     above then apply only to a plain mesh beside one): repeated booleans on one mesh
@@ -433,14 +437,15 @@ def boolean(
             a = a if a_operand else Operand(a, name="A", **flags)
             b = b if b_operand else Operand(b, name="B", **flags)
         v, f, pending = _native.boolean_operands(
-            a._native, b._native, op, threads, keep_nonmanifold, float(snap), keep_seam_points
+            a._native, b._native, op, threads, keep_nonmanifold, float(snap), keep_seam_points,
+            coplanar_refinement,
         )
     else:
         av, af = _parts(a)
         bv, bf = _parts(b)
         v, f, pending = _native.boolean(
             av, af, bv, bf, op, force, self_check, resolve, orient, threads,
-            keep_nonmanifold, float(snap), keep_seam_points,
+            keep_nonmanifold, float(snap), keep_seam_points, coplanar_refinement,
         )
     out = Mesh._from(v, f)
     out._pending = pending
@@ -564,6 +569,7 @@ def split(
     merge_small: int = 0,
     snap: float = 0.0,
     keep_seam_points: bool = False,
+    coplanar_refinement: bool = False,
 ) -> Split:
     """Splits ``a`` and ``b`` along their intersection into groups and components.
     Checks as for :func:`boolean`; ``merge_small`` folds components of fewer triangles
@@ -572,13 +578,14 @@ def split(
     pick of them is closed where the exact pick is (``report()["snap"]``).
     ``keep_seam_points``: keep every seam point of the exact arrangement (by default
     those where the seam runs straight through flat faces of both meshes go, no group
-    changing shape; ``report()["cleanup"]``)."""
+    changing shape; ``report()["cleanup"]``). ``coplanar_refinement``: the coplanar
+    groups hold the common refinement of both triangulations (as :func:`boolean`'s)."""
     av, af = _parts(a)
     bv, bf = _parts(b)
     return Split(
         _native.split(
             av, af, bv, bf, force, self_check, resolve, orient, threads, merge_small,
-            float(snap), keep_seam_points,
+            float(snap), keep_seam_points, coplanar_refinement,
         )
     )
 
@@ -621,6 +628,7 @@ def curves(
     with_coplanar: bool = True,
     simplify: Optional[float] = None,
     tagged: bool = False,
+    coplanar_refinement: bool = False,
 ) -> Curves:
     """The exact intersection curves of ``a`` and ``b``, chained into polylines: closed
     loops and open chains (ending on an open surface's boundary). Without ``b``: where
@@ -628,10 +636,13 @@ def curves(
     shared faces. ``simplify=D`` thins the polylines (points closer than ``D`` to the last
     kept one along a line are left out). ``tagged=True`` puts every raw segment with its
     triangles in ``report["tagged_segments"]`` (``p0``, ``p1``, ``tri_a``, ``tri_b``,
-    ``coplanar``)."""
+    ``coplanar``). ``coplanar_refinement=True`` adds the segments where an edge of
+    either mesh crosses a shared face (the common refinement there, as the reference JS
+    library lists them); by default shared faces give their boundaries only."""
     av, af = _parts(a)
     lines, report = _native.curves(
-        av, af, None if b is None else _parts(b), with_coplanar, simplify, tagged
+        av, af, None if b is None else _parts(b), with_coplanar, simplify, tagged,
+        coplanar_refinement,
     )
     out = Curves(Polyline(p, c) for p, c in lines)
     out.report = json.loads(report)

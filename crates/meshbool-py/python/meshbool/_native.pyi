@@ -33,6 +33,7 @@ def boolean(
     keep_nonmanifold: bool,
     snap: float = 0.0,
     keep_seam_points: bool = False,
+    coplanar_refinement: bool = False,
 ) -> Tuple[F64, U32, Boolean]: ...
 
 class Operand:
@@ -58,6 +59,7 @@ def boolean_operands(
     keep_nonmanifold: bool,
     snap: float = 0.0,
     keep_seam_points: bool = False,
+    coplanar_refinement: bool = False,
 ) -> Tuple[F64, U32, Boolean]: ...
 
 def boolean_many(
@@ -97,6 +99,7 @@ def split(
     merge_small: int,
     snap: float = 0.0,
     keep_seam_points: bool = False,
+    coplanar_refinement: bool = False,
 ) -> Split: ...
 def pieces_for_op(op: str) -> List[str]: ...
 def pick(
@@ -109,6 +112,7 @@ def curves(
     with_coplanar: bool,
     simplify: Optional[float] = None,
     tagged: bool = False,
+    coplanar_refinement: bool = False,
 ) -> Tuple[List[Tuple[F64, bool]], str]: ...
 def cutfill(
     dv: F64, df: U32, tv: F64, tf: U32, threads: Optional[int]
