@@ -36,9 +36,12 @@ import resource
 import statistics
 import subprocess
 import sys
-import time
 
 import numpy as np
+
+# The peers' adapters, the volume and the median timer of the generated meshes' benchmark.
+from inprocess import Manifold3d, Trueform, volume
+from inprocess import median_time as timed
 
 OPS = ("union", "intersection", "difference")
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -93,23 +96,6 @@ def models(corpus, real):
     return out
 
 
-def volume(v, f):
-    v, f = np.asarray(v, dtype=np.float64), np.asarray(f, dtype=np.int64)
-    if len(f) == 0:
-        return 0.0
-    p = v[f] - v.mean(axis=0)
-    return float(np.einsum("ij,ij->i", p[:, 0], np.cross(p[:, 1], p[:, 2])).sum() / 6.0)
-
-
-def timed(fn, reps):
-    times, out = [], None
-    for _ in range(reps):
-        t = time.perf_counter()
-        out = fn()
-        times.append(time.perf_counter() - t)
-    return statistics.median(times), out
-
-
 def peak_mb():
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
 
@@ -141,47 +127,19 @@ def child(args):
         pa = meshbool.Operand((av, af), self_check=False)
         pb = meshbool.Operand((bv, bf), self_check=False)
         rec["core"], _ = timed(lambda: meshbool.boolean(pa, pb, op, self_check=False), reps)
-    elif lib == "manifold3d":
-        import manifold3d as m
-
-        def build(v, f):
-            return m.Manifold(m.Mesh64(np.ascontiguousarray(v), np.ascontiguousarray(f, dtype=np.uint64)))
-
-        def call(x, y):
-            r = {"union": x + y, "intersection": x ^ y, "difference": x - y}[op]
-            r.num_tri()  # lazy: evaluate inside the timing
-            return r
+    else:
+        peer = {"manifold3d": Manifold3d, "trueform": Trueform}[lib]()
 
         def arrays():
-            r = call(build(av, af), build(bv, bf)).to_mesh64()
-            return np.asarray(r.vert_properties)[:, :3], np.asarray(r.tri_verts)
+            x, y = peer.prepare(av, af), peer.prepare(bv, bf)
+            return peer.extract(peer.boolean(x, y, op))
 
-        call(build(*warm[0]), build(*warm[1])).to_mesh64()
+        peer.extract(peer.boolean(peer.prepare(*warm[0]), peer.prepare(*warm[1]), op))
         base = peak_mb()
         rec["arrays"], (v, f) = timed(arrays, reps)
         rec["peak_mb"] = peak_mb() - base
-        x, y = build(av, af), build(bv, bf)
-        rec["core"], _ = timed(lambda: call(x, y), reps)
-        rec["triangles"], rec["volume"] = int(len(f)), volume(v, f)
-    elif lib == "trueform":
-        import trueform as tf
-
-        fn = {"union": tf.boolean_union, "intersection": tf.boolean_intersection,
-              "difference": tf.boolean_difference}[op]
-
-        def build(v, f):
-            return tf.Mesh(np.ascontiguousarray(f, dtype=np.int32), np.ascontiguousarray(v))
-
-        def arrays():
-            (faces, points), _, _ = fn(build(av, af), build(bv, bf))
-            return np.asarray(points), np.asarray(faces)
-
-        fn(build(*warm[0]), build(*warm[1]))
-        base = peak_mb()
-        rec["arrays"], (v, f) = timed(arrays, reps)
-        rec["peak_mb"] = peak_mb() - base
-        x, y = build(av, af), build(bv, bf)
-        rec["core"], _ = timed(lambda: fn(x, y), reps)
+        x, y = peer.prepare(av, af), peer.prepare(bv, bf)
+        rec["core"], _ = timed(lambda: peer.boolean(x, y, op), reps)
         rec["triangles"], rec["volume"] = int(len(f)), volume(v, f)
     print(json.dumps(rec))
 
@@ -209,15 +167,15 @@ def run(args):
                     cmd = [sys.executable, __file__, "--child", lib, model, kind, op, str(reps)]
                     try:
                         p = subprocess.run(cmd, capture_output=True, text=True, timeout=args.timeout)
-                        line = p.stdout.strip().splitlines()[-1:] or [""]
-                        rec = json.loads(line[0]) if p.returncode == 0 else None
-                        if rec is None:
+                        if p.returncode == 0:
+                            rec = json.loads(p.stdout.strip().splitlines()[-1])
+                        else:
                             err = (p.stderr.strip().splitlines() or ["exit %d" % p.returncode])[-1]
-                            rec = {"model": key[0], "partner": kind, "op": op, "lib": lib,
-                                   "error": err[:200]}
                     except subprocess.TimeoutExpired:
+                        p, err = None, f"over {args.timeout} s"
+                    if p is None or p.returncode != 0:
                         rec = {"model": key[0], "partner": kind, "op": op, "lib": lib,
-                               "error": f"over {args.timeout} s"}
+                               "error": err[:200]}
                     records.append(rec)
                     print(json.dumps(rec), file=sys.stderr, flush=True)
                     if args.json:

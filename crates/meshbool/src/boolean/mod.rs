@@ -364,10 +364,7 @@ fn split_in_pool(a: &Mesh, b: &Mesh, opts: &PipelineOptions) -> Split {
         || SeamTopology::new(&arr_b.mesh, &arr_b.seam_edges),
     );
     let closed = |topo: &SeamTopology, input: &Mesh| {
-        topo.is_closed() || {
-            let c = crate::edges::EdgeCounts::of(input);
-            c.manifold > 0 && c.boundary == 0 && c.inconsistent == 0 && c.non_manifold == 0
-        }
+        topo.is_closed() || (!input.triangles.is_empty() && nary::closed_sheets(input))
     };
     let (closed_a, closed_b) = crate::par::join(|| closed(&topo_a, a), || closed(&topo_b, b));
     let oa = CutMesh {

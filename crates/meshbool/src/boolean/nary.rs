@@ -210,8 +210,9 @@ pub fn boolean_in_one(
 }
 
 /// Whether `m` is made of closed, consistently oriented sheets with no edge of more than
-/// two triangles: what one arrangement's winding numbers need.
-fn closed_sheets(m: &Mesh) -> bool {
+/// two triangles: what one arrangement's winding numbers need (and a boolean's threshold
+/// of an input's winding number).
+pub(super) fn closed_sheets(m: &Mesh) -> bool {
     let c = EdgeCounts::of(m);
     c.boundary == 0 && c.inconsistent == 0 && c.non_manifold == 0
 }

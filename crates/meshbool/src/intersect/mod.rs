@@ -892,20 +892,18 @@ pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
                 .collect()
         }
         // Large triangles through their pieces: the candidates (pieces of one triangle
-        // aside) named by the triangles they stand for, each pair tested once.
+        // aside) named by the triangles they stand for, tested as the traversal finds
+        // them. A pair of triangles that more than one pair of their pieces stands for is
+        // tested (and found) more than once, which costs less than storing and sorting
+        // every candidate (1.5M pairs of pieces for 15k slivers side by side) and keeps
+        // the memory to the pairs found; the repeats go below.
         Some((stand_in, parent)) => {
-            // Tested as the traversal finds them: a pair of triangles that more than one
-            // pair of their pieces stands for is tested more than once, which costs less
-            // than storing and sorting every candidate (1.5M pairs of pieces for 15k
-            // slivers side by side) and keeps the memory to the pairs found.
             let settled = bvh.common_labels(|p| corner_runs(parent[p as usize]));
-            let mut found = piece_pairs(&bvh, stand_in, parent, true, Some(&settled), &meets);
-            found.par_sort_unstable();
-            found.dedup();
-            found
+            piece_pairs(&bvh, stand_in, parent, true, Some(&settled), &meets)
         }
     };
     found.par_sort_unstable();
+    found.dedup();
     found
 }
 
