@@ -1,5 +1,6 @@
 //! Intersection curves of the sphere pairs in `common` (broad phase, exact tests, seam
-//! assembly, chaining) and the self-intersection input check. Run: `cargo bench -p meshbool --bench curves`.
+//! assembly, chaining) and the self-intersection input check (on the 2M sphere and on real
+//! models). Run: `cargo bench -p meshbool --bench curves`.
 
 mod common;
 
@@ -46,4 +47,27 @@ fn broad_phase_2m_spheres_trees() -> usize {
     let (box_a, box_b) = (a.bounds().unwrap(), b.bounds().unwrap());
     let (ta, tb) = rayon::join(|| Bvh::new_within(a, &box_b), || Bvh::new_within(b, &box_a));
     ta.overlapping_pairs(a, &tb, b).len()
+}
+
+/// The input check on real models beside the repository (`../shared/data`): CAD parts of
+/// long slivers side by side (thingi 79741, 73416), a multi-body CAD part, and two scans.
+/// A model that is not there is timed as nothing.
+#[divan::bench(sample_count = 7, args = [
+    "real/thingi_79741.obj",
+    "real/thingi_73416.obj",
+    "corpus/cad_abc5_multibody.stl",
+    "corpus/cad_adis16480.stl",
+    "corpus/scan_hammer.obj",
+    "corpus/scan_armadillo.obj",
+])]
+fn self_intersections_real(bencher: divan::Bencher, file: &str) {
+    let path = format!("{}/../../../shared/data/{file}", env!("CARGO_MANIFEST_DIR"));
+    let mesh = std::fs::read(&path).ok().and_then(|bytes| {
+        let format = meshbool::io::detect_format(&bytes, None)?;
+        meshbool::io::read_bytes(&bytes, format).ok()
+    });
+    bencher.bench(|| {
+        mesh.as_ref()
+            .map_or(0, |m| meshbool::intersect::self_intersections(m).len())
+    });
 }

@@ -496,6 +496,32 @@ impl Bvh {
         Self::over(mesh, morton_order(mesh))
     }
 
+    /// The hierarchy of `mesh` with the triangles of each group together: triangle `t` is
+    /// in group `group[t]` (below `groups`); groups are ordered by their first triangle in
+    /// the Morton order, and each group's triangles by that order. A group then fills whole
+    /// subtrees but at its two ends: the self-intersection check's certified patches,
+    /// whose subtrees it does not look into.
+    pub(crate) fn new_grouped(mesh: &Mesh, group: &[u32], groups: usize) -> Self {
+        let order = morton_order(mesh);
+        let mut rank = vec![0u32; order.len()];
+        let mut first = vec![u32::MAX; groups];
+        for (r, &t) in order.iter().enumerate() {
+            rank[t as usize] = r as u32;
+            let g = &mut first[group[t as usize] as usize];
+            *g = (*g).min(r as u32);
+        }
+        let mut keyed: Vec<(u64, u32)> = order
+            .par_iter()
+            .grained()
+            .map(|&t| {
+                let g = first[group[t as usize] as usize];
+                ((u64::from(g) << 32) | u64::from(rank[t as usize]), t)
+            })
+            .collect();
+        sort_keyed(&mut keyed);
+        Self::over(mesh, keyed.into_par_iter().grained().map(|(_, t)| t).collect())
+    }
+
     /// The hierarchy of only those triangles of `mesh` whose boxes meet the closed box
     /// `within` (exact comparisons): all a query against a mesh inside `within` can find.
     /// A boolean of a large terrain and a small pit shell indexes only the terrain near
@@ -778,27 +804,27 @@ impl Bvh {
         &self,
         mesh: &Mesh,
         keep: &(dyn Fn(u32, u32) -> bool + Sync),
-        settled: Option<&[[u32; 3]]>,
+        settled: Option<&[Labels]>,
     ) -> Vec<(u32, u32)> {
         self.self_query(mesh, keep, false, settled)
     }
 
-    /// Per node, the labels (up to three; the other places [`NO_LABEL`]) that every
-    /// triangle below it has among its own three (`labels(t)`, [`NO_LABEL`] where it has
+    /// Per node, the labels (up to four; the other places [`NO_LABEL`]) that every
+    /// triangle below it has among its own four (`labels(t)`, [`NO_LABEL`] where it has
     /// fewer): the `settled` of [`Bvh::self_candidates_where`]. Labels are such that two
     /// triangles sharing one need no test (the self-intersection check's certified fan
-    /// runs). A pass over the leaves' triangles and the nodes.
-    pub fn common_labels(&self, labels: impl Fn(u32) -> [u32; 3] + Sync) -> Vec<[u32; 3]> {
+    /// runs and patches). A pass over the leaves' triangles and the nodes.
+    pub fn common_labels(&self, labels: impl Fn(u32) -> Labels + Sync) -> Vec<Labels> {
         // The leaves' in parallel (the reads of the labels), then the inner nodes': their
         // children come after them (pre-order), so from the last node back each node's
         // children are done before it.
-        let mut common: Vec<[u32; 3]> = self
+        let mut common: Vec<Labels> = self
             .nodes
             .par_iter()
             .grained()
             .map(|n| {
                 if n.count == 0 {
-                    return [NO_LABEL; 3];
+                    return [NO_LABEL; 4];
                 }
                 let ts = &self.order[n.start as usize..(n.start + n.count) as usize];
                 ts[1..]
@@ -821,7 +847,7 @@ impl Bvh {
         mesh: &Mesh,
         keep: &(dyn Fn(u32, u32) -> bool + Sync),
         exact: bool,
-        settled: Option<&[[u32; 3]]>,
+        settled: Option<&[Labels]>,
     ) -> Vec<(u32, u32)> {
         if self.is_empty() {
             return Vec::new();
@@ -842,9 +868,13 @@ impl Bvh {
 /// No label: an empty place of a [`Bvh::common_labels`] entry.
 pub const NO_LABEL: u32 = u32::MAX;
 
+/// A triangle's or a node's labels ([`Bvh::common_labels`]): up to four, the other places
+/// [`NO_LABEL`].
+pub type Labels = [u32; 4];
+
 /// The labels of `a` that are also in `b` (first, the rest [`NO_LABEL`]).
-fn shared_labels(a: [u32; 3], b: [u32; 3]) -> [u32; 3] {
-    let mut out = [NO_LABEL; 3];
+fn shared_labels(a: Labels, b: Labels) -> Labels {
+    let mut out = [NO_LABEL; 4];
     let mut k = 0;
     for l in a {
         if l != NO_LABEL && b.contains(&l) {
@@ -879,7 +909,7 @@ struct Query<'a> {
     exact: bool,
     /// A self-query's labels per node ([`Bvh::common_labels`]): nodes that share one are
     /// not looked into.
-    settled: Option<&'a [[u32; 3]]>,
+    settled: Option<&'a [Labels]>,
 }
 
 impl Query<'_> {

@@ -59,14 +59,45 @@ pub(crate) fn certified(m: &Mesh) -> Vec<bool> {
 /// For every corner of `m` (3 × triangle + corner), the certified run it is in around its
 /// vertex, or [`NO_RUN`] (see the module text). A fan certified whole is one run.
 pub(crate) fn runs(m: &Mesh) -> Vec<u32> {
-    let nv = m.positions.len();
+    if m.triangles.len() >= (u32::MAX / 3) as usize {
+        return vec![NO_RUN; 3 * m.triangles.len()];
+    }
+    let (start, slots) = corners_at_vertices(m);
+    runs_where(m, &start, &slots, |_| true)
+}
+
+/// [`runs`] from the corners at each vertex (`start`, `slots`: [`corners_at_vertices`]),
+/// certifying only the fans of the vertices `v` where `wanted(v)`; the others' corners are
+/// in no run. (The check does not want the fans inside a certified patch.)
+pub(crate) fn runs_where(
+    m: &Mesh,
+    start: &[u32],
+    slots: &[u32],
+    wanted: impl Fn(usize) -> bool + Sync,
+) -> Vec<u32> {
     if m.triangles.len() >= (u32::MAX / 3) as usize {
         // Corner numbers would not fit in 32 bits: certify nothing (all pairs exact).
         return vec![NO_RUN; 3 * m.triangles.len()];
     }
-    // The corners at each vertex, gathered in parallel: counts, offsets, then each corner
-    // claims a slot. The order within a vertex's slots varies from run to run; the fan is
-    // sorted before use.
+    // Each corner is at one vertex: its run is written once, by that vertex's fan.
+    let run: Vec<AtomicU32> = (0..slots.len()).map(|_| AtomicU32::new(NO_RUN)).collect();
+    (0..m.positions.len())
+        .into_par_iter()
+        .grained()
+        .filter(|&v| wanted(v))
+        .for_each_init(Scratch::default, |s, v| {
+            let fan = &slots[start[v] as usize..start[v + 1] as usize];
+            s.certify(m, v as u32, fan, &run);
+        });
+    run.into_iter().map(AtomicU32::into_inner).collect()
+}
+
+/// The corners (3 × triangle + corner) at each vertex of `m`, as offsets (`start[v]..start[v
+/// + 1]`, one more than there are vertices) into one list, gathered in parallel: counts,
+/// offsets, then each corner claims a slot. The order within a vertex's slots varies from
+/// call to call. `m` has fewer than `u32::MAX / 3` triangles.
+pub(crate) fn corners_at_vertices(m: &Mesh) -> (Vec<u32>, Vec<u32>) {
+    let nv = m.positions.len();
     let count: Vec<AtomicU32> = (0..nv).map(|_| AtomicU32::new(0)).collect();
     m.triangles.par_iter().grained().for_each(|t| {
         for &v in t {
@@ -81,7 +112,6 @@ pub(crate) fn runs(m: &Mesh) -> Vec<u32> {
         start.push(sum);
     }
     let cursor: Vec<AtomicU32> = start[..nv].iter().map(|&s| AtomicU32::new(s)).collect();
-    // Each slot holds a corner: 3 × triangle + corner.
     let slots: Vec<AtomicU32> = (0..sum).map(|_| AtomicU32::new(0)).collect();
     m.triangles
         .par_iter()
@@ -93,16 +123,7 @@ pub(crate) fn runs(m: &Mesh) -> Vec<u32> {
                 slots[at as usize].store(3 * i as u32 + k as u32, Relaxed);
             }
         });
-    // Each corner is at one vertex: its run is written once, by that vertex's fan.
-    let run: Vec<AtomicU32> = (0..sum).map(|_| AtomicU32::new(NO_RUN)).collect();
-    (0..nv)
-        .into_par_iter()
-        .grained()
-        .for_each_init(Scratch::default, |s, v| {
-            let fan = &slots[start[v] as usize..start[v + 1] as usize];
-            s.certify(m, v as u32, fan, &run);
-        });
-    run.into_iter().map(AtomicU32::into_inner).collect()
+    (start, slots.into_iter().map(AtomicU32::into_inner).collect())
 }
 
 /// Per-thread buffers for one fan.
@@ -125,10 +146,9 @@ struct Scratch {
 impl Scratch {
     /// Certifies the fan of `v` and writes its corners' runs into `run`; `fan` holds its
     /// corners (3 × triangle + corner) in any order.
-    fn certify(&mut self, m: &Mesh, v: u32, fan: &[AtomicU32], run: &[AtomicU32]) {
+    fn certify(&mut self, m: &Mesh, v: u32, fan: &[u32], run: &[AtomicU32]) {
         self.sorted.clear();
-        self.sorted.extend(fan.iter().map(|s| {
-            let c = s.load(Relaxed);
+        self.sorted.extend(fan.iter().map(|&c| {
             let (t, k) = (m.triangles[c as usize / 3], c as usize % 3);
             [t[(k + 1) % 3], t[(k + 2) % 3], c]
         }));

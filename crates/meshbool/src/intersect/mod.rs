@@ -18,6 +18,7 @@ use crate::Mesh;
 
 mod curves;
 mod fans;
+mod patches;
 #[doc(hidden)]
 pub mod tritri;
 
@@ -857,19 +858,73 @@ fn vertices_on_features(results: impl Iterator<Item = (u32, u32, Piece)>) -> Vec
 
 /// Pairs of triangles of one mesh that meet anywhere other than in the vertices and edges
 /// they share: self-intersections (or coplanar overlaps). Exact. Degenerate triangles are
-/// left out. Sorted `(i, j)` with `i < j`. Pairs in one certified run around a vertex
-/// they share (`fans`: almost every vertex's whole fan on a smooth mesh, a fanned cap's
-/// triangles around its corner) are settled by their corners' runs, and tree nodes whose
-/// triangles all share a run are not looked into; the rest by the exact pair test.
+/// left out. Sorted `(i, j)` with `i < j`. Pairs in one certified patch (`patches`:
+/// pieces of up to a thousand triangles proven not to meet themselves) or in one
+/// certified run around a vertex they share (`fans`: almost every vertex's whole fan on
+/// a smooth mesh, a fanned cap's triangles around its corner) are settled, and tree nodes
+/// whose triangles all share a patch or a run are not looked into; the rest by the exact
+/// pair test.
 pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
     // Large triangles are looked at through their pieces ([`crate::broad::cover_large`]).
     let cover = crate::broad::cover_large(m, crate::broad::typical_size(m, m), None);
-    let (runs, bvh) = crate::par::join(
-        || fans::runs(m),
-        || Bvh::new(cover.as_ref().map_or(m, |c| &c.0)),
-    );
-    let corner_runs = |t: u32| std::array::from_fn(|k| runs[3 * t as usize + k]);
+    // Where large triangles are cut into pieces (a CAD part's slivers side by side), the
+    // corners at each vertex (for both certificates), the patches, then the tree with each
+    // patch's triangles (or pieces) together, so that it fills whole subtrees, which the
+    // traversal does not look into, beside the runs of the fans not inside a patch. On
+    // meshes of triangles of one size, the runs alone cost less (the patches' growth and
+    // the grouped tree take more than the traversal they spare: BENCHMARKS.md).
+    let n = m.triangles.len();
+    let (runs, (patch, bvh)) = match &cover {
+        Some((stand_in, parent)) if n < (u32::MAX / 3) as usize => {
+            let (start, slots) = fans::corners_at_vertices(m);
+            let patch = patches::patches(m, &start, &slots);
+            let (runs, bvh) = crate::par::join(
+                || {
+                    let inside = |v: usize| {
+                        let fan = &slots[start[v] as usize..start[v + 1] as usize];
+                        let p = fan
+                            .first()
+                            .map_or(patches::NO_PATCH, |&c| patch[c as usize / 3]);
+                        p != patches::NO_PATCH && fan.iter().all(|&c| patch[c as usize / 3] == p)
+                    };
+                    fans::runs_where(m, &start, &slots, |v| !inside(v))
+                },
+                || {
+                    let group: Vec<u32> = parent
+                        .iter()
+                        .map(|&t| match patch[t as usize] {
+                            patches::NO_PATCH => t,
+                            p => p,
+                        })
+                        .collect();
+                    Bvh::new_grouped(stand_in, &group, n)
+                },
+            );
+            (runs, (patch, bvh))
+        }
+        _ => crate::par::join(
+            || fans::runs(m),
+            || {
+                let bvh = Bvh::new(cover.as_ref().map_or(m, |c| &c.0));
+                (vec![patches::NO_PATCH; n], bvh)
+            },
+        ),
+    };
+    // A patch's label comes after every run's (runs are named by corners, below 3n).
+    let patch_label = |t: u32| match patch[t as usize] {
+        patches::NO_PATCH => crate::bvh::NO_LABEL,
+        p => 3 * m.triangles.len() as u32 + p,
+    };
+    let labels = |t: u32| -> crate::bvh::Labels {
+        let r = |k: usize| runs[3 * t as usize + k];
+        [r(0), r(1), r(2), patch_label(t)]
+    };
+    let corner_runs = |t: u32| -> [u32; 3] { std::array::from_fn(|k| runs[3 * t as usize + k]) };
     let meets = |i: u32, j: u32| -> bool {
+        let (pi, pj) = (patch[i as usize], patch[j as usize]);
+        if pi == pj && pi != patches::NO_PATCH {
+            return false; // in one certified patch
+        }
         let (vi, vj) = (m.triangles[i as usize], m.triangles[j as usize]);
         let shared = (0..3).filter(|&k| vj.contains(&vi[k])).count();
         if shared == 3 {
@@ -885,7 +940,7 @@ pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
     };
     let mut found: Vec<(u32, u32)> = match &cover {
         None => {
-            let settled = bvh.common_labels(corner_runs);
+            let settled = bvh.common_labels(labels);
             bvh.self_candidates_where(m, &meets, Some(&settled))
                 .into_iter()
                 .map(|(i, j)| (i.min(j), i.max(j)))
@@ -898,7 +953,7 @@ pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
         // every candidate (1.5M pairs of pieces for 15k slivers side by side) and keeps
         // the memory to the pairs found; the repeats go below.
         Some((stand_in, parent)) => {
-            let settled = bvh.common_labels(|p| corner_runs(parent[p as usize]));
+            let settled = bvh.common_labels(|p| labels(parent[p as usize]));
             piece_pairs(&bvh, stand_in, parent, true, Some(&settled), &meets)
         }
     };
@@ -931,7 +986,7 @@ fn piece_pairs(
     stand_in: &Mesh,
     parent: &[u32],
     first_only: bool,
-    settled: Option<&[[u32; 3]]>,
+    settled: Option<&[crate::bvh::Labels]>,
     test: &(dyn Fn(u32, u32) -> bool + Sync),
 ) -> Vec<(u32, u32)> {
     let n = stand_in.triangles.len() as u32;

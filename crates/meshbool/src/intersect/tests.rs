@@ -1606,8 +1606,11 @@ fn the_self_traversal_skips_nodes_of_one_certified_run() {
     let m = crate::test_util::fanned_prism(&ellipse_ring(n, 0.0, &mut Rng(1)), 1.0);
     let runs = fans::runs(&m);
     let bvh = Bvh::new(&m);
-    let settled = bvh.common_labels(|t| std::array::from_fn(|k| runs[3 * t as usize + k]));
-    let in_caps = |settled: Option<&[[u32; 3]]>| {
+    let settled = bvh.common_labels(|t| {
+        let r = |k: usize| runs[3 * t as usize + k];
+        [r(0), r(1), r(2), crate::bvh::NO_LABEL]
+    });
+    let in_caps = |settled: Option<&[crate::bvh::Labels]>| {
         let calls = std::sync::atomic::AtomicUsize::new(0);
         let keep = |i: u32, j: u32| {
             if i.min(j) >= 2 * n as u32 {
@@ -1621,4 +1624,101 @@ fn the_self_traversal_skips_nodes_of_one_certified_run() {
     let (all, skipping) = (in_caps(None), in_caps(Some(&settled)));
     assert!(all > 2 * 70_000, "{all} pairs of cap triangles");
     assert!(8 * skipping < all, "{skipping} of {all} pairs of cap triangles");
+}
+
+/// The share of `m`'s triangles in certified patches.
+fn in_patches(m: &Mesh) -> f64 {
+    let (start, slots) = fans::corners_at_vertices(m);
+    let p = patches::patches(m, &start, &slots);
+    p.iter().filter(|&&x| x != patches::NO_PATCH).count() as f64 / p.len().max(1) as f64
+}
+
+#[test]
+fn smooth_surfaces_are_certified_in_patches() {
+    let bumps = heightfield([0.0, 0.0], [10.0, 10.0], 60, 60, |x, y| {
+        (0.7 * x).sin() * (0.5 * y).cos()
+    });
+    assert_eq!(in_patches(&bumps), 1.0);
+    let sphere = uv_sphere([0.3, -0.2, 0.1], 2.0, 64, 32);
+    let share = in_patches(&sphere);
+    assert!(share > 0.9, "{share} of a sphere's triangles in patches");
+}
+
+/// A strip of `segments` quads between radii 1 and 2 from angle 0 to `turns` full turns,
+/// rising by `pitch` per turn (a flat spiral where `pitch` is 0: its turns overlap), the
+/// vertex ids of each turn its own.
+fn spiral_strip(turns: f64, segments: usize, pitch: f64) -> Mesh {
+    let mut positions = Vec::new();
+    for k in 0..=segments {
+        let a = turns * std::f64::consts::TAU * k as f64 / segments as f64;
+        let z = pitch * a / std::f64::consts::TAU;
+        positions.push([a.cos(), a.sin(), z]);
+        positions.push([2.0 * a.cos(), 2.0 * a.sin(), z]);
+    }
+    let mut triangles = Vec::new();
+    for k in 0..segments as u32 {
+        let (i, o, i2, o2) = (2 * k, 2 * k + 1, 2 * k + 2, 2 * k + 3);
+        triangles.push([i, o, o2]);
+        triangles.push([i, o2, i2]);
+    }
+    Mesh::new(positions, triangles).unwrap()
+}
+
+#[test]
+fn patches_hold_no_pair_that_meets() {
+    // Surfaces whose every triangle faces up but that meet themselves: flat spirals whose
+    // turns overlap, strips that come round to touch their start along an edge or at a
+    // point (distinct vertex ids at one position), and the folded spheres and grids of the
+    // fan test. No pair of triangles in one certified patch may meet, and the check finds
+    // what the pair-by-pair test finds.
+    let mut rng = Rng(0x9a7c_4e5d_0b1f_2233);
+    let mut cases: Vec<Mesh> = vec![
+        spiral_strip(1.5, 48, 0.0),
+        spiral_strip(2.0, 64, 0.0),
+        spiral_strip(1.0, 40, 0.0), // back to its start: the last edge lies on the first
+        spiral_strip(2.0, 64, 1e-3),
+    ];
+    // A strip that comes round to touch its start at one point: the last outer corner on
+    // the first inner edge's line, moved in to lie on the first quad's edge.
+    let mut touch = spiral_strip(1.0, 40, 0.0);
+    let last = touch.positions.len() - 1;
+    touch.positions[last] = [1.5, 0.0, 0.0];
+    cases.push(touch);
+    for amplitude in [0.05, 0.3] {
+        for _ in 0..4 {
+            let mut m = uv_sphere([0.0; 3], 1.0, 16, 8);
+            for p in &mut m.positions {
+                *p = p.map(|x| x + amplitude * (2.0 * rng.unit() - 1.0));
+            }
+            cases.push(m);
+        }
+    }
+    for amplitude in [0.3, 0.6, 0.9] {
+        let mut m = heightfield([0.0, 0.0], [8.0, 8.0], 10, 10, |_, _| 0.0);
+        for p in &mut m.positions {
+            p[0] += amplitude * (2.0 * rng.unit() - 1.0);
+            p[1] += amplitude * (2.0 * rng.unit() - 1.0);
+        }
+        cases.push(m);
+    }
+    let mut meeting_cases = 0;
+    for (k, m) in cases.iter().enumerate() {
+        let (start, slots) = fans::corners_at_vertices(m);
+        let patch = patches::patches(m, &start, &slots);
+        let brute = self_intersections_brute(m);
+        for &(i, j) in &brute {
+            let (pi, pj) = (patch[i as usize], patch[j as usize]);
+            assert!(
+                pi == patches::NO_PATCH || pi != pj,
+                "case {k}: triangles {i} and {j} meet in patch {pi}"
+            );
+        }
+        assert_eq!(self_intersections(m), brute, "case {k}");
+        meeting_cases += usize::from(!brute.is_empty());
+    }
+    // The spirals and the strips that come round meet themselves, as most folded cases.
+    assert!(meeting_cases >= 10, "{meeting_cases} of {}", cases.len());
+    // The risen spiral meets nothing and is certified in patches all the same.
+    assert!(self_intersections(&cases[3]).is_empty());
+    assert!(in_patches(&cases[3]) > 0.9);
 }
