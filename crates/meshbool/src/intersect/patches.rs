@@ -1,20 +1,22 @@
 //! Patches certified free of self-intersection: connected pieces of a mesh, up to
 //! [`CAPS`] triangles each, proven not to meet themselves anywhere but in the vertices
-//! and edges their triangles share. The self-intersection check skips every pair of
-//! triangles in one patch, and every node of its tree whose triangles are all in one patch,
-//! so that on a smooth mesh it looks only at pairs near the patches' boundaries.
+//! and edges their triangles share. Where the self-intersection check cuts a mesh's large
+//! triangles into pieces (a CAD part's slivers side by side), it skips every pair of
+//! triangles in one patch, and every node of its tree whose pieces are all of one patch,
+//! so that it looks only at pairs near the patches' boundaries.
 //!
 //! A patch is grown across edges of exactly two triangles (used once in each direction)
 //! from a seed, taking triangles that keep the seed's orientation seen along one coordinate
 //! axis (the one nearest the seed's normal): every `orient2d` of a patch triangle in that
 //! projection has one sign. It stays a disk (a triangle joins along one edge with a new
 //! corner, or along two), and takes only triangles whose normals are within 60 degrees of
-//! the axis: steeper ones are where a scanned surface's patches fold over in the
-//! projection, which fails the certificate (they go to patches of their own axis). It is certified when its boundary (the edges of its triangles
-//! that no other of its triangles uses), seen along that axis, is a set of simple closed
-//! polygons that nowhere meet one another or themselves (edges meet only where they follow
-//! each other, at their common vertex, without folding back), exactly one of them turning
-//! the way the triangles do.
+//! the axis: steeper ones are where a curved surface's patches fold over in the
+//! projection, which fails the certificate (they go to patches of their own axis). It is
+//! certified when its boundary (the edges of its triangles that no other of its
+//! triangles uses), seen along that axis, is a set of simple closed polygons that nowhere
+//! meet one another or themselves (edges meet only where they follow each other, at their
+//! common vertex, without folding back), exactly one of them turning the way the
+//! triangles do (a disk's boundary is one polygon; the test allows holes all the same).
 //!
 //! The proof: for a point `p` of the projection plane off every edge, the number of patch
 //! triangles whose image holds `p` is the winding number of the image of the patch's
@@ -48,9 +50,8 @@ const CAPS: [usize; 3] = [1024, 128, 16];
 
 /// For every triangle of `m`, the certified patch it is in, named by its seed (the least
 /// triangle id in it: unique over the mesh), or [`NO_PATCH`] (see the module text).
-/// Patches of one triangle are not named (they settle nothing).
-/// `start` and `slots` are the corners at each vertex
-/// ([`super::fans::corners_at_vertices`]).
+/// Patches of one triangle are not named (they settle nothing). `start` and `slots` are
+/// the corners at each vertex ([`super::fans::corners_at_vertices`]).
 pub(crate) fn patches(m: &Mesh, start: &[u32], slots: &[u32]) -> Vec<u32> {
     let n = m.triangles.len();
     if n < 2 || n >= (u32::MAX / 4) as usize {
