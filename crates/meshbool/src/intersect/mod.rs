@@ -900,30 +900,30 @@ pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
                     Bvh::new_grouped(stand_in, &group, n)
                 },
             );
-            (runs, (patch, bvh))
+            (runs, (Some(patch), bvh))
         }
         _ => crate::par::join(
             || fans::runs(m),
-            || {
-                let bvh = Bvh::new(cover.as_ref().map_or(m, |c| &c.0));
-                (vec![patches::NO_PATCH; n], bvh)
-            },
+            || (None, Bvh::new(cover.as_ref().map_or(m, |c| &c.0))),
         ),
     };
-    // A patch's label comes after every run's (runs are named by corners, below 3n).
-    let patch_label = |t: u32| match patch[t as usize] {
-        patches::NO_PATCH => crate::bvh::NO_LABEL,
-        p => 3 * m.triangles.len() as u32 + p,
-    };
-    let labels = |t: u32| -> crate::bvh::Labels {
-        let r = |k: usize| runs[3 * t as usize + k];
-        [r(0), r(1), r(2), patch_label(t)]
-    };
+    let patch_of = |t: u32| patch.as_ref().map_or(patches::NO_PATCH, |p| p[t as usize]);
     let corner_runs = |t: u32| -> [u32; 3] { std::array::from_fn(|k| runs[3 * t as usize + k]) };
+    // A patch's label comes after every run's (runs are named by corners, below 3n).
+    let labels = |t: u32| -> crate::bvh::Labels {
+        let [a, b, c] = corner_runs(t);
+        let p = match patch_of(t) {
+            patches::NO_PATCH => crate::bvh::NO_LABEL,
+            p => 3 * n as u32 + p,
+        };
+        [a, b, c, p]
+    };
     let meets = |i: u32, j: u32| -> bool {
-        let (pi, pj) = (patch[i as usize], patch[j as usize]);
-        if pi == pj && pi != patches::NO_PATCH {
-            return false; // in one certified patch
+        if patch.is_some() {
+            let pi = patch_of(i);
+            if pi != patches::NO_PATCH && pi == patch_of(j) {
+                return false; // in one certified patch
+            }
         }
         let (vi, vj) = (m.triangles[i as usize], m.triangles[j as usize]);
         let shared = (0..3).filter(|&k| vj.contains(&vi[k])).count();

@@ -86,7 +86,6 @@ pub(crate) fn patches(m: &Mesh, start: &[u32], slots: &[u32]) -> Vec<u32> {
             (bits, nearest as u8)
         })
         .collect();
-    let bit = |axis: usize, sign: Sign| (if sign == Sign::Positive { 2u8 } else { 1 }) << (2 * axis);
     // Grown one after the other from the least triangle not yet in a patch, breadth
     // first, up to a size; the triangles of patches that fail the certificate are grown
     // again into smaller ones.
@@ -103,16 +102,17 @@ pub(crate) fn patches(m: &Mesh, start: &[u32], slots: &[u32]) -> Vec<u32> {
             if patch[seed] != NO_PATCH {
                 continue;
             }
+            // The seed's nearest axis and its bit there: what every triangle must share.
             let (bits, axis) = (faces[seed].0, faces[seed].1 as usize);
-            let sign = match (bits >> (2 * axis)) & 3 {
+            let want = bits & (3 << (2 * axis));
+            let sign = match want >> (2 * axis) {
                 2 => Sign::Positive,
                 1 => Sign::Negative,
                 _ => continue,
             };
-            let want = bit(axis, sign);
             let first = order.len();
             let name = seed as u32;
-            growth = growth.wrapping_add(1);
+            growth += 1;
             let take = |t: usize, patch: &mut [u32], order: &mut Vec<u32>, taken: &mut [u32]| {
                 patch[t] = name;
                 order.push(t as u32);

@@ -1678,8 +1678,8 @@ fn patches_hold_no_pair_that_meets() {
         spiral_strip(1.0, 40, 0.0), // back to its start: the last edge lies on the first
         spiral_strip(2.0, 64, 1e-3),
     ];
-    // A strip that comes round to touch its start at one point: the last outer corner on
-    // the first inner edge's line, moved in to lie on the first quad's edge.
+    // A strip that comes round to touch its start at one point: its last outer corner
+    // moved onto the middle of its first radial edge.
     let mut touch = spiral_strip(1.0, 40, 0.0);
     let last = touch.positions.len() - 1;
     touch.positions[last] = [1.5, 0.0, 0.0];
