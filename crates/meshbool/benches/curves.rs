@@ -50,12 +50,16 @@ fn broad_phase_2m_spheres_trees() -> usize {
 }
 
 /// The input check on real models beside the repository (`../shared/data`): CAD parts of
-/// long slivers side by side (thingi 79741, 73416), a multi-body CAD part, and two scans.
+/// long slivers side by side (thingi 79741, 73416, 908460), CAD parts of flat faces
+/// (a multi-body part, a sensor housing, seven gears, a wing), and two scans.
 /// A model that is not there is timed as nothing.
 #[divan::bench(sample_count = 7, args = [
     "real/thingi_79741.obj",
     "real/thingi_73416.obj",
+    "real/thingi_908460.obj",
     "corpus/cad_abc5_multibody.stl",
+    "corpus/cad_gears.stl",
+    "corpus/print_wing.stl",
     "corpus/cad_adis16480.stl",
     "corpus/scan_hammer.obj",
     "corpus/scan_armadillo.obj",

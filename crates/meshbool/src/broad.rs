@@ -208,6 +208,17 @@ pub(crate) fn cover_large(
     typical: f64,
     slivers: Option<&Slivers>,
 ) -> Option<(Mesh, Vec<u32>)> {
+    large_triangles(m, typical, slivers).map(|large| cut_large(m, &large))
+}
+
+/// The triangles of `m` that [`cover_large`] cuts into pieces, ascending, each with the
+/// width of its pieces; `None` where the cover is not worth it (the large triangles' boxes
+/// are a small part of all boxes) or no triangle is large.
+pub(crate) fn large_triangles(
+    m: &Mesh,
+    typical: f64,
+    slivers: Option<&Slivers>,
+) -> Option<Vec<(u32, f64)>> {
     if !(typical.is_finite() && typical > 0.0) {
         return None;
     }
@@ -270,11 +281,18 @@ pub(crate) fn cover_large(
     if of_large < WORTH * all {
         return None;
     }
+    Some(large)
+}
+
+/// The stand-in of [`cover_large`] for the triangles `large` (ascending, each with the
+/// width of its pieces) cut into pieces, and per triangle of it the triangle of `m` it
+/// stands for.
+pub(crate) fn cut_large(m: &Mesh, large: &[(u32, f64)]) -> (Mesh, Vec<u32>) {
     let mut positions = m.positions.clone();
     let mut triangles = Vec::with_capacity(m.triangles.len() + 8 * large.len());
     let mut parent = Vec::with_capacity(m.triangles.len() + 8 * large.len());
     let mut next = 0usize;
-    for &(t, width) in &large {
+    for &(t, width) in large {
         let t = t as usize;
         triangles.extend_from_slice(&m.triangles[next..t]);
         parent.extend(next as u32..t as u32);
@@ -329,7 +347,7 @@ pub(crate) fn cover_large(
     }
     triangles.extend_from_slice(&m.triangles[next..]);
     parent.extend(next as u32..m.triangles.len() as u32);
-    Some((Mesh::new_unchecked(positions, triangles), parent))
+    (Mesh::new_unchecked(positions, triangles), parent)
 }
 
 /// A grid over the common box. Cell `c` along axis `k` holds the coordinates `x` with

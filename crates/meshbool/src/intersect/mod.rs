@@ -865,47 +865,55 @@ fn vertices_on_features(results: impl Iterator<Item = (u32, u32, Piece)>) -> Vec
 /// whose triangles all share a patch or a run are not looked into; the rest by the exact
 /// pair test.
 pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
-    // Large triangles are looked at through their pieces ([`crate::broad::cover_large`]).
-    let cover = crate::broad::cover_large(m, crate::broad::typical_size(m, m), None);
-    // Where large triangles are cut into pieces (a CAD part's slivers side by side), the
-    // corners at each vertex (for both certificates), the patches, then the tree with each
-    // patch's triangles (or pieces) together, so that it fills whole subtrees, which the
-    // traversal does not look into, beside the runs of the fans not inside a patch. On
-    // meshes of triangles of one size, the runs alone cost less (the patches' growth and
-    // the grouped tree take more than the traversal they spare: BENCHMARKS.md).
+    // Where some triangles are large (a CAD part's slivers side by side): the corners at
+    // each vertex (for both certificates), the patches, then the tree with each patch's
+    // triangles together, so that it fills whole subtrees, which the traversal does not
+    // look into, beside the runs of the fans not inside a patch. The tree is over the
+    // whole triangles where their boxes meet few of other patches, else over the large
+    // triangles' pieces ([`crate::broad::cover_large`]). On meshes of triangles of one
+    // size, the runs alone cost less (the patches' growth and the grouped tree take more
+    // than the traversal they spare: BENCHMARKS.md).
     let n = m.triangles.len();
-    let (runs, (patch, bvh)) = match &cover {
-        Some((stand_in, parent)) if n < (u32::MAX / 3) as usize => {
+    let large = crate::broad::large_triangles(m, crate::broad::typical_size(m, m), None);
+    let (runs, patch, cover, bvh) = match large {
+        Some(large) if n < (u32::MAX / 3) as usize => {
             let (start, slots) = fans::corners_at_vertices(m);
             let patch = patches::patches(m, &start, &slots);
-            let (runs, bvh) = crate::par::join(
+            let one_patch = |v: usize| {
+                let fan = &slots[start[v] as usize..start[v + 1] as usize];
+                let p = fan
+                    .first()
+                    .map_or(patches::NO_PATCH, |&c| patch[c as usize / 3]);
+                p != patches::NO_PATCH && fan.iter().all(|&c| patch[c as usize / 3] == p)
+            };
+            let of = |t: u32| match patch[t as usize] {
+                patches::NO_PATCH => t,
+                p => p,
+            };
+            let (runs, (cover, bvh)) = crate::par::join(
+                || fans::runs_where(m, &start, &slots, |v| !one_patch(v)),
                 || {
-                    let inside = |v: usize| {
-                        let fan = &slots[start[v] as usize..start[v + 1] as usize];
-                        let p = fan
-                            .first()
-                            .map_or(patches::NO_PATCH, |&c| patch[c as usize / 3]);
-                        p != patches::NO_PATCH && fan.iter().all(|&c| patch[c as usize / 3] == p)
-                    };
-                    fans::runs_where(m, &start, &slots, |v| !inside(v))
-                },
-                || {
-                    let group: Vec<u32> = parent
-                        .iter()
-                        .map(|&t| match patch[t as usize] {
-                            patches::NO_PATCH => t,
-                            p => p,
-                        })
-                        .collect();
-                    Bvh::new_grouped(stand_in, &group, n)
+                    let group: Vec<u32> = (0..n as u32).map(of).collect();
+                    let whole = Bvh::new_grouped(m, &group, n);
+                    if few_across_patches(m, &whole, &patch) {
+                        return (None, whole);
+                    }
+                    let (stand_in, parent) = crate::broad::cut_large(m, &large);
+                    let group: Vec<u32> = parent.iter().map(|&t| of(t)).collect();
+                    let bvh = Bvh::new_grouped(&stand_in, &group, n);
+                    (Some((stand_in, parent)), bvh)
                 },
             );
-            (runs, (Some(patch), bvh))
+            (runs, Some(patch), cover, bvh)
         }
-        _ => crate::par::join(
-            || fans::runs(m),
-            || (None, Bvh::new(cover.as_ref().map_or(m, |c| &c.0))),
-        ),
+        large => {
+            let cover = large.map(|l| crate::broad::cut_large(m, &l));
+            let (runs, bvh) = crate::par::join(
+                || fans::runs(m),
+                || Bvh::new(cover.as_ref().map_or(m, |c| &c.0)),
+            );
+            (runs, None, cover, bvh)
+        }
     };
     let patch_of = |t: u32| patch.as_ref().map_or(patches::NO_PATCH, |p| p[t as usize]);
     let corner_runs = |t: u32| -> [u32; 3] { std::array::from_fn(|k| runs[3 * t as usize + k]) };
@@ -960,6 +968,41 @@ pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
     found.par_sort_unstable();
     found.dedup();
     found
+}
+
+/// Candidate pairs per triangle, across patches, up to which the self-intersection check
+/// looks at a mesh with large triangles through the whole triangles (grouped by patch)
+/// rather than their pieces. Measured on CAD parts (BENCHMARKS.md): where the whole
+/// triangles give up to about 11 per triangle (abc5, adis16480, gears, wing, thingi
+/// 908460), they cost half to a quarter of the pieces; at 22 (thingi 73416) the pieces are
+/// cheaper, at 880 (thingi 79741: slivers around slanted cylinders, each box over
+/// much of its neighbours) ten times cheaper.
+const WHOLE_UP_TO: usize = 16;
+
+/// Whether the tree `whole` over the triangles of `m` (grouped by `patch`) has few
+/// candidate pairs across patches: at most [`WHOLE_UP_TO`] a triangle, estimated on an
+/// even sample of up to 256 triangles as half the triangles their boxes meet that are
+/// not in their own patch (each pair is met from both sides).
+fn few_across_patches(m: &Mesh, whole: &Bvh, patch: &[u32]) -> bool {
+    const SAMPLE: usize = 256;
+    let n = m.triangles.len();
+    let step = n.div_ceil(SAMPLE).max(1);
+    let limit = 2 * WHOLE_UP_TO * n.div_ceil(step);
+    // On one thread, stopping once over the limit: a mesh of many such pairs is told
+    // after a few triangles.
+    let mut met = 0;
+    for t in (0..n as u32).step_by(step) {
+        let p = patch[t as usize];
+        met += whole
+            .in_box(m, &crate::bvh::tri_box(m, t))
+            .into_iter()
+            .filter(|&u| u != t && (p == patches::NO_PATCH || patch[u as usize] != p))
+            .count();
+        if met > limit {
+            return false;
+        }
+    }
+    true
 }
 
 /// The pairs of triangles (`(lo, hi)`, unsorted, perhaps repeated) that a cover's

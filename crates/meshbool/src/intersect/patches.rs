@@ -1,9 +1,10 @@
 //! Patches certified free of self-intersection: connected pieces of a mesh, up to
 //! [`CAPS`] triangles each, proven not to meet themselves anywhere but in the vertices
-//! and edges their triangles share. Where the self-intersection check cuts a mesh's large
-//! triangles into pieces (a CAD part's slivers side by side), it skips every pair of
-//! triangles in one patch, and every node of its tree whose pieces are all of one patch,
-//! so that it looks only at pairs near the patches' boundaries.
+//! and edges their triangles share. Where a mesh has large triangles (a CAD part's
+//! slivers side by side), the self-intersection check skips every pair of triangles in
+//! one patch, and every node of its tree (over the whole triangles or the large ones'
+//! pieces) whose triangles are all of one patch, so that it looks only at pairs near the
+//! patches' boundaries.
 //!
 //! A patch is grown across edges of exactly two triangles (used once in each direction)
 //! from a seed, taking triangles that keep the seed's orientation seen along one coordinate

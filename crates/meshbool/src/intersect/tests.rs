@@ -1722,3 +1722,67 @@ fn patches_hold_no_pair_that_meets() {
     assert!(self_intersections(&cases[3]).is_empty());
     assert!(in_patches(&cases[3]) > 0.9);
 }
+
+/// Whether the self-intersection check looks at `m` through its whole triangles (grouped
+/// by patch) rather than its large triangles' pieces; `None` where no triangle is large.
+fn checks_whole_triangles(m: &Mesh) -> Option<bool> {
+    crate::broad::large_triangles(m, crate::broad::typical_size(m, m), None)?;
+    let (start, slots) = fans::corners_at_vertices(m);
+    let patch = patches::patches(m, &start, &slots);
+    let n = m.triangles.len();
+    let group: Vec<u32> = (0..n as u32)
+        .map(|t| match patch[t as usize] {
+            patches::NO_PATCH => t,
+            p => p,
+        })
+        .collect();
+    Some(few_across_patches(m, &Bvh::new_grouped(m, &group, n), &patch))
+}
+
+/// A fine sphere (4,096 triangles, radius 1, centre at height `z`) above or through a
+/// floor of two large triangles, 20 across, at height 0.
+fn sphere_on_floor(z: f64) -> Mesh {
+    let sphere = uv_sphere([0.1, -0.2, z], 1.0, 64, 32);
+    let mut positions = sphere.positions.clone();
+    let mut triangles = sphere.triangles.clone();
+    let v = positions.len() as u32;
+    positions.extend([[-10.0, -10.0, 0.0], [10.0, -10.0, 0.0], [10.0, 10.0, 0.0], [-10.0, 10.0, 0.0]]);
+    triangles.extend([[v, v + 1, v + 2], [v, v + 2, v + 3]]);
+    Mesh::new_unchecked(positions, triangles)
+}
+
+#[test]
+fn large_triangles_are_checked_whole_unless_their_boxes_span_other_patches() {
+    // Two large triangles under a fine sphere: their boxes are flat and meet only the
+    // sphere's triangles that reach the floor, and the check takes the whole triangles.
+    // A long cylinder of slivers along a slanted axis: each sliver's box holds much of
+    // the cylinder, and the check takes the large triangles' pieces. Both ways it finds
+    // exactly what the pair-by-pair test finds.
+    for (z, crossing) in [(1.5, false), (0.5, true)] {
+        let m = sphere_on_floor(z);
+        assert_eq!(checks_whole_triangles(&m), Some(true));
+        let found = self_intersections(&m);
+        assert_eq!(found.is_empty(), !crossing);
+        assert_eq!(found, self_intersections_brute(&m), "sphere at {z}");
+    }
+    let ring: Vec<[f64; 2]> = (0..120)
+        .map(|i| {
+            let a = std::f64::consts::TAU * i as f64 / 120.0;
+            [a.cos(), a.sin()]
+        })
+        .collect();
+    let upright = crate::test_util::fanned_prism(&ring, 40.0);
+    let slanted = rigid_motion(&upright, [1.0, 2.0, 0.5], 0.9, [0.0; 3]);
+    assert_eq!(checks_whole_triangles(&slanted), Some(false));
+    let found = self_intersections(&slanted);
+    assert!(found.is_empty(), "{} pairs", found.len());
+    assert_eq!(found, self_intersections_brute(&slanted));
+    // Dented: one wall vertex pushed through the opposite wall.
+    let mut dented = slanted.clone();
+    let (p, q) = (dented.positions[0], dented.positions[60]);
+    dented.positions[0] = std::array::from_fn(|k| p[k] + 1.2 * (q[k] - p[k]));
+    assert_eq!(checks_whole_triangles(&dented), Some(false));
+    let found = self_intersections(&dented);
+    assert!(!found.is_empty());
+    assert_eq!(found, self_intersections_brute(&dented));
+}
