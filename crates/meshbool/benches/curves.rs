@@ -50,7 +50,8 @@ fn broad_phase_2m_spheres_trees() -> usize {
 }
 
 /// The input check on real models beside the repository (`../shared/data`): CAD parts of
-/// long slivers side by side (thingi 79741, 73416, 908460), CAD parts of flat faces
+/// long slivers side by side (thingi 73416, 908460; 79741's around slanted cylinders),
+/// CAD parts of flat faces
 /// (a multi-body part, a sensor housing, seven gears, a wing), and two scans.
 /// A model that is not there is timed as nothing.
 #[divan::bench(sample_count = 7, args = [

@@ -198,7 +198,8 @@ impl Slivers {
 /// the other triangles stay as they are. The boxes of a large triangle together hold it:
 /// each is its piece's computed box widened by more than the rounding error of the
 /// pieces' corners. Returns the stand-in and, per triangle of it, the triangle of `m` it
-/// stands for; `None` when no triangle is large.
+/// stands for; `None` when no triangle is large, or the large ones' boxes are a small part
+/// of all boxes ([`large_triangles`]).
 ///
 /// A box around a long diagonal sliver holds a large region the sliver is nowhere near,
 /// and every triangle of the other mesh there became a candidate pair; with the pieces,

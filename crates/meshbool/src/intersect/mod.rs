@@ -886,20 +886,14 @@ pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
                     .map_or(patches::NO_PATCH, |&c| patch[c as usize / 3]);
                 p != patches::NO_PATCH && fan.iter().all(|&c| patch[c as usize / 3] == p)
             };
-            let of = |t: u32| match patch[t as usize] {
-                patches::NO_PATCH => t,
-                p => p,
-            };
             let (runs, (cover, bvh)) = crate::par::join(
                 || fans::runs_where(m, &start, &slots, |v| !one_patch(v)),
                 || {
-                    let group: Vec<u32> = (0..n as u32).map(of).collect();
-                    let whole = Bvh::new_grouped(m, &group, n);
-                    if few_across_patches(m, &whole, &patch) {
+                    if let Some(whole) = whole_tree(m, &patch) {
                         return (None, whole);
                     }
                     let (stand_in, parent) = crate::broad::cut_large(m, &large);
-                    let group: Vec<u32> = parent.iter().map(|&t| of(t)).collect();
+                    let group: Vec<u32> = parent.iter().map(|&t| patch_group(&patch, t)).collect();
                     let bvh = Bvh::new_grouped(&stand_in, &group, n);
                     (Some((stand_in, parent)), bvh)
                 },
@@ -972,16 +966,36 @@ pub fn self_intersections(m: &Mesh) -> Vec<(u32, u32)> {
 
 /// Candidate pairs per triangle, across patches, up to which the self-intersection check
 /// looks at a mesh with large triangles through the whole triangles (grouped by patch)
-/// rather than their pieces. Measured on CAD parts (BENCHMARKS.md): where the whole
-/// triangles give up to about 11 per triangle (abc5, adis16480, gears, wing, thingi
-/// 908460), they cost half to a quarter of the pieces; at 22 (thingi 73416) the pieces are
-/// cheaper, at 880 (thingi 79741: slivers around slanted cylinders, each box over
-/// much of its neighbours) ten times cheaper.
+/// rather than their pieces. Measured on CAD parts (BENCHMARKS.md, pairs a triangle as
+/// [`few_across_patches`] estimates them): at 6 to 11 (abc5, adis16480, gears, wing) the
+/// whole triangles cost half to a quarter of the pieces, at 7 (thingi 908460) no more;
+/// at 18 (thingi 73416) the pieces cost less, at 897 (thingi 79741: slivers around
+/// slanted cylinders, each box over much of its neighbours) ten times less.
 const WHOLE_UP_TO: usize = 16;
+
+/// The group of triangle `t` in a tree grouped by patch ([`Bvh::new_grouped`]): its
+/// patch, or itself outside any (a patch is named by its seed, a triangle of it, so the
+/// two kinds of names do not collide).
+fn patch_group(patch: &[u32], t: u32) -> u32 {
+    match patch[t as usize] {
+        patches::NO_PATCH => t,
+        p => p,
+    }
+}
+
+/// The tree over the whole triangles of `m`, each patch's together, where their boxes
+/// meet few triangles of other patches ([`few_across_patches`]); `None` where the large
+/// triangles' pieces are to be looked at instead.
+fn whole_tree(m: &Mesh, patch: &[u32]) -> Option<Bvh> {
+    let n = m.triangles.len();
+    let group: Vec<u32> = (0..n as u32).map(|t| patch_group(patch, t)).collect();
+    let whole = Bvh::new_grouped(m, &group, n);
+    few_across_patches(m, &whole, patch).then_some(whole)
+}
 
 /// Whether the tree `whole` over the triangles of `m` (grouped by `patch`) has few
 /// candidate pairs across patches: at most [`WHOLE_UP_TO`] a triangle, estimated on an
-/// even sample of up to 256 triangles as half the triangles their boxes meet that are
+/// even sample of up to 256 triangles (every triangle of a smaller mesh) as half the triangles their boxes meet that are
 /// not in their own patch (each pair is met from both sides).
 fn few_across_patches(m: &Mesh, whole: &Bvh, patch: &[u32]) -> bool {
     const SAMPLE: usize = 256;
@@ -1006,7 +1020,7 @@ fn few_across_patches(m: &Mesh, whole: &Bvh, patch: &[u32]) -> bool {
 }
 
 /// The pairs of triangles (`(lo, hi)`, unsorted, perhaps repeated) that a cover's
-/// pieces stand for (`stand_in` with `parent`, from [`crate::broad::cover_large`], in a
+/// pieces stand for (`stand_in` with `parent`, from [`crate::broad::cut_large`], in a
 /// tree `bvh` of its own), among the pairs of pieces of different triangles whose boxes
 /// meet once rounded outward to `f32`: each pair of triangles that some pair of their
 /// pieces stands for, at least once.
