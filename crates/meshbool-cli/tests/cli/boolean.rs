@@ -42,30 +42,6 @@ fn boolean_commands_give_exact_cube_volumes() {
     }
 }
 
-/// An OBJ file of a prism of height 1 on a regular `n`-gon of circumradius 1 turned by
-/// `turn` radians, both caps fanned from its first vertex (as CAD exporters fan caps).
-fn fanned_prism(name: &str, n: usize, turn: f64) -> std::path::PathBuf {
-    let mut obj = String::new();
-    for z in [0.0, 1.0] {
-        for i in 0..n {
-            let a = turn + std::f64::consts::TAU * i as f64 / n as f64;
-            obj += &format!("v {} {} {z}\n", a.cos(), a.sin());
-        }
-    }
-    for i in 1..n - 1 {
-        obj += &format!("f 1 {} {}\n", i + 2, i + 1);
-        obj += &format!("f {} {} {}\n", n + 1, n + i + 1, n + i + 2);
-    }
-    for i in 0..n {
-        let j = (i + 1) % n;
-        obj += &format!("f {} {} {}\n", i + 1, j + 1, n + j + 1);
-        obj += &format!("f {} {} {}\n", i + 1, n + j + 1, n + i + 1);
-    }
-    let path = tmp(name);
-    std::fs::write(&path, obj).unwrap();
-    path
-}
-
 /// Two 24-sided prisms on one base, the second turned by half a side, caps fanned from a
 /// corner: the caps overlap in a regular 48-gon of inradius cos(π/24) where every fan
 /// triangle of one crosses many of the other's. With `--coplanar-refinement` the shared

@@ -113,6 +113,38 @@ pub(crate) fn tmp(name: &str) -> PathBuf {
     dir.join(name)
 }
 
+/// A fresh, empty directory for one test (`test`: a name no other test uses).
+pub(crate) fn scratch(test: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("meshbool-cli-{}-dir-{test}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// An OBJ file of a prism of height 1 on a regular `n`-gon of circumradius 1 turned by
+/// `turn` radians, both caps fanned from its first vertex (as CAD exporters fan caps).
+pub(crate) fn fanned_prism(name: &str, n: usize, turn: f64) -> PathBuf {
+    let mut obj = String::new();
+    for z in [0.0, 1.0] {
+        for i in 0..n {
+            let a = turn + std::f64::consts::TAU * i as f64 / n as f64;
+            obj += &format!("v {} {} {z}\n", a.cos(), a.sin());
+        }
+    }
+    for i in 1..n - 1 {
+        obj += &format!("f 1 {} {}\n", i + 2, i + 1);
+        obj += &format!("f {} {} {}\n", n + 1, n + i + 1, n + i + 2);
+    }
+    for i in 0..n {
+        let j = (i + 1) % n;
+        obj += &format!("f {} {} {}\n", i + 1, j + 1, n + j + 1);
+        obj += &format!("f {} {} {}\n", i + 1, n + j + 1, n + i + 1);
+    }
+    let path = tmp(name);
+    std::fs::write(&path, obj).unwrap();
+    path
+}
+
 pub(crate) fn write_cube(name: &str, min: [f64; 3], max: [f64; 3]) -> PathBuf {
     let p = tmp(name);
     meshbool::io::write_path(&p, &meshbool::Mesh::cuboid(min, max)).unwrap();

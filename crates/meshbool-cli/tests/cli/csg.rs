@@ -1,17 +1,12 @@
 //! `meshbool csg`: the document evaluated to the library's result, a cache folder shared
 //! by runs computing only what an edit changed, the report per node.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
 use meshbool::csg::{evaluate, Cache, CsgOptions, Scene};
 
-fn scratch(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("meshbool-cli-csg-{}-{test}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
+use crate::common::scratch;
 
 /// `meshbool csg ARGS --json`, which must succeed: its report.
 fn csg(dir: &Path, args: &[&str]) -> serde_json::Value {

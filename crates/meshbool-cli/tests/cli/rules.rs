@@ -8,20 +8,13 @@ use std::process::{Command, Output};
 
 use meshbool::Mesh;
 
+use crate::common::scratch;
+
 fn meshbool(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_meshbool"))
         .args(args)
         .output()
         .unwrap()
-}
-
-/// A fresh, empty directory for one test.
-fn scratch(test: &str) -> PathBuf {
-    let dir =
-        std::env::temp_dir().join(format!("meshbool-cli-rules-{}-{test}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
 }
 
 fn s(p: &Path) -> &str {
