@@ -995,8 +995,9 @@ fn whole_tree(m: &Mesh, patch: &[u32]) -> Option<Bvh> {
 
 /// Whether the tree `whole` over the triangles of `m` (grouped by `patch`) has few
 /// candidate pairs across patches: at most [`WHOLE_UP_TO`] a triangle, estimated on an
-/// even sample of up to 256 triangles (every triangle of a smaller mesh) as half the triangles their boxes meet that are
-/// not in their own patch (each pair is met from both sides).
+/// even sample of up to 256 triangles (every triangle of a smaller mesh) as half the
+/// triangles their boxes meet that are not in their own patch (each pair is met from
+/// both sides).
 fn few_across_patches(m: &Mesh, whole: &Bvh, patch: &[u32]) -> bool {
     const SAMPLE: usize = 256;
     let n = m.triangles.len();

@@ -1600,8 +1600,9 @@ fn the_self_traversal_skips_nodes_of_one_certified_run() {
     // A 400-sided fanned prism: every pair of a cap's triangles shares the corner and their
     // boxes overlap there (79,000 pairs a cap), but the nodes below which all triangles are
     // in the cap's run are settled: of those pairs only the ones in nodes that hold walls
-    // too are looked at (a tree of whole triangles: a sliver's box spans the cap). (The walls' pairs with the caps' long triangles remain: the check
-    // looks at those through the triangles' pieces, `broad::cover_large`.)
+    // too are looked at (a tree of whole triangles: a sliver's box spans the cap). (The
+    // walls' pairs with the caps' long triangles remain: the check looks at those through
+    // the triangles' pieces, `broad::cover_large`.)
     let n = 400;
     let m = crate::test_util::fanned_prism(&ellipse_ring(n, 0.0, &mut Rng(1)), 1.0);
     let runs = fans::runs(&m);
@@ -1738,7 +1739,9 @@ fn sphere_on_floor(z: f64) -> Mesh {
     let mut positions = sphere.positions.clone();
     let mut triangles = sphere.triangles.clone();
     let v = positions.len() as u32;
-    positions.extend([[-10.0, -10.0, 0.0], [10.0, -10.0, 0.0], [10.0, 10.0, 0.0], [-10.0, 10.0, 0.0]]);
+    for [x, y] in [[-10.0, -10.0], [10.0, -10.0], [10.0, 10.0], [-10.0, 10.0]] {
+        positions.push([x, y, 0.0]);
+    }
     triangles.extend([[v, v + 1, v + 2], [v, v + 2, v + 3]]);
     Mesh::new_unchecked(positions, triangles)
 }
